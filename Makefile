@@ -1,0 +1,24 @@
+# The two commands of the README:
+#   make demo   installs what is missing and runs the main job, writing results and figures to out/
+#   make test   installs what is missing and runs every test (C++, C++ under sanitizers, Python)
+PY ?= python3
+OUT ?= out
+
+.PHONY: demo test install test-cpp test-py bench
+
+install:
+	bash scripts/install_deps.sh test
+
+demo: install
+	$(PY) examples/porosity_demo.py --out $(OUT)
+
+test: install test-cpp test-py
+
+test-cpp:
+	bash scripts/test_cpp.sh
+
+test-py:
+	$(PY) -m pytest -q -p no:cacheprovider tests
+
+bench: install
+	$(PY) benchmarks/porosity_lookup_cost.py

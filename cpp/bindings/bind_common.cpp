@@ -1,0 +1,39 @@
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "vofdem/grid.h"
+#include "vofdem/profile.h"
+
+namespace py = pybind11;
+
+namespace vofdem::bind {
+
+void bind_common(py::module_& m) {
+  py::class_<Grid2D>(m, "Grid2D", "Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).")
+      .def(py::init<int, double, std::vector<double>, double>(), py::arg("nx"), py::arg("dx"), py::arg("z_faces"),
+           py::arg("x0") = 0.0)
+      .def_static("uniform", &Grid2D::uniform, py::arg("nx"), py::arg("nz"), py::arg("length_x"),
+                  py::arg("height_z"), py::arg("x0") = 0.0, py::arg("z0") = 0.0)
+      .def_static("graded", &Grid2D::graded, py::arg("nx"), py::arg("length_x"), py::arg("height_z"), py::arg("dz"),
+                  py::arg("dz_bed"), py::arg("z_bed_top"))
+      .def_property_readonly("nx", &Grid2D::nx)
+      .def_property_readonly("nz", &Grid2D::nz)
+      .def_property_readonly("ncell", &Grid2D::ncell)
+      .def_property_readonly("dx", &Grid2D::dx)
+      .def_property_readonly("x0", &Grid2D::x0)
+      .def_property_readonly("length_x", &Grid2D::length_x)
+      .def_property_readonly("height_z", &Grid2D::height_z)
+      .def_property_readonly("z_faces", &Grid2D::z_faces)
+      .def("__repr__", [](const Grid2D& g) {
+        return "Grid2D(nx=" + std::to_string(g.nx()) + ", nz=" + std::to_string(g.nz()) + ")";
+      });
+
+  py::class_<StageProfile>(m, "StageProfile", "Accumulated wall time [s] and calls of each named solver stage.")
+      .def_property_readonly("names", &StageProfile::names)
+      .def_property_readonly("seconds", &StageProfile::seconds)
+      .def_property_readonly("calls", &StageProfile::calls)
+      .def_property_readonly("total_seconds", &StageProfile::total_seconds)
+      .def("reset", &StageProfile::reset);
+}
+
+}  // namespace vofdem::bind

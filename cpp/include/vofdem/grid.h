@@ -1,0 +1,59 @@
+// Geometry of the vertical 2D staggered (MAC) grid shared by the flow, the VOF advection, the pressure
+// solver and the porosity mapping.
+//
+// x runs along the flume (uniform spacing dx), z upwards (spacing free per row, e.g. 0.5 cm at the
+// bed and 1.0 cm above as in Maeno & Tomita 2008). Index conventions, used by every flat array:
+//   cell (i, k)           c = i + nx * k          i in [0, nx), k in [0, nz)     ncell = nx * nz
+//   x-face left of (i, k)  f = i + (nx + 1) * k    i in [0, nx], k in [0, nz)     nface_x = (nx + 1) * nz
+//   z-face below (i, k)    f = i + nx * k          i in [0, nx), k in [0, nz]     nface_z = nx * (nz + 1)
+// The grid is a pure description: it holds no field and never changes after construction.
+#pragma once
+
+#include <vector>
+
+namespace vofdem {
+
+class Grid2D {
+ public:
+  // uniform in x: nx cells of width dx [m] from x0 [m]; z_faces [m]: nz + 1 strictly increasing heights
+  Grid2D(int nx, double dx, std::vector<double> z_faces, double x0 = 0.0);
+
+  // nx x nz uniform cells covering [x0, x0 + length_x] x [z0, z0 + height_z]
+  static Grid2D uniform(int nx, int nz, double length_x, double height_z, double x0 = 0.0, double z0 = 0.0);
+  // cells of dz_bed [m] up to z_bed_top [m], then dz [m] up to height_z [m] (the last row may be shorter)
+  static Grid2D graded(int nx, double length_x, double height_z, double dz, double dz_bed, double z_bed_top);
+
+  int nx() const { return nx_; }
+  int nz() const { return nz_; }
+  int ncell() const { return nx_ * nz_; }
+  int nface_x() const { return (nx_ + 1) * nz_; }
+  int nface_z() const { return nx_ * (nz_ + 1); }
+
+  int cell(int i, int k) const { return i + nx_ * k; }
+  int face_x(int i, int k) const { return i + (nx_ + 1) * k; }
+  int face_z(int i, int k) const { return i + nx_ * k; }
+
+  double dx() const { return dx_; }
+  double dz(int k) const { return z_faces_[k + 1] - z_faces_[k]; }
+  double x0() const { return x0_; }
+  double x_face(int i) const { return x0_ + dx_ * i; }
+  double x_center(int i) const { return x0_ + dx_ * (i + 0.5); }
+  double z_face(int k) const { return z_faces_[k]; }
+  double z_center(int k) const { return 0.5 * (z_faces_[k] + z_faces_[k + 1]); }
+  double length_x() const { return dx_ * nx_; }
+  double height_z() const { return z_faces_.back() - z_faces_.front(); }
+  double cell_area(int k) const { return dx_ * dz(k); }
+  double min_dz() const;
+  const std::vector<double>& z_faces() const { return z_faces_; }
+
+  // cell index range [i, k] holding a point, clamped to the grid
+  int locate_x(double x) const;
+  int locate_z(double z) const;
+
+ private:
+  int nx_, nz_;
+  double dx_, x0_;
+  std::vector<double> z_faces_;
+};
+
+}  // namespace vofdem

@@ -1,0 +1,68 @@
+// Pressure projection solve: the variable-coefficient Poisson problem of a MAC grid.
+//
+//   sum over the faces f of cell c:  a_f (p_nb(f) - p_c) = b_c                                (P)
+//
+// a_f >= 0 [m^4 s / kg per metre of width, i.e. m^3 s/kg x m] is the face coefficient assembled by the
+// flow solver, beta_f * (face length) / (distance between the two cell centres), with
+// beta_f = dt n_f / (rho_f (1 + dt n_f R'_f)) (porosity n, density rho and the semi-implicit porous
+// resistance R' of the face). a_f = 0 closes a face (wall, solid cell). On a boundary face with
+// a_f > 0, p_nb is the boundary value given in face_*_bc (Dirichlet, e.g. p = 0 on the open top).
+// Inactive cells (solid, n = 0) are not unknowns: their pressure is left untouched and every face
+// touching them must have a_f = 0. The matrix is symmetric negative semi-definite; a connected group
+// of active cells with no Dirichlet face is singular, and the solver then returns the solution whose
+// mean over that group is zero after removing the mean of b from it (the compatible part).
+//
+// Two solvers share this interface: Eigen's sparse direct solver (the reference) and a geometric
+// multigrid preconditioned conjugate gradient (the fast default).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vofdem/grid.h"
+
+namespace vofdem {
+
+struct PressureProblem {
+  std::vector<double> face_x_coef;   // a_f on x-faces, size grid.nface_x()
+  std::vector<double> face_z_coef;   // a_f on z-faces, size grid.nface_z()
+  std::vector<double> face_x_bc;     // Dirichlet pressure [Pa] on boundary x-faces (i = 0, nx), size nface_x
+  std::vector<double> face_z_bc;     // Dirichlet pressure [Pa] on boundary z-faces (k = 0, nz), size nface_z
+  std::vector<std::uint8_t> cell_active;  // 1 = unknown, 0 = solid; size grid.ncell()
+
+  // sizes every array for `grid`: all faces closed, all cells active, bc = 0
+  void resize(const Grid2D& grid);
+};
+
+enum class PressureSolverKind {
+  kEigenDirect = 0,  // Eigen SimplicialLDLT: exact to round-off, the reference
+  kMultigridCG = 1,  // conjugate gradient preconditioned by a geometric multigrid V-cycle: the default
+};
+
+struct PressureSolveStats {
+  int iterations = 0;        // CG iterations (0 for the direct solver)
+  double residual = 0.0;     // final ||b - A p||_2 / ||b||_2 (0 when b = 0)
+  double setup_seconds = 0;  // factorisation or multigrid hierarchy build
+  double solve_seconds = 0;
+};
+
+class PressureSolver {
+ public:
+  virtual ~PressureSolver() = default;
+  // takes new coefficients; call whenever a_f or cell_active changed (the flow solver: every step)
+  virtual void setup(const Grid2D& grid, const PressureProblem& problem) = 0;
+  // solves (P) for p [Pa] (size ncell; used as the initial guess by iterative solvers);
+  // relative tolerance tol on ||b - A p|| / ||b||. Throws std::runtime_error if it does not converge.
+  virtual PressureSolveStats solve(const std::vector<double>& rhs, std::vector<double>& p, double tol) = 0;
+  virtual PressureSolverKind kind() const = 0;
+};
+
+std::unique_ptr<PressureSolver> make_pressure_solver(PressureSolverKind kind);
+
+// residual r = b - A p on active cells (0 on inactive ones); for tests and diagnostics
+void pressure_residual(const Grid2D& grid, const PressureProblem& problem, const std::vector<double>& rhs,
+                       const std::vector<double>& p, std::vector<double>& residual);
+
+}  // namespace vofdem

@@ -1,0 +1,44 @@
+#include "vofdem/check.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace vofdem {
+
+std::string format_value(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return buf;
+}
+
+namespace {
+[[noreturn]] void refuse(const char* name, double value, const std::string& range) {
+  throw std::invalid_argument(std::string(name) + " = " + format_value(value) + " is outside the allowed range " +
+                              range);
+}
+}  // namespace
+
+void require_finite(const char* name, double value) {
+  if (!std::isfinite(value)) refuse(name, value, "(finite values)");
+}
+
+void require_positive(const char* name, double value) {
+  if (!(std::isfinite(value) && value > 0.0)) refuse(name, value, "(0, inf)");
+}
+
+void require_non_negative(const char* name, double value) {
+  if (!(std::isfinite(value) && value >= 0.0)) refuse(name, value, "[0, inf)");
+}
+
+void require_in_open_closed(const char* name, double value, double lo, double hi) {
+  if (!(std::isfinite(value) && value > lo && value <= hi))
+    refuse(name, value, "(" + format_value(lo) + ", " + format_value(hi) + "]");
+}
+
+void require_in_closed(const char* name, double value, double lo, double hi) {
+  if (!(std::isfinite(value) && value >= lo && value <= hi))
+    refuse(name, value, "[" + format_value(lo) + ", " + format_value(hi) + "]");
+}
+
+}  // namespace vofdem

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs what the project needs and is missing on a Debian 12 machine: the system packages from
+# Debian's apt (Eigen, GoogleTest, Google Benchmark), then the Python package with its test extras
+# from PyPI. Safe to run again: it installs only what is missing and rebuilds incrementally.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY=${PY:-python3}
+
+APT_PACKAGES="libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev ninja-build"
+missing=""
+for p in $APT_PACKAGES; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "installing system packages:$missing"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing
+fi
+
+EXTRAS=${1:-test}
+"$PY" -m pip install --quiet --disable-pip-version-check ".[${EXTRAS}]"
