@@ -2,13 +2,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace vofdem {
 
 std::string format_value(double value) {
+  // the shortest of 15..17 significant digits that reads back as the same double
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", value);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+    if (std::strtod(buf, nullptr) == value || std::isnan(value)) break;
+  }
   return buf;
 }
 
