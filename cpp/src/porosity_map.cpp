@@ -40,8 +40,9 @@ double disc_rect_area_unchecked(double cx, double cz, double r, double x0, doubl
   const double a0 = x0 - cx, a1 = x1 - cx, b0 = z0 - cz, b1 = z1 - cz;
   const double area = disc_corner_primitive(a1, b1, r) - disc_corner_primitive(a0, b1, r) -
                       disc_corner_primitive(a1, b0, r) + disc_corner_primitive(a0, b0, r);
-  // round-off may leave -1e-20 where the true area is 0
-  return std::max(0.0, area);
+  // round-off (of order 1e-16 r^2) may leave -1e-20 where the true area is 0, or a little more than
+  // a small rectangle that lies inside the disc: keep to the bounds [0, rectangle area]
+  return std::clamp(area, 0.0, (x1 - x0) * (z1 - z0));
 }
 
 double disc_rect_area(double cx, double cz, double r, double x0, double x1, double z0, double z1) {
@@ -178,7 +179,8 @@ int PorosityMapper::add_exact(int /*j*/, double x, double z, double r, int p) {
     for (int i = 0; i < ni; ++i) {
       const double* lo = &node_phi_[k * (ni + 1) + i];
       const double* hi = lo + (ni + 1);
-      const double area = std::max(0.0, hi[1] - hi[0] - lo[1] + lo[0]);
+      const double cell_area = grid_.dx() * grid_.dz(k0 + k);
+      const double area = std::clamp(hi[1] - hi[0] - lo[1] + lo[0], 0.0, cell_area);
       if (area <= 0.0) continue;
       const int c = grid_.cell(i0 + i, k0 + k);
       cell_solid_area_[c] += area;

@@ -43,7 +43,7 @@ def porosity_from_discs(grid, disc_x, disc_z, disc_d, method="exact", m=8, n_exp
     if r.size == 0:
         return np.ones((grid.nz, grid.nx))
     if not np.all(np.isfinite(r) & (r > 0)):
-        bad = r[~(np.isfinite(r) & (r > 0))][0]
+        bad = float(r[~(np.isfinite(r) & (r > 0))][0])
         raise ValueError(f"disc_d = {2 * bad!r} is outside the allowed range (0, inf)")
     mapper = make_porosity_mapper(grid, r.min(), r.max(), method=method, m=m, n_exp=n_exp, max_discs=r.size)
     mapper.map(x, z, r)
