@@ -25,7 +25,7 @@ from vofdem.packing import trapezoid_weir_discs  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def best_time_per_call(mapper, x, z, r, reps, rounds=5):
+def best_time_per_call(mapper, x, z, r, reps, rounds=15):
     """Best of `rounds` averages over `reps` calls [s]: the least disturbed by other processes."""
     best = np.inf
     for _ in range(rounds):
@@ -52,7 +52,7 @@ def errors(lookup, exact):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--reps", type=int, default=200, help="calls per timing round")
+    ap.add_argument("--reps", type=int, default=100, help="calls per timing round")
     ap.add_argument("--out", default=os.path.join(HERE, "results", "porosity_lookup_cost.md"))
     args = ap.parse_args(argv)
 
@@ -95,7 +95,7 @@ def main(argv=None):
         f"({grid.nx} x {grid.nz} cells, 2.5 cm x 1.0 cm, 0.5 cm rows up to 2 cm); {ntouched} cells touched. "
         "Error: cell porosity of eq. (11), lookup minus exact, over the touched cells. Time: one mapping "
         "call with the discs minus an empty call (clearing and eq. (11) on every cell, "
-        f"{t_empty * 1e6:.1f} us here), divided by the number of discs; best of 5 rounds of "
+        f"{t_empty * 1e6:.1f} us here), divided by the number of discs; best of 15 rounds of "
         f"{args.reps} calls. Radius nodes every 1 mm (linear interpolation of A/r^2).",
         "",
         f"Exact method: **{t_exact * 1e9:.0f} ns per disc** ({t_exact_call * 1e6:.1f} us per call with {n} discs).",

@@ -232,11 +232,12 @@ int PorosityMapper::add_lookup(int j, double x, double z, double r, int p) {
   const double* t0 = &tables_[row_class_[k] * nradius_ + q][sub];
   const double r2 = r * r;
   const double* t1 = nradius_ > 1 ? &tables_[row_class_[k] * nradius_ + q + 1][sub] : t0;
+  // columns of the stencil inside the grid
+  const int di_lo = std::max(-sx_, -i), di_hi = std::min(sx_, grid_.nx() - 1 - i);
   for (int s = 0; s < nrow; ++s) {
     const int kk = k + c.dk_lo + s;
-    for (int di = -sx_; di <= sx_; ++di) {
+    for (int di = di_lo; di <= di_hi; ++di) {
       const int ii = i + di;
-      if (ii < 0 || ii >= grid_.nx()) continue;
       const int e = s * ncol + di + sx_;
       const double area = r2 * (t0[e] + w * (t1[e] - t0[e]));
       if (area <= 0.0) continue;
