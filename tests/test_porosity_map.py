@@ -195,6 +195,7 @@ def test_map_is_deterministic_and_allocates_nothing():
         # the same memory, the same bits
         assert np.shares_memory(por, mp.cell_porosity)
         assert np.array_equal(first[0], mp.cell_porosity) and np.array_equal(first[1], mp.disc_cell_area)
+        assert list(mp.profile.names) == ["porosity_map"] and mp.profile.calls[0] == 2
 
 
 def test_views_keep_the_mapper_alive():
