@@ -48,6 +48,7 @@ void Multigrid::allocate(int nx, int nz, const PressureSolverParams& params) {
   }
   const MultigridLevel& last = levels_.back();
   const int n = last.nx * last.nz;
+  row_.assign(nx + 2, 0.0);
   coarse_matrix_.resize(n, n);
   coarse_rhs_.resize(n);
   coarse_group_.assign(n, -1);
@@ -174,17 +175,23 @@ void Multigrid::factor_coarsest() {
     throw std::runtime_error("pressure setup (multigrid): coarsest-level Cholesky factorisation failed");
 }
 
-void Multigrid::smooth(MultigridLevel& lv, int parity) {
-  // block Gauss-Seidel over the columns of one parity: forward elimination, then back substitution
+void Multigrid::smooth(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess) {
+  // block Gauss-Seidel over the columns of one parity: forward elimination, then back substitution;
+  // from a zero guess the neighbouring columns hold 0 and are not read
   const int w = lv.w, nx = lv.nx;
-  double* x = lv.x.data();
-  const double *b = lv.b.data(), *we = lv.west.data(), *so = lv.south.data(), *inv = lv.inv.data(),
-               *up = lv.up.data();
+  const double *we = lv.west.data(), *so = lv.south.data(), *inv = lv.inv.data(), *up = lv.up.data();
   for (int k = 0; k < lv.nz; ++k) {
     const int row = w * (k + 1) + 1;
-    for (int i = parity; i < nx; i += 2) {
-      const int c = row + i;
-      x[c] = (b[c] + we[c] * x[c - 1] + we[c + 1] * x[c + 1] + so[c] * x[c - w]) * inv[c];
+    if (zero_guess) {
+      for (int i = parity; i < nx; i += 2) {
+        const int c = row + i;
+        x[c] = (b[c] + so[c] * x[c - w]) * inv[c];
+      }
+    } else {
+      for (int i = parity; i < nx; i += 2) {
+        const int c = row + i;
+        x[c] = (b[c] + we[c] * x[c - 1] + we[c + 1] * x[c + 1] + so[c] * x[c - w]) * inv[c];
+      }
     }
   }
   for (int k = lv.nz - 2; k >= 0; --k) {
@@ -196,65 +203,78 @@ void Multigrid::smooth(MultigridLevel& lv, int parity) {
   }
 }
 
-void Multigrid::restrict_residual(MultigridLevel& f, MultigridLevel& c) {
+void Multigrid::restrict_residual(const MultigridLevel& f, const double* b, const double* x, MultigridLevel& c) {
+  // residual row by row into a buffer, then summed over the 2 (or 3) columns of each parent
   std::fill(c.b.begin(), c.b.end(), 0.0);
-  const int w = f.w;
-  const double *x = f.x.data(), *b = f.b.data(), *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
+  const int w = f.w, nx = f.nx, nxc = c.nx;
+  const double *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
+  double* res = row_.data();
   for (int k = 0; k < f.nz; ++k) {
     const int row = w * (k + 1) + 1;
-    double* cb = c.b.data() + c.w * (f.parent_k[k] + 1) + 1;
-    for (int i = 0; i < f.nx; ++i) {
+    for (int i = 0; i < nx; ++i) {
       const int j = row + i;
-      const double r = b[j] - d[j] * x[j] + we[j] * x[j - 1] + we[j + 1] * x[j + 1] + so[j] * x[j - w] +
-                       so[j + w] * x[j + w];
-      cb[f.parent_i[i]] += r;
+      res[i] = b[j] - d[j] * x[j] + we[j] * x[j - 1] + we[j + 1] * x[j + 1] + so[j] * x[j - w] + so[j + w] * x[j + w];
+    }
+    double* cb = c.b.data() + c.w * (f.parent_k[k] + 1) + 1;
+    if (nxc == nx) {
+      for (int i = 0; i < nx; ++i) cb[i] += res[i];
+    } else {
+      for (int ic = 0; ic < nxc; ++ic) cb[ic] += res[2 * ic] + res[2 * ic + 1];
+      if (nx % 2) cb[nxc - 1] += res[nx - 1];
     }
   }
 }
 
-void Multigrid::prolong(MultigridLevel& f, const MultigridLevel& c) {
+void Multigrid::prolong(const MultigridLevel& f, double* xf, const MultigridLevel& c) {
   const double sc = scale_;
+  const int nx = f.nx, nxc = c.nx;
   for (int k = 0; k < f.nz; ++k) {
-    double* x = f.x.data() + f.w * (k + 1) + 1;
+    double* x = xf + f.w * (k + 1) + 1;
     const double* m = f.mask.data() + f.w * (k + 1) + 1;
     const double* cx = c.x.data() + c.w * (f.parent_k[k] + 1) + 1;
-    for (int i = 0; i < f.nx; ++i) x[i] += sc * m[i] * cx[f.parent_i[i]];
+    if (nxc == nx) {
+      for (int i = 0; i < nx; ++i) x[i] += sc * m[i] * cx[i];
+    } else {
+      for (int ic = 0; ic < nxc; ++ic) {
+        const double v = sc * cx[ic];
+        x[2 * ic] += m[2 * ic] * v;
+        x[2 * ic + 1] += m[2 * ic + 1] * v;
+      }
+      if (nx % 2) x[nx - 1] += sc * m[nx - 1] * cx[nxc - 1];
+    }
   }
 }
 
-void Multigrid::cycle(int l) {
-  MultigridLevel& lv = levels_[l];
+void Multigrid::cycle(int l, const double* b, double* x) {
+  const MultigridLevel& lv = levels_[l];
   if (l + 1 == levels()) {
     for (int k = 0; k < lv.nz; ++k)
-      for (int i = 0; i < lv.nx; ++i) coarse_rhs_[i + lv.nx * k] = lv.b[lv.index(i, k)] * lv.mask[lv.index(i, k)];
+      for (int i = 0; i < lv.nx; ++i) coarse_rhs_[i + lv.nx * k] = b[lv.index(i, k)] * lv.mask[lv.index(i, k)];
     coarse_llt_.solveInPlace(coarse_rhs_);
     for (int k = 0; k < lv.nz; ++k)
-      for (int i = 0; i < lv.nx; ++i) lv.x[lv.index(i, k)] = coarse_rhs_[i + lv.nx * k] * lv.mask[lv.index(i, k)];
+      for (int i = 0; i < lv.nx; ++i) x[lv.index(i, k)] = coarse_rhs_[i + lv.nx * k] * lv.mask[lv.index(i, k)];
     return;
   }
-  std::fill(lv.x.begin(), lv.x.end(), 0.0);
+  // the first half-sweep starts from x = 0 (x holds anything before), the rest are full sweeps
   for (int s = 0; s < sweeps_; ++s) {
-    smooth(lv, 0);
-    smooth(lv, 1);
+    smooth(lv, b, x, 0, s == 0);
+    smooth(lv, b, x, 1, false);
   }
-  restrict_residual(lv, levels_[l + 1]);
-  cycle(l + 1);
-  prolong(lv, levels_[l + 1]);
+  MultigridLevel& coarse = levels_[l + 1];
+  restrict_residual(lv, b, x, coarse);
+  cycle(l + 1, coarse.b.data(), coarse.x.data());
+  prolong(lv, x, coarse);
   for (int s = 0; s < sweeps_; ++s) {
-    smooth(lv, 1);
-    smooth(lv, 0);
+    smooth(lv, b, x, 1, false);
+    smooth(lv, b, x, 0, false);
   }
 }
 
-void Multigrid::apply(const double* r, double* z) {
-  MultigridLevel& f = levels_[0];
-  std::copy(r, r + f.size(), f.b.begin());
-  cycle(0);
-  std::copy(f.x.begin(), f.x.end(), z);
-}
+void Multigrid::apply(const double* r, double* z) { cycle(0, r, z); }
 
-void Multigrid::multiply(const double* x, double* q) const {
+double Multigrid::multiply(const double* x, double* q) const {
   const MultigridLevel& f = levels_[0];
+  double xq = 0.0;
   const int w = f.w;
   const double *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
   for (int k = 0; k < f.nz; ++k) {
@@ -262,8 +282,10 @@ void Multigrid::multiply(const double* x, double* q) const {
     for (int i = 0; i < f.nx; ++i) {
       const int j = row + i;
       q[j] = d[j] * x[j] - we[j] * x[j - 1] - we[j + 1] * x[j + 1] - so[j] * x[j - w] - so[j + w] * x[j + w];
+      xq += x[j] * q[j];
     }
   }
+  return xq;
 }
 
 }  // namespace vofdem::detail

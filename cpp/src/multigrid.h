@@ -48,10 +48,10 @@ class Multigrid {
   // computes the coarse operators, the smoother factors and the coarsest factorisation
   void setup(const std::vector<double>& face_x_coef, const std::vector<double>& face_z_coef,
              const std::vector<std::uint8_t>& cell_active);
-  // z = B r (one V-cycle from a zero guess) on padded fine-level vectors
+  // z = B r (one V-cycle from a zero guess) on padded fine-level vectors (ghosts of z: 0)
   void apply(const double* r, double* z);
-  // q = M x on padded fine-level vectors
-  void multiply(const double* x, double* q) const;
+  // q = M x on padded fine-level vectors (ghosts of q untouched); returns x . q
+  double multiply(const double* x, double* q) const;
 
   // over-correction factor of the coarse-grid correction (1 = plain Galerkin correction)
   void set_correction_scale(double scale) { scale_ = scale; }
@@ -65,10 +65,12 @@ class Multigrid {
   void galerkin(const MultigridLevel& fine, MultigridLevel& coarse);
   void factor_lines(MultigridLevel& lv);
   void factor_coarsest();
-  void smooth(MultigridLevel& lv, int parity);
-  void restrict_residual(MultigridLevel& fine, MultigridLevel& coarse);
-  void prolong(MultigridLevel& fine, const MultigridLevel& coarse);
-  void cycle(int l);
+  void smooth(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess);
+  void restrict_residual(const MultigridLevel& fine, const double* b, const double* x, MultigridLevel& coarse);
+  void prolong(const MultigridLevel& fine, double* x, const MultigridLevel& coarse);
+  // x = one V-cycle from a zero guess on level l for the right-hand side b (padded arrays; the ghost
+  // layer of x must hold 0, its interior may hold anything)
+  void cycle(int l, const double* b, double* x);
 
   std::vector<MultigridLevel> levels_;
   int sweeps_ = 1;
@@ -77,6 +79,7 @@ class Multigrid {
   Eigen::LLT<Eigen::MatrixXd> coarse_llt_;
   Eigen::VectorXd coarse_rhs_;
   std::vector<int> coarse_group_, coarse_stack_;
+  std::vector<double> row_;  // one row of residuals
 };
 
 }  // namespace vofdem::detail

@@ -136,9 +136,7 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
     d_ = z_;
     while (it < params_.max_iterations) {
       ++it;
-      mg_.multiply(d_.data(), q_.data());
-      double dq = 0.0;
-      for (std::size_t j = 0; j < n; ++j) dq += d_[j] * q_[j];
+      const double dq = mg_.multiply(d_.data(), q_.data());
       if (!(dq > 0.0) || !(rz > 0.0) || !std::isfinite(rz)) {
         // the over-corrected V-cycle lost definiteness (or round-off did): plain correction from here on
         mg_.set_correction_scale(1.0);
