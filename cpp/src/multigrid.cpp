@@ -105,23 +105,35 @@ void Multigrid::galerkin(const MultigridLevel& f, MultigridLevel& c) {
 }
 
 void Multigrid::factor_lines(MultigridLevel& lv) {
-  // Thomas factors of each column's tridiagonal block: pivot_k = d_k - s_k up_{k-1}
-  const int w = lv.w;
-  for (int i = 0; i < lv.nx; ++i) {
-    double up_below = 0.0;
-    for (int k = 0; k < lv.nz; ++k) {
+  // lines along the stronger coupling: compare the total x and z coefficients of the interior faces
+  double sum_x = 0.0, sum_z = 0.0;
+  for (int k = 0; k < lv.nz; ++k)
+    for (int i = 0; i < lv.nx; ++i) {
       const int c = lv.index(i, k);
+      if (i > 0) sum_x += lv.west[c];
+      if (k > 0) sum_z += lv.south[c];
+    }
+  lv.x_lines = sum_x > sum_z;
+  // Thomas factors of each line's tridiagonal block: pivot_j = d_j - a_j up_{j-1}, up_j = a_{j+1} / pivot_j,
+  // with a the coefficients of the faces along the line
+  const bool xl = lv.x_lines;
+  const int nline = xl ? lv.nz : lv.nx, len = xl ? lv.nx : lv.nz, step = xl ? 1 : lv.w;
+  const double* a = xl ? lv.west.data() : lv.south.data();
+  for (int line = 0; line < nline; ++line) {
+    double up_before = 0.0;
+    for (int j = 0; j < len; ++j) {
+      const int c = xl ? lv.index(j, line) : lv.index(line, j);
       if (lv.mask[c] == 0.0) {
-        lv.inv[c] = lv.up[c] = up_below = 0.0;
+        lv.inv[c] = lv.up[c] = up_before = 0.0;
         continue;
       }
-      double pivot = lv.diag[c] - lv.south[c] * up_below;
-      // a column segment coupled to nothing else is singular: its last pivot vanishes; keeping d there
+      double pivot = lv.diag[c] - a[c] * up_before;
+      // a line segment coupled to nothing else is singular: its last pivot vanishes; keeping d there
       // is a symmetric positive definite approximation of the block (the smoother stays convergent)
       if (pivot < 1e-10 * lv.diag[c]) pivot = lv.diag[c];
       lv.inv[c] = 1.0 / pivot;
-      lv.up[c] = k + 1 < lv.nz ? lv.south[c + w] / pivot : 0.0;
-      up_below = lv.up[c];
+      lv.up[c] = j + 1 < len ? a[c + step] / pivot : 0.0;
+      up_before = lv.up[c];
     }
   }
 }
@@ -176,6 +188,10 @@ void Multigrid::factor_coarsest() {
 }
 
 void Multigrid::smooth(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess) {
+  if (lv.x_lines) {
+    smooth_rows(lv, b, x, parity, zero_guess);
+    return;
+  }
   // block Gauss-Seidel over the columns of one parity: forward elimination, then back substitution;
   // from a zero guess the neighbouring columns hold 0 and are not read
   const int w = lv.w, nx = lv.nx;
@@ -200,6 +216,27 @@ void Multigrid::smooth(const MultigridLevel& lv, const double* b, double* x, int
       const int c = row + i;
       x[c] += up[c] * x[c + w];
     }
+  }
+}
+
+void Multigrid::smooth_rows(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess) {
+  // the same over the rows of one parity, for grids coupled more strongly along x
+  const int w = lv.w, nx = lv.nx;
+  const double *we = lv.west.data(), *so = lv.south.data(), *inv = lv.inv.data(), *up = lv.up.data();
+  for (int k = parity; k < lv.nz; k += 2) {
+    const int row = w * (k + 1) + 1;
+    if (zero_guess) {
+      for (int i = 0; i < nx; ++i) {
+        const int c = row + i;
+        x[c] = (b[c] + we[c] * x[c - 1]) * inv[c];
+      }
+    } else {
+      for (int i = 0; i < nx; ++i) {
+        const int c = row + i;
+        x[c] = (b[c] + so[c] * x[c - w] + so[c + w] * x[c + w] + we[c] * x[c - 1]) * inv[c];
+      }
+    }
+    for (int i = nx - 2; i >= 0; --i) x[row + i] += up[row + i] * x[row + i + 1];
   }
 }
 
