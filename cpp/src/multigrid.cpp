@@ -115,25 +115,42 @@ void Multigrid::factor_lines(MultigridLevel& lv) {
     }
   lv.x_lines = sum_x > sum_z;
   // Thomas factors of each line's tridiagonal block: pivot_j = d_j - a_j up_{j-1}, up_j = a_{j+1} / pivot_j,
-  // with a the coefficients of the faces along the line
-  const bool xl = lv.x_lines;
-  const int nline = xl ? lv.nz : lv.nx, len = xl ? lv.nx : lv.nz, step = xl ? 1 : lv.w;
-  const double* a = xl ? lv.west.data() : lv.south.data();
-  for (int line = 0; line < nline; ++line) {
-    double up_before = 0.0;
-    for (int j = 0; j < len; ++j) {
-      const int c = xl ? lv.index(j, line) : lv.index(line, j);
-      if (lv.mask[c] == 0.0) {
-        lv.inv[c] = lv.up[c] = up_before = 0.0;
-        continue;
+  // with a the coefficients of the faces along the line. Dead cells (mask 0) get inv = up = 0; a line
+  // segment coupled to nothing else is singular, its last pivot vanishes: keeping d there is a
+  // symmetric positive definite approximation of the block (the smoother stays convergent)
+  const int w = lv.w, nx = lv.nx, nz = lv.nz;
+  double *inv = lv.inv.data(), *up = lv.up.data();
+  const double *d = lv.diag.data(), *m = lv.mask.data();
+  if (!lv.x_lines) {
+    // row by row, all columns at once (up of the ghost row below is 0)
+    const double* a = lv.south.data();
+    for (int k = 0; k < nz; ++k) {
+      const int row = w * (k + 1) + 1;
+      const bool top = k + 1 == nz;
+      for (int c = row; c < row + nx; ++c) {
+        double pivot = d[c] - a[c] * up[c - w];
+        const double dc = d[c] > 0.0 ? d[c] : 1.0;
+        if (!(pivot >= 1e-10 * dc)) pivot = dc;
+        const double iv = m[c] != 0.0 ? 1.0 / pivot : 0.0;
+        inv[c] = iv;
+        up[c] = top ? 0.0 : a[c + w] * iv;
       }
-      double pivot = lv.diag[c] - a[c] * up_before;
-      // a line segment coupled to nothing else is singular: its last pivot vanishes; keeping d there
-      // is a symmetric positive definite approximation of the block (the smoother stays convergent)
-      if (pivot < 1e-10 * lv.diag[c]) pivot = lv.diag[c];
-      lv.inv[c] = 1.0 / pivot;
-      lv.up[c] = j + 1 < len ? a[c + step] / pivot : 0.0;
-      up_before = lv.up[c];
+    }
+    return;
+  }
+  const double* a = lv.west.data();
+  for (int k = 0; k < nz; ++k) {
+    const int row = w * (k + 1) + 1;
+    double up_before = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      const int c = row + i;
+      double pivot = d[c] - a[c] * up_before;
+      const double dc = d[c] > 0.0 ? d[c] : 1.0;
+      if (!(pivot >= 1e-10 * dc)) pivot = dc;
+      const double iv = m[c] != 0.0 ? 1.0 / pivot : 0.0;
+      inv[c] = iv;
+      up[c] = i + 1 < nx ? a[c + 1] * iv : 0.0;
+      up_before = up[c];
     }
   }
 }
