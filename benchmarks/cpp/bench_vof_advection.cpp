@@ -4,6 +4,7 @@
 //   flume:  graded rows as the seed paper's mesh (dz 0.5 cm at the bed, 1 cm above; dx from the
 //           size), water below a wavy surface, a porous mound (n = 0.41), steady recirculation
 //   all-interface: every cell holds an interface (the cost of the reconstruction itself)
+// The *MYC variants use the mixed Youngs-centred normal instead of Youngs'.
 // Counters: ns_per_cell (CPU time / cells / steps) and the share of interface cells at the end.
 #include <benchmark/benchmark.h>
 
@@ -91,7 +92,8 @@ Case flume_case(int nx, int nz) {
 }
 
 // reset_f: restore the initial F before every step (untimed), so that the field keeps its interfaces
-void run(benchmark::State& state, Case c, bool reset_f = false) {
+void run(benchmark::State& state, Case c, bool reset_f = false,
+         vofdem::VofNormal normal = vofdem::VofNormal::kYoungs) {
   const Grid2D& g = c.grid;
   vofdem::VofBoundaryInflow inflow;
   vofdem::VofScratch scratch;
@@ -105,7 +107,7 @@ void run(benchmark::State& state, Case c, bool reset_f = false) {
       c.f = f0;
       state.ResumeTiming();
     }
-    vofdem::advect_vof(g, c.n, c.u, c.w, inflow, dt, x_first, c.f, scratch);
+    vofdem::advect_vof(g, c.n, c.u, c.w, inflow, dt, x_first, c.f, scratch, normal);
     x_first = !x_first;
     // the flow reverses every 100 steps so that the interface stays as long as at the start
     if (++step % 100 == 0) {
@@ -142,7 +144,16 @@ void BM_FlumeGraded(benchmark::State& state) {
 }  // namespace
 
 void BM_AllInterface(benchmark::State& state) { run(state, all_mixed_case(static_cast<int>(state.range(0))), true); }
+void BM_AllInterfaceMYC(benchmark::State& state) {
+  run(state, all_mixed_case(static_cast<int>(state.range(0))), true, vofdem::VofNormal::kMixedYoungsCentered);
+}
+void BM_FlumeGradedMYC(benchmark::State& state) {
+  run(state, flume_case(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), false,
+      vofdem::VofNormal::kMixedYoungsCentered);
+}
 
 BENCHMARK(BM_VortexCircle)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FlumeGraded)->Args({160, 62})->Args({800, 125})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FlumeGradedMYC)->Args({160, 62})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_AllInterface)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AllInterfaceMYC)->Arg(100)->Unit(benchmark::kMicrosecond);
