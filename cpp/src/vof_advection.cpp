@@ -388,12 +388,27 @@ double plic_line_constant(double mx, double mz, double dx, double dz, double f) 
 double vof_stable_dt(const Grid2D& grid, const double* cell_porosity, const double* face_u, const double* face_w,
                      double cfl) {
   require_positive("cfl", cfl);
-  // the CFL number at dt = 1 s is the inverse of the largest stable step at CFL 1
+  // the face checks name a non-finite velocity or one on a solid cell's face
   int worst = -1;
-  const double cx = max_cfl(grid, cell_porosity, face_u, 0, 1.0, &worst);
-  const double cz = max_cfl(grid, cell_porosity, face_w, 1, 1.0, &worst);
-  const double c = std::max(cx, cz);
-  return c > 0.0 ? cfl / c : std::numeric_limits<double>::infinity();
+  max_cfl(grid, cell_porosity, face_u, 0, 1.0, &worst);
+  max_cfl(grid, cell_porosity, face_w, 1, 1.0, &worst);
+  // per fluid cell and direction, the rate [1/s] whose product with dt is max(C_in, C_out / 2)
+  double rate = 0.0;
+  const int nx = grid.nx(), nz = grid.nz();
+  for (int k = 0; k < nz; ++k) {
+    const double dz = grid.dz(k);
+    for (int i = 0; i < nx; ++i) {
+      const double n = cell_porosity[grid.cell(i, k)];
+      if (!(n > 0.0)) continue;
+      const double ul = face_u[grid.face_x(i, k)], ur = face_u[grid.face_x(i + 1, k)];
+      const double wb = face_w[grid.face_z(i, k)], wt = face_w[grid.face_z(i, k + 1)];
+      const double in_x = std::max(ul, 0.0) + std::max(-ur, 0.0), out_x = std::max(-ul, 0.0) + std::max(ur, 0.0);
+      const double in_z = std::max(wb, 0.0) + std::max(-wt, 0.0), out_z = std::max(-wb, 0.0) + std::max(wt, 0.0);
+      rate = std::max(rate, std::max(in_x, 0.5 * out_x) / (n * grid.dx()));
+      rate = std::max(rate, std::max(in_z, 0.5 * out_z) / (n * dz));
+    }
+  }
+  return rate > 0.0 ? cfl / rate : std::numeric_limits<double>::infinity();
 }
 
 namespace {
@@ -439,7 +454,17 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
   ensure_size(scratch.flux, static_cast<std::size_t>(std::max(grid.nface_x(), grid.nface_z())));
   ensure_size(scratch.cell_c, static_cast<std::size_t>(ncell));
   // the divergence-correction indicator is frozen at the start of the step for both sweeps
-  for (int c = 0; c < ncell; ++c) scratch.cell_c[c] = cell_F[c] > 0.5 ? 1.0 : 0.0;
+  bool finite = true;
+  for (int c = 0; c < ncell; ++c) {
+    scratch.cell_c[c] = cell_F[c] > 0.5 ? 1.0 : 0.0;
+    finite &= std::isfinite(cell_F[c]);
+  }
+  if (!finite)
+    for (int c = 0; c < ncell; ++c)
+      if (!std::isfinite(cell_F[c]) && cell_porosity[c] > 0.0)
+        throw std::runtime_error("vof advection: F = " + format_value(cell_F[c]) + " in cell (i=" +
+                                 std::to_string(c % grid.nx()) + ", k=" + std::to_string(c / grid.nx()) +
+                                 ") is not finite");
   const SweepArgs sx{grid, cell_porosity, face_u, inflow, dt, scratch.cell_c.data(), cell_F, scratch.flux.data(),
                      scratch, normal};
   const SweepArgs sz{grid, cell_porosity, face_w, inflow, dt, scratch.cell_c.data(), cell_F, scratch.flux.data(),

@@ -496,3 +496,64 @@ TEST(VofAdvection, ReversedSingleVortexMixedYoungsCentered) {
   EXPECT_GT(order1, 1.8);
   EXPECT_GT(order2, 1.8);
 }
+
+TEST(VofAdvection, StableStepCountsFlowConvergingIntoACell) {
+  // a discrete stagnation flow on the centre cell (psi = +-0.01 on its corners, 0 elsewhere):
+  // converging along x, diverging along z, onto F = 0.6 (c = 1) between empty cells. The x-sweep
+  // removes c dt (u_r - u_l) dz = 2 C of the cell's water; with the face CFL C = 0.4 it would go
+  // below 0, so vof_stable_dt limits the sum of the inflow CFL numbers of the cell.
+  const Grid2D g = Grid2D::uniform(5, 5, 1.0, 1.0);
+  std::vector<double> n(g.ncell(), 1.0), u, w;
+  velocities_from_psi(
+      g,
+      [](double x, double z) {
+        const bool xl = std::abs(x - 0.4) < 1e-9, xr = std::abs(x - 0.6) < 1e-9;
+        const bool zb = std::abs(z - 0.4) < 1e-9, zt = std::abs(z - 0.6) < 1e-9;
+        if ((xl && zb) || (xr && zt)) return -0.01;
+        if ((xr && zb) || (xl && zt)) return 0.01;
+        return 0.0;
+      },
+      u, w);
+  const int centre = g.cell(2, 2);
+  const double face_rate = u[g.face_x(2, 2)] / g.dx();  // |u| / dx on the centre cell's faces [1/s]
+  ASSERT_NEAR(face_rate, 0.5, 1e-12);
+  EXPECT_NEAR(vof_stable_dt(g, n, u, w, 0.5), 0.5 / (2.0 * face_rate), 1e-12);
+  VofBoundaryInflow inflow;
+  for (double face_cfl : {0.4, 0.25}) {
+    std::vector<double> f(g.ncell(), 0.0);
+    f[centre] = 0.6;
+    VofScratch scratch;
+    advect_vof(g, n, u, w, inflow, face_cfl / face_rate, true, f, scratch);
+    const auto mm = min_max(f);
+    EXPECT_GE(mm.first, 0.0);
+    EXPECT_LE(mm.second, 1.0);
+    // 0.6 - 2 x 0.4 < 0 is clipped and reported; at the stable step (inflow sum 0.5) nothing is
+    if (face_cfl == 0.4) {
+      EXPECT_EQ(scratch.clip_count, 1);
+      EXPECT_NEAR(scratch.clip_max, 0.2, 1e-12);
+    } else {
+      EXPECT_EQ(scratch.clip_count, 0);
+    }
+  }
+}
+
+TEST(VofAdvection, RefusesANonFiniteFraction) {
+  const Grid2D g = Grid2D::uniform(4, 4, 1.0, 1.0);
+  std::vector<double> n(g.ncell(), 1.0), u(g.nface_x(), 0.1), w(g.nface_z(), 0.0), f(g.ncell(), 0.5);
+  VofBoundaryInflow inflow;
+  VofScratch scratch;
+  f[g.cell(1, 2)] = NAN;
+  try {
+    advect_vof(g, n, u, w, inflow, 0.1, true, f, scratch);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cell (i=1, k=2)"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(f[g.cell(0, 0)], 0.5);
+  // a solid cell's F is never used: NaN there is harmless
+  n[g.cell(1, 2)] = 0.0;
+  for (int i = 0; i <= 4; ++i) {
+    u[g.face_x(i, 2)] = 0.0;
+  }
+  EXPECT_NO_THROW(advect_vof(g, n, u, w, inflow, 0.1, true, f, scratch));
+}
