@@ -94,7 +94,8 @@ void bind_vof_advection(py::module_& m) {
         return vof_stable_dt(g, cell_porosity.data(), face_u.data(), face_w.data(), cfl);
       },
       py::arg("grid"), py::arg("cell_porosity"), py::arg("face_u"), py::arg("face_w"), py::arg("cfl") = 0.45,
-      "Largest advection step [s] at directional CFL number cfl (<= 0.5 keeps F in [0, 1]); inf if at rest.");
+      "Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers "
+      "|v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.");
 
   m.def("plic_line_constant", py::vectorize(&plic_line_constant), py::arg("mx"), py::arg("mz"), py::arg("dx"),
         py::arg("dz"), py::arg("f"),

@@ -61,7 +61,7 @@ inline double line_constant(double mx, double mz, double dx, double dz, double f
 // conservation (a flux is a flux) and to boundedness (the flux stays within the cell's water)
 constexpr double kPure = 1e-12;
 
-// one-directional sweep; `dir` 0 = x, 1 = z
+// arguments of a one-directional sweep
 struct SweepArgs {
   const Grid2D& g;
   const double* n;
