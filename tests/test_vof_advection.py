@@ -42,6 +42,10 @@ def test_updates_cell_F_in_place_and_refuses_copies():
     assert f.ctypes.data == pointer
     # the first column received u dt / dx = 0.4 of water in every row
     np.testing.assert_allclose(f.reshape(g.nz, g.nx)[:, 0], 0.4, rtol=0, atol=1e-15)
+    # the water fluxes of the step: u dt dz through each left boundary face, nothing beyond
+    flux = scratch.face_flux_x.reshape(g.nz, g.nx + 1)
+    np.testing.assert_allclose(flux[:, 0], 0.5 * 0.1 * 0.125, rtol=1e-14)
+    assert np.all(flux[:, 1:] == 0.0) and not scratch.face_flux_x.flags.writeable
     assert np.all(f.reshape(g.nz, g.nx)[:, 1:] == 0.0)
     # a float32 or strided F would be silently copied: refused instead
     with pytest.raises(TypeError):

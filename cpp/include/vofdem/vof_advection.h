@@ -29,9 +29,14 @@ struct VofBoundaryInflow {
 };
 
 // work arrays reused from step to step so that advection allocates nothing while stepping (they are
-// sized on first use, or again if the grid grows), and the clipping report
+// sized on first use, or again if the grid changes), the water fluxes of the last step and the
+// clipping report
 struct VofScratch {
-  std::vector<double> flux, cell_c, f_tmp;
+  // water volume [m^2 per metre of width] that crossed each face during the last step, signed along
+  // +x (size nface_x) and +z (size nface_z); e.g. the discharge through the right end is
+  // sum over k of face_flux_x[face_x(nx, k)] / dt [m^2/s]
+  std::vector<double> face_flux_x, face_flux_z;
+  std::vector<double> cell_c;  // divergence-correction indicator of the last step (0 or 1)
   // F leaves [0, 1] only by round-off when the CFL limit holds; such excursions are clipped silently.
   // Larger ones (beyond kVofClipTolerance) are clipped too but counted here, summed over all steps:
   long long clip_count = 0;  // number of cell updates clipped by more than kVofClipTolerance
