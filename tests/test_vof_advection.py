@@ -152,3 +152,25 @@ def test_diagonal_translation_of_a_square():
     rel_l1 = np.abs(f - exact).sum() / exact.sum()
     # measured 0.0316: corners round off a little under Youngs' normals
     assert rel_l1 < 0.04
+
+
+def test_plic_inverse_and_monotonicity_property():
+    hypothesis = pytest.importorskip("hypothesis")
+    st = hypothesis.strategies
+
+    @hypothesis.settings(max_examples=300, deadline=None)
+    @hypothesis.given(
+        theta=st.floats(0.0, 2 * np.pi),
+        dx=st.floats(1e-3, 1.0),
+        aspect=st.floats(0.1, 10.0),
+        f=st.floats(0.0, 1.0),
+        df=st.floats(0.0, 0.1),
+    )
+    def check(theta, dx, aspect, f, df):
+        mx, mz, dz = np.cos(theta), np.sin(theta), dx * aspect
+        a = vofdem.plic_line_constant(mx, mz, dx, dz, f)
+        assert abs(vofdem.plic_area_below(mx, mz, dx, dz, a) / (dx * dz) - f) < 1e-12
+        # more water needs a larger line constant
+        assert vofdem.plic_line_constant(mx, mz, dx, dz, min(1.0, f + df)) >= a - 1e-15 * (dx + dz)
+
+    check()
