@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <cstdio>
+#include <cstdlib>
 
 #include "vofdem/check.h"
 
@@ -57,6 +59,39 @@ double settle(DEMSystem& sys, const WeirSpec& s, double hold) {
     if (quiet >= hold - 1e-12) break;
   }
   return t;
+}
+
+// adds stones at the free sites of a loose triangular lattice filling the trapezoid (centres up to the
+// crest, within `off` [m] outside the slopes); returns how many
+int pour_round(const WeirSpec& spec, double off, std::mt19937_64& rng, std::vector<double>& pos,
+               std::vector<double>& radius, std::vector<std::uint8_t>& fixed) {
+  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
+  const double d_max = spec.d_mean * (1.0 + spec.d_spread);
+  const double pitch = 1.04 * d_max;
+  const double row = pitch * std::sqrt(3.0) / 2.0;
+  const double z_fill = spec.z_bed + spec.height;
+  int added = 0, k = 0;
+  for (double z = spec.z_bed + 1.6 * d_max; z <= z_fill; z += row, ++k) {
+    const double hz = z - spec.z_bed;
+    const double xa = spec.x_toe + hz / std::tan(au) + (0.5 * pitch - off) / std::sin(au);
+    const double xb = spec.x_end() - hz / std::tan(ad) - (0.5 * pitch - off) / std::sin(ad);
+    for (double xc = xa + (k % 2) * 0.5 * pitch; xc <= xb; xc += pitch) {
+      const double rc = 0.5 * draw_diameter(rng, spec);
+      const double xj = xc + 0.02 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean;
+      bool free_site = true;
+      for (std::size_t i = 0; i < radius.size() && free_site; ++i) {
+        const double gap = std::hypot(xj - pos[2 * i], z - pos[2 * i + 1]) - radius[i] - rc;
+        free_site = gap > 0.02 * spec.d_mean;
+      }
+      if (!free_site) continue;
+      pos.push_back(xj);
+      pos.push_back(z);
+      radius.push_back(rc);
+      fixed.push_back(0);
+      ++added;
+    }
+  }
+  return added;
 }
 
 // distance from (x, z) to the segment a-b [m]
@@ -117,7 +152,6 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   std::mt19937_64 rng(spec.seed);
   const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
   const double x_end = spec.x_end();
-  const double d_max = spec.d_mean * (1.0 + spec.d_spread);
 
   std::vector<double> pos, radius;
   std::vector<std::uint8_t> fixed;
@@ -135,44 +169,36 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   }
   const int n_fixed = static_cast<int>(radius.size());
 
-  // (2) free stones on a loose triangular lattice filling the trapezoid extended 40 % upwards
-  const double pitch = 1.04 * d_max;
-  const double row = pitch * std::sqrt(3.0) / 2.0;
-  const double z_top = spec.z_bed + 1.4 * spec.height;
-  int k = 0;
-  for (double z = spec.z_bed + 2.0 * d_max; z <= z_top; z += row, ++k) {
-    // inside both slope lines by half a pitch
-    const double hz = z - spec.z_bed;
-    const double xa = spec.x_toe + hz / std::tan(au) + 0.5 * pitch / std::sin(au);
-    const double xb = x_end - hz / std::tan(ad) - 0.5 * pitch / std::sin(ad);
-    for (double xc = xa + (k % 2) * 0.5 * pitch; xc <= xb; xc += pitch) {
-      const double d = draw_diameter(rng, spec);
-      pos.push_back(xc + 0.002 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean);
-      pos.push_back(z);
-      radius.push_back(0.5 * d);
-      fixed.push_back(0);
-    }
-  }
-
-  // the contact law of the caller, dry; slope walls only while packing
+  // (2) free stones poured in rounds: the free sites of a loose triangular lattice filling the
+  // trapezoid are occupied, the stones settle inside temporary slope walls, and the gaps left at the
+  // top by the compaction are filled again in the next round
   DEMParams p = params;
   if (p.walls.empty()) p.walls.push_back({{spec.x_toe, spec.z_bed}, {0.0, 1.0}, 0.176});
   const std::vector<DEMWall> final_walls = p.walls;
   p.flags &= ~static_cast<unsigned>(kDEMSleeping | kDEMExternalForce);
-  p.walls.push_back({{spec.x_toe, spec.z_bed}, {std::sin(au), -std::cos(au)}, p.walls.front().friction});
-  p.walls.push_back({{x_end, spec.z_bed}, {-std::sin(ad), -std::cos(ad)}, p.walls.front().friction});
+  // slope walls half a mean diameter outside the slopes: stone centres end near the slope lines
+  const double off = 0.5 * spec.d_mean;
+  p.walls.push_back({{spec.x_toe - off / std::sin(au), spec.z_bed}, {std::sin(au), -std::cos(au)},
+                     p.walls.front().friction});
+  p.walls.push_back({{x_end + off / std::sin(ad), spec.z_bed}, {-std::sin(ad), -std::cos(ad)},
+                     p.walls.front().friction});
+  double t_total = 0.0;
+  DEMSystem box(p, 0);
+  for (int round = 0; round < 6; ++round) {
+    if (pour_round(spec, off, rng, pos, radius, fixed) == 0 && round > 0) break;
+    box = DEMSystem(p, pos, radius, {spec.density}, fixed);
+    t_total += settle(box, spec, 0.2);
+    pos = box.disc_pos;
+  }
 
-  DEMSystem box(p, pos, radius, {spec.density}, fixed);
-  double t_total = settle(box, spec, 0.2);
-
-  // (3) keep the stones that do not reach above the crest
+  // (3) keep the stones whose centres lie below the crest
   const double z_crest = spec.z_bed + spec.height;
   pos.clear();
   radius.clear();
   fixed.clear();
   for (int i = 0; i < box.n(); ++i) {
     if (!box.disc_active[i]) continue;
-    if (!box.disc_fixed[i] && box.disc_pos[2 * i + 1] + box.disc_radius[i] > z_crest + 0.25 * spec.d_mean) continue;
+    if (!box.disc_fixed[i] && box.disc_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
     pos.push_back(box.disc_pos[2 * i]);
     pos.push_back(box.disc_pos[2 * i + 1]);
     radius.push_back(box.disc_radius[i]);
@@ -184,6 +210,13 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   q.walls = final_walls;
   DEMSystem weir(q, pos, radius, {spec.density}, fixed);
   t_total += settle(weir, spec, 0.5);
+  // (5) hollows left where stones rolled off the crest corners are topped up, without the walls
+  for (int round = 0; round < 3; ++round) {
+    pos = weir.disc_pos;
+    if (pour_round(spec, off, rng, pos, radius, fixed) == 0) break;
+    weir = DEMSystem(q, pos, radius, {spec.density}, fixed);
+    t_total += settle(weir, spec, 0.5);
+  }
 
   report.n_stones = weir.n();
   report.n_fixed = n_fixed;
