@@ -82,12 +82,14 @@ void DEMSystem::resize(int n) {
   wall_xi_.assign(un * params_.walls.size(), 0.0);
   rebuild_ = true;
   prepared_ = false;
+  forces_valid_ = false;
 }
 
 void DEMSystem::set_params(const DEMParams& p) {
   const std::size_t old_walls = params_.walls.size();
   params_ = p;
   check_params();
+  forces_valid_ = false;
   if (params_.walls.size() != old_walls) wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
   rebuild_ = true;
   prepared_ = false;
@@ -241,21 +243,8 @@ void DEMSystem::advance_checked(double dt, long long nsub) {
   }
 }
 
-// one velocity-Verlet step: kick-drift, forces at the new positions, kick
-void DEMSystem::substep(double dt) {
-  const unsigned f = params_.flags;
-  {
-    ScopedStage s(profile_, kStageIntegrate);
-    integrate_first_half(dt);
-  }
-  if (f & kDEMRemoval) {
-    ScopedStage s(profile_, kStageRemoval);
-    remove_escaped();
-  }
-  {
-    ScopedStage s(profile_, kStageNeighbours);
-    if (rebuild_ || neighbours_stale()) build_neighbours();
-  }
+// body, contact and wall forces at the current positions (dt: step of the history springs)
+void DEMSystem::evaluate_forces(double dt) {
   {
     ScopedStage s(profile_, kStageBodyForces);
     body_forces(dt);
@@ -268,6 +257,35 @@ void DEMSystem::substep(double dt) {
     ScopedStage s(profile_, kStageWalls);
     wall_forces(dt);
   }
+}
+
+// one velocity-Verlet step: kick-drift, forces at the new positions, kick
+void DEMSystem::substep(double dt) {
+  const unsigned f = params_.flags;
+  if (!forces_valid_) {
+    // a fresh start: the first kick needs the accelerations of the initial state
+    if (rebuild_ || neighbours_stale()) build_neighbours();
+    evaluate_forces(0.0);
+    for (int i = 0; i < n_; ++i) {
+      disc_acc[2 * i] = disc_force[2 * i] * inv_mass_[i];
+      disc_acc[2 * i + 1] = disc_force[2 * i + 1] * inv_mass_[i];
+      disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
+    }
+    forces_valid_ = true;
+  }
+  {
+    ScopedStage s(profile_, kStageIntegrate);
+    integrate_first_half(dt);
+  }
+  if (f & kDEMRemoval) {
+    ScopedStage s(profile_, kStageRemoval);
+    remove_escaped();
+  }
+  {
+    ScopedStage s(profile_, kStageNeighbours);
+    if (rebuild_ || neighbours_stale()) build_neighbours();
+  }
+  evaluate_forces(dt);
   time_ += dt;
   ++steps_;
   {

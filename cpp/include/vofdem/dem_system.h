@@ -178,6 +178,7 @@ class DEMSystem {
   bool neighbours_stale() const;
   void advance_checked(double dt, long long nsub);
   void substep(double dt);
+  void evaluate_forces(double dt);
   bool moving(int i) const;
   void integrate_first_half(double dt);
   void integrate_second_half(double dt);
@@ -191,6 +192,7 @@ class DEMSystem {
   DEMParams params_;
   int n_ = 0;
   bool prepared_ = false;
+  bool forces_valid_ = false;  // disc_acc holds the accelerations of the current state
   double kn_ = 0.0, kt_ = 0.0, zeta_ = 0.0;
   double time_ = 0.0;
   long long steps_ = 0;
