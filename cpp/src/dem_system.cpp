@@ -298,8 +298,6 @@ void DEMSystem::substep(double dt) {
   }
 }
 
-bool DEMSystem::moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
-
 void DEMSystem::integrate_first_half(double dt) {
   const double h = 0.5 * dt;
   for (int i = 0; i < n_; ++i) {
@@ -439,7 +437,8 @@ void DEMSystem::wall_forces(double dt) {
     const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
     // contact normal from the stone into the wall
     const double nx = -wx, nz = -wz;
-    for (int i = 0; i < n_; ++i) {
+    for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
+      const int i = wall_cand_[c];
       if (inv_mass_[i] == 0.0) continue;
       double& xi = wall_xi_[static_cast<std::size_t>(i) * nw + w];
       const double r = disc_radius[i];

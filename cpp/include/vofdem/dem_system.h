@@ -179,7 +179,8 @@ class DEMSystem {
   void advance_checked(double dt, long long nsub);
   void substep(double dt);
   void evaluate_forces(double dt);
-  bool moving(int i) const;
+  bool moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
+  void build_wall_candidates();
   void integrate_first_half(double dt);
   void integrate_second_half(double dt);
   void remove_escaped();
@@ -213,6 +214,7 @@ class DEMSystem {
   double skin_ = 0.0;
   bool rebuild_ = true;
   std::vector<int> cell_start_, cell_next_;
+  std::vector<int> wall_cand_, wall_cand_start_;  // stones near each wall (ascending), per wall
   std::vector<Pair> new_pairs_;
 
   StageProfile profile_;
