@@ -178,10 +178,13 @@ class DEMSystem {
   bool neighbours_stale() const;
   void advance_checked(double dt, long long nsub);
   void substep(double dt);
-  void evaluate_forces(double dt);
+  void evaluate_forces(double dt, bool body);
   bool moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
   void build_wall_candidates();
-  void integrate_first_half(double dt);
+  struct FirstHalf {
+    bool stale = false, escaped = false;
+  };
+  FirstHalf integrate_first_half(double dt);
   void integrate_second_half(double dt);
   void remove_escaped();
   void body_forces(double dt);
