@@ -135,6 +135,7 @@ void bind_system(py::module_& m) {
       .def("energy", &DEMSystem::energy)
       .def("mass", &DEMSystem::mass, py::arg("i"))
       .def("volume", &DEMSystem::volume, py::arg("i"))
+      .def("projected_area", &DEMSystem::projected_area, py::arg("i"))
       .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
       .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
       .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)

@@ -95,7 +95,7 @@ void DEMSystem::build_neighbours() {
           if (j <= i || (disc_fixed[i] && disc_fixed[j])) continue;
           const double dx = disc_pos[2 * j] - xi, dz = disc_pos[2 * j + 1] - zi;
           const double cut = ri + disc_radius[j] + skin_;
-          if (dx * dx + dz * dz < cut * cut) new_pairs_.push_back({i, j, 0.0});
+          if (dx * dx + dz * dz < cut * cut) new_pairs_.push_back({i, j, 0.0, std::sqrt(1.0 / (inv_mass_[i] + inv_mass_[j]))});
         }
       }
     }

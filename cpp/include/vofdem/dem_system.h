@@ -133,6 +133,7 @@ class DEMSystem {
   // derived per-stone properties of the sphere of the disc's diameter (read-only for users)
   double mass(int i) const;    // M_i [kg]
   double volume(int i) const;  // V_i [m^3]
+  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]
   // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
   std::vector<std::array<int, 2>> neighbour_pairs() const;
   // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
@@ -168,7 +169,8 @@ class DEMSystem {
  private:
   struct Pair {
     int i, j;
-    double xi;  // tangential spring [m]
+    double xi;      // tangential spring [m]
+    double sqrt_m;  // sqrt of the pair's reduced mass [kg^0.5], set at each build
   };
   void prepare();
   void check_params() const;
