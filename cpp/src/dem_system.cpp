@@ -202,8 +202,17 @@ void DEMSystem::prepare() {
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
   if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
   update_properties();
-  // radii or activity may have been changed through the views
-  rebuild_ = true;
+  // radii, activity or fixing may have been changed through the views: the list is rebuilt; else only
+  // the pairs' reduced masses are refreshed (wet fractions may have changed)
+  if (cached_radius_ != disc_radius || cached_active_ != disc_active || cached_fixed_ != disc_fixed) {
+    cached_radius_ = disc_radius;
+    cached_active_ = disc_active;
+    cached_fixed_ = disc_fixed;
+    rebuild_ = true;
+  }
+  if (!rebuild_) {
+    for (Pair& c : pairs_) c.sqrt_m = std::sqrt(1.0 / (inv_mass_[c.i] + inv_mass_[c.j]));
+  }
   prepared_ = true;
 }
 

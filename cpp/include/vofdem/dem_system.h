@@ -221,6 +221,8 @@ class DEMSystem {
   std::vector<int> cell_start_, cell_next_;
   std::vector<int> wall_cand_, wall_cand_start_;  // stones near each wall (ascending), per wall
   std::vector<Pair> new_pairs_;
+  std::vector<double> cached_radius_;
+  std::vector<std::uint8_t> cached_active_, cached_fixed_;
 
   StageProfile profile_;
 };
