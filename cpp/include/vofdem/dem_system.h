@@ -78,7 +78,10 @@ struct DEMParams {
   void add_flume(double x_min, double x_max, double z_bed, double mu = 0.176);
 };
 
-// named stages of a DEM step (StageProfile indices)
+// named stages of a DEM step (StageProfile indices). `integrate` is one pass over the stones: kick, drift,
+// body forces, escape and neighbour-list checks; `removal` and `neighbours` run only when needed;
+// `body_forces` is timed apart only for the initial accelerations; `checks` is the second kick with
+// its finiteness check.
 enum DEMStage : int { kStageIntegrate = 0, kStageRemoval, kStageNeighbours, kStageBodyForces, kStageContacts,
                       kStageWalls, kStageSleep, kStageChecks, kDEMStageCount };
 
@@ -111,7 +114,8 @@ class DEMSystem {
   // the contact's stable step [s]: 1/10 of the shortest undamped contact period pi / omega_max
   // (normal and tangential-rotational modes of the lightest stone)
   double stable_dt();
-  // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise)
+  // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
+  // state (export_state) so that a failure can restore it: call advance() with long durations.
   void step(double dt);
   // advances by duration [s] in equal substeps no larger than params().dt
   void advance(double duration);
