@@ -222,7 +222,13 @@ class DEMSystem {
   std::vector<double> build_pos_;    // positions at the last neighbour build
   double skin_ = 0.0;
   bool rebuild_ = true;
-  std::vector<int> cell_start_, cell_next_;
+  struct SortedStone {
+    double x, z, r;
+    int index;
+    bool fixed;
+  };
+  std::vector<int> cell_start_, cell_next_, cell_fill_;
+  std::vector<SortedStone> sorted_;  // active stones in cell order (neighbour builds)
   std::vector<int> wall_cand_, wall_cand_start_;  // stones near each wall (ascending), per wall
   std::vector<Pair> new_pairs_;
   std::vector<double> cached_radius_;
