@@ -111,7 +111,7 @@ class DEMSystem {
   // replaces the parameters (walls, flags, stiffness...); checked on the next step
   void set_params(const DEMParams& p);
 
-  // the contact's stable step [s]: 1/10 of the shortest undamped contact period pi / omega_max
+  // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
   // (normal and tangential-rotational modes of the lightest stone)
   double stable_dt();
   // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
@@ -143,7 +143,7 @@ class DEMSystem {
   // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
   std::vector<std::array<int, 2>> overlapping_pairs_reference() const;
   // pairs that overlap now, from the fast neighbour search
-  std::vector<std::array<int, 2>> overlapping_pairs() ;
+  std::vector<std::array<int, 2>> overlapping_pairs();
 
   // every piece of the state (stone arrays, accelerations, contact histories, counters, time) as
   // named flat arrays; import_state() restores it exactly (bit-for-bit restart)
@@ -162,7 +162,8 @@ class DEMSystem {
   std::vector<std::uint8_t> disc_fixed;     // 1: never moves (bed layer), n
   std::vector<std::uint8_t> disc_active;    // 0: left the domain (kept, not integrated), n
   std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
-  std::vector<double> disc_wet;             // wet fraction in [0, 1], n (1 when fluid_density > 0)
+  std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
+                                            // when fluid_density > 0, else 0 (set_params keeps it)
   std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
   std::vector<double> disc_torque;          // total torque of the last evaluation [N m], n (output)
   std::vector<double> disc_acc;             // acceleration of the last evaluation [m/s^2], 2n
