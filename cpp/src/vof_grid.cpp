@@ -80,6 +80,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   w_star_.assign(nfz, 0.0);
   rhs_.assign(nc, 0.0);
   inlet_u_.assign(grid_.nz(), 0.0);
+  for (int k = 0; k < grid_.nz(); ++k) inlet_dz_.push_back(grid_.dz(k));
   problem_.resize(grid_);
   vof_inflow_.resize(grid_, 0.0);
   solver_ = make_pressure_solver(params_.pressure_solver);
@@ -366,17 +367,30 @@ void VOFGrid::check_finite(const char* stage, const char* name, const std::vecto
                                    static_cast<int>(j));
 }
 
-void VOFGrid::apply_inlet(double t) {
+void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   if (params_.inlet != InletBoundary::kDischarge) return;
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const double q = discharge_.at(t) / params_.flume_width;
-  std::vector<double> dz(nz);
-  for (int k = 0; k < nz; ++k) dz[k] = grid_.dz(k);
-  inlet_velocities(q, dz, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
-  for (int k = 0; k < nz; ++k) {
-    u_star_[sx * k] = inlet_u_[k];
-    vof_inflow_.left[k] = 1.0;
-  }
+  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
+  for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
+}
+
+void VOFGrid::prime_inlet(double dt) {
+  if (params_.inlet != InletBoundary::kDischarge) return;
+  const int sx = grid_.nx() + 1;
+  u_star_ = face_u;
+  apply_inlet(time_, u_star_);
+  double change = 0.0;
+  for (int k = 0; k < grid_.nz(); ++k) change = std::max(change, std::abs(u_star_[sx * k] - face_u[sx * k]));
+  if (change <= 1e-14) return;
+  // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
+  // sees a divergence-free field
+  update_phase_properties();
+  for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
+  for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
+  w_star_ = face_w;
+  stage_pressure(dt);
+  stage_correct();
 }
 
 double VOFGrid::outlet_pressure(int k) const {
@@ -584,12 +598,15 @@ void VOFGrid::step(double dt) {
     fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
                      " (pore velocity)",
          kind, index);
+  // the water entering over the step is q(t) dt: the inlet velocities of the step's start, which the
+  // last projection set already (except on the first step or after a change of discharge)
+  prime_inlet(dt);
   if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   update_phase_properties();
   stage_momentum(dt);
   if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);
   if (params_.flags & kFlowTurbulence) stage_turbulence(dt);
-  apply_inlet(time_ + dt);
+  apply_inlet(time_ + dt, u_star_);
   stage_pressure(dt);
   stage_correct();
   stage_checks(dt);

@@ -190,7 +190,9 @@ class VOFGrid {
   void stage_pressure(double dt);
   void stage_correct();
   void stage_checks(double dt);
-  void apply_inlet(double t);
+  // inlet face velocities of Q(t) into u (face_u or u*)
+  void apply_inlet(double t, std::vector<double>& u);
+  void prime_inlet(double dt);
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
   double outlet_pressure(int k) const;
@@ -214,7 +216,7 @@ class VOFGrid {
   mutable std::vector<double> face_x_rho_, face_z_rho_;
   std::vector<double> face_x_diameter_, face_z_diameter_;
   std::vector<double> face_x_beta_, face_z_beta_;  // dt n / (rho (1 + dt n R')) of the projection
-  std::vector<double> inlet_u_;
+  std::vector<double> inlet_u_, inlet_dz_;
   MomentumScratch momentum_scratch_;
   std::vector<double> u_star_, w_star_;
   std::vector<double> rhs_;
