@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "vofdem/grid.h"
 #include "vofdem/k_epsilon.h"
 
@@ -113,6 +115,8 @@ TEST(KEpsilon, HomogeneousDecayMatchesTheAnalyticSolution) {
   const double k_fine = run(tau / 200.0, t_end), k_coarse = run(tau / 100.0, t_end);
   const double err_fine = std::abs(k_fine / exact - 1.0), err_coarse = std::abs(k_coarse / exact - 1.0);
   EXPECT_LT(err_fine, 0.01) << "k = " << k_fine << ", exact " << exact;
+  std::printf("[ info     ] decay to t = 3 k0/eps0: error %.3g %% at dt = tau/200, %.3g %% at tau/100\n",
+              100 * err_fine, 100 * err_coarse);
   // backward Euler with linearised sinks: first order in dt
   EXPECT_NEAR(err_coarse / err_fine, 2.0, 0.15);
 }
@@ -293,6 +297,88 @@ TEST(KEpsilon, OpenChannelWallFunctionAndNearWallEddyViscosity) {
     EXPECT_NEAR(u[k], u_log, 0.02 * u_log) << "row " << k;
     std::printf("[ info     ] z/h = %.3f  nu_t / (kappa u_tau z (1 - z/h)) = %.3f  U / U_log = %.4f\n", z / h,
                 m.cell_nut[k] / expect, u[k] / u_log);
+  }
+}
+
+// slow, obvious reference: the backward-Euler system of (K) and (E) without production, assembled
+// row by row into a dense matrix and solved by LU; the model's Jacobi sweeps must converge to it
+// (porous and solid cells, an inflow side, a graded grid, dt 5x above the explicit limit)
+TEST(KEpsilon, JacobiSweepsConvergeToTheDenseBackwardEulerSolution) {
+  const Grid2D g = Grid2D::graded(5, 0.5, 0.06, 0.02, 0.01, 0.02);  // rows 0.01, 0.01, 0.02, 0.02
+  const int nx = g.nx(), nz = g.nz(), n = g.ncell();
+  KEpsilonParams p;
+  p.flags = vofdem::kKEpsAdvection | vofdem::kKEpsDiffusion;
+  p.sweeps = 400;
+  KEpsilonBoundaries b = closed_to_flux();
+  b.left = KEpsilonBoundary::kInflow;
+  KEpsilonModel m(g, p, b);
+  Flow f(g);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int c = 0; c < n; ++c) {
+    m.cell_k[c] = 1e-4 * (0.5 + unit(rng));
+    m.cell_eps[c] = 1e-5 * (0.5 + unit(rng));
+    m.cell_nut[c] = 0.09 * m.cell_k[c] * m.cell_k[c] / m.cell_eps[c];
+    f.porosity[c] = unit(rng) < 0.3 ? 0.4 : 1.0;
+  }
+  f.porosity[g.cell(2, 1)] = 0.0;  // a solid cell
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) f.face_u[g.face_x(i, k)] = 0.2 + 0.1 * unit(rng);
+  for (int k = 1; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) f.face_w[g.face_z(i, k)] = 0.1 * (unit(rng) - 0.5);
+  const double dt = 5.0 * m.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu);
+  const std::vector<double> k0 = m.cell_k, e0 = m.cell_eps, nut0 = m.cell_nut;
+  m.step(dt, f.face_u, f.face_w, f.porosity, f.F, f.nu);
+
+  for (int eq = 0; eq < 2; ++eq) {
+    const double sigma = eq == 0 ? p.sigma_k : p.sigma_eps;
+    const double sink_c = eq == 0 ? 1.0 : p.c2;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+    auto cond = [&](int c) { return f.porosity[c] * (kNu + nut0[c] / sigma); };
+    for (int k = 0; k < nz; ++k) {
+      for (int i = 0; i < nx; ++i) {
+        const int c = g.cell(i, k);
+        const double np = f.porosity[c];
+        if (np == 0.0) {  // not an unknown: keep its value
+          a(c, c) = 1.0;
+          rhs(c) = eq == 0 ? p.k_min : p.eps_min;
+          continue;
+        }
+        const double old = eq == 0 ? k0[c] : e0[c];
+        a(c, c) += np / dt + np * sink_c * e0[c] / k0[c];
+        rhs(c) += np * old / dt;
+        // west, east, south, north: neighbour, inflow velocity, face length, half widths
+        const double dz = g.dz(k), dx = g.dx();
+        struct Side { int i, k; double vin, len; };
+        const Side sides[4] = {{i - 1, k, f.face_u[g.face_x(i, k)], dx},
+                               {i + 1, k, -f.face_u[g.face_x(i + 1, k)], dx},
+                               {i, k - 1, f.face_w[g.face_z(i, k)], dz},
+                               {i, k + 1, -f.face_w[g.face_z(i, k + 1)], dz}};
+        for (int s = 0; s < 4; ++s) {
+          const Side& sd = sides[s];
+          if (sd.i < 0) {  // inflow side
+            if (sd.vin <= 0.0) continue;
+            const double kin = 1.5 * std::pow(p.inflow_intensity * sd.vin / np, 2);
+            const double vin = eq == 0 ? kin : std::pow(0.09, 0.75) * std::pow(kin, 1.5) / p.inflow_length_scale;
+            const double coef = sd.vin / dx + cond(c) / (dx * 0.5 * dx);
+            a(c, c) += coef;
+            rhs(c) += coef * vin;
+            continue;
+          }
+          if (sd.i >= nx || sd.k < 0 || sd.k >= nz) continue;  // zero gradient
+          const int cn = g.cell(sd.i, sd.k);
+          if (f.porosity[cn] == 0.0) continue;  // solid: no flux
+          const double half_p = 0.5 * sd.len, half_n = 0.5 * (s < 2 ? dx : g.dz(sd.k));
+          const double coef = std::max(sd.vin, 0.0) / sd.len + 1.0 / (sd.len * (half_p / cond(c) + half_n / cond(cn)));
+          a(c, c) += coef;
+          a(c, cn) -= coef;
+        }
+      }
+    }
+    const Eigen::VectorXd x = a.partialPivLu().solve(rhs);
+    const std::vector<double>& got = eq == 0 ? m.cell_k : m.cell_eps;
+    for (int c = 0; c < n; ++c) EXPECT_NEAR(got[c], x(c), 1e-10 * x(c)) << "eq " << eq << " cell " << c;
   }
 }
 
