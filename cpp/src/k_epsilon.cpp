@@ -76,12 +76,13 @@ double wall_shear_velocity(double u_t, double y, double nu, double ks, double ka
   return std::max(u, u_lin);
 }
 
-// one face of a cell: coefficient a [1/s] per unit volume of advection-in plus diffusion, the
-// neighbour cell (or -1 for a boundary face whose value is inflow_u -> inflow k/eps)
+// one face of a cell: coefficients a [1/s] per unit volume of advection-in plus diffusion for k
+// (a[0], sigma_k) and eps (a[1], sigma_eps), the neighbour cell, or -1 for a boundary face whose
+// value comes from the inflow pore speed inflow_u [m/s]
 struct KEpsilonModel::FaceCoef {
   int nb;
-  double a;
-  double inflow_u;  // pore speed [m/s] of an inflow boundary face (nb = -1, a > 0)
+  double a[2];
+  double inflow_u;
 };
 
 KEpsilonModel::KEpsilonModel(const Grid2D& grid, const KEpsilonParams& params, const KEpsilonBoundaries& boundaries)
@@ -103,6 +104,9 @@ KEpsilonModel::KEpsilonModel(const Grid2D& grid, const KEpsilonParams& params, c
   wall_k_.assign(n, 0.0);
   wall_eps_.assign(n, 0.0);
   scratch_.assign(n, 0.0);
+  scratch_eps_.assign(n, 0.0);
+  rows_k_.reserve(n);
+  rows_eps_.reserve(n);
   stage_setup_ = profile_.add_stage("k-eps setup");
   stage_wall_ = profile_.add_stage("k-eps wall functions");
   stage_production_ = profile_.add_stage("k-eps production");
@@ -268,17 +272,17 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
   }
 }
 
-void KEpsilonModel::face_coefficients(int i, int k, double sigma, const std::vector<double>& face_u,
+void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& face_u,
                                       const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
                                       const std::vector<double>& cell_F, const std::vector<double>& cell_nu,
                                       FaceCoef* out) const {
   const unsigned flags = params_.flags;
   const bool adv = has(flags, kKEpsAdvection), dif = has(flags, kKEpsDiffusion);
+  const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
   const int c = grid_.cell(i, k);
   const double dx = grid_.dx(), dz = grid_.dz(k);
   const double n_p = cell_porosity[c];
-  const double gam_p = cell_nu[c] + cell_nut[c] / sigma;
-  // per face: neighbour (in, kn), face velocity into the cell [m/s], 1/(length x distance) [1/m^2]
+  // per face: neighbour (in, kn), superficial velocity into the cell [m/s], cell length normal to it
   const double u_w = face_u[grid_.face_x(i, k)], u_e = face_u[grid_.face_x(i + 1, k)];
   const double w_s = face_w[grid_.face_z(i, k)], w_n = face_w[grid_.face_z(i, k + 1)];
   const int nbi[4] = {i - 1, i + 1, i, i};
@@ -288,7 +292,7 @@ void KEpsilonModel::face_coefficients(int i, int k, double sigma, const std::vec
   for (int f = 0; f < 4; ++f) {
     FaceCoef& o = out[f];
     o.nb = -1;
-    o.a = 0.0;
+    o.a[0] = o.a[1] = 0.0;
     o.inflow_u = 0.0;
     const int in = nbi[f], kn = nbk[f];
     const bool inside = in >= 0 && in < grid_.nx() && kn >= 0 && kn < grid_.nz();
@@ -296,13 +300,17 @@ void KEpsilonModel::face_coefficients(int i, int k, double sigma, const std::vec
       const int cn = grid_.cell(in, kn);
       if (!is_active(cn, cell_porosity, cell_F)) continue;  // wall of a solid cell, or the free surface
       o.nb = cn;
-      if (adv) o.a += std::max(vin[f], 0.0) / len[f];
+      const double a_adv = adv ? std::max(vin[f], 0.0) / len[f] : 0.0;
+      o.a[0] = o.a[1] = a_adv;
       if (dif) {
         // series resistance of the two half cells (Patankar's harmonic mean): exact for the flux
         // of the log layer's eps ~ 1/z with n (nu + nu_t/sigma) ~ z, on any z spacing
-        const double half_n = 0.5 * (f < 2 ? dx : grid_.dz(kn));
-        const double cond_n = cell_porosity[cn] * (cell_nu[cn] + cell_nut[cn] / sigma);
-        o.a += 1.0 / (len[f] * (0.5 * len[f] / (n_p * gam_p) + half_n / cond_n));
+        const double half_p = 0.5 * len[f], half_n = 0.5 * (f < 2 ? dx : grid_.dz(kn));
+        for (int e = 0; e < 2; ++e) {
+          const double cond_p = n_p * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
+          const double cond_n = cell_porosity[cn] * (cell_nu[cn] + cell_nut[cn] * inv_sigma[e]);
+          o.a[e] += 1.0 / (len[f] * (half_p / cond_p + half_n / cond_n));
+        }
       }
       continue;
     }
@@ -313,8 +321,10 @@ void KEpsilonModel::face_coefficients(int i, int k, double sigma, const std::vec
     // only an inflow side where the flow enters brings k, eps in; every other side is closed to them
     if (side != KEpsilonBoundary::kInflow || !(vin[f] > 0.0)) continue;
     o.inflow_u = vin[f] / n_p;
-    if (adv) o.a += vin[f] / len[f];
-    if (dif) o.a += n_p * gam_p / (len[f] * 0.5 * len[f]);
+    for (int e = 0; e < 2; ++e) {
+      if (adv) o.a[e] += vin[f] / len[f];
+      if (dif) o.a[e] += n_p * (cell_nu[c] + cell_nut[c] * inv_sigma[e]) / (len[f] * 0.5 * len[f]);
+    }
   }
 }
 
@@ -324,58 +334,80 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
   const KEpsilonParams& p = params_;
   const bool prod_on = has(p.flags, kKEpsProduction);
   const int ncell = grid_.ncell();
-  // k first, then eps, both with the time scale eps/k and the production of the old state
-  for (int eq = 0; eq < 2; ++eq) {
-    const bool is_eps = eq == 1;
-    const std::vector<double>& old = is_eps ? eps_old_ : k_old_;
-    std::vector<double>& target = is_eps ? cell_eps : cell_k;
-    const double sigma = is_eps ? p.sigma_eps : p.sigma_k;
-    const double floor = is_eps ? p.eps_min : p.k_min;
-    // values that no sweep changes: air/solid cells at the floor, wall cells at the wall-law values,
-    // and the starting iterate of solved cells (the old value, or a freshly wetted cell's start)
-    for (int c = 0; c < ncell; ++c) {
-      const std::uint8_t role = cell_role_[c];
-      const double v = role == kInactive ? floor : role == kWallFixed ? (is_eps ? wall_eps_[c] : wall_k_[c]) : target[c];
-      target[c] = v;
-      scratch_[c] = v;
-    }
-    // pass 0 is the predictor: below the cell's explicit limit (dt sum(a) <= n), explicit transport
-    // with the implicit sink, which keeps a uniform decaying field and a steady state exactly;
-    // above it, the local source/sink balance alone (the uniform decay still exact). Passes
-    // 1..sweeps are Jacobi sweeps of the backward-Euler system. Every pass is a convex combination
-    // of positive values plus a non-negative source. The passes alternate between target and
-    // scratch so that the last one writes target.
-    for (int pass = 0; pass <= p.sweeps; ++pass) {
-      const bool to_target = (p.sweeps - pass) % 2 == 0;
-      std::vector<double>& dst = to_target ? target : scratch_;
-      const std::vector<double>& cur = to_target ? scratch_ : target;
-      FaceCoef fc[4];
-      for (int k = 0; k < grid_.nz(); ++k) {
-        for (int i = 0; i < grid_.nx(); ++i) {
-          const int c = grid_.cell(i, k);
-          if (cell_role_[c] != kSolved) continue;
-          face_coefficients(i, k, sigma, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
-          const double n = cell_porosity[c];
-          const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
-          const double prod = prod_on ? cell_prod_[c] : 0.0;
-          const double num0 = n * old[c] / dt + n * (is_eps ? p.c1 * rate * prod : prod);
-          const double den0 = n / dt + n * (is_eps ? p.c2 * rate : rate);
-          double flux = 0.0, asum = 0.0;
-          for (const FaceCoef& f : fc) {
-            if (f.a == 0.0) continue;
-            const double vn = f.nb >= 0 ? cur[f.nb] : (is_eps ? inflow_eps(f.inflow_u) : inflow_k(f.inflow_u));
-            flux += f.a * vn;
-            asum += f.a;
-          }
-          double v;
-          if (pass == 0) {
-            // explicit transport is a convex combination only below the cell's explicit limit
-            v = dt * asum <= n ? (num0 + flux - asum * old[c]) / den0 : num0 / den0;
+  std::vector<double>* target[2] = {&cell_k, &cell_eps};
+  std::vector<double>* scratch[2] = {&scratch_, &scratch_eps_};
+  const std::vector<double>* old[2] = {&k_old_, &eps_old_};
+  const double floor[2] = {p.k_min, p.eps_min};
+  // values that no pass changes: air/solid cells at the floor, wall cells at the wall-law values,
+  // and the starting values of solved cells (the old value, or a freshly wetted cell's start)
+  for (int c = 0; c < ncell; ++c) {
+    const std::uint8_t role = cell_role_[c];
+    const double vk = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
+    const double ve = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
+    cell_k[c] = scratch_[c] = vk;
+    cell_eps[c] = scratch_eps_[c] = ve;
+  }
+  // k and eps are independent within a step (both use the time scale eps/k and the production of
+  // the old state), so one pass over the cells assembles both. Pass 0 is the predictor: below
+  // the cell's explicit limit (dt sum(a) <= n), explicit transport with the implicit sink, which
+  // keeps a uniform decaying field and a steady state exactly; above it, the local source/sink
+  // balance alone (the uniform decay still exact). Passes 1..sweeps are Jacobi sweeps of the
+  // backward-Euler system. Every pass is a convex combination of positive values plus a
+  // non-negative source. Passes alternate between target and scratch; the last writes target.
+  rows_k_.clear();  // capacity ncell reserved at construction: no allocation here
+  rows_eps_.clear();
+  std::vector<JacobiRow>* rows[2] = {&rows_k_, &rows_eps_};
+  const bool first_to_target = p.sweeps % 2 == 0;
+  FaceCoef fc[4];
+  for (int k = 0; k < grid_.nz(); ++k) {
+    for (int i = 0; i < grid_.nx(); ++i) {
+      const int c = grid_.cell(i, k);
+      if (cell_role_[c] != kSolved) continue;
+      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+      const double n = cell_porosity[c];
+      const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
+      const double prod = prod_on ? cell_prod_[c] : 0.0;
+      const double source[2] = {prod, p.c1 * rate * prod};
+      const double sink[2] = {rate, p.c2 * rate};
+      for (int e = 0; e < 2; ++e) {
+        const std::vector<double>& cur = first_to_target ? *scratch[e] : *target[e];
+        std::vector<double>& dst = first_to_target ? *target[e] : *scratch[e];
+        const double x_old = (*old[e])[c];
+        const double num0 = n * x_old / dt + n * source[e];
+        const double den0 = n / dt + n * sink[e];
+        JacobiRow row{c, {c, c, c, c}, {0.0, 0.0, 0.0, 0.0}, num0, den0};
+        double flux = 0.0, asum = 0.0;
+        for (int f = 0; f < 4; ++f) {
+          const double a = fc[f].a[e];
+          if (a == 0.0) continue;
+          if (fc[f].nb >= 0) {
+            row.nb[f] = fc[f].nb;
+            row.a[f] = a;
+            flux += a * cur[fc[f].nb];
           } else {
-            v = (num0 + flux) / (den0 + asum);
+            const double vin = e == 0 ? inflow_k(fc[f].inflow_u) : inflow_eps(fc[f].inflow_u);
+            row.num += a * vin;
+            flux += a * vin;
           }
-          dst[c] = std::max(v, floor);
+          asum += a;
         }
+        row.den += asum;
+        // explicit transport is a convex combination only below the cell's explicit limit
+        const double v = dt * asum <= n ? (num0 + flux - asum * x_old) / den0 : num0 / den0;
+        dst[c] = std::max(v, floor[e]);
+        if (p.sweeps > 0) rows[e]->push_back(row);
+      }
+    }
+  }
+  for (int e = 0; e < 2; ++e) {
+    for (int pass = 1; pass <= p.sweeps; ++pass) {
+      const bool to_target = (p.sweeps - pass) % 2 == 0;
+      std::vector<double>& dst = to_target ? *target[e] : *scratch[e];
+      const std::vector<double>& cur = to_target ? *scratch[e] : *target[e];
+      for (const JacobiRow& r : *rows[e]) {
+        const double num = r.num + r.a[0] * cur[r.nb[0]] + r.a[1] * cur[r.nb[1]] + r.a[2] * cur[r.nb[2]] +
+                           r.a[3] * cur[r.nb[3]];
+        dst[r.c] = std::max(num / r.den, floor[e]);
       }
     }
   }
@@ -449,17 +481,19 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
                                 const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                                 const std::vector<double>& cell_nu) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
-  const double sigma = std::min(params_.sigma_k, params_.sigma_eps);
   double rate_max = 0.0;
   FaceCoef fc[4];
   for (int k = 0; k < grid_.nz(); ++k) {
     for (int i = 0; i < grid_.nx(); ++i) {
       const int c = grid_.cell(i, k);
       if (!is_active(c, cell_porosity, cell_F)) continue;
-      face_coefficients(i, k, sigma, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
-      double sum = 0.0;
-      for (const FaceCoef& f : fc) sum += f.a;
-      rate_max = std::max(rate_max, sum / cell_porosity[c]);
+      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+      double sum_k = 0.0, sum_eps = 0.0;
+      for (const FaceCoef& f : fc) {
+        sum_k += f.a[0];
+        sum_eps += f.a[1];
+      }
+      rate_max = std::max(rate_max, std::max(sum_k, sum_eps) / cell_porosity[c]);
     }
   }
   return rate_max > 0.0 ? params_.cfl / rate_max : std::numeric_limits<double>::infinity();

@@ -164,6 +164,13 @@ class KEpsilonModel {
   // per-cell role of the last step
   enum : std::uint8_t { kInactive = 0, kSolved = 1, kWallFixed = 2 };
   struct FaceCoef;
+  // one row of the backward-Euler system: x_c = (num + sum a x_nb) / den (a = 0, nb = c on closed faces)
+  struct JacobiRow {
+    int c;
+    int nb[4];
+    double a[4];
+    double num, den;
+  };
 
   void check_sizes(const std::vector<double>& face_u, const std::vector<double>& face_w,
                    const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
@@ -175,8 +182,8 @@ class KEpsilonModel {
                             const std::vector<double>& cell_porosity, const std::vector<double>& cell_nu);
   bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
-  // coefficients (per unit volume) of the 4 faces of cell (i, k) for turbulent Prandtl number sigma
-  void face_coefficients(int i, int k, double sigma, const std::vector<double>& face_u,
+  // coefficients (per unit volume) of the 4 faces of cell (i, k), for k and for eps
+  void face_coefficients(int i, int k, const std::vector<double>& face_u,
                          const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
                          const std::vector<double>& cell_F, const std::vector<double>& cell_nu, FaceCoef* out) const;
   void solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
@@ -196,7 +203,8 @@ class KEpsilonModel {
   std::vector<double> cell_prod_;             // P [m^2/s^3]
   std::vector<double> k_old_, eps_old_, nut_old_;  // state before the step (restored on failure)
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
-  std::vector<double> scratch_;               // Jacobi buffer
+  std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
+  std::vector<JacobiRow> rows_k_, rows_eps_;   // the systems of the solved cells, reused by the sweeps
 };
 
 }  // namespace vofdem
