@@ -126,6 +126,14 @@ void KEpsilonModel::initialize(double k, double eps, double nu) {
   std::fill(cell_role_prev_.begin(), cell_role_prev_.end(), kSolved);
 }
 
+void KEpsilonModel::set_flags(unsigned flags) {
+  params_.flags = flags;
+  if (has(flags, kKEpsWallFunctions)) return;
+  std::fill(cell_u_tau.begin(), cell_u_tau.end(), 0.0);
+  std::fill(face_x_wall_shear.begin(), face_x_wall_shear.end(), 0.0);
+  std::fill(face_z_wall_shear.begin(), face_z_wall_shear.end(), 0.0);
+}
+
 double KEpsilonModel::inflow_k(double u_in) const {
   const double iu = params_.inflow_intensity * std::abs(u_in);
   return std::max(1.5 * iu * iu, params_.k_min);
@@ -448,8 +456,11 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
   const unsigned flags = params_.flags;
   {
     ScopedStage timer(profile_, stage_setup_);
-    k_old_ = cell_k;
-    eps_old_ = cell_eps;
+    // the start of the step, floored: k and eps set by hand to 0 must not make eps/k infinite
+    for (int c = 0; c < grid_.ncell(); ++c) {
+      cell_k[c] = k_old_[c] = std::max(cell_k[c], params_.k_min);
+      cell_eps[c] = eps_old_[c] = std::max(cell_eps[c], params_.eps_min);
+    }
     nut_old_ = cell_nut;
     cell_role_prev_.swap(cell_role_);
     classify_cells(cell_porosity, cell_F);
