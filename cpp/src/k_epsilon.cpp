@@ -407,16 +407,21 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
       }
     }
   }
-  for (int e = 0; e < 2; ++e) {
-    for (int pass = 1; pass <= p.sweeps; ++pass) {
-      const bool to_target = (p.sweeps - pass) % 2 == 0;
-      std::vector<double>& dst = to_target ? *target[e] : *scratch[e];
-      const std::vector<double>& cur = to_target ? *scratch[e] : *target[e];
-      for (const JacobiRow& r : *rows[e]) {
-        const double num = r.num + r.a[0] * cur[r.nb[0]] + r.a[1] * cur[r.nb[1]] + r.a[2] * cur[r.nb[2]] +
-                           r.a[3] * cur[r.nb[3]];
-        dst[r.c] = std::max(num / r.den, floor[e]);
-      }
+  jacobi_sweeps(rows_k_, p.k_min, cell_k, scratch_);
+  jacobi_sweeps(rows_eps_, p.eps_min, cell_eps, scratch_eps_);
+}
+
+void KEpsilonModel::jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
+                                  std::vector<double>& scratch) const {
+  const int sweeps = params_.sweeps;
+  for (int pass = 1; pass <= sweeps; ++pass) {
+    const bool to_target = (sweeps - pass) % 2 == 0;
+    std::vector<double>& dst = to_target ? target : scratch;
+    const std::vector<double>& cur = to_target ? scratch : target;
+    for (const JacobiRow& r : rows) {
+      const double num =
+          r.num + r.a[0] * cur[r.nb[0]] + r.a[1] * cur[r.nb[1]] + r.a[2] * cur[r.nb[2]] + r.a[3] * cur[r.nb[3]];
+      dst[r.c] = std::max(num / r.den, floor);
     }
   }
 }

@@ -190,6 +190,9 @@ class KEpsilonModel {
   void solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                        const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                        const std::vector<double>& cell_nu);
+  // passes 1..sweeps of the Jacobi iteration; the last pass writes target
+  void jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
+                     std::vector<double>& scratch) const;
   void update_eddy_viscosity(const std::vector<double>& cell_nu);
   void check_finite(double t);
 
