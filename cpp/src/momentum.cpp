@@ -247,12 +247,11 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
   }
 }
 
-double viscous_stable_dt(const Grid2D& g, const MomentumFields& f) {
+double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm) {
   // forward Euler is stable while dt <= 2 / lambda_max; Gershgorin: lambda_max <= max row sum of |A|,
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  std::vector<double> cm;
   corner_viscosity(g, f.cell_mu, cm);
   double worst = 0.0;
   for (int k = 0; k < nz; ++k) {

@@ -326,7 +326,7 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.flags & kFlowViscosity) {
     // the viscosities of the current phases (stable_dt may be called between steps)
     update_phase_properties();
-    s.viscous = viscous_stable_dt(grid_, momentum_fields());
+    s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_);
   }
   const double g = std::hypot(params_.gravity_x, params_.gravity_z);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0

@@ -80,7 +80,8 @@ inline double muscl_value(double far, double up, double down) {
   return up + d * b / (d + b);
 }
 
-// largest stable explicit viscous step [s] (Gershgorin bound of the stress operator, face by face)
-double viscous_stable_dt(const Grid2D& grid, const MomentumFields& fields);
+// largest stable explicit viscous step [s] (Gershgorin bound of the stress operator, face by face);
+// corner_mu: work array (resized on first use)
+double viscous_stable_dt(const Grid2D& grid, const MomentumFields& fields, std::vector<double>& corner_mu);
 
 }  // namespace vofdem

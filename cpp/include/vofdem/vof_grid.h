@@ -239,7 +239,8 @@ class VOFGrid {
   VofScratch vof_scratch_;
   std::unique_ptr<Snapshot> snapshot_;
   std::unique_ptr<KEpsilonModel> turbulence_;
-  mutable std::vector<double> cell_nu_;  // molecular kinematic viscosity of the cell's mixture
+  mutable std::vector<double> cell_nu_;     // molecular kinematic viscosity of the cell mixture [m^2/s]
+  mutable std::vector<double> dt_scratch_;  // work array of stable_dt_terms()
   void make_turbulence_model();
   const std::vector<double>& turbulence_cells_F() const;
 
