@@ -415,20 +415,24 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
 }
 
-void VOFGrid::prime_inlet(double dt) {
+void VOFGrid::prime_inlet() {
   if (params_.inlet != InletBoundary::kDischarge) return;
-  const int sx = grid_.nx() + 1;
-  u_star_ = face_u;
-  apply_inlet(time_, u_star_);
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
+                   inlet_u_);
   double change = 0.0;
-  for (int k = 0; k < grid_.nz(); ++k) change = std::max(change, std::abs(u_star_[sx * k] - face_u[sx * k]));
+  for (int k = 0; k < nz; ++k) change = std::max(change, std::abs(inlet_u_[k] - face_u[sx * k]));
   if (change <= 1e-14) return;
   // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
-  // sees a divergence-free field
+  // sees a divergence-free field. The result does not depend on the step (beta and 1/p scale with it).
+  save_state();
+  const double dt = 1.0;
+  u_star_ = face_u;
+  w_star_ = face_w;
+  for (int k = 0; k < nz; ++k) u_star_[sx * k] = inlet_u_[k];
   update_phase_properties();
   for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
   for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
-  w_star_ = face_w;
   stage_pressure(dt);
   stage_correct();
 }
@@ -647,15 +651,15 @@ void VOFGrid::stage_checks(double dt) {
 void VOFGrid::step(double dt) {
   require_positive("dt", dt);
   save_state();
+  // the water entering over the step is q(t) dt: the inlet velocities of the step's start, which the
+  // last projection set already (except on the first step or after a change of discharge)
+  prime_inlet();
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
   if (cfl > 1.0)
     fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
                      " (pore velocity)",
          kind, index);
-  // the water entering over the step is q(t) dt: the inlet velocities of the step's start, which the
-  // last projection set already (except on the first step or after a change of discharge)
-  prime_inlet(dt);
   if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   update_phase_properties();
   stage_momentum(dt);
@@ -675,6 +679,8 @@ long long VOFGrid::advance(double t_end) {
   // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
   while (time_ < t_end - eps) {
+    // the step is chosen for the inlet flow it will carry
+    prime_inlet();
     const FlowStableDt s = stable_dt_terms();
     double dt = s.min();
     if (dt < params_.min_dt) {

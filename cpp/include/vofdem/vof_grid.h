@@ -203,7 +203,7 @@ class VOFGrid {
   void stage_checks(double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
   void apply_inlet(double t, std::vector<double>& u);
-  void prime_inlet(double dt);
+  void prime_inlet();
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
   double outlet_pressure(int k) const;
