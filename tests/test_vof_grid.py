@@ -120,7 +120,7 @@ def test_inflow_fills_a_closed_flume_at_the_prescribed_rate():
     f.advance(0.5)
     # exact balance with the water the inlet let in
     assert f.water_volume() == pytest.approx(v0 + f.inlet_volume, rel=1e-12)
-    # which is the integral of q dt to first order in dt (left Riemann sum of the steps)
+    # which is the integral of q dt to first order in dt (right Riemann sum of the steps)
     assert f.inlet_volume == pytest.approx((0.0015 + 0.003) / 2 / 0.3 * 0.5, rel=2e-2)
 
 

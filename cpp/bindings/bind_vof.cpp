@@ -157,9 +157,14 @@ void bind_vof(py::module_& m) {
                              "stones' z-velocity at z-faces [m/s]")
       .def(
           "set_porosity",
-          [](VOFGrid& f, const DoubleArray& n) { f.set_porosity(std::vector<double>(n.data(), n.data() + n.size())); },
-          py::arg("porosity"), "sets the cell porosity (ncell values in [0, 1]) and the face porosities")
-      .def("update_face_porosity", &VOFGrid::update_face_porosity)
+          [](VOFGrid& f, const DoubleArray& n, bool displace) {
+            f.set_porosity(std::vector<double>(n.data(), n.data() + n.size()), displace);
+          },
+          py::arg("porosity"), py::arg("displace") = false,
+          "sets the cell porosity (ncell values in [0, 1]) and the face porosities; displace=True: the change "
+          "is a source of the next step's continuity (dn/dt + div u = 0), so displaced water flows away")
+      .def("update_face_porosity", &VOFGrid::update_face_porosity, py::arg("displace") = false,
+           "recomputes the face porosities after writing cell_porosity / cell_stone_diameter")
       .def("fill_water_below", &VOFGrid::fill_water_below, py::arg("level"))
       .def("fill_water_box", &VOFGrid::fill_water_box, py::arg("x0"), py::arg("x1"), py::arg("z0"), py::arg("z1"),
            py::arg("value") = 1.0)

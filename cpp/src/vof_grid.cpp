@@ -44,7 +44,7 @@ void FlowParams::validate() const {
 double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt}); }
 
 struct VOFGrid::Snapshot {
-  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps;
+  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps, cell_porosity_prev;
   double time = 0.0, inlet_volume = 0.0;
 };
 
@@ -60,6 +60,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   cell_p.assign(nc, 0.0);
   cell_F.assign(nc, 0.0);
   cell_porosity.assign(nc, 1.0);
+  cell_porosity_prev_.assign(nc, 1.0);
   face_x_porosity.assign(nfx, 1.0);
   face_z_porosity.assign(nfz, 1.0);
   cell_stone_diameter.assign(nc, 0.048);
@@ -140,17 +141,18 @@ void VOFGrid::check_sizes() const {
   need("cell_stone_diameter", cell_stone_diameter, grid_.ncell());
 }
 
-void VOFGrid::set_porosity(const std::vector<double>& porosity) {
+void VOFGrid::set_porosity(const std::vector<double>& porosity, bool displace) {
   if (static_cast<int>(porosity.size()) != grid_.ncell())
     throw std::invalid_argument("porosity has " + std::to_string(porosity.size()) + " values, expected ncell = " +
                                 std::to_string(grid_.ncell()));
   for (double n : porosity) require_in_closed("porosity", n, 0.0, 1.0);
   cell_porosity = porosity;
-  update_face_porosity();
+  update_face_porosity(displace);
 }
 
-void VOFGrid::update_face_porosity() {
+void VOFGrid::update_face_porosity(bool displace) {
   check_sizes();
+  if (!displace) cell_porosity_prev_ = cell_porosity;
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   for (int c = 0; c < grid_.ncell(); ++c) {
     require_in_closed("cell_porosity", cell_porosity[c], 0.0, 1.0);
@@ -352,6 +354,7 @@ void VOFGrid::save_state() {
   s.cell_eps = turbulence_->cell_eps;
   s.time = time_;
   s.inlet_volume = inlet_volume_;
+  s.cell_porosity_prev = cell_porosity_prev_;
 }
 
 void VOFGrid::restore_state() {
@@ -367,6 +370,7 @@ void VOFGrid::restore_state() {
   turbulence_->time = s.time;
   time_ = s.time;
   inlet_volume_ = s.inlet_volume;
+  cell_porosity_prev_ = s.cell_porosity_prev;
 }
 
 void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, int index) {
@@ -426,14 +430,15 @@ void VOFGrid::prime_inlet() {
   // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
   // sees a divergence-free field. The result does not depend on the step (beta and 1/p scale with it).
   save_state();
-  const double dt = 1.0;
+  double dt = 1.0;
   u_star_ = face_u;
   w_star_ = face_w;
   for (int k = 0; k < nz; ++k) u_star_[sx * k] = inlet_u_[k];
   update_phase_properties();
   for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
   for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
-  stage_pressure(dt);
+  // the porosity source belongs to the real step: 0 here
+  stage_pressure(0.0);
   stage_correct();
 }
 
@@ -549,7 +554,7 @@ void VOFGrid::stage_turbulence(double dt) {
   check_finite("turbulence", "eddy viscosity", cell_nut, 0);
 }
 
-void VOFGrid::stage_pressure(double /*dt*/) {
+void VOFGrid::stage_pressure(double dt) {
   ScopedStage timer(profile_, st_pressure_);
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const double dx = grid_.dx();
@@ -580,14 +585,20 @@ void VOFGrid::stage_pressure(double /*dt*/) {
       problem_.face_z_bc[j] = 0.0;
     }
   }
-  // b = net outflow of u* per metre of width [m^2/s]
+  // b = net outflow of u* per metre of width [m^2/s], less the outflow the porosity change asks for:
+  // dn/dt + div u = 0, so the corrected velocities leave a cell at the rate -dn/dt dx dz
+  const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
   for (int k = 0; k < nz; ++k) {
     const double dz = grid_.dz(k);
     for (int i = 0; i < nx; ++i) {
       const int c = i + nx * k;
-      rhs_[c] = problem_.cell_active[c]
-                    ? (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx
-                    : 0.0;
+      double b = 0.0;
+      if (problem_.cell_active[c]) {
+        b = (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx;
+        const double dn = cell_porosity[c] - cell_porosity_prev_[c];
+        if (dn != 0.0 && cell_porosity_prev_[c] > 0.0) b += dn * inv_dt * dx * dz;
+      }
+      rhs_[c] = b;
     }
   }
   try {
@@ -651,8 +662,13 @@ void VOFGrid::stage_checks(double dt) {
 void VOFGrid::step(double dt) {
   require_positive("dt", dt);
   save_state();
-  // the water entering over the step is q(t) dt: the inlet velocities of the step's start, which the
-  // last projection set already (except on the first step or after a change of discharge)
+  // a state written through the views (or left by a caller) is checked before it spreads
+  check_finite("step", "x-velocity", face_u, 1);
+  check_finite("step", "z-velocity", face_w, 2);
+  check_finite("step", "water fraction", cell_F, 0);
+  // the step's Courant number is judged with the inlet flow it will carry (a projection onto a new
+  // inlet flow on the first step or after a change of discharge); the water entering over the step is
+  // q(t + dt) dt, carried by the projected velocities
   prime_inlet();
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
@@ -660,7 +676,6 @@ void VOFGrid::step(double dt) {
     fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
                      " (pore velocity)",
          kind, index);
-  if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   update_phase_properties();
   stage_momentum(dt);
   if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);
@@ -668,7 +683,11 @@ void VOFGrid::step(double dt) {
   apply_inlet(time_ + dt, u_star_);
   stage_pressure(dt);
   stage_correct();
+  // F moves with the new, projected velocities: their divergence is exactly the porosity source of
+  // this step, so the water volume balances over the same dt
+  if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   stage_checks(dt);
+  cell_porosity_prev_ = cell_porosity;
   time_ += dt;
   ++step_count_;
 }

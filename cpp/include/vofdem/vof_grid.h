@@ -3,6 +3,7 @@
 //   du/dx + dw/dz = 0                                                                        (1)
 //   du/dt + div(u u / n) = n (-(1/rho) grad p + g + R) + (1/rho) div(mu_e (grad u + grad u^T))   (2)-(3)
 //   n dF/dt + div(u F) = 0                                                                   (4)
+//   (with porosity changed by moving stones between steps: dn/dt + div u = 0 in place of (1))
 //
 // u = (u, w) are the superficial (mesh-averaged) velocities of the paper, n the porosity, F the water
 // fraction, rho = F rho_w + (1 - F) rho_a and mu = F mu_w + (1 - F) mu_a the one-fluid density and
@@ -144,11 +145,17 @@ class VOFGrid {
   std::vector<double> face_x_solid_u;       // stones' x-velocity at x-faces [m/s], 0
   std::vector<double> face_z_solid_w;       // stones' z-velocity at z-faces [m/s], 0
 
-  // sets cell_porosity (size ncell, values in [0, 1]) and recomputes the face porosities
-  void set_porosity(const std::vector<double>& porosity);
+  // sets cell_porosity (size ncell, values in [0, 1]) and recomputes the face porosities.
+  // displace = false (scene building): the new field is the reference, nothing flows.
+  // displace = true (stones moved): the change dn since the last step is a source of the next step's
+  // continuity equation, dn/dt + div u = 0, so the water a stone displaces flows away (F is kept; the
+  // water volume sum(n F V) is conserved where the cells are full of water or of air). A cell that
+  // turns solid or opens from solid takes no source.
+  void set_porosity(const std::vector<double>& porosity, bool displace = false);
   // recomputes face_*_porosity and the face stone diameters from the cell arrays (after writing
-  // cell_porosity or cell_stone_diameter directly); closes the faces of solid cells (u = 0)
-  void update_face_porosity();
+  // cell_porosity or cell_stone_diameter directly); closes the faces of solid cells (u = 0);
+  // displace as in set_porosity
+  void update_face_porosity(bool displace = false);
 
   // ---- scene helpers (rectangles [x0, x1] x [z0, z1] in m; a cell belongs if its centre is inside) ----
   // F = 1 below `level` [m] (partial fraction in the cut row), 0 above
@@ -241,6 +248,7 @@ class VOFGrid {
   std::unique_ptr<KEpsilonModel> turbulence_;
   mutable std::vector<double> cell_nu_;     // molecular kinematic viscosity of the cell mixture [m^2/s]
   mutable std::vector<double> dt_scratch_;  // work array of stable_dt_terms()
+  std::vector<double> cell_porosity_prev_;   // porosity of the last step (the reference of dn)
   void make_turbulence_model();
   const std::vector<double>& turbulence_cells_F() const;
 
