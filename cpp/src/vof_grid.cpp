@@ -322,7 +322,18 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
 FlowStableDt VOFGrid::stable_dt_terms() const {
   FlowStableDt s;
   int kind, index;
-  const double rate = max_cfl(1.0, kind, index);
+  double rate = max_cfl(1.0, kind, index);
+  // the inlet flow the step will carry (q / dz of the lowest row when the inlet is dry)
+  if (params_.inlet == InletBoundary::kDischarge) {
+    const int nx = grid_.nx(), sx = nx + 1;
+    std::vector<double>& u_in = inlet_u_;
+    inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
+                     u_in);
+    for (int k = 0; k < grid_.nz(); ++k) {
+      const double n = face_x_porosity[sx * k];
+      if (n > 0.0) rate = std::max(rate, std::abs(u_in[k]) / (n * grid_.dx()));
+    }
+  }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
   s.viscous = kInf;
   if (params_.flags & kFlowViscosity) {
@@ -417,29 +428,6 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   const double q = discharge_.at(t) / params_.flume_width;
   inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
   for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
-}
-
-void VOFGrid::prime_inlet() {
-  if (params_.inlet != InletBoundary::kDischarge) return;
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
-                   inlet_u_);
-  double change = 0.0;
-  for (int k = 0; k < nz; ++k) change = std::max(change, std::abs(inlet_u_[k] - face_u[sx * k]));
-  if (change <= 1e-14) return;
-  // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
-  // sees a divergence-free field. The result does not depend on the step (beta and 1/p scale with it).
-  save_state();
-  double dt = 1.0;
-  u_star_ = face_u;
-  w_star_ = face_w;
-  for (int k = 0; k < nz; ++k) u_star_[sx * k] = inlet_u_[k];
-  update_phase_properties();
-  for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
-  for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
-  // the porosity source belongs to the real step: 0 here
-  stage_pressure(0.0);
-  stage_correct();
 }
 
 double VOFGrid::outlet_pressure(int k) const {
@@ -666,10 +654,6 @@ void VOFGrid::step(double dt) {
   check_finite("step", "x-velocity", face_u, 1);
   check_finite("step", "z-velocity", face_w, 2);
   check_finite("step", "water fraction", cell_F, 0);
-  // the step's Courant number is judged with the inlet flow it will carry (a projection onto a new
-  // inlet flow on the first step or after a change of discharge); the water entering over the step is
-  // q(t + dt) dt, carried by the projected velocities
-  prime_inlet();
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
   if (cfl > 1.0)
@@ -698,8 +682,6 @@ long long VOFGrid::advance(double t_end) {
   // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
   while (time_ < t_end - eps) {
-    // the step is chosen for the inlet flow it will carry
-    prime_inlet();
     const FlowStableDt s = stable_dt_terms();
     double dt = s.min();
     if (dt < params_.min_dt) {

@@ -210,7 +210,6 @@ class VOFGrid {
   void stage_checks(double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
   void apply_inlet(double t, std::vector<double>& u);
-  void prime_inlet();
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
   double outlet_pressure(int k) const;
@@ -235,7 +234,8 @@ class VOFGrid {
   mutable std::vector<double> face_x_rho_, face_z_rho_;
   std::vector<double> face_x_diameter_, face_z_diameter_;
   std::vector<double> face_x_beta_, face_z_beta_;  // dt n / (rho (1 + dt n R')) of the projection
-  std::vector<double> inlet_u_, inlet_dz_;
+  mutable std::vector<double> inlet_u_;  // inlet velocities (also read by stable_dt_terms)
+  std::vector<double> inlet_dz_;
   MomentumScratch momentum_scratch_;
   std::vector<double> u_star_, w_star_;
   std::vector<double> rhs_;
