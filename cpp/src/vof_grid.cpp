@@ -431,9 +431,14 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
 }
 
 double VOFGrid::outlet_pressure(int k) const {
-  if (params_.outlet != OutletBoundary::kTailwater) return 0.0;
-  const double depth = params_.tailwater_level - grid_.z_center(k);
-  return depth > 0.0 ? params_.rho_water * std::abs(params_.gravity_z) * depth : 0.0;
+  // still air outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
+  // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
+  const double g = std::abs(params_.gravity_z);
+  const double z = grid_.z_center(k);
+  double p = params_.rho_air * g * (grid_.z_face(grid_.nz()) - z);
+  if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
+    p += (params_.rho_water - params_.rho_air) * g * (params_.tailwater_level - z);
+  return p;
 }
 
 double VOFGrid::inlet_discharge_per_width() const {
