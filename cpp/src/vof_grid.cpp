@@ -433,9 +433,13 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
 double VOFGrid::outlet_pressure(int k) const {
   // still air outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
   // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
-  const double g = std::abs(params_.gravity_z);
+  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.gravity_z) : 0.0;
   const double z = grid_.z_center(k);
-  double p = params_.rho_air * g * (grid_.z_face(grid_.nz()) - z);
+  const double top = grid_.z_face(grid_.nz());
+  // single phase: water outside too, up to the tailwater level or the top
+  if (!(params_.flags & kFlowFreeSurface))
+    return params_.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
+  double p = params_.rho_air * g * (top - z);
   if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
     p += (params_.rho_water - params_.rho_air) * g * (params_.tailwater_level - z);
   return p;
