@@ -34,8 +34,9 @@
 //
 // Boundaries: left end wall or discharge inlet Q(t) [m^3/s] / flume width B spread over the wetted
 // inlet rows in proportion to their water fraction (water fraction 1 entering, inlet level free);
-// right end wall, free overfall (the end face is the brink: p = 0 there, the water falls freely out)
-// or a fixed tailwater level (hydrostatic pressure below it); bed and end walls slip or no-slip; top
+// right end wall, free overfall (the end face is the brink, open to still air outside: the
+// hydrostatic air pressure from p = 0 at the top; the water falls freely out) or a fixed tailwater
+// level (hydrostatic water pressure below it); open faces carry zero-gradient momentum outflow; bed and end walls slip or no-slip; top
 // open to the atmosphere (p = 0) or a slip lid.
 //
 // References: S. Maeno and A. Tomita (2008), ICHE 2008 (eqs. 1-7); F. H. Harlow and J. E. Welch (1965)
