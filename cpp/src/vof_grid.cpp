@@ -244,6 +244,14 @@ void VOFGrid::update_phase_properties() const {
       const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
       face_x_rho_[i + sx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
     }
+  // an open end faces still fluid outside: water below the tailwater level, air above (two-phase)
+  if (two_phase && params_.outlet != OutletBoundary::kWall)
+    for (int k = 0; k < nz; ++k) {
+      const double f = params_.outlet == OutletBoundary::kTailwater
+                           ? std::clamp((params_.tailwater_level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0)
+                           : 0.0;
+      face_x_rho_[nx + sx * k] = 0.5 * (cell_rho_[nx - 1 + nx * k] + f * rw + (1.0 - f) * ra);
+    }
   for (int k = 0; k <= nz; ++k)
     for (int i = 0; i < nx; ++i) {
       const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
