@@ -400,9 +400,11 @@ double VOFGrid::outlet_pressure(int k) const {
   // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
   const double g = std::abs(params_.gravity_z);
   const double z = grid_.z_center(k);
-  double p = params_.rho_air * g * (grid_.z_face(grid_.nz()) - z);
+  const bool air = (params_.flags & kFlowGravity) && (params_.flags & kFlowFreeSurface);
+  const double rho_air = air ? params_.rho_air : 0.0;
+  double p = rho_air * g * (grid_.z_face(grid_.nz()) - z);
   if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
-    p += (params_.rho_water - params_.rho_air) * g * (params_.tailwater_level - z);
+    p += (params_.rho_water - rho_air) * g * (params_.tailwater_level - z);
   return p;
 }
 
