@@ -425,6 +425,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/face_z_solid_w"] = f.face_z_solid_w;
     s["fluid/time"] = {f.time()};
     s["fluid/step_count"] = {static_cast<double>(f.step_count())};
+    s["fluid/inlet_volume"] = {f.inlet_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
   }
@@ -464,6 +465,9 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     for (const char* k : {"fluid/cell_p", "fluid/cell_F", "fluid/cell_porosity", "fluid/cell_stone_diameter",
                           "fluid/cell_nut", "coupler/cell_base_porosity", "coupler/cell_base_diameter"})
       need(s, k, nc);
+    for (const char* k : {"fluid/time", "fluid/step_count", "fluid/inlet_volume", "coupler/steps", "coupler/mapped",
+                          "coupler/redistributed"})
+      need(s, k, 1);
     need(s, "fluid/face_u", nfx);
     need(s, "fluid/face_x_solid_u", nfx);
     need(s, "fluid/face_w", nfz);
@@ -483,6 +487,7 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     fluid_->face_z_solid_w = need(s, "fluid/face_z_solid_w", nfz);
     fluid_->set_time(need(s, "fluid/time", 1)[0]);
     fluid_->set_step_count(static_cast<long long>(need(s, "fluid/step_count", 1)[0]));
+    fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
     fluid_->update_face_porosity();

@@ -176,6 +176,8 @@ class VOFGrid {
   double discharge_through(int i) const;
   // water volume per metre of width [m^2] that entered through the inlet since construction
   double inlet_volume() const { return inlet_volume_; }
+  // restores the inlet volume counter (restart only)
+  void set_inlet_volume(double v) { inlet_volume_ = v; }
   // inlet discharge per unit width now [m^2/s]
   double inlet_discharge_per_width() const;
 
