@@ -49,10 +49,12 @@ void check_terminal_velocity(double d, double h, double width, double height, do
   const FlowParams fp;
   Scene s = tank(width, height, h, height - 0.05, {0.5 * width, height - 0.15}, 0.5 * d, kCoupleOneWay);
   const double vt = terminal_velocity(d, 2650.0, fp.rho_water, fp.nu_water, 9.81);
+  double ode_dev = 0.0;
   for (int q = 1; q <= 10; ++q) {
     const double t = t_end * q / 10;
     s.sim->advance(t);
     const double v = -s.stones->disc_vel[1];
+    ode_dev = std::max(ode_dev, std::abs(v - ode_velocity(d, 2650.0, fp.rho_water, fp.nu_water, 1.0, t)) / vt);
     // the fall follows the ODE of the force balance (explicit exchange every step): 2 %
     EXPECT_NEAR(v, ode_velocity(d, 2650.0, fp.rho_water, fp.nu_water, 1.0, t), 0.02 * vt) << "t = " << t;
     // the excess pressure gradient of still water is zero: buoyancy is not counted twice
@@ -61,7 +63,8 @@ void check_terminal_velocity(double d, double h, double width, double height, do
   }
   // the criterion: terminal velocity within 3 %
   EXPECT_NEAR(-s.stones->disc_vel[1], vt, 0.03 * vt) << "v_t = " << vt;
-  ::testing::Test::RecordProperty("terminal_velocity_ratio", std::to_string(-s.stones->disc_vel[1] / vt));
+  std::printf("d = %.4f m on %.3f m cells: v(%.2f s) = %.4f m/s, v_t = %.4f m/s, ratio %.4f, largest gap to the ODE %.4f v_t\n",
+              d, h, t_end, -s.stones->disc_vel[1], vt, -s.stones->disc_vel[1] / vt, ode_dev);
 }
 
 }  // namespace
@@ -162,8 +165,12 @@ TEST(Coupler, BedStoneMovesAboveTheThresholdOnly) {
     U = (-B + std::sqrt(B * B + 4 * A * F)) / (2 * A);
   }
   EXPECT_NEAR(U, 1.224, 0.001);
-  EXPECT_LT(pocket_stone_displacement(0.9 * U, 0.5), 1e-3);   // below: stays (less than 1 mm)
-  EXPECT_GT(pocket_stone_displacement(1.1 * U, 0.5), 0.024);  // above: rolls out (more than a radius)
+  // measured by bisection on "moves more than 1 mm in 0.5 s": 1.2231 < U_c < 1.2236 m/s (0.05 % below the
+  // rigid-pivot value; the soft contacts let the stone sit slightly deeper in the pocket)
+  EXPECT_LT(pocket_stone_displacement(0.9 * U, 0.5), 1e-3);   // well below: stays (less than 1 mm)
+  EXPECT_LT(pocket_stone_displacement(0.98 * U, 0.5), 1e-3);  // just below: stays
+  EXPECT_GT(pocket_stone_displacement(1.02 * U, 0.5), 1e-3);  // just above: moves
+  EXPECT_GT(pocket_stone_displacement(1.1 * U, 0.5), 0.024);  // well above: rolls out (more than a radius)
 }
 
 TEST(Coupler, StoneColumnDroppedIntoATankConservesWater) {
