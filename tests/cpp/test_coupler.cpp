@@ -21,7 +21,8 @@ bool same_bits(const std::map<std::string, std::vector<double>>& a, const std::m
   for (const auto& kv : a) {
     auto it = b.find(kv.first);
     if (it == b.end() || it->second.size() != kv.second.size() ||
-        std::memcmp(kv.second.data(), it->second.data(), kv.second.size() * sizeof(double)) != 0)
+        (!kv.second.empty() &&
+        std::memcmp(kv.second.data(), it->second.data(), kv.second.size() * sizeof(double)) != 0))
       return *first_diff = kv.first, false;
   }
   return true;
