@@ -45,6 +45,7 @@ def test_wet_defaults_and_sphere_properties():
     assert s.disc_wet[0] == 1.0
     assert s.volume(0) == pytest.approx(np.pi * D**3 / 6)
     assert s.mass(0) == pytest.approx(2650 * np.pi * D**3 / 6)
+    assert s.projected_area(0) == pytest.approx(np.pi * D**2 / 4)
 
 
 def test_bad_input_is_a_value_error_naming_the_parameter():
@@ -55,6 +56,9 @@ def test_bad_input_is_a_value_error_naming_the_parameter():
     s = falling_pair()
     with pytest.raises(ValueError, match="stable"):
         s.step(10 * s.stable_dt())
+    s.params.friction_stone = -1.0  # edited in place: checked on the next step
+    with pytest.raises(ValueError, match="friction_stone = -1"):
+        s.advance(0.01)
     with pytest.raises(ValueError, match="disc_radius"):
         vofdem.DEMSystem(vofdem.DEMParams(), pos=np.zeros((1, 2)), radius=np.array([0.0]))
 
@@ -139,3 +143,27 @@ def test_pile_reaches_a_stable_angle_of_repose():
     s.advance(1.0)
     assert np.abs(s.disc_pos - before).max() < 1e-3
     assert s.removed_count == 0
+
+
+def test_stepping_releases_the_gil():
+    import threading
+    import time
+
+    s = heap(n_free=200)
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    t0 = time.perf_counter()
+    s.advance(0.5)
+    t1 = time.perf_counter()
+    done.set()
+    t.join()
+    # the counting thread kept running while C++ stepped
+    assert sum(t0 < x < t1 for x in ticks) >= 5

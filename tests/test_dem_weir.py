@@ -13,6 +13,8 @@ def weir():
 def test_weir_matches_the_trapezoid_within_one_diameter(weir):
     s, report, spec = weir
     assert report.n_stones == s.n and report.n_fixed == int(s.disc_fixed.sum())
+    assert spec.x_end() == pytest.approx(1.0 + 2 * 0.25 / np.tan(np.radians(27)) + 0.2)
+    assert spec.top(spec.x_toe + 0.1) == pytest.approx(0.1 * np.tan(np.radians(27)))
     # bottom layer fixed on the bed
     assert np.allclose(s.disc_pos[s.disc_fixed == 1, 1], s.disc_radius[s.disc_fixed == 1])
     assert report.outline_error == pytest.approx(vofdem.weir_outline_error(s, spec))

@@ -94,7 +94,8 @@ def test_bad_parameters_raise_value_error():
         tank(params=p)
     p = vofdem.FlowParams()
     p.flags = vofdem.FlowEffect.TURBULENCE
-    with pytest.raises(ValueError, match="turbulence"):
+    p.turbulence_bed_roughness = -1.0
+    with pytest.raises(ValueError, match="roughness"):
         tank(params=p)
 
 
@@ -119,5 +120,19 @@ def test_inflow_fills_a_closed_flume_at_the_prescribed_rate():
     f.advance(0.5)
     # exact balance with the water the inlet let in
     assert f.water_volume() == pytest.approx(v0 + f.inlet_volume, rel=1e-12)
-    # which is the integral of q dt to first order in dt (left Riemann sum of the steps)
+    # which is the integral of q dt to first order in dt (right Riemann sum of the steps)
     assert f.inlet_volume == pytest.approx((0.0015 + 0.003) / 2 / 0.3 * 0.5, rel=2e-2)
+
+
+def test_inflow_into_a_dry_flume_starts_without_a_cfl_breach():
+    # the first step is chosen for the inlet jet (q / dz of the lowest row), not for the fluid at rest
+    p = vofdem.FlowParams()
+    p.inlet = vofdem.InletBoundary.DISCHARGE
+    p.outlet = vofdem.OutletBoundary.FREE_OVERFALL
+    grid = vofdem.Grid2D.graded(40, 1.0, 0.2, 0.01, 0.005, 0.02)
+    f = vofdem.VOFGrid(grid, p)
+    f.discharge = vflow.paper_discharge_ramp()
+    f.advance(0.3)
+    assert f.water_volume() > 0.5 * f.inlet_volume > 0
+    U, W = f.pore_velocity_at_cells()
+    assert np.abs(U).max() < 10.0 and np.abs(W).max() < 10.0

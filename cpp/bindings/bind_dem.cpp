@@ -135,6 +135,7 @@ void bind_system(py::module_& m) {
       .def("energy", &DEMSystem::energy)
       .def("mass", &DEMSystem::mass, py::arg("i"))
       .def("volume", &DEMSystem::volume, py::arg("i"))
+      .def("projected_area", &DEMSystem::projected_area, py::arg("i"))
       .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
       .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
       .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)
@@ -178,7 +179,10 @@ void bind_packing(py::module_& m) {
       .def_readwrite("density", &WeirSpec::density)
       .def_readwrite("seed", &WeirSpec::seed)
       .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
-      .def_readwrite("rest_speed", &WeirSpec::rest_speed);
+      .def_readwrite("rest_speed", &WeirSpec::rest_speed)
+      .def("x_end", &WeirSpec::x_end)
+      .def("top", &WeirSpec::top, py::arg("x"))
+      .def("area", &WeirSpec::area);
   py::class_<WeirPackingReport>(m, "WeirPackingReport", "What pack_weir produced.")
       .def_readonly("n_stones", &WeirPackingReport::n_stones)
       .def_readonly("n_fixed", &WeirPackingReport::n_fixed)

@@ -72,31 +72,46 @@ void DEMSystem::build_neighbours() {
   while (std::floor((xmax - xmin) / h + 1.0) * std::floor((zmax - zmin) / h + 1.0) > max_cells) h *= 1.5;
   const int ncx = static_cast<int>((xmax - xmin) / h) + 1;
   const int ncz = static_cast<int>((zmax - zmin) / h) + 1;
-  cell_start_.assign(static_cast<std::size_t>(ncx) * ncz, -1);
-  cell_next_.assign(static_cast<std::size_t>(n_), -1);
-  auto cell_x = [&](int i) { return std::min(ncx - 1, static_cast<int>((disc_pos[2 * i] - xmin) / h)); };
-  auto cell_z = [&](int i) { return std::min(ncz - 1, static_cast<int>((disc_pos[2 * i + 1] - zmin) / h)); };
-  // head insertion in descending order leaves every cell's list ascending
-  for (int i = n_ - 1; i >= 0; --i) {
+  // counting sort of the stones by cell: each cell's stones contiguous and in ascending index order
+  const std::size_t ncell = static_cast<std::size_t>(ncx) * ncz;
+  cell_start_.assign(ncell + 1, 0);
+  cell_next_.assign(static_cast<std::size_t>(n_), -1);  // here: the cell of each active stone
+  for (int i = 0; i < n_; ++i) {
     if (!disc_active[i]) continue;
-    const std::size_t c = static_cast<std::size_t>(cell_x(i)) + static_cast<std::size_t>(ncx) * cell_z(i);
-    cell_next_[i] = cell_start_[c];
-    cell_start_[c] = i;
+    const int cx = std::min(ncx - 1, static_cast<int>((disc_pos[2 * i] - xmin) / h));
+    const int cz = std::min(ncz - 1, static_cast<int>((disc_pos[2 * i + 1] - zmin) / h));
+    cell_next_[i] = cx + ncx * cz;
+    ++cell_start_[static_cast<std::size_t>(cell_next_[i]) + 1];
+  }
+  for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
+  sorted_.resize(static_cast<std::size_t>(nact));
+  {
+    std::vector<int>& fill = cell_fill_;
+    fill.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (int i = 0; i < n_; ++i) {
+      if (!disc_active[i]) continue;
+      sorted_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_next_[i])]++)] = {
+          disc_pos[2 * i], disc_pos[2 * i + 1], disc_radius[i], i, disc_fixed[i] != 0};
+    }
   }
   for (int i = 0; i < n_; ++i) {
     if (!disc_active[i]) continue;
-    const int cx = cell_x(i), cz = cell_z(i);
+    const int cx = cell_next_[i] % ncx, cz = cell_next_[i] / ncx;
     const std::size_t first = new_pairs_.size();
-    const double xi = disc_pos[2 * i], zi = disc_pos[2 * i + 1], ri = disc_radius[i];
+    const double xi = disc_pos[2 * i], zi = disc_pos[2 * i + 1], ri = disc_radius[i] + skin_;
+    const bool fi = disc_fixed[i] != 0;
+    const int kx0 = std::max(0, cx - 1), kx1 = std::min(ncx - 1, cx + 1);
     for (int kz = std::max(0, cz - 1); kz <= std::min(ncz - 1, cz + 1); ++kz) {
-      for (int kx = std::max(0, cx - 1); kx <= std::min(ncx - 1, cx + 1); ++kx) {
-        for (int j = cell_start_[static_cast<std::size_t>(kx) + static_cast<std::size_t>(ncx) * kz]; j >= 0;
-             j = cell_next_[j]) {
-          if (j <= i || (disc_fixed[i] && disc_fixed[j])) continue;
-          const double dx = disc_pos[2 * j] - xi, dz = disc_pos[2 * j + 1] - zi;
-          const double cut = ri + disc_radius[j] + skin_;
-          if (dx * dx + dz * dz < cut * cut) new_pairs_.push_back({i, j, 0.0});
-        }
+      // the three cells of a row are one contiguous range
+      const int b0 = cell_start_[static_cast<std::size_t>(kx0 + ncx * kz)];
+      const int b1 = cell_start_[static_cast<std::size_t>(kx1 + ncx * kz) + 1];
+      for (int k = b0; k < b1; ++k) {
+        const SortedStone& o = sorted_[static_cast<std::size_t>(k)];
+        if (o.index <= i || (fi && o.fixed)) continue;
+        const double dx = o.x - xi, dz = o.z - zi;
+        const double cut = ri + o.r;
+        if (dx * dx + dz * dz < cut * cut)
+          new_pairs_.push_back({i, o.index, 0.0, std::sqrt(1.0 / (inv_mass_[i] + inv_mass_[o.index]))});
       }
     }
     std::sort(new_pairs_.begin() + static_cast<std::ptrdiff_t>(first), new_pairs_.end(),

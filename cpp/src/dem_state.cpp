@@ -103,7 +103,7 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
                                   ") is outside 0 <= i < j < n");
     if (k > 0 && !(pairs_.back().i < i || (pairs_.back().i == i && pairs_.back().j < j)))
       throw std::invalid_argument("import_state: contact pairs are not sorted by (i, j)");
-    pairs_.push_back({i, j, cxi[k]});
+    pairs_.push_back({i, j, cxi[k], 0.0});  // masses set by the next build
   }
   set(wall_xi_, get(s, "wall_xi", n * params_.walls.size()));
   const auto& sc = get(s, "scalars", 9);

@@ -140,6 +140,7 @@ void DEMSystem::check_stones() const {
 
 double DEMSystem::mass(int i) const { return disc_density[i] * sphere_volume(disc_radius[i]); }
 double DEMSystem::volume(int i) const { return sphere_volume(disc_radius[i]); }
+double DEMSystem::projected_area(int i) const { return kPi * disc_radius[i] * disc_radius[i]; }
 
 // derived masses (eqs. 8-9): M + M', buoyant weight, inertia; fixed or inactive stones get 1/M = 0
 void DEMSystem::update_properties() {
@@ -180,6 +181,7 @@ double DEMSystem::reduced_stiffness_mass() const {
 }
 
 void DEMSystem::prepare() {
+  check_params();  // the parameters may have been edited in place (Python: system.params.x = ...)
   check_stones();
   const DEMParams& p = params_;
   if (p.stiffness_normal > 0.0) {
@@ -200,8 +202,17 @@ void DEMSystem::prepare() {
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
   if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
   update_properties();
-  // radii or activity may have been changed through the views
-  rebuild_ = true;
+  // radii, activity or fixing may have been changed through the views: the list is rebuilt; else only
+  // the pairs' reduced masses are refreshed (wet fractions may have changed)
+  if (cached_radius_ != disc_radius || cached_active_ != disc_active || cached_fixed_ != disc_fixed) {
+    cached_radius_ = disc_radius;
+    cached_active_ = disc_active;
+    cached_fixed_ = disc_fixed;
+    rebuild_ = true;
+  }
+  if (!rebuild_) {
+    for (Pair& c : pairs_) c.sqrt_m = std::sqrt(1.0 / (inv_mass_[c.i] + inv_mass_[c.j]));
+  }
   prepared_ = true;
 }
 
@@ -435,13 +446,13 @@ void DEMSystem::contact_forces(double dt) {
     }
     ++ncontact;
     const double d = std::sqrt(d2);
-    const double nx = d > 0.0 ? dx / d : 1.0, nz = d > 0.0 ? dz / d : 0.0;
+    const double inv_d = d > 0.0 ? 1.0 / d : 0.0;
+    const double nx = d > 0.0 ? dx * inv_d : 1.0, nz = dz * inv_d;
     const double vrx = disc_vel[2 * i] - disc_vel[2 * j];
     const double vrz = disc_vel[2 * i + 1] - disc_vel[2 * j + 1];
     const double vn = vrx * nx + vrz * nz;
     const double vt = -vrx * nz + vrz * nx + disc_omega[i] * ri + disc_omega[j] * rj;
-    const double m_red = 1.0 / (inv_mass_[i] + inv_mass_[j]);
-    const double cn = damp * std::sqrt(m_red);
+    const double cn = damp * c.sqrt_m;
     const ContactForce f = friction ? linear_contact(rs - d, vn, vt, c.xi, dt, kn_, kt, cn, ct_factor * cn,
                                                      p.friction_stone, true)
                                     : linear_contact(rs - d, vn, 0.0, c.xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);

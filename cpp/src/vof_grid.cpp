@@ -36,8 +36,7 @@ void FlowParams::validate() const {
   require_positive("flume_width", flume_width);
   require_positive("pressure_tol", pressure_tol);
   require_finite("tailwater_level", tailwater_level);
-  if (flags & kFlowTurbulence)
-    throw std::invalid_argument("flags: the turbulence effect (kFlowTurbulence) is not available in this build");
+  if (flags & kFlowTurbulence) check_k_epsilon_params(turbulence);
   if (flags >= (1u << 8))
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
 }
@@ -45,7 +44,7 @@ void FlowParams::validate() const {
 double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt}); }
 
 struct VOFGrid::Snapshot {
-  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut;
+  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps, cell_porosity_prev;
   double time = 0.0, inlet_volume = 0.0;
 };
 
@@ -61,6 +60,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   cell_p.assign(nc, 0.0);
   cell_F.assign(nc, 0.0);
   cell_porosity.assign(nc, 1.0);
+  cell_porosity_prev_.assign(nc, 1.0);
   face_x_porosity.assign(nfx, 1.0);
   face_z_porosity.assign(nfz, 1.0);
   cell_stone_diameter.assign(nc, 0.048);
@@ -70,6 +70,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
   cell_rho_.assign(nc, 0.0);
   cell_mu_.assign(nc, 0.0);
+  cell_nu_.assign(nc, 0.0);
   face_x_rho_.assign(nfx, 0.0);
   face_z_rho_.assign(nfz, 0.0);
   face_x_diameter_.assign(nfx, 0.048);
@@ -86,6 +87,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   solver_ = make_pressure_solver(params_.pressure_solver);
   discharge_ = DischargeTable::constant(0.0);
   update_face_porosity();
+  make_turbulence_model();
   st_advect_ = profile_.add_stage("advect_vof");
   st_momentum_ = profile_.add_stage("momentum");
   st_porous_ = profile_.add_stage("porous_resistance");
@@ -97,11 +99,30 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
 
 VOFGrid::~VOFGrid() = default;
 
+void VOFGrid::make_turbulence_model() {
+  KEpsilonBoundaries b;
+  b.left = params_.inlet == InletBoundary::kDischarge ? KEpsilonBoundary::kInflow : KEpsilonBoundary::kWall;
+  b.right = params_.outlet == OutletBoundary::kWall ? KEpsilonBoundary::kWall : KEpsilonBoundary::kZeroGradient;
+  b.bottom = KEpsilonBoundary::kWall;
+  // the open top and the slip lid are both free of shear
+  b.top = KEpsilonBoundary::kZeroGradient;
+  auto model = std::make_unique<KEpsilonModel>(grid_, params_.turbulence, b);
+  if (turbulence_) {
+    model->cell_k = turbulence_->cell_k;
+    model->cell_eps = turbulence_->cell_eps;
+    model->cell_nut = turbulence_->cell_nut;
+    model->time = turbulence_->time;
+  }
+  turbulence_ = std::move(model);
+}
+
 void VOFGrid::set_params(const FlowParams& params) {
   params.validate();
   const bool new_solver = params.pressure_solver != params_.pressure_solver;
   params_ = params;
   if (new_solver) solver_ = make_pressure_solver(params_.pressure_solver);
+  make_turbulence_model();
+  update_face_porosity();
   if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
 }
 
@@ -120,17 +141,18 @@ void VOFGrid::check_sizes() const {
   need("cell_stone_diameter", cell_stone_diameter, grid_.ncell());
 }
 
-void VOFGrid::set_porosity(const std::vector<double>& porosity) {
+void VOFGrid::set_porosity(const std::vector<double>& porosity, bool displace) {
   if (static_cast<int>(porosity.size()) != grid_.ncell())
     throw std::invalid_argument("porosity has " + std::to_string(porosity.size()) + " values, expected ncell = " +
                                 std::to_string(grid_.ncell()));
   for (double n : porosity) require_in_closed("porosity", n, 0.0, 1.0);
   cell_porosity = porosity;
-  update_face_porosity();
+  update_face_porosity(displace);
 }
 
-void VOFGrid::update_face_porosity() {
+void VOFGrid::update_face_porosity(bool displace) {
   check_sizes();
+  if (!displace) cell_porosity_prev_ = cell_porosity;
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   for (int c = 0; c < grid_.ncell(); ++c) {
     require_in_closed("cell_porosity", cell_porosity[c], 0.0, 1.0);
@@ -212,7 +234,9 @@ void VOFGrid::update_phase_properties() const {
   for (int c = 0; c < grid_.ncell(); ++c) {
     const double f = two_phase ? std::clamp(cell_F[c], 0.0, 1.0) : 1.0;
     cell_rho_[c] = f * rw + (1.0 - f) * ra;
-    cell_mu_[c] = f * mw + (1.0 - f) * ma + (turb ? cell_rho_[c] * cell_nut[c] : 0.0);
+    const double mu = f * mw + (1.0 - f) * ma;
+    cell_nu_[c] = mu / cell_rho_[c];
+    cell_mu_[c] = mu + (turb ? cell_rho_[c] * cell_nut[c] : 0.0);
   }
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   for (int k = 0; k < nz; ++k)
@@ -248,8 +272,14 @@ void VOFGrid::set_hydrostatic_pressure() {
 // time step
 
 MomentumFields VOFGrid::momentum_fields() const {
-  return {face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
-          cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
+  MomentumFields f{face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
+                   cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
+  f.cell_rho = cell_rho_.data();
+  if ((params_.flags & kFlowTurbulence) && (params_.turbulence.flags & kKEpsWallFunctions)) {
+    f.face_z_wall_shear = turbulence_->face_z_wall_shear.data();
+    f.face_x_wall_shear = turbulence_->face_x_wall_shear.data();
+  }
+  return f;
 }
 
 MomentumBoundary VOFGrid::momentum_boundary() const {
@@ -298,13 +328,17 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.flags & kFlowViscosity) {
     // the viscosities of the current phases (stable_dt may be called between steps)
     update_phase_properties();
-    s.viscous = viscous_stable_dt(grid_, momentum_fields());
+    s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_);
   }
   const double g = std::hypot(params_.gravity_x, params_.gravity_z);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0
                   ? params_.cfl * std::sqrt(2.0 * std::min(grid_.dx(), grid_.min_dz()) / g)
                   : kInf;
   s.turbulence = kInf;
+  if (params_.flags & kFlowTurbulence) {
+    update_phase_properties();
+    s.turbulence = turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
+  }
   s.max_dt = params_.max_dt;
   return s;
 }
@@ -316,8 +350,11 @@ void VOFGrid::save_state() {
   s.cell_p = cell_p;
   s.cell_F = cell_F;
   s.cell_nut = cell_nut;
+  s.cell_k = turbulence_->cell_k;
+  s.cell_eps = turbulence_->cell_eps;
   s.time = time_;
   s.inlet_volume = inlet_volume_;
+  s.cell_porosity_prev = cell_porosity_prev_;
 }
 
 void VOFGrid::restore_state() {
@@ -327,8 +364,13 @@ void VOFGrid::restore_state() {
   cell_p = s.cell_p;
   cell_F = s.cell_F;
   cell_nut = s.cell_nut;
+  turbulence_->cell_k = s.cell_k;
+  turbulence_->cell_eps = s.cell_eps;
+  turbulence_->cell_nut = s.cell_nut;
+  turbulence_->time = s.time;
   time_ = s.time;
   inlet_volume_ = s.inlet_volume;
+  cell_porosity_prev_ = s.cell_porosity_prev;
 }
 
 void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, int index) {
@@ -377,21 +419,26 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
 }
 
-void VOFGrid::prime_inlet(double dt) {
+void VOFGrid::prime_inlet() {
   if (params_.inlet != InletBoundary::kDischarge) return;
-  const int sx = grid_.nx() + 1;
-  u_star_ = face_u;
-  apply_inlet(time_, u_star_);
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
+                   inlet_u_);
   double change = 0.0;
-  for (int k = 0; k < grid_.nz(); ++k) change = std::max(change, std::abs(u_star_[sx * k] - face_u[sx * k]));
+  for (int k = 0; k < nz; ++k) change = std::max(change, std::abs(inlet_u_[k] - face_u[sx * k]));
   if (change <= 1e-14) return;
   // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
-  // sees a divergence-free field
+  // sees a divergence-free field. The result does not depend on the step (beta and 1/p scale with it).
+  save_state();
+  double dt = 1.0;
+  u_star_ = face_u;
+  w_star_ = face_w;
+  for (int k = 0; k < nz; ++k) u_star_[sx * k] = inlet_u_[k];
   update_phase_properties();
   for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
   for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
-  w_star_ = face_w;
-  stage_pressure(dt);
+  // the porosity source belongs to the real step: 0 here
+  stage_pressure(0.0);
   stage_correct();
 }
 
@@ -489,12 +536,25 @@ void VOFGrid::stage_porous_resistance(double dt) {
   check_finite("porous_resistance", "z-velocity", w_star_, 2);
 }
 
-void VOFGrid::stage_turbulence(double /*dt*/) {
-  ScopedStage timer(profile_, st_turbulence_);
-  // the k-epsilon model is refused by FlowParams::validate() until it is integrated
+const std::vector<double>& VOFGrid::turbulence_cells_F() const {
+  static const std::vector<double> all_water;
+  return (params_.flags & kFlowFreeSurface) ? cell_F : all_water;
 }
 
-void VOFGrid::stage_pressure(double /*dt*/) {
+void VOFGrid::stage_turbulence(double dt) {
+  ScopedStage timer(profile_, st_turbulence_);
+  // k and eps advance with the velocities of the step's start; nu_t enters the next momentum stage
+  try {
+    turbulence_->time = time_;
+    turbulence_->step(dt, face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
+  } catch (const std::runtime_error& e) {
+    fail("turbulence", e.what(), 0, -1);
+  }
+  cell_nut = turbulence_->cell_nut;
+  check_finite("turbulence", "eddy viscosity", cell_nut, 0);
+}
+
+void VOFGrid::stage_pressure(double dt) {
   ScopedStage timer(profile_, st_pressure_);
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const double dx = grid_.dx();
@@ -525,14 +585,20 @@ void VOFGrid::stage_pressure(double /*dt*/) {
       problem_.face_z_bc[j] = 0.0;
     }
   }
-  // b = net outflow of u* per metre of width [m^2/s]
+  // b = net outflow of u* per metre of width [m^2/s], less the outflow the porosity change asks for:
+  // dn/dt + div u = 0, so the corrected velocities leave a cell at the rate -dn/dt dx dz
+  const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
   for (int k = 0; k < nz; ++k) {
     const double dz = grid_.dz(k);
     for (int i = 0; i < nx; ++i) {
       const int c = i + nx * k;
-      rhs_[c] = problem_.cell_active[c]
-                    ? (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx
-                    : 0.0;
+      double b = 0.0;
+      if (problem_.cell_active[c]) {
+        b = (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx;
+        const double dn = cell_porosity[c] - cell_porosity_prev_[c];
+        if (dn != 0.0 && cell_porosity_prev_[c] > 0.0) b += dn * inv_dt * dx * dz;
+      }
+      rhs_[c] = b;
     }
   }
   try {
@@ -596,16 +662,20 @@ void VOFGrid::stage_checks(double dt) {
 void VOFGrid::step(double dt) {
   require_positive("dt", dt);
   save_state();
+  // a state written through the views (or left by a caller) is checked before it spreads
+  check_finite("step", "x-velocity", face_u, 1);
+  check_finite("step", "z-velocity", face_w, 2);
+  check_finite("step", "water fraction", cell_F, 0);
+  // the step's Courant number is judged with the inlet flow it will carry (a projection onto a new
+  // inlet flow on the first step or after a change of discharge); the water entering over the step is
+  // q(t + dt) dt, carried by the projected velocities
+  prime_inlet();
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
   if (cfl > 1.0)
     fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
                      " (pore velocity)",
          kind, index);
-  // the water entering over the step is q(t) dt: the inlet velocities of the step's start, which the
-  // last projection set already (except on the first step or after a change of discharge)
-  prime_inlet(dt);
-  if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   update_phase_properties();
   stage_momentum(dt);
   if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);
@@ -613,7 +683,11 @@ void VOFGrid::step(double dt) {
   apply_inlet(time_ + dt, u_star_);
   stage_pressure(dt);
   stage_correct();
+  // F moves with the new, projected velocities: their divergence is exactly the porosity source of
+  // this step, so the water volume balances over the same dt
+  if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   stage_checks(dt);
+  cell_porosity_prev_ = cell_porosity;
   time_ += dt;
   ++step_count_;
 }
@@ -624,6 +698,8 @@ long long VOFGrid::advance(double t_end) {
   // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
   while (time_ < t_end - eps) {
+    // the step is chosen for the inlet flow it will carry
+    prime_inlet();
     const FlowStableDt s = stable_dt_terms();
     double dt = s.min();
     if (dt < params_.min_dt) {

@@ -215,3 +215,182 @@ TEST(VOFGrid, SmallDamBreakRunsAndIsDeterministic) {
   };
   EXPECT_EQ(run(), run());
 }
+
+TEST(VOFGrid, TurbulentOpenChannelRunsWithEddyViscosityInTheWater) {
+  // 10 l/s per 0.3 m (q = 0.033 m^2/s) over a rough bed into a free overfall, k-epsilon on
+  const Grid2D g = Grid2D::graded(30, 1.5, 0.2, 0.01, 0.005, 0.02);
+  FlowParams p;
+  p.flags |= kFlowTurbulence;
+  p.inlet = InletBoundary::kDischarge;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  p.turbulence.bed_roughness = 0.005;
+  VOFGrid flow(g, p);
+  flow.fill_water_below(0.06);
+  flow.set_discharge(DischargeTable::constant(0.010));
+  flow.advance(1.0);
+  const StageProfile& prof = flow.profile();
+  EXPECT_EQ(prof.calls()[prof.find("turbulence")], flow.step_count());
+  double nut_water = 0.0, nut_air = 0.0;
+  for (int c = 0; c < g.ncell(); ++c) {
+    if (flow.cell_F[c] > 0.99) nut_water = std::max(nut_water, flow.cell_nut[c]);
+    if (flow.cell_F[c] < 0.01) nut_air = std::max(nut_air, flow.cell_nut[c]);
+  }
+  EXPECT_GT(nut_water, 1e-6);  // above the molecular viscosity somewhere in the water
+  EXPECT_EQ(nut_air, 0.0);     // the model holds no eddy viscosity in air
+  std::vector<double> U, W;
+  flow.pore_velocity_at_cells(U, W);
+  EXPECT_LT(max_abs(U), 3.0);
+  EXPECT_LT(max_abs(W), 3.0);
+}
+
+// ---- the momentum kernel against hand-computed values and a slow reference ----
+
+#include "vofdem/momentum.h"
+
+namespace {
+
+struct KernelCase {
+  Grid2D g;
+  std::vector<double> u, w, nx_, nz_, mu, rx, rz;
+  explicit KernelCase(const Grid2D& grid)
+      : g(grid),
+        u(grid.nface_x(), 0.0),
+        w(grid.nface_z(), 0.0),
+        nx_(grid.nface_x(), 1.0),
+        nz_(grid.nface_z(), 1.0),
+        mu(grid.ncell(), 1e-3),
+        rx(grid.nface_x(), 1000.0),
+        rz(grid.nface_z(), 1000.0) {}
+  MomentumFields fields() const { return {u.data(), w.data(), nx_.data(), nz_.data(), mu.data(), rx.data(), rz.data()}; }
+};
+
+}  // namespace
+
+TEST(Momentum, ParabolicShearFlowHasTheViscousAccelerationOfItsCurvature) {
+  // u = z^2 (uniform in x): convection vanishes, (1/rho) d/dz(mu du/dz) = 2 mu / rho exactly
+  const Grid2D g = Grid2D::uniform(6, 8, 0.6, 0.8);
+  KernelCase kc(g);
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) kc.u[g.face_x(i, k)] = g.z_center(k) * g.z_center(k);
+  MomentumTerms t;  // convection and viscosity, no gravity
+  std::vector<double> us, ws;
+  MomentumScratch s;
+  const double dt = 0.1;
+  momentum_explicit(g, kc.fields(), t, MomentumBoundary{}, dt, us, ws, s);
+  for (int k = 1; k < g.nz() - 1; ++k)
+    for (int i = 1; i < g.nx(); ++i) {
+      const int j = g.face_x(i, k);
+      EXPECT_NEAR((us[j] - kc.u[j]) / dt, 2.0 * 1e-3 / 1000.0, 1e-14) << i << " " << k;
+    }
+  // away from the slip end walls (whose zero shear meets the flow's shear) w stays at rest
+  for (int k = 1; k < g.nz(); ++k)
+    for (int i = 1; i < g.nx() - 1; ++i) EXPECT_NEAR(ws[g.face_z(i, k)], 0.0, 1e-18);
+}
+
+TEST(Momentum, UniformFlowIsUnchangedAndGravityScalesWithPorosity) {
+  const Grid2D g = Grid2D::uniform(6, 5, 0.6, 0.5);
+  KernelCase kc(g);
+  std::fill(kc.u.begin(), kc.u.end(), 0.3);
+  std::fill(kc.nz_.begin(), kc.nz_.end(), 0.5);
+  MomentumTerms t;
+  t.gravity_z = -9.81;
+  std::vector<double> us, ws;
+  MomentumScratch s;
+  momentum_explicit(g, kc.fields(), t, MomentumBoundary{}, 0.01, us, ws, s);
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 1; i < g.nx(); ++i) EXPECT_NEAR(us[g.face_x(i, k)], 0.3, 1e-15);
+  for (int k = 1; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) EXPECT_NEAR(ws[g.face_z(i, k)], 0.01 * 0.5 * -9.81, 1e-15);
+}
+
+TEST(Momentum, InteriorConvectionMatchesASlowReference) {
+  // random superficial velocities and porosities; interior faces far from the boundaries
+  const Grid2D g(9, 0.1, {0.0, 0.05, 0.12, 0.2, 0.26, 0.35, 0.41, 0.5, 0.58, 0.66});
+  KernelCase kc(g);
+  unsigned seed = 12345;
+  auto rnd = [&]() {
+    seed = seed * 1103515245u + 12345u;
+    return ((seed >> 8) & 0xFFFF) / 65535.0;
+  };
+  for (double& v : kc.u) v = rnd() - 0.5;
+  for (double& v : kc.w) v = rnd() - 0.5;
+  for (double& v : kc.nx_) v = 0.3 + 0.7 * rnd();
+  for (double& v : kc.nz_) v = 0.3 + 0.7 * rnd();
+  MomentumTerms t;
+  t.viscosity = false;
+  std::vector<double> us, ws;
+  MomentumScratch s;
+  const double dt = 1.0;
+  momentum_explicit(g, kc.fields(), t, MomentumBoundary{}, dt, us, ws, s);
+  const int nx = g.nx();
+  auto U = [&](int i, int k) { return kc.u[g.face_x(i, k)]; };
+  auto PU = [&](int i, int k) { return U(i, k) / kc.nx_[g.face_x(i, k)]; };
+  auto W = [&](int i, int k) { return kc.w[g.face_z(i, k)]; };
+  auto PW = [&](int i, int k) { return W(i, k) / kc.nz_[g.face_z(i, k)]; };
+  // upwind value with a van Leer slope: b = up - far, d = down - up, value = up + d b / (d + b) when d b > 0
+  auto vl = [](double far, double up, double down) {
+    const double d = down - up, b = up - far;
+    return d * b > 0.0 ? up + d * b / (d + b) : up;
+  };
+  for (int k = 2; k < g.nz() - 2; ++k)
+    for (int i = 2; i < nx - 1; ++i) {
+      // u at x-face (i, k): x-fluxes at the centres of cells i and i-1, z-fluxes at corners k+1, k
+      auto fx = [&](int c) {  // cell c lies between faces c and c+1
+        const double a = 0.5 * (U(c, k) + U(c + 1, k));
+        return a * (a >= 0 ? vl(PU(c - 1, k), PU(c, k), PU(c + 1, k)) : vl(PU(c + 2, k), PU(c + 1, k), PU(c, k)));
+      };
+      auto fz = [&](int kk) {  // corner between rows kk-1 and kk
+        const double a = 0.5 * (W(i - 1, kk) + W(i, kk));
+        return a * (a >= 0 ? vl(PU(i, kk - 2), PU(i, kk - 1), PU(i, kk)) : vl(PU(i, kk + 1), PU(i, kk), PU(i, kk - 1)));
+      };
+      const double ref = U(i, k) - dt * ((fx(i) - fx(i - 1)) / g.dx() + (fz(k + 1) - fz(k)) / g.dz(k));
+      EXPECT_NEAR(us[g.face_x(i, k)], ref, 1e-12) << "u " << i << " " << k;
+    }
+  for (int k = 2; k < g.nz() - 1; ++k)
+    for (int i = 2; i < nx - 2; ++i) {
+      auto fz = [&](int c) {  // centre of cell row c, between z-faces c and c+1
+        const double a = 0.5 * (W(i, c) + W(i, c + 1));
+        return a * (a >= 0 ? vl(PW(i, c - 1), PW(i, c), PW(i, c + 1)) : vl(PW(i, c + 2), PW(i, c + 1), PW(i, c)));
+      };
+      auto fx = [&](int ii) {  // corner at x-face ii, height z_face(k)
+        const double wl = g.dz(k) / (g.dz(k - 1) + g.dz(k));
+        const double a = wl * U(ii, k - 1) + (1 - wl) * U(ii, k);
+        return a * (a >= 0 ? vl(PW(ii - 2, k), PW(ii - 1, k), PW(ii, k)) : vl(PW(ii + 1, k), PW(ii, k), PW(ii - 1, k)));
+      };
+      const double dzc = g.z_center(k) - g.z_center(k - 1);
+      const double ref = W(i, k) - dt * ((fx(i + 1) - fx(i)) / g.dx() + (fz(k) - fz(k - 1)) / dzc);
+      EXPECT_NEAR(ws[g.face_z(i, k)], ref, 1e-12) << "w " << i << " " << k;
+    }
+}
+
+TEST(VOFGrid, StonesDisplacingWaterConserveItsVolume) {
+  // a submerged porous block compacts (n 0.5 -> 0.35) then loosens (-> 0.45) while the water sloshes
+  const Grid2D g = Grid2D::uniform(20, 16, 0.4, 0.32);
+  VOFGrid flow(g, FlowParams{});
+  flow.fill_water_below(0.2);
+  flow.set_porosity_box(0.1, 0.3, 0.0, 0.1, 0.5, 0.03);
+  const double v0 = flow.water_volume();
+  // the porosity of the block changes by dn in 10 increments, one per 10 ms (as a coupler would)
+  auto rescale = [&](double dn) {
+    for (int s = 0; s < 10; ++s) {
+      std::vector<double> n = flow.cell_porosity;
+      for (double& v : n)
+        if (v < 1.0) v += dn / 10;
+      flow.set_porosity(n, true);
+      flow.advance(flow.time() + 0.01);
+    }
+  };
+  flow.advance(0.05);
+  rescale(-0.15);
+  flow.advance(0.3);
+  rescale(0.10);
+  flow.advance(0.6);
+  EXPECT_NEAR(flow.water_volume(), v0, 1e-10 * v0);
+  // the displaced water went up: the free surface rose while the block was compact, then fell
+  EXPECT_GT(max_abs(flow.face_w), 1e-5);
+  // without displacement the same change would have destroyed water: dV = sum F V dn
+  VOFGrid plain(g, FlowParams{});
+  plain.fill_water_below(0.2);
+  plain.set_porosity_box(0.1, 0.3, 0.0, 0.1, 0.35, 0.03);
+  EXPECT_LT(plain.water_volume(), v0 - 0.1 * 0.2 * 0.1 * 0.9);
+}

@@ -78,7 +78,10 @@ struct DEMParams {
   void add_flume(double x_min, double x_max, double z_bed, double mu = 0.176);
 };
 
-// named stages of a DEM step (StageProfile indices)
+// named stages of a DEM step (StageProfile indices). `integrate` is one pass over the stones: kick, drift,
+// body forces, escape and neighbour-list checks; `removal` and `neighbours` run only when needed;
+// `body_forces` is timed apart only for the initial accelerations; `checks` is the second kick with
+// its finiteness check.
 enum DEMStage : int { kStageIntegrate = 0, kStageRemoval, kStageNeighbours, kStageBodyForces, kStageContacts,
                       kStageWalls, kStageSleep, kStageChecks, kDEMStageCount };
 
@@ -108,10 +111,11 @@ class DEMSystem {
   // replaces the parameters (walls, flags, stiffness...); checked on the next step
   void set_params(const DEMParams& p);
 
-  // the contact's stable step [s]: 1/10 of the shortest undamped contact period pi / omega_max
+  // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
   // (normal and tangential-rotational modes of the lightest stone)
   double stable_dt();
-  // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise)
+  // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
+  // state (export_state) so that a failure can restore it: call advance() with long durations.
   void step(double dt);
   // advances by duration [s] in equal substeps no larger than params().dt
   void advance(double duration);
@@ -133,12 +137,13 @@ class DEMSystem {
   // derived per-stone properties of the sphere of the disc's diameter (read-only for users)
   double mass(int i) const;    // M_i [kg]
   double volume(int i) const;  // V_i [m^3]
+  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]
   // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
   std::vector<std::array<int, 2>> neighbour_pairs() const;
   // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
   std::vector<std::array<int, 2>> overlapping_pairs_reference() const;
   // pairs that overlap now, from the fast neighbour search
-  std::vector<std::array<int, 2>> overlapping_pairs() ;
+  std::vector<std::array<int, 2>> overlapping_pairs();
 
   // every piece of the state (stone arrays, accelerations, contact histories, counters, time) as
   // named flat arrays; import_state() restores it exactly (bit-for-bit restart)
@@ -157,7 +162,8 @@ class DEMSystem {
   std::vector<std::uint8_t> disc_fixed;     // 1: never moves (bed layer), n
   std::vector<std::uint8_t> disc_active;    // 0: left the domain (kept, not integrated), n
   std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
-  std::vector<double> disc_wet;             // wet fraction in [0, 1], n (1 when fluid_density > 0)
+  std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
+                                            // when fluid_density > 0, else 0 (set_params keeps it)
   std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
   std::vector<double> disc_torque;          // total torque of the last evaluation [N m], n (output)
   std::vector<double> disc_acc;             // acceleration of the last evaluation [m/s^2], 2n
@@ -168,7 +174,8 @@ class DEMSystem {
  private:
   struct Pair {
     int i, j;
-    double xi;  // tangential spring [m]
+    double xi;      // tangential spring [m]
+    double sqrt_m;  // sqrt of the pair's reduced mass [kg^0.5], set at each build
   };
   void prepare();
   void check_params() const;
@@ -216,9 +223,17 @@ class DEMSystem {
   std::vector<double> build_pos_;    // positions at the last neighbour build
   double skin_ = 0.0;
   bool rebuild_ = true;
-  std::vector<int> cell_start_, cell_next_;
+  struct SortedStone {
+    double x, z, r;
+    int index;
+    bool fixed;
+  };
+  std::vector<int> cell_start_, cell_next_, cell_fill_;
+  std::vector<SortedStone> sorted_;  // active stones in cell order (neighbour builds)
   std::vector<int> wall_cand_, wall_cand_start_;  // stones near each wall (ascending), per wall
   std::vector<Pair> new_pairs_;
+  std::vector<double> cached_radius_;
+  std::vector<std::uint8_t> cached_active_, cached_fixed_;
 
   StageProfile profile_;
 };

@@ -3,6 +3,7 @@
 //   du/dx + dw/dz = 0                                                                        (1)
 //   du/dt + div(u u / n) = n (-(1/rho) grad p + g + R) + (1/rho) div(mu_e (grad u + grad u^T))   (2)-(3)
 //   n dF/dt + div(u F) = 0                                                                   (4)
+//   (with porosity changed by moving stones between steps: dn/dt + div u = 0 in place of (1))
 //
 // u = (u, w) are the superficial (mesh-averaged) velocities of the paper, n the porosity, F the water
 // fraction, rho = F rho_w + (1 - F) rho_a and mu = F mu_w + (1 - F) mu_a the one-fluid density and
@@ -18,7 +19,11 @@
 //   1e-6 next to fast flow) stays bounded. With the relative-velocity option R uses u - n u_s, u_s the
 //   stones' velocity at the face.
 // - The viscous term acts on the superficial velocity (porosity gradients in it are neglected, as in
-//   most VARANS codes); the -2/3 grad k of the paper is absorbed into the pressure.
+//   most VARANS codes); the -2/3 grad k of the paper is absorbed into the pressure (p is then the
+//   modified pressure p + 2/3 rho k, the usual practice).
+// - Turbulence (switchable): the standard k-epsilon model of k_epsilon.h supplies nu_t (lagged by one
+//   step: the model advances with the velocities of the step's start) and, on the bed and end walls,
+//   the log-law wall shear that replaces the slip / no-slip condition there.
 // - Pressure projection: u^{n+1} = u* - beta_f grad p, beta_f = dt n_f / (rho_f (1 + dt n_f R'_f)),
 //   p the absolute pressure [Pa] with p = 0 at the open top (see pressure_solver.h).
 //
@@ -45,6 +50,7 @@
 
 #include "vofdem/grid.h"
 #include "vofdem/inflow.h"
+#include "vofdem/k_epsilon.h"
 #include "vofdem/momentum.h"
 #include "vofdem/pressure_solver.h"
 #include "vofdem/profile.h"
@@ -86,13 +92,14 @@ struct FlowParams {
   double k2 = 2.8;             // quadratic resistance coefficient of eq. (7) [-], 2.8 (Ergun 1.75)
   double flume_width = 0.3;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.3
   PressureSolverKind pressure_solver = PressureSolverKind::kMultigridCG;  // projection solver (Eigen: reference)
-  double pressure_tol = 1e-9;   // relative residual of the iterative pressure solve [-], 1e-9
+  double pressure_tol = 1e-8;   // relative residual of the iterative pressure solve [-], 1e-8
   InletBoundary inlet = InletBoundary::kWall;          // left end (x = x0)
   OutletBoundary outlet = OutletBoundary::kWall;       // right end (x = x0 + length)
   double tailwater_level = 0.0;                        // water level [m] at the right end for kTailwater
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
+  KEpsilonParams turbulence;  // k-epsilon constants, wall roughness, inflow turbulence (kFlowTurbulence)
 
   // throws std::invalid_argument naming the first bad parameter
   void validate() const;
@@ -132,14 +139,23 @@ class VOFGrid {
   std::vector<double> face_z_porosity;      // n_f on z-faces (derived)
   std::vector<double> cell_stone_diameter;  // D_sp of eq. (7) [m], > 0 where 0 < n < 1; 0.048
   std::vector<double> cell_nut;             // eddy viscosity nu_t [m^2/s], 0 when turbulence is off
+  // the k-epsilon model (its cell_k [m^2/s^2] and cell_eps [m^2/s^3]); advanced when kFlowTurbulence is on
+  KEpsilonModel& turbulence() { return *turbulence_; }
+  const KEpsilonModel& turbulence() const { return *turbulence_; }
   std::vector<double> face_x_solid_u;       // stones' x-velocity at x-faces [m/s], 0
   std::vector<double> face_z_solid_w;       // stones' z-velocity at z-faces [m/s], 0
 
-  // sets cell_porosity (size ncell, values in [0, 1]) and recomputes the face porosities
-  void set_porosity(const std::vector<double>& porosity);
+  // sets cell_porosity (size ncell, values in [0, 1]) and recomputes the face porosities.
+  // displace = false (scene building): the new field is the reference, nothing flows.
+  // displace = true (stones moved): the change dn since the last step is a source of the next step's
+  // continuity equation, dn/dt + div u = 0, so the water a stone displaces flows away (F is kept; the
+  // water volume sum(n F V) is conserved where the cells are full of water or of air). A cell that
+  // turns solid or opens from solid takes no source.
+  void set_porosity(const std::vector<double>& porosity, bool displace = false);
   // recomputes face_*_porosity and the face stone diameters from the cell arrays (after writing
-  // cell_porosity or cell_stone_diameter directly); closes the faces of solid cells (u = 0)
-  void update_face_porosity();
+  // cell_porosity or cell_stone_diameter directly); closes the faces of solid cells (u = 0);
+  // displace as in set_porosity
+  void update_face_porosity(bool displace = false);
 
   // ---- scene helpers (rectangles [x0, x1] x [z0, z1] in m; a cell belongs if its centre is inside) ----
   // F = 1 below `level` [m] (partial fraction in the cut row), 0 above
@@ -198,7 +214,7 @@ class VOFGrid {
   void stage_checks(double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
   void apply_inlet(double t, std::vector<double>& u);
-  void prime_inlet(double dt);
+  void prime_inlet();
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
   double outlet_pressure(int k) const;
@@ -233,6 +249,12 @@ class VOFGrid {
   VofBoundaryInflow vof_inflow_;
   VofScratch vof_scratch_;
   std::unique_ptr<Snapshot> snapshot_;
+  std::unique_ptr<KEpsilonModel> turbulence_;
+  mutable std::vector<double> cell_nu_;     // molecular kinematic viscosity of the cell mixture [m^2/s]
+  mutable std::vector<double> dt_scratch_;  // work array of stable_dt_terms()
+  std::vector<double> cell_porosity_prev_;   // porosity of the last step (the reference of dn)
+  void make_turbulence_model();
+  const std::vector<double>& turbulence_cells_F() const;
 
   StageProfile profile_;
   int st_advect_, st_momentum_, st_porous_, st_turbulence_, st_pressure_, st_correct_, st_checks_;
