@@ -43,7 +43,7 @@ def timed(fn):
     return time.perf_counter() - t0
 
 
-def run_fluid(T=0.3):
+def run_fluid(T=0.6):
     bare, coupled, steps = [], [], 0
     for _ in range(REPEATS):
         f = fluid_scene()
@@ -103,7 +103,7 @@ def main():
         "",
         "| scene | bare module [s] | through Coupler [s] | ratio | cost |",
         "|---|---|---|---|---|",
-        f"| no stones: dam break 80 x 40 cells, 0.3 s ({fsteps} steps) | {fb:.4f} | {fc:.4f} | {fc / fb:.3f} | "
+        f"| no stones: dam break 80 x 40 cells, 0.6 s ({fsteps} steps) | {fb:.4f} | {fc:.4f} | {fc / fb:.3f} | "
         f"{1e6 * fb / (fsteps * ncell):.3f} us per cell-step (bare) |",
         f"| no water: 200 stones settling, 1.0 s ({ssteps} substeps) | {sb:.4f} | {sc:.4f} | {sc / sb:.3f} | "
         f"{1e9 * sb / (ssteps * nst):.1f} ns per stone-substep (bare) |",

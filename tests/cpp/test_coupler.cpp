@@ -338,7 +338,7 @@ TEST(Coupler, TwoWayFallingStoneBalancesItsSubmergedWeight) {
   // The same 4.8 cm stone with the porosity following it and the relative-velocity resistance: the water
   // in the stone's cells is dragged along, so part of the load moves from the drag to the pressure
   // gradient. Terminal state: drag + F_S = W' (force balance within 3 %). Measured: v = 1.415 m/s
-  // (0.88 v_t), drag 0.137 N + F_S 0.796 N = 0.933 N against W' = 0.938 N.
+  // (0.88 v_t), drag 0.137 N + F_S 0.794 N = 0.931 N against W' = 0.938 N.
   Scene s = tank(0.2, 1.5, 0.01, 1.45, {0.1, 1.35}, 0.024, kCoupleTwoWay);
   s.sim->advance(1.0);
   const double W = s.stones->mass(0) * 9.81 * (1.0 - 998.2 / 2650.0);
