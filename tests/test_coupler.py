@@ -106,3 +106,18 @@ def test_scenes_with_one_module():
     sim = _core.Coupler(fluid, None)
     sim.advance(0.05)
     assert sim.stones is None and fluid.time == sim.time
+
+
+def test_initial_mapping_can_keep_the_water_fraction():
+    # stones placed into a filled scene: keep F (pores full of water) or keep the volume (water displaced up)
+    for keep, expect_same_F in ((False, True), (True, False)):
+        sim = scene(flags=_core.COUPLE_TWO_WAY)
+        sim.stones.disc_pos[:] = [[0.05, 0.05], [0.1, 0.05], [0.15, 0.05]]
+        F0 = np.array(sim.fluid.cell_F)
+        v0 = sim.water_volume()
+        sim.update_porosity(keep_water_volume=keep)
+        assert np.array_equal(F0, np.asarray(sim.fluid.cell_F)) == expect_same_F
+        if keep:
+            assert sim.water_volume() == pytest.approx(v0, rel=1e-12)
+        else:
+            assert sim.water_volume() < v0

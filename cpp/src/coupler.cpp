@@ -148,12 +148,12 @@ void Coupler::map_stones() {
   csr_current_ = true;
 }
 
-void Coupler::update_porosity() {
+void Coupler::update_porosity(bool keep_water_volume) {
   if (!fluid_ || !mapper_) return;
-  stage_porosity();
+  stage_porosity(keep_water_volume);
 }
 
-void Coupler::stage_porosity() {
+void Coupler::stage_porosity(bool keep_water_volume) {
   ScopedStage timer(profile_, st_porosity_);
   map_stones();
   const Grid2D& g = fluid_->grid();
@@ -189,7 +189,7 @@ void Coupler::stage_porosity() {
     }
   }
   // water volume per cell kept (a single-phase flow has no free surface to take displaced water)
-  if (fluid_->params().flags & kFlowFreeSurface) {
+  if (keep_water_volume && (fluid_->params().flags & kFlowFreeSurface)) {
     const int bad = redistribution_->apply(n_old_, n_new_, fluid_->cell_F);
     redistributed_ += redistribution_->moved_volume();
     if (bad >= 0)

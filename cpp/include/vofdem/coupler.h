@@ -107,8 +107,10 @@ class Coupler {
 
   // inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the fluid)
   void set_inflow_table(const std::vector<double>& times, const std::vector<double>& discharge);
-  // maps the stones onto the porosity now (the first step does it too); keeps the water volume
-  void update_porosity();
+  // maps the stones onto the porosity now (the first step does it too). keep_water_volume: true keeps
+  // n F V per cell (displaced water moves to neighbours, as while stepping); false keeps F, so the pores
+  // of stones placed into a filled scene hold water and the volume drops by the stones' share (scene set-up)
+  void update_porosity(bool keep_water_volume = true);
   // recomputes the fluid forces now (disc_force_drag, disc_force_pressure, disc_wet, disc_force_ext)
   void update_fluid_forces();
   // the fluid's water volume sum(n F V) per unit width [m^2] (0 without fluid)
@@ -132,7 +134,7 @@ class Coupler {
   void check_scene() const;
   void apply_flow_flags();
   void make_mapper();
-  void stage_porosity();
+  void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
   void stage_dem(double dt);
   void stage_fluid(double dt);
