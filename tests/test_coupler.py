@@ -35,7 +35,7 @@ def test_run_loop_names_and_zero_copy_views():
     assert sim.disc_force_drag.shape == (3, 2) and sim.disc_force_pressure.shape == (3, 2)
     assert sim.stones.disc_pos.shape == (3, 2)
     assert sim.fluid.cell_F.shape == (40, 20)
-    assert list(sim.profile.names) == ["porosity", "fluid_forces", "dem", "fluid", "checks"]
+    assert list(sim.profile.names) == ["snapshot", "porosity", "fluid_forces", "dem", "fluid", "checks"]
     assert all(c == sim.step_count for c in sim.profile.calls)
     # the views write through and keep their owners alive after the coupler is gone
     drag, F, pos = sim.disc_force_drag, sim.fluid.cell_F, sim.stones.disc_pos

@@ -60,6 +60,7 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     apply_flow_flags();
   }
   time_ = fluid_ ? fluid_->time() : (stones_ ? stones_->time() : 0.0);
+  st_snapshot_ = profile_.add_stage("snapshot");
   st_porosity_ = profile_.add_stage("porosity");
   st_forces_ = profile_.add_stage("fluid_forces");
   st_dem_ = profile_.add_stage("dem");
@@ -341,6 +342,7 @@ void Coupler::step() { step(stable_dt()); }
 void Coupler::save() {
   snapshot_valid_ = false;
   if (!(fluid_ && has_stones())) return;  // one module: it restores itself
+  ScopedStage timer(profile_, st_snapshot_);
   snapshot_ = export_state();
   snapshot_valid_ = true;
 }

@@ -16,6 +16,7 @@
 //   3. "dem"           the stones advance by dt in substeps of their own step (DEMParams::dt, 1e-4 s)
 //   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
 //   5. "checks"        non-finite forces or stone state -> std::runtime_error
+// and before them "snapshot", the copy of the state that a failing stage restores (coupled scenes only).
 // The forces are held over the DEM substeps of a step (explicit exchange once per fluid step).
 //
 // Time step: stable_dt() = min(fluid's stable step, max_dt, a stone crossing at most stone_cfl of the
@@ -169,7 +170,7 @@ class Coupler {
   std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
 
   StageProfile profile_;
-  int st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_;
+  int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_;
 };
 
 }  // namespace vofdem
