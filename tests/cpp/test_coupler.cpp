@@ -369,3 +369,27 @@ TEST(Coupler, LookupPorosityConservesWaterAndFollowsTheExactAreas) {
   a.sim->advance(0.3);
   EXPECT_LT(std::abs(a.sim->water_volume() - v0) / v0, 1e-9);
 }
+
+TEST(Coupler, SwitchedOffEffectsAreNotEntered) {
+  auto calls = [](Coupler& c, const char* name) { return c.profile().calls()[c.profile().find(name)]; };
+  // one-way: the flow's porosity stays 1 and its relative-velocity resistance is off
+  Scene a = tank(0.2, 0.3, 0.01, 0.2, {0.1, 0.15}, 0.024, kCoupleOneWay);
+  a.sim->advance(0.05);
+  EXPECT_EQ(calls(*a.sim, "porosity"), 0);
+  EXPECT_GT(calls(*a.sim, "fluid_forces"), 0);
+  EXPECT_EQ(*std::min_element(a.fluid->cell_porosity.begin(), a.fluid->cell_porosity.end()), 1.0);
+  EXPECT_FALSE(a.fluid->params().flags & kFlowRelativeVelocity);
+  // two-way: porosity follows the stones, the flow's relative-velocity bit is set
+  Scene b = tank(0.2, 0.3, 0.01, 0.2, {0.1, 0.15}, 0.024, kCoupleTwoWay);
+  EXPECT_TRUE(b.fluid->params().flags & kFlowRelativeVelocity);
+  b.sim->advance(0.05);
+  EXPECT_EQ(calls(*b.sim, "porosity"), b.sim->step_count());
+  // no forces, no fluid stepping, no checks: only the DEM runs
+  Scene c = tank(0.2, 0.3, 0.01, 0.2, {0.1, 0.15}, 0.024, kCoupleDEM);
+  const auto F0 = c.fluid->cell_F;
+  c.sim->advance(0.05);
+  for (const char* s : {"porosity", "fluid_forces", "fluid", "checks"}) EXPECT_EQ(calls(*c.sim, s), 0) << s;
+  EXPECT_EQ(calls(*c.sim, "dem"), c.sim->step_count());
+  EXPECT_EQ(c.fluid->cell_F, F0);
+  EXPECT_EQ(c.stones->disc_force_ext[1], 0.0);
+}
