@@ -244,6 +244,14 @@ void VOFGrid::update_phase_properties() const {
       const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
       face_x_rho_[i + sx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
     }
+  // an open end faces still fluid outside: water below the tailwater level, air above (two-phase)
+  if (two_phase && params_.outlet != OutletBoundary::kWall)
+    for (int k = 0; k < nz; ++k) {
+      const double f = params_.outlet == OutletBoundary::kTailwater
+                           ? std::clamp((params_.tailwater_level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0)
+                           : 0.0;
+      face_x_rho_[nx + sx * k] = 0.5 * (cell_rho_[nx - 1 + nx * k] + f * rw + (1.0 - f) * ra);
+    }
   for (int k = 0; k <= nz; ++k)
     for (int i = 0; i < nx; ++i) {
       const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
@@ -322,7 +330,18 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
 FlowStableDt VOFGrid::stable_dt_terms() const {
   FlowStableDt s;
   int kind, index;
-  const double rate = max_cfl(1.0, kind, index);
+  double rate = max_cfl(1.0, kind, index);
+  // the inlet flow the step will carry (q / dz of the lowest row when the inlet is dry)
+  if (params_.inlet == InletBoundary::kDischarge) {
+    const int nx = grid_.nx(), sx = nx + 1;
+    std::vector<double>& u_in = inlet_u_;
+    inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
+                     u_in);
+    for (int k = 0; k < grid_.nz(); ++k) {
+      const double n = face_x_porosity[sx * k];
+      if (n > 0.0) rate = std::max(rate, std::abs(u_in[k]) / (n * grid_.dx()));
+    }
+  }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
   s.viscous = kInf;
   if (params_.flags & kFlowViscosity) {
@@ -419,33 +438,19 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
 }
 
-void VOFGrid::prime_inlet() {
-  if (params_.inlet != InletBoundary::kDischarge) return;
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
-                   inlet_u_);
-  double change = 0.0;
-  for (int k = 0; k < nz; ++k) change = std::max(change, std::abs(inlet_u_[k] - face_u[sx * k]));
-  if (change <= 1e-14) return;
-  // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
-  // sees a divergence-free field. The result does not depend on the step (beta and 1/p scale with it).
-  save_state();
-  double dt = 1.0;
-  u_star_ = face_u;
-  w_star_ = face_w;
-  for (int k = 0; k < nz; ++k) u_star_[sx * k] = inlet_u_[k];
-  update_phase_properties();
-  for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
-  for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
-  // the porosity source belongs to the real step: 0 here
-  stage_pressure(0.0);
-  stage_correct();
-}
-
 double VOFGrid::outlet_pressure(int k) const {
-  if (params_.outlet != OutletBoundary::kTailwater) return 0.0;
-  const double depth = params_.tailwater_level - grid_.z_center(k);
-  return depth > 0.0 ? params_.rho_water * std::abs(params_.gravity_z) * depth : 0.0;
+  // still air outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
+  // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
+  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.gravity_z) : 0.0;
+  const double z = grid_.z_center(k);
+  const double top = grid_.z_face(grid_.nz());
+  // single phase: water outside too, up to the tailwater level or the top
+  if (!(params_.flags & kFlowFreeSurface))
+    return params_.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
+  double p = params_.rho_air * g * (top - z);
+  if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
+    p += (params_.rho_water - params_.rho_air) * g * (params_.tailwater_level - z);
+  return p;
 }
 
 double VOFGrid::inlet_discharge_per_width() const {
@@ -666,10 +671,6 @@ void VOFGrid::step(double dt) {
   check_finite("step", "x-velocity", face_u, 1);
   check_finite("step", "z-velocity", face_w, 2);
   check_finite("step", "water fraction", cell_F, 0);
-  // the step's Courant number is judged with the inlet flow it will carry (a projection onto a new
-  // inlet flow on the first step or after a change of discharge); the water entering over the step is
-  // q(t + dt) dt, carried by the projected velocities
-  prime_inlet();
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
   if (cfl > 1.0)
@@ -698,8 +699,6 @@ long long VOFGrid::advance(double t_end) {
   // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
   while (time_ < t_end - eps) {
-    // the step is chosen for the inlet flow it will carry
-    prime_inlet();
     const FlowStableDt s = stable_dt_terms();
     double dt = s.min();
     if (dt < params_.min_dt) {

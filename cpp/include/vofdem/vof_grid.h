@@ -34,8 +34,9 @@
 //
 // Boundaries: left end wall or discharge inlet Q(t) [m^3/s] / flume width B spread over the wetted
 // inlet rows in proportion to their water fraction (water fraction 1 entering, inlet level free);
-// right end wall, free overfall (the end face is the brink: p = 0 there, the water falls freely out)
-// or a fixed tailwater level (hydrostatic pressure below it); bed and end walls slip or no-slip; top
+// right end wall, free overfall (the end face is the brink, open to still air outside: the
+// hydrostatic air pressure from p = 0 at the top; the water falls freely out) or a fixed tailwater
+// level (hydrostatic water pressure below it); open faces carry zero-gradient momentum outflow; bed and end walls slip or no-slip; top
 // open to the atmosphere (p = 0) or a slip lid.
 //
 // References: S. Maeno and A. Tomita (2008), ICHE 2008 (eqs. 1-7); F. H. Harlow and J. E. Welch (1965)
@@ -214,7 +215,6 @@ class VOFGrid {
   void stage_checks(double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
   void apply_inlet(double t, std::vector<double>& u);
-  void prime_inlet();
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
   double outlet_pressure(int k) const;
@@ -239,7 +239,8 @@ class VOFGrid {
   mutable std::vector<double> face_x_rho_, face_z_rho_;
   std::vector<double> face_x_diameter_, face_z_diameter_;
   std::vector<double> face_x_beta_, face_z_beta_;  // dt n / (rho (1 + dt n R')) of the projection
-  std::vector<double> inlet_u_, inlet_dz_;
+  mutable std::vector<double> inlet_u_;  // inlet velocities (also read by stable_dt_terms)
+  std::vector<double> inlet_dz_;
   MomentumScratch momentum_scratch_;
   std::vector<double> u_star_, w_star_;
   std::vector<double> rhs_;
