@@ -53,6 +53,7 @@ void bind_coupler(py::module_& m) {
   m.attr("COUPLE_WET_FRACTION") = static_cast<unsigned>(kCoupleWetFraction);
   m.attr("COUPLE_CHECKS") = static_cast<unsigned>(kCoupleChecks);
   m.attr("COUPLE_LOOKUP_POROSITY") = static_cast<unsigned>(kCoupleLookupPorosity);
+  m.attr("COUPLE_DISPLACE_FLOW") = static_cast<unsigned>(kCoupleDisplaceFlow);
   m.attr("COUPLE_FORCES") = static_cast<unsigned>(kCoupleForces);
   m.attr("COUPLE_ONE_WAY") = static_cast<unsigned>(kCoupleOneWay);
   m.attr("COUPLE_TWO_WAY") = static_cast<unsigned>(kCoupleTwoWay);

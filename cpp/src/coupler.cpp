@@ -15,8 +15,8 @@ constexpr double kPi = 3.14159265358979323846;
 }
 
 void CouplerParams::validate() const {
-  if (flags >= (1u << 9))
-    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 511]");
+  if (flags >= (1u << 10))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 1023]");
   require_in_closed("n_exp", n_exp, 0.0, 1.0);
   if (lookup_m < 2 || lookup_m > 64)
     throw std::invalid_argument("lookup_m = " + std::to_string(lookup_m) + " is outside the allowed range [2, 64]");
@@ -190,7 +190,9 @@ void Coupler::stage_porosity(bool keep_water_volume) {
     }
   }
   // water volume per cell kept (a single-phase flow has no free surface to take displaced water)
-  if (keep_water_volume && (fluid_->params().flags & kFlowFreeSurface)) {
+  // the first mapping sets the scene up (nothing flows); later changes drive the flow if asked
+  const bool displace = keep_water_volume && mapped_ && (params_.flags & kCoupleDisplaceFlow);
+  if (keep_water_volume && !displace && (fluid_->params().flags & kFlowFreeSurface)) {
     const int bad = redistribution_->apply(n_old_, n_new_, fluid_->cell_F);
     redistributed_ += redistribution_->moved_volume();
     if (bad >= 0)
@@ -198,7 +200,7 @@ void Coupler::stage_porosity(bool keep_water_volume) {
                            ", k=" + std::to_string(bad / g.nx()) + "): the domain is full");
   }
   fluid_->cell_porosity.swap(n_new_);
-  fluid_->update_face_porosity();
+  fluid_->update_face_porosity(displace);
   if (fluid_->params().flags & kFlowRelativeVelocity) solid_velocity_at_faces();
   mapped_ = true;
 }

@@ -58,6 +58,8 @@ enum CouplerEffect : unsigned {
   kCoupleWetFraction = 1u << 6,       // disc_wet from the water fraction (buoyancy, added mass); off: w kept
   kCoupleChecks = 1u << 7,            // non-finite forces / stone state checked every step
   kCoupleLookupPorosity = 1u << 8,    // porosity from the paper's lookup table instead of exact disc areas
+  kCoupleDisplaceFlow = 1u << 9,      // porosity changes drive the flow (dn/dt + div u = 0 in the flow's projection,
+                                      // F kept) instead of moving the displaced water by volume
   kCoupleForces = kCoupleDrag | kCouplePressureGradient,
   kCoupleOneWay = kCoupleDEM | kCoupleFluid | kCoupleForces | kCoupleWetFraction | kCoupleChecks,
   kCoupleTwoWay = kCoupleOneWay | kCouplePorosity | kCoupleRelativeVelocity,
