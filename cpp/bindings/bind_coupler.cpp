@@ -90,7 +90,8 @@ void bind_coupler(py::module_& m) {
       .def("stable_dt", &Coupler::stable_dt, py::call_guard<py::gil_scoped_release>())
       .def("step", py::overload_cast<>(&Coupler::step), py::call_guard<py::gil_scoped_release>())
       .def("step", py::overload_cast<double>(&Coupler::step), py::arg("dt"), py::call_guard<py::gil_scoped_release>())
-      .def("advance", &Coupler::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>())
+      .def("advance", [](Coupler& c, double t_end) { return c.advance(t_end); }, py::arg("t_end"),
+           py::call_guard<py::gil_scoped_release>())
       .def("set_inflow_table", &Coupler::set_inflow_table, py::arg("times"), py::arg("discharge"))
       .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true)
       .def("update_fluid_forces", &Coupler::update_fluid_forces)

@@ -381,7 +381,7 @@ void Coupler::step(double dt) {
   ++steps_;
 }
 
-long long Coupler::advance(double t_end) {
+long long Coupler::advance(double t_end, const std::function<void(double)>& progress) {
   require_finite("t_end", t_end);
   long long n = 0;
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
@@ -398,6 +398,7 @@ long long Coupler::advance(double t_end) {
     else if (dt > 0.5 * left) dt = 0.5 * left;
     step(dt);
     ++n;
+    if (progress) progress(time_);
   }
   return n;
 }

@@ -33,15 +33,16 @@ int main() {
   Coupler sim(&fluid, &stones, params);
   const double v0 = sim.water_volume();
   std::printf("   t [s]   water volume error   lowest stone z [m]   drag z [N]   pressure z [N]\n");
+  long long steps = 0;
   for (int q = 1; q <= 8; ++q) {
-    sim.advance(0.1 * q);
+    sim.advance(0.1 * q, [&steps](double) { ++steps; });  // progress callback after every step
     int low = 0;
     for (int j = 1; j < stones.n(); ++j)
       if (stones.disc_pos[2 * j + 1] < stones.disc_pos[2 * low + 1]) low = j;
     std::printf("%8.3f   %18.2e   %18.4f   %10.4f   %14.4f\n", sim.time(), (sim.water_volume() - v0) / v0,
                 stones.disc_pos[2 * low + 1], sim.disc_force_drag[2 * low + 1], sim.disc_force_pressure[2 * low + 1]);
   }
-  std::printf("\nstage          seconds      calls\n");
+  std::printf("\n%lld coupling steps\nstage          seconds      calls\n", steps);
   const StageProfile& p = sim.profile();
   for (std::size_t s = 0; s < p.names().size(); ++s)
     std::printf("%-12s %9.4f %10lld\n", p.names()[s].c_str(), p.seconds()[s], p.calls()[s]);

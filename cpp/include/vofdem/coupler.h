@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -105,8 +106,9 @@ class Coupler {
   // one coupling step of stable_dt() / of dt [s]
   void step();
   void step(double dt);
-  // steps until time() reaches t_end [s]; returns the number of steps
-  long long advance(double t_end);
+  // steps until time() reaches t_end [s]; returns the number of steps. progress (optional) is called
+  // after every step with the time [s] (C++ callers; the Python front polls time between calls)
+  long long advance(double t_end, const std::function<void(double)>& progress = nullptr);
 
   // inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the fluid)
   void set_inflow_table(const std::vector<double>& times, const std::vector<double>& discharge);
