@@ -105,6 +105,9 @@ def test_discharge_tables():
     table = vflow.discharge_table(lambda t: 10.0 + t, t_end=10.0, dt=1.0, discharge_lps=True)
     assert table.at(5.5) == pytest.approx(0.0155)
     assert vflow.discharge_table(0.02).at(3.0) == 0.02
+    f = tank()
+    vflow.set_discharge(f, lambda t: 12.0, t_end=1.0, discharge_lps=True)
+    assert f.discharge.at(0.5) == pytest.approx(0.012)
     with pytest.raises(ValueError):
         vofdem.DischargeTable([1.0, 0.0], [0.0, 0.0])
 

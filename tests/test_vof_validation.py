@@ -63,20 +63,18 @@ def test_dam_break_front_against_martin_and_moyce(dam_break_runs):
 
 
 def test_dam_break_time_step_convergence():
-    # N = 8: the front at T = 3 for CFL 0.2, 0.1, 0.05; the differences shrink (measured with F
-    # advected by the projected velocities: CFL 0.4, 0.2, 0.1, 0.05, 0.025 give 3.805, 3.763, 3.719,
-    # 3.700, 3.693, differences 0.042, 0.044, 0.019, 0.007: first order once CFL <= 0.1). At CFL 0.5
-    # the N = 8, 16, 32 fronts do not converge in the grid (see docs/vof_validation.md), so the grid
-    # study uses CFL 0.2.
+    # N = 8: the front at T = 3 for CFL 0.2, 0.1, 0.05; the differences shrink (measured
+    # 3.763, 3.719, 3.700: about first order in dt). At CFL 0.5 the time-step error is large
+    # (N = 16: +0.18 in Z against CFL 0.05, see docs/vof_validation.md), so the grid study uses 0.2.
     z = [np.interp(3.0, r.T, r.Z) for r in (val.dam_break_front(n=8, cfl=c, t_end=0.17) for c in (0.2, 0.1, 0.05))]
-    assert abs(z[2] - z[1]) < abs(z[1] - z[0])
-    assert abs(z[2] - z[1]) < 0.05
+    assert abs(z[2] - z[1]) < 0.6 * abs(z[1] - z[0])
+    assert abs(z[2] - z[1]) < 0.03
 
 
 @pytest.mark.slow
 def test_dam_break_grid_convergence(dam_break_runs):
     # Z(T = 3) at N = 8, 16, 32 (CFL 0.2): measured 3.763, 3.855, 3.917; the change per doubling
-    # shrinks (0.092 then 0.062, order about 0.6)
+    # shrinks (0.092 then 0.061, order about 0.6)
     r32 = val.dam_break_front(n=32, cfl=0.2, t_end=0.17)
     z = [np.interp(3.0, r.T, r.Z) for r in (dam_break_runs[8], dam_break_runs[16], r32)]
     assert abs(z[2] - z[1]) < 0.75 * abs(z[1] - z[0])
@@ -89,9 +87,9 @@ def test_dam_break_grid_convergence(dam_break_runs):
 def test_porous_dam_break_against_lin_1998():
     # closure of eq. (7) with (k1, k2) = (50, 2.0): the olaFlow/Jensen et al. (2014) coefficients
     # published for this case (a = 50, b = 2.0 in the same Engelund form), not fitted here.
-    # Measured at dx = 1 cm: rms of the water level at the measured points 1.8, 1.3, 1.0, 0.64,
-    # 0.67 cm at t = 0.35, 0.75, 1.15, 1.55, 1.95 s; largest 5.2 cm (t = 0.35 s, in the steep face
-    # of the dam). Tolerance: rms <= 2.5 cm at every instant (7 % of the 0.35 m column) and
+    # Measured at dx = 1 cm: rms of the water level at the measured points 1.78, 1.26, 0.98, 0.64,
+    # 0.67 cm at t = 0.35, 0.75, 1.15, 1.55, 1.95 s (mean 1.07); largest 5.2 cm (t = 0.35 s, in the
+    # steep face of the dam). Tolerance: rms <= 2.5 cm at every instant (7 % of the 0.35 m column) and
     # mean rms <= 1.5 cm.
     prof, _, _, drift, _ = val.porous_dam_break(dx=0.01)
     assert drift < 1e-12
@@ -117,3 +115,22 @@ def test_porous_dam_break_resistance_matters():
     lab = np.interp(0.1, *np.array(val.POROUS_DAM["profiles"][0.75]).T)
     assert abs(h_r - lab) < 0.02
     assert h_0 < h_r - 0.05
+
+
+# ---------------------------------------------------------------------------------------------
+# broad-crested weir: q = sqrt(g) (2H/3)^(3/2) with a discharge coefficient
+
+def test_broad_crested_weir_follows_the_critical_depth_relation():
+    # solid crest 0.1 m high, 0.5 m long ending at a free overfall; dx = 2 cm, dz = 1 cm; steady
+    # state after 8 s (head averaged over the last 2 s). Measured: q = 0.01, 0.02, 0.04 m^2/s give
+    # H = 3.65, 5.70, 8.87 cm, C = q / (sqrt(g) (2H/3)^1.5) = 0.841, 0.862, 0.888, and q ~ H^1.56.
+    # The ideal relation (C = 1) neglects the separation at the square upstream corner and the
+    # friction; square-nosed broad-crested weirs measure C about 0.85 (see docs/vof_validation.md).
+    # Tolerances: 0.80 <= C <= 0.95 (head within 3.5-16 % above the ideal), exponent 1.5 +- 0.1,
+    # stored water changing by less than 5 % of q (steady).
+    runs = {q: val.broad_crested_weir(q=q, dx=0.02, dz=0.01, t_end=8.0, window=2.0) for q in (0.01, 0.02, 0.04)}
+    for q, r in runs.items():
+        assert 0.80 <= r.cd <= 0.95, (q, r)
+        assert abs(r.storage) < 0.05 * q, (q, r)
+    exponent = np.log(0.04 / 0.01) / np.log(runs[0.04].H / runs[0.01].H)
+    assert exponent == pytest.approx(1.5, abs=0.1)

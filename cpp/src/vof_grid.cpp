@@ -439,7 +439,7 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
 }
 
 double VOFGrid::outlet_pressure(int k) const {
-  // still air outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
+  // still fluid outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
   // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
   const double g = (params_.flags & kFlowGravity) ? std::abs(params_.gravity_z) : 0.0;
   const double z = grid_.z_center(k);

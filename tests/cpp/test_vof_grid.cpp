@@ -426,3 +426,37 @@ TEST(VOFGrid, TailwaterAtTheStillWaterLevelKeepsItStill) {
   }
   EXPECT_NEAR(mean, 0.057, 0.03 * 0.057);
 }
+
+TEST(VOFGrid, RelativeVelocityResistanceUsesTheStonesVelocity) {
+  // the channel of the closure-law test; the stones move downstream at half the pore velocity, so
+  // the resistance acts on u - n u_s = u / 2
+  const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
+  FlowParams p;
+  p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection | kFlowRelativeVelocity;
+  p.inlet = InletBoundary::kDischarge;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  p.top = TopBoundary::kWall;
+  VOFGrid flow(g, p);
+  const double n = 0.4, d = 0.02, Q = 0.003;
+  flow.set_porosity_box(0.3, 0.7, 0.0, 0.1, n, d);
+  flow.set_discharge(DischargeTable::constant(Q));
+  const double u = Q / p.flume_width / 0.1;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) flow.face_x_solid_u[g.face_x(i, k)] = 0.5 * u / n;
+  flow.advance(0.5);
+  const PorousCoefficients c = porous_coefficients(n, d, p.nu_water, p.k1, p.k2);
+  const double ur = 0.5 * u;
+  const double expected = -p.rho_water * ur * (c.linear + c.quadratic * ur);
+  for (int k = 0; k < g.nz(); ++k) {
+    const double dpdx = (flow.cell_p[g.cell(25, k)] - flow.cell_p[g.cell(14, k)]) / (11 * g.dx());
+    EXPECT_NEAR(dpdx, expected, 0.01 * std::abs(expected)) << "row " << k;
+  }
+  // switched off, the same stones resist the full superficial velocity
+  FlowParams fixed = p;
+  fixed.flags &= ~kFlowRelativeVelocity;
+  flow.set_params(fixed);
+  flow.advance(1.0);
+  const double full = -p.rho_water * u * (c.linear + c.quadratic * u);
+  const double dpdx = (flow.cell_p[g.cell(25, 2)] - flow.cell_p[g.cell(14, 2)]) / (11 * g.dx());
+  EXPECT_NEAR(dpdx, full, 0.01 * std::abs(full));
+}

@@ -36,8 +36,12 @@
 // inlet rows in proportion to their water fraction (water fraction 1 entering, inlet level free);
 // right end wall, free overfall (the end face is the brink, open to still air outside: the
 // hydrostatic air pressure from p = 0 at the top; the water falls freely out) or a fixed tailwater
-// level (hydrostatic water pressure below it); open faces carry zero-gradient momentum outflow; bed and end walls slip or no-slip; top
-// open to the atmosphere (p = 0) or a slip lid.
+// level (hydrostatic water pressure below it); open faces carry zero-gradient momentum outflow; bed
+// and end walls slip or no-slip; top open to the atmosphere (p = 0) or a slip lid.
+//
+// A step runs the stages momentum -> porous_resistance -> turbulence -> pressure -> correct ->
+// advect_vof -> checks: F moves with the projected velocities u^{n+1}, whose divergence is exactly
+// the step's porosity source, so water is conserved also when stones move.
 //
 // References: S. Maeno and A. Tomita (2008), ICHE 2008 (eqs. 1-7); F. H. Harlow and J. E. Welch (1965)
 // (MAC grid); A. J. Chorin (1968) (projection); P. Higuera, J. L. Lara and I. J. Losada (2014), Coastal
@@ -176,7 +180,8 @@ class VOFGrid {
   void set_step_count(long long n) { step_count_ = n; }
   FlowStableDt stable_dt_terms() const;
   double stable_dt() const { return stable_dt_terms().min(); }
-  // one step of dt [s]; throws std::runtime_error (stage, cell, time) after restoring the state
+  // one step of dt [s] (stages: see the top of this file); throws std::runtime_error naming the stage,
+  // the cell and the time after restoring the state of the step's start
   void step(double dt);
   // steps of stable_dt() until time() reaches t_end [s]; returns the number of steps
   long long advance(double t_end);
