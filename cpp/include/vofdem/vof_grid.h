@@ -176,6 +176,8 @@ class VOFGrid {
   double time() const { return time_; }
   void set_time(double t) { time_ = t; }
   long long step_count() const { return step_count_; }
+  // restores the step counter (the split advection alternates its sweep order with it): restart only
+  void set_step_count(long long n) { step_count_ = n; }
   FlowStableDt stable_dt_terms() const;
   double stable_dt() const { return stable_dt_terms().min(); }
   // one step of dt [s] (stages: see the top of this file); throws std::runtime_error naming the stage,
@@ -196,6 +198,8 @@ class VOFGrid {
   double discharge_through(int i) const;
   // water volume per metre of width [m^2] that entered through the inlet since construction
   double inlet_volume() const { return inlet_volume_; }
+  // restores the inlet volume counter (restart only)
+  void set_inlet_volume(double v) { inlet_volume_ = v; }
   // inlet discharge per unit width now [m^2/s]
   double inlet_discharge_per_width() const;
 

@@ -1,0 +1,123 @@
+"""Coupler from Python: the names the run loop uses, zero-copy views, checkpoint/restart, guards."""
+import gc
+import threading
+
+import numpy as np
+import pytest
+
+import vofdem
+from vofdem import _core
+
+
+def scene(n_stones=3, flags=None):
+    grid = vofdem.Grid2D.uniform(20, 40, 0.2, 0.4)
+    fp = vofdem.FlowParams()
+    fluid = vofdem.VOFGrid(grid, fp)
+    fluid.fill_water_below(0.2)
+    fluid.set_hydrostatic_pressure()
+    dp = vofdem.DEMParams()
+    dp.fluid_density = fp.rho_water
+    dp.add_flume(0.0, 0.2, 0.0)
+    pos = np.array([[0.1 + 0.002 * j, 0.2 + 0.05 * j] for j in range(n_stones)])
+    stones = vofdem.DEMSystem(dp, pos=pos, radius=np.full(n_stones, 0.024))
+    cp = _core.CouplerParams()
+    if flags is not None:
+        cp.flags = flags
+    return _core.Coupler(fluid, stones, cp)
+
+
+def test_run_loop_names_and_zero_copy_views():
+    sim = scene()
+    assert sim.time == 0.0
+    sim.set_inflow_table(np.array([0.0, 10.0]), np.array([0.0, 0.0]))
+    sim.advance(0.05)
+    assert sim.time == pytest.approx(0.05, abs=1e-12)
+    assert sim.disc_force_drag.shape == (3, 2) and sim.disc_force_pressure.shape == (3, 2)
+    assert sim.stones.disc_pos.shape == (3, 2)
+    assert sim.fluid.cell_F.shape == (40, 20)
+    assert list(sim.profile.names) == ["snapshot", "porosity", "fluid_forces", "dem", "fluid", "checks"]
+    assert all(c == sim.step_count for c in sim.profile.calls)
+    # the views write through and keep their owners alive after the coupler is gone
+    drag, F, pos = sim.disc_force_drag, sim.fluid.cell_F, sim.stones.disc_pos
+    fluid = sim.fluid
+    assert fluid is sim.fluid  # the same Python object every time
+    del sim, fluid
+    gc.collect()
+    assert np.isfinite(drag).all() and F.sum() > 0 and pos.shape == (3, 2)
+
+
+def test_checkpoint_dict_restarts_bit_for_bit():
+    a = scene()
+    a.advance(0.1)
+    state = {k: v.copy() for k, v in a.export_state().items()}
+    a.advance(0.2)
+    b = scene()
+    b.import_state(state)
+    b.advance(0.2)
+    sa, sb = a.export_state(), b.export_state()
+    assert sa.keys() == sb.keys()
+    for k in sa:
+        assert np.array_equal(sa[k], sb[k]), k
+    with pytest.raises(ValueError, match="fluid/cell_F"):
+        state["fluid/cell_F"] = state["fluid/cell_F"][:3]
+        b.import_state(state)
+
+
+def test_advance_releases_the_gil():
+    # while a worker thread advances, this thread keeps running Python code (a held GIL would block it)
+    sim = scene()
+    t = threading.Thread(target=sim.advance, args=(0.3,))
+    count = 0
+    t.start()
+    while t.is_alive():
+        count += 1
+    t.join()
+    assert sim.time == pytest.approx(0.3)
+    assert count > 1000
+
+
+def test_guards_and_bad_input():
+    sim = scene()
+    sim.advance(0.02)
+    t = sim.time
+    sim.stones.disc_vel[0, 1] = np.nan
+    with pytest.raises(RuntimeError, match="fluid_forces.*stone 0"):
+        sim.step(1e-3)
+    assert sim.time == t
+    p = _core.CouplerParams()
+    p.stone_cfl = 5.0
+    with pytest.raises(ValueError, match="stone_cfl"):
+        p.validate()
+    dry = vofdem.DEMSystem(vofdem.DEMParams(), pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
+    with pytest.raises(ValueError, match="fluid_density"):
+        _core.Coupler(vofdem.VOFGrid(vofdem.Grid2D.uniform(4, 4, 0.2, 0.2), vofdem.FlowParams()), dry)
+
+
+def test_scenes_with_one_module():
+    dp = vofdem.DEMParams()
+    dp.add_flume(0.0, 0.3, 0.0)
+    stones = vofdem.DEMSystem(dp, pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
+    sim = _core.Coupler(None, stones)
+    assert sim.fluid is None
+    sim.advance(0.2)
+    assert stones.disc_pos[0, 1] == pytest.approx(0.024, abs=1e-3)  # landed on the bed
+    fluid = vofdem.VOFGrid(vofdem.Grid2D.uniform(8, 8, 0.2, 0.2), vofdem.FlowParams())
+    fluid.fill_water_below(0.1)
+    sim = _core.Coupler(fluid, None)
+    sim.advance(0.05)
+    assert sim.stones is None and fluid.time == sim.time
+
+
+def test_initial_mapping_can_keep_the_water_fraction():
+    # stones placed into a filled scene: keep F (pores full of water) or keep the volume (water displaced up)
+    for keep, expect_same_F in ((False, True), (True, False)):
+        sim = scene(flags=_core.COUPLE_TWO_WAY)
+        sim.stones.disc_pos[:] = [[0.05, 0.05], [0.1, 0.05], [0.15, 0.05]]
+        F0 = np.array(sim.fluid.cell_F)
+        v0 = sim.water_volume()
+        sim.update_porosity(keep_water_volume=keep)
+        assert np.array_equal(F0, np.asarray(sim.fluid.cell_F)) == expect_same_F
+        if keep:
+            assert sim.water_volume() == pytest.approx(v0, rel=1e-12)
+        else:
+            assert sim.water_volume() < v0
