@@ -42,6 +42,10 @@ def test_updates_cell_F_in_place_and_refuses_copies():
     assert f.ctypes.data == pointer
     # the first column received u dt / dx = 0.4 of water in every row
     np.testing.assert_allclose(f.reshape(g.nz, g.nx)[:, 0], 0.4, rtol=0, atol=1e-15)
+    # the water fluxes of the step: u dt dz through each left boundary face, nothing beyond
+    flux = scratch.face_flux_x.reshape(g.nz, g.nx + 1)
+    np.testing.assert_allclose(flux[:, 0], 0.5 * 0.1 * 0.125, rtol=1e-14)
+    assert np.all(flux[:, 1:] == 0.0) and not scratch.face_flux_x.flags.writeable
     assert np.all(f.reshape(g.nz, g.nx)[:, 1:] == 0.0)
     # a float32 or strided F would be silently copied: refused instead
     with pytest.raises(TypeError):
@@ -148,3 +152,25 @@ def test_diagonal_translation_of_a_square():
     rel_l1 = np.abs(f - exact).sum() / exact.sum()
     # measured 0.0316: corners round off a little under Youngs' normals
     assert rel_l1 < 0.04
+
+
+def test_plic_inverse_and_monotonicity_property():
+    hypothesis = pytest.importorskip("hypothesis")
+    st = hypothesis.strategies
+
+    @hypothesis.settings(max_examples=300, deadline=None)
+    @hypothesis.given(
+        theta=st.floats(0.0, 2 * np.pi),
+        dx=st.floats(1e-3, 1.0),
+        aspect=st.floats(0.1, 10.0),
+        f=st.floats(0.0, 1.0),
+        df=st.floats(0.0, 0.1),
+    )
+    def check(theta, dx, aspect, f, df):
+        mx, mz, dz = np.cos(theta), np.sin(theta), dx * aspect
+        a = vofdem.plic_line_constant(mx, mz, dx, dz, f)
+        assert abs(vofdem.plic_area_below(mx, mz, dx, dz, a) / (dx * dz) - f) < 1e-12
+        # more water needs a larger line constant
+        assert vofdem.plic_line_constant(mx, mz, dx, dz, min(1.0, f + df)) >= a - 1e-15 * (dx + dz)
+
+    check()

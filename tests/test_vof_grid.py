@@ -105,6 +105,9 @@ def test_discharge_tables():
     table = vflow.discharge_table(lambda t: 10.0 + t, t_end=10.0, dt=1.0, discharge_lps=True)
     assert table.at(5.5) == pytest.approx(0.0155)
     assert vflow.discharge_table(0.02).at(3.0) == 0.02
+    f = tank()
+    vflow.set_discharge(f, lambda t: 12.0, t_end=1.0, discharge_lps=True)
+    assert f.discharge.at(0.5) == pytest.approx(0.012)
     with pytest.raises(ValueError):
         vofdem.DischargeTable([1.0, 0.0], [0.0, 0.0])
 
@@ -136,3 +139,21 @@ def test_inflow_into_a_dry_flume_starts_without_a_cfl_breach():
     assert f.water_volume() > 0.5 * f.inlet_volume > 0
     U, W = f.pore_velocity_at_cells()
     assert np.abs(U).max() < 10.0 and np.abs(W).max() < 10.0
+
+
+def test_moving_stones_displace_water_without_losing_it():
+    f = tank(nx=20, nz=16, length=0.4, height=0.32)
+    f.fill_water_below(0.2)
+    f.set_porosity_box(0.1, 0.3, 0.0, 0.1, 0.5, 0.03)
+    v0 = f.water_volume()
+    f.advance(0.05)
+    for _ in range(10):  # the block compacts by 0.15 in ten coupling steps
+        n = f.cell_porosity.copy()
+        n[n < 1.0] -= 0.015
+        f.set_porosity(n.ravel(), displace=True)
+        f.advance(f.time + 0.01)
+    f.advance(0.6)
+    assert f.water_volume() == pytest.approx(v0, rel=1e-10)
+    # the displaced 0.15 x 0.2 m x 0.1 m spread over the 0.4 m tank raises the level by 7.5 mm
+    level = (f.cell_F * np.diff(f.grid.z_faces)[:, None]).sum(axis=0).mean()
+    assert level == pytest.approx(0.2075, abs=1e-4)

@@ -56,7 +56,7 @@ void bind_vof(py::module_& m) {
       .value("DISCHARGE", InletBoundary::kDischarge, "prescribed discharge Q(t) over the wetted inlet");
   py::enum_<OutletBoundary>(m, "OutletBoundary")
       .value("WALL", OutletBoundary::kWall)
-      .value("FREE_OVERFALL", OutletBoundary::kFreeOverfall, "the end face is a brink at atmospheric pressure")
+      .value("FREE_OVERFALL", OutletBoundary::kFreeOverfall, "the end face is a brink open to still air (hydrostatic air pressure)")
       .value("TAILWATER", OutletBoundary::kTailwater, "hydrostatic pressure below FlowParams.tailwater_level");
   py::enum_<TopBoundary>(m, "TopBoundary")
       .value("OPEN", TopBoundary::kOpen, "open to the atmosphere, p = 0")

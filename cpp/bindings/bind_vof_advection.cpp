@@ -57,8 +57,15 @@ void bind_vof_advection(py::module_& m) {
       .value("MIXED_YOUNGS_CENTERED", VofNormal::kMixedYoungsCentered,
              "Aulisa et al. (2007): height-function normal of the 3x3 block, else Youngs");
 
-  py::class_<VofScratch>(m, "VofScratch", "Work arrays of advect_vof and its clipping report.")
+  py::class_<VofScratch>(m, "VofScratch", "Work arrays of advect_vof, its water fluxes and clipping report.")
       .def(py::init<>())
+      .def_property_readonly(
+          "face_flux_x", [](py::object self) { return const_view(self.cast<VofScratch&>().face_flux_x, self); },
+          "water volume [m^2 per m of width] through each x-face in the last step, along +x (read-only view; "
+          "empty before the first step)")
+      .def_property_readonly(
+          "face_flux_z", [](py::object self) { return const_view(self.cast<VofScratch&>().face_flux_z, self); },
+          "water volume [m^2 per m of width] through each z-face in the last step, along +z (read-only view)")
       .def_readwrite("clip_count", &VofScratch::clip_count,
                      "cell updates clipped by more than VOF_CLIP_TOLERANCE (0 when the CFL limit holds)")
       .def_readwrite("clip_max", &VofScratch::clip_max, "largest such excursion of F outside [0, 1]");

@@ -34,6 +34,9 @@ void Multigrid::allocate(int nx, int nz, const PressureSolverParams& params) {
   levels_.clear();
   levels_.emplace_back();
   size_level(levels_.back(), nx, nz);
+  // the fine level works on the caller's vectors (apply)
+  levels_.back().x = std::vector<double>();
+  levels_.back().b = std::vector<double>();
   while (true) {
     MultigridLevel& f = levels_.back();
     if (f.nx * f.nz <= params.coarsest_cells || (f.nx == 1 && f.nz == 1)) break;

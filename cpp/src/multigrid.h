@@ -35,7 +35,7 @@ struct MultigridLevel {
   std::vector<double> inv, up;            // line Thomas factors: 1 / pivot, next face coefficient / pivot
   bool x_lines = false;                   // smoother lines along x (else along z)
   std::vector<double> mask;               // 1 on cells with d > 0, else 0
-  std::vector<double> x, b;               // correction and right-hand side of this level
+  std::vector<double> x, b;               // correction and right-hand side of this level (coarse levels)
   // coarsening to the next level: parent column / row of each fine column / row
   std::vector<int> parent_i, parent_k;
   int index(int i, int k) const { return (i + 1) + w * (k + 1); }

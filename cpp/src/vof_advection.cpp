@@ -70,7 +70,7 @@ struct SweepArgs {
   double dt;
   const double* c;
   double* F;
-  double* flux;
+  double* flux;  // face_flux_x or face_flux_z
   VofScratch& scratch;
   VofNormal normal;
 };
@@ -353,8 +353,9 @@ bool faces_pass(const Grid2D& g, const double* n, const double* u, const double*
   return ok;
 }
 
+// sizes a work array for the grid: allocates on first use or when the grid changed, never per step
 void ensure_size(std::vector<double>& v, std::size_t size) {
-  if (v.size() < size) v.resize(size);
+  if (v.size() != size) v.assign(size, 0.0);
 }
 
 }  // namespace
@@ -451,7 +452,8 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
     }
   }
   const int ncell = grid.ncell();
-  ensure_size(scratch.flux, static_cast<std::size_t>(std::max(grid.nface_x(), grid.nface_z())));
+  ensure_size(scratch.face_flux_x, static_cast<std::size_t>(grid.nface_x()));
+  ensure_size(scratch.face_flux_z, static_cast<std::size_t>(grid.nface_z()));
   ensure_size(scratch.cell_c, static_cast<std::size_t>(ncell));
   // the divergence-correction indicator is frozen at the start of the step for both sweeps
   bool finite = true;
@@ -465,10 +467,9 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
         throw std::runtime_error("vof advection: F = " + format_value(cell_F[c]) + " in cell (i=" +
                                  std::to_string(c % grid.nx()) + ", k=" + std::to_string(c / grid.nx()) +
                                  ") is not finite");
-  const SweepArgs sx{grid, cell_porosity, face_u, inflow, dt, scratch.cell_c.data(), cell_F, scratch.flux.data(),
-                     scratch, normal};
-  const SweepArgs sz{grid, cell_porosity, face_w, inflow, dt, scratch.cell_c.data(), cell_F, scratch.flux.data(),
-                     scratch, normal};
+  const double* c = scratch.cell_c.data();
+  const SweepArgs sx{grid, cell_porosity, face_u, inflow, dt, c, cell_F, scratch.face_flux_x.data(), scratch, normal};
+  const SweepArgs sz{grid, cell_porosity, face_w, inflow, dt, c, cell_F, scratch.face_flux_z.data(), scratch, normal};
   if (x_first) {
     sweep_x(sx);
     sweep_z(sz);

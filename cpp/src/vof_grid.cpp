@@ -244,6 +244,14 @@ void VOFGrid::update_phase_properties() const {
       const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
       face_x_rho_[i + sx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
     }
+  // an open end faces still fluid outside: water below the tailwater level, air above (two-phase)
+  if (two_phase && params_.outlet != OutletBoundary::kWall)
+    for (int k = 0; k < nz; ++k) {
+      const double f = params_.outlet == OutletBoundary::kTailwater
+                           ? std::clamp((params_.tailwater_level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0)
+                           : 0.0;
+      face_x_rho_[nx + sx * k] = 0.5 * (cell_rho_[nx - 1 + nx * k] + f * rw + (1.0 - f) * ra);
+    }
   for (int k = 0; k <= nz; ++k)
     for (int i = 0; i < nx; ++i) {
       const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
@@ -431,15 +439,17 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
 }
 
 double VOFGrid::outlet_pressure(int k) const {
-  // still air outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
+  // still fluid outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
   // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
-  const double g = std::abs(params_.gravity_z);
+  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.gravity_z) : 0.0;
   const double z = grid_.z_center(k);
-  const bool air = (params_.flags & kFlowGravity) && (params_.flags & kFlowFreeSurface);
-  const double rho_air = air ? params_.rho_air : 0.0;
-  double p = rho_air * g * (grid_.z_face(grid_.nz()) - z);
+  const double top = grid_.z_face(grid_.nz());
+  // single phase: water outside too, up to the tailwater level or the top
+  if (!(params_.flags & kFlowFreeSurface))
+    return params_.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
+  double p = params_.rho_air * g * (top - z);
   if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
-    p += (params_.rho_water - rho_air) * g * (params_.tailwater_level - z);
+    p += (params_.rho_water - params_.rho_air) * g * (params_.tailwater_level - z);
   return p;
 }
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["discharge_table", "linear_ramp", "paper_discharge_ramp", "dam_break"]
+__all__ = ["discharge_table", "linear_ramp", "paper_discharge_ramp", "set_discharge", "dam_break"]
 
 
 def linear_ramp(q0: float, q1: float, t0: float, t1: float) -> _core.DischargeTable:
@@ -45,6 +45,15 @@ def discharge_table(q, t_end: float | None = None, dt: float = 0.1, t_start: flo
         times, values = q
         return _core.DischargeTable(list(map(float, times)), [float(v) * scale for v in values])
     return _core.DischargeTable.constant(float(q) * scale)
+
+
+def set_discharge(flow: _core.VOFGrid, q, t_end: float | None = None, dt: float = 0.1,
+                  discharge_lps: bool = False) -> _core.DischargeTable:
+    """Sets the inlet discharge of `flow` from a number, a callable Q(t), a (times, values) pair or a
+    DischargeTable (see discharge_table); a callable is sampled every dt [s] from flow.time to t_end."""
+    table = discharge_table(q, t_end=t_end, dt=dt, t_start=flow.time, discharge_lps=discharge_lps)
+    flow.discharge = table
+    return table
 
 
 def dam_break(a: float = 0.05715, cells_per_a: int = 8, length_in_a: float = 5.0, height_in_a: float = 2.5,

@@ -394,3 +394,69 @@ TEST(VOFGrid, StonesDisplacingWaterConserveItsVolume) {
   plain.set_porosity_box(0.1, 0.3, 0.0, 0.1, 0.35, 0.03);
   EXPECT_LT(plain.water_volume(), v0 - 0.1 * 0.2 * 0.1 * 0.9);
 }
+
+TEST(VOFGrid, TailwaterAtTheStillWaterLevelKeepsItStill) {
+  // water 0.1 m deep against an open end held at a tailwater level of 0.1 m: nothing moves
+  const Grid2D g = Grid2D::uniform(20, 20, 0.4, 0.2);
+  FlowParams p;
+  p.outlet = OutletBoundary::kTailwater;
+  p.tailwater_level = 0.1;
+  VOFGrid flow(g, p);
+  flow.fill_water_below(0.1);
+  flow.set_porosity_box(0.1, 0.2, 0.0, 0.05, 0.4, 0.03);
+  flow.set_hydrostatic_pressure();
+  const double v0 = flow.water_volume();
+  flow.advance(1.0);
+  EXPECT_LT(max_abs(flow.face_u), 1e-6);
+  EXPECT_LT(max_abs(flow.face_w), 1e-6);
+  EXPECT_NEAR(flow.water_volume(), v0, 1e-10 * v0);
+  // a tailwater rising by 5 mm every 0.1 s to 0.15 m fills the flume through the open end
+  FlowParams high = p;
+  for (int s = 1; s <= 10; ++s) {
+    high.tailwater_level = 0.1 + 0.005 * s;
+    flow.set_params(high);
+    flow.advance(flow.time() + 0.1);
+  }
+  // it seiches about the new level (period ~1.5 s, slowly damped): the mean over 3 s is the volume
+  // at 0.15 m, 0.4 x 0.15 less the stones of the block 0.1 x 0.05 x 0.6 = 0.057 m^2, within 3 %
+  double mean = 0.0;
+  for (int s = 0; s < 30; ++s) {
+    flow.advance(flow.time() + 0.1);
+    mean += flow.water_volume() / 30;
+  }
+  EXPECT_NEAR(mean, 0.057, 0.03 * 0.057);
+}
+
+TEST(VOFGrid, RelativeVelocityResistanceUsesTheStonesVelocity) {
+  // the channel of the closure-law test; the stones move downstream at half the pore velocity, so
+  // the resistance acts on u - n u_s = u / 2
+  const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
+  FlowParams p;
+  p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection | kFlowRelativeVelocity;
+  p.inlet = InletBoundary::kDischarge;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  p.top = TopBoundary::kWall;
+  VOFGrid flow(g, p);
+  const double n = 0.4, d = 0.02, Q = 0.003;
+  flow.set_porosity_box(0.3, 0.7, 0.0, 0.1, n, d);
+  flow.set_discharge(DischargeTable::constant(Q));
+  const double u = Q / p.flume_width / 0.1;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) flow.face_x_solid_u[g.face_x(i, k)] = 0.5 * u / n;
+  flow.advance(0.5);
+  const PorousCoefficients c = porous_coefficients(n, d, p.nu_water, p.k1, p.k2);
+  const double ur = 0.5 * u;
+  const double expected = -p.rho_water * ur * (c.linear + c.quadratic * ur);
+  for (int k = 0; k < g.nz(); ++k) {
+    const double dpdx = (flow.cell_p[g.cell(25, k)] - flow.cell_p[g.cell(14, k)]) / (11 * g.dx());
+    EXPECT_NEAR(dpdx, expected, 0.01 * std::abs(expected)) << "row " << k;
+  }
+  // switched off, the same stones resist the full superficial velocity
+  FlowParams fixed = p;
+  fixed.flags &= ~kFlowRelativeVelocity;
+  flow.set_params(fixed);
+  flow.advance(1.0);
+  const double full = -p.rho_water * u * (c.linear + c.quadratic * u);
+  const double dpdx = (flow.cell_p[g.cell(25, 2)] - flow.cell_p[g.cell(14, 2)]) / (11 * g.dx());
+  EXPECT_NEAR(dpdx, full, 0.01 * std::abs(full));
+}

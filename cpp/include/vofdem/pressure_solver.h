@@ -2,10 +2,12 @@
 //
 //   sum over the faces f of cell c:  a_f (p_nb(f) - p_c) = b_c                                (P)
 //
-// a_f >= 0 [m^4 s / kg per metre of width, i.e. m^3 s/kg x m] is the face coefficient assembled by the
-// flow solver, beta_f * (face length) / (distance between the two cell centres), with
+// a_f >= 0 [m^3 s/kg] is the face coefficient assembled by the flow solver,
+// beta_f * (face length) / (distance between the two cell centres), with
 // beta_f = dt n_f / (rho_f (1 + dt n_f R'_f)) (porosity n, density rho and the semi-implicit porous
-// resistance R' of the face). a_f = 0 closes a face (wall, solid cell). On a boundary face with
+// resistance R' of the face); usual values 1e-6 (water, dt = 1e-3 s, square cells) to 1e-3 (air).
+// b_c [m^2/s] is the cell's volume flux balance per metre of width (the divergence of the provisional
+// velocity integrated over the cell), p [Pa]. a_f = 0 closes a face (wall, solid cell). On a boundary face with
 // a_f > 0, p_nb is the boundary value given in face_*_bc (Dirichlet, e.g. p = 0 on the open top).
 // Inactive cells (solid, n = 0) are not unknowns: their pressure is left untouched and every face
 // touching them must have a_f = 0. The matrix is symmetric negative semi-definite; a connected group
@@ -19,7 +21,8 @@
 // parts), which stays meaningful when b = 0 but the boundary values are not.
 //
 // Two solvers share this interface: Eigen's sparse direct solver (the reference) and a geometric
-// multigrid preconditioned conjugate gradient (the fast default).
+// multigrid preconditioned conjugate gradient (the fast default); method, validation and costs in
+// docs/pressure_solver.md.
 #pragma once
 
 #include <cstdint>

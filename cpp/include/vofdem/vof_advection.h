@@ -5,8 +5,9 @@
 // with (u, w) the superficial face velocities (div u = 0) and n the cell porosity. The interface in
 // each cell is a PLIC line (normal from Youngs' gradient of F, or the mixed Youngs-centred normal);
 // fluxes are the exact water areas swept through each face, operator-split by direction with the
-// alternating order of Strang splitting and the divergence correction of Weymouth & Yue (2010), so that the water volume
-// sum(n F V) is conserved to round-off in a closed box and F stays in [0, 1] for a CFL below 1/2.
+// alternating order of Strang splitting and the divergence correction of Weymouth & Yue (2010), so
+// that the water volume sum(n F V) is conserved to round-off in a closed box and F stays in [0, 1]
+// for a CFL number up to 1/2 (see vof_stable_dt).
 //
 // References: D. L. Youngs (1982); G. D. Weymouth and D. K.-P. Yue (2010), J. Comput. Phys. 229,
 // 2853-2865; R. Scardovelli and S. Zaleski (2000), J. Comput. Phys. 164, 228-237 (line-area
@@ -29,9 +30,14 @@ struct VofBoundaryInflow {
 };
 
 // work arrays reused from step to step so that advection allocates nothing while stepping (they are
-// sized on first use, or again if the grid grows), and the clipping report
+// sized on first use, or again if the grid changes), the water fluxes of the last step and the
+// clipping report
 struct VofScratch {
-  std::vector<double> flux, cell_c, f_tmp;
+  // water volume [m^2 per metre of width] that crossed each face during the last step, signed along
+  // +x (size nface_x) and +z (size nface_z); e.g. the discharge through the right end is
+  // sum over k of face_flux_x[face_x(nx, k)] / dt [m^2/s]
+  std::vector<double> face_flux_x, face_flux_z;
+  std::vector<double> cell_c;  // divergence-correction indicator of the last step (0 or 1)
   // F leaves [0, 1] only by round-off when the CFL limit holds; such excursions are clipped silently.
   // Larger ones (beyond kVofClipTolerance) are clipped too but counted here, summed over all steps:
   long long clip_count = 0;  // number of cell updates clipped by more than kVofClipTolerance
@@ -51,9 +57,10 @@ constexpr double kVofClipTolerance = 1e-12;
 // face_u (size nface_x), face_w (size nface_z): superficial velocities [m/s], zero on every face of a
 // solid cell. x_first chooses the sweep order (alternate it from step to step). Throws
 // std::invalid_argument for wrong sizes, dt <= 0 or a non-zero velocity on a solid cell's face, and
-// std::runtime_error (cell_F untouched) if a velocity is not finite or the directional CFL number
-// |u| dt / (n dx) (resp. |w| dt / (n dz)) of a face and a fluid cell next to it exceeds 1; F stays
-// in [0, 1] only for a CFL number up to 1/2 (see vof_stable_dt). `normal` picks the interface normal.
+// std::runtime_error (cell_F untouched) if F in a fluid cell or a velocity is not finite, or if the
+// directional CFL number |u| dt / (n dx) (resp. |w| dt / (n dz)) of a face and a fluid cell next to
+// it exceeds 1; F stays in [0, 1] for a step from vof_stable_dt with cfl <= 1/2. `normal` picks the
+// interface normal. Both sweeps' water fluxes are left in scratch.face_flux_x/z.
 void advect_vof(const Grid2D& grid, const std::vector<double>& cell_porosity, const std::vector<double>& face_u,
                 const std::vector<double>& face_w, const VofBoundaryInflow& inflow, double dt, bool x_first,
                 std::vector<double>& cell_F, VofScratch& scratch, VofNormal normal = VofNormal::kYoungs);

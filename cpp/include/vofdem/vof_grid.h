@@ -34,9 +34,14 @@
 //
 // Boundaries: left end wall or discharge inlet Q(t) [m^3/s] / flume width B spread over the wetted
 // inlet rows in proportion to their water fraction (water fraction 1 entering, inlet level free);
-// right end wall, free overfall (the end face is the brink: p = 0 there, the water falls freely out)
-// or a fixed tailwater level (hydrostatic pressure below it); bed and end walls slip or no-slip; top
-// open to the atmosphere (p = 0) or a slip lid.
+// right end wall, free overfall (the end face is the brink, open to still air outside: the
+// hydrostatic air pressure from p = 0 at the top; the water falls freely out) or a fixed tailwater
+// level (hydrostatic water pressure below it); open faces carry zero-gradient momentum outflow; bed
+// and end walls slip or no-slip; top open to the atmosphere (p = 0) or a slip lid.
+//
+// A step runs the stages momentum -> porous_resistance -> turbulence -> pressure -> correct ->
+// advect_vof -> checks: F moves with the projected velocities u^{n+1}, whose divergence is exactly
+// the step's porosity source, so water is conserved also when stones move.
 //
 // References: S. Maeno and A. Tomita (2008), ICHE 2008 (eqs. 1-7); F. H. Harlow and J. E. Welch (1965)
 // (MAC grid); A. J. Chorin (1968) (projection); P. Higuera, J. L. Lara and I. J. Losada (2014), Coastal
@@ -173,7 +178,8 @@ class VOFGrid {
   long long step_count() const { return step_count_; }
   FlowStableDt stable_dt_terms() const;
   double stable_dt() const { return stable_dt_terms().min(); }
-  // one step of dt [s]; throws std::runtime_error (stage, cell, time) after restoring the state
+  // one step of dt [s] (stages: see the top of this file); throws std::runtime_error naming the stage,
+  // the cell and the time after restoring the state of the step's start
   void step(double dt);
   // steps of stable_dt() until time() reaches t_end [s]; returns the number of steps
   long long advance(double t_end);
