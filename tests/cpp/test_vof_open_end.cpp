@@ -1,0 +1,49 @@
+// Open end faces hold the still air outside in hydrostatic balance (VOFGrid::outlet_pressure).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "vofdem/vof_grid.h"
+
+using namespace vofdem;
+
+namespace {
+
+double max_abs_open(const std::vector<double>& a) {
+  double m = 0.0;
+  for (double v : a) m = std::max(m, std::abs(v));
+  return m;
+}
+
+// a 0.4 m x 0.2 m box of air with an open right end and an open top
+VOFGrid air_box(OutletBoundary outlet, double tailwater_level) {
+  FlowParams p;
+  p.outlet = outlet;
+  p.tailwater_level = tailwater_level;
+  return VOFGrid(Grid2D::uniform(20, 10, 0.4, 0.2), p);
+}
+
+}  // namespace
+
+TEST(VOFOpenEnd, StillAirStaysStillAtAFreeOverfall) {
+  // with p = 0 over the whole end face the air in the last column would fall at about g
+  VOFGrid flow = air_box(OutletBoundary::kFreeOverfall, 0.0);
+  flow.set_hydrostatic_pressure();
+  flow.advance(0.5);
+  EXPECT_LT(max_abs_open(flow.face_u), 1e-6);
+  EXPECT_LT(max_abs_open(flow.face_w), 1e-6);
+}
+
+TEST(VOFOpenEnd, StillWaterAtTheTailwaterLevelStaysStill) {
+  // water 0.1 m deep, tailwater level 0.1 m: the end face is hydrostatic for both phases
+  VOFGrid flow = air_box(OutletBoundary::kTailwater, 0.1);
+  flow.fill_water_below(0.1);
+  flow.set_hydrostatic_pressure();
+  const double v0 = flow.water_volume();
+  flow.advance(0.5);
+  EXPECT_LT(max_abs_open(flow.face_u), 1e-6);
+  EXPECT_LT(max_abs_open(flow.face_w), 1e-6);
+  EXPECT_NEAR(flow.water_volume(), v0, 1e-9 * v0);
+}
