@@ -85,7 +85,7 @@ def test_units_in_strings_are_converted():
     ("[stones]\npositions = [[1.5, 0.1], [0.01, 0.1]]", r"stones.positions\[1\] = \[0.01, 0.1\] \(diameter 0.048 m\) lies outside the domain"),
     ("[stones]\npositions = [[1.5, 0.44]]", r"stones.positions\[0\] .* lies outside the domain"),
     ("[stones]\npositions = [[1.5, 0.1]]\ndiameters = [0.05, 0.05]", r"stones.diameters has 2 entries, stones.positions has 1"),
-    ("[stones]\ngrading = [[0.04, 0.5], [0.05, 0.4]]", r"stones.grading fractions sum to 0.9"),
+    ("[stones]\ndiameter_spread = 0.7", r"stones.diameter_spread = 0.7 is outside the allowed range \[0.0, 0.5\]"),
     ('[flume]\noutflow = "tailwater"', r"flume.tailwater_level is required"),
     ("[hydrograph]\nkind = 'table'\ntimes = [0, 0]\ndischarge_lps = [10, 20]", r"hydrograph.times must be strictly increasing"),
     ("seed = -1", r"seed = -1 must be an integer"),
