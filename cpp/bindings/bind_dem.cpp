@@ -1,10 +1,239 @@
+// Thin bindings of the DEM of the stones (dem_system.h) and the weir packing (weir_packing.h).
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <memory>
+
+#include "views.h"
+#include "vofdem/dem_contact.h"
+#include "vofdem/dem_system.h"
+#include "vofdem/weir_packing.h"
 
 namespace py = pybind11;
 
 namespace vofdem::bind {
 
+namespace {
+
+using StateMap = std::map<std::string, std::vector<double>>;
+
+py::dict state_to_dict(const StateMap& s) {
+  py::dict d;
+  for (const auto& [key, v] : s) {
+    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(double));
+    d[py::str(key)] = a;
+  }
+  return d;
+}
+
+StateMap dict_to_state(const py::dict& d) {
+  StateMap s;
+  for (const auto& item : d) {
+    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
+    if (!a) throw py::value_error("import_state: every value must be an array of numbers");
+    s[item.first.cast<std::string>()] = std::vector<double>(a.data(), a.data() + a.size());
+  }
+  return s;
+}
+
+// (n, 2) view of a flat per-stone vector array
+template <class T>
+py::array_t<T> vec2(std::vector<T>& v, py::handle owner) {
+  return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 2), 2, owner);
+}
+
+std::vector<double> flat_pos(const py::array_t<double, py::array::c_style | py::array::forcecast>& pos) {
+  return std::vector<double>(pos.data(), pos.data() + pos.size());
+}
+
+void bind_params(py::module_& m) {
+  py::class_<DEMWall>(m, "DEMWall", "Half-plane wall: the solid lies opposite to `normal` (SI units).")
+      .def(py::init([](std::array<double, 2> point, std::array<double, 2> normal, double friction) {
+             return DEMWall{point, normal, friction};
+           }),
+           py::arg("point"), py::arg("normal"), py::arg("friction") = 0.176)
+      .def_readwrite("point", &DEMWall::point)
+      .def_readwrite("normal", &DEMWall::normal)
+      .def_readwrite("friction", &DEMWall::friction);
+
+  py::class_<DEMParams>(m, "DEMParams", "Constant parameters of the DEM of the stones (SI units; see dem_system.h).")
+      .def(py::init<>())
+      .def_readwrite("gravity", &DEMParams::gravity)
+      .def_readwrite("fluid_density", &DEMParams::fluid_density)
+      .def_readwrite("added_mass_coefficient", &DEMParams::added_mass_coefficient)
+      .def_readwrite("dt", &DEMParams::dt)
+      .def_readwrite("stiffness_normal", &DEMParams::stiffness_normal)
+      .def_readwrite("contact_steps", &DEMParams::contact_steps)
+      .def_readwrite("stiffness_ratio", &DEMParams::stiffness_ratio)
+      .def_readwrite("restitution", &DEMParams::restitution)
+      .def_readwrite("tangential_damping_factor", &DEMParams::tangential_damping_factor)
+      .def_readwrite("friction_stone", &DEMParams::friction_stone)
+      .def_readwrite("inertia_factor", &DEMParams::inertia_factor)
+      .def_readwrite("domain_min", &DEMParams::domain_min)
+      .def_readwrite("domain_max", &DEMParams::domain_max)
+      .def_readwrite("neighbour_skin", &DEMParams::neighbour_skin)
+      .def_readwrite("sleep_velocity", &DEMParams::sleep_velocity)
+      .def_readwrite("sleep_time", &DEMParams::sleep_time)
+      .def_readwrite("wake_acceleration", &DEMParams::wake_acceleration)
+      .def_readwrite("walls", &DEMParams::walls)
+      .def_readwrite("flags", &DEMParams::flags)
+      .def("add_flume", &DEMParams::add_flume, py::arg("x_min"), py::arg("x_max"), py::arg("z_bed") = 0.0,
+           py::arg("mu") = 0.176);
+
+  m.attr("DEM_GRAVITY") = static_cast<unsigned>(kDEMGravity);
+  m.attr("DEM_ROTATION") = static_cast<unsigned>(kDEMRotation);
+  m.attr("DEM_FRICTION") = static_cast<unsigned>(kDEMFriction);
+  m.attr("DEM_ADDED_MASS") = static_cast<unsigned>(kDEMAddedMass);
+  m.attr("DEM_BUOYANCY") = static_cast<unsigned>(kDEMBuoyancy);
+  m.attr("DEM_SLEEPING") = static_cast<unsigned>(kDEMSleeping);
+  m.attr("DEM_DAMPING") = static_cast<unsigned>(kDEMDamping);
+  m.attr("DEM_EXTERNAL_FORCE") = static_cast<unsigned>(kDEMExternalForce);
+  m.attr("DEM_REMOVAL") = static_cast<unsigned>(kDEMRemoval);
+  m.attr("DEM_ALL_EFFECTS") = static_cast<unsigned>(kDEMAllEffects);
+
+  py::class_<DEMEnergy>(m, "DEMEnergy", "Energy bookkeeping of the DEM [J].")
+      .def_readonly("kinetic", &DEMEnergy::kinetic)
+      .def_readonly("potential", &DEMEnergy::potential)
+      .def_readonly("elastic", &DEMEnergy::elastic)
+      .def_readonly("dissipated", &DEMEnergy::dissipated)
+      .def_readonly("work_external", &DEMEnergy::work_external)
+      .def_property_readonly("total", &DEMEnergy::total);
+
+  m.def("damping_ratio_from_restitution", &damping_ratio_from_restitution, py::arg("e"));
+  m.def("restitution_from_damping_ratio", &restitution_from_damping_ratio, py::arg("zeta"));
+  m.def("contact_duration", &contact_duration, py::arg("k"), py::arg("m_reduced"), py::arg("zeta"));
+}
+
+void bind_system(py::module_& m) {
+  using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  py::class_<DEMSystem>(m, "DEMSystem", "Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).")
+      .def(py::init<const DEMParams&, int>(), py::arg("params"), py::arg("n"))
+      .def(py::init([](const DEMParams& p, const A& pos, const A& radius, const A& density,
+                       const std::vector<std::uint8_t>& fixed) {
+             return new DEMSystem(p, flat_pos(pos), flat_pos(radius), flat_pos(density), fixed);
+           }),
+           py::arg("params"), py::arg("pos"), py::arg("radius"), py::arg("density") = A(py::cast(2650.0)),
+           py::arg("fixed") = std::vector<std::uint8_t>{})
+      .def_property_readonly("n", &DEMSystem::n)
+      .def_property("params", &DEMSystem::params, &DEMSystem::set_params)
+      .def("resize", &DEMSystem::resize, py::arg("n"))
+      .def("stable_dt", &DEMSystem::stable_dt)
+      .def("step", &DEMSystem::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
+      .def("advance", &DEMSystem::advance, py::arg("duration"), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("stiffness_normal", &DEMSystem::stiffness_normal)
+      .def_property_readonly("stiffness_tangential", &DEMSystem::stiffness_tangential)
+      .def_property_readonly("damping_ratio", &DEMSystem::damping_ratio)
+      .def_property_readonly("time", &DEMSystem::time)
+      .def_property_readonly("steps", &DEMSystem::steps)
+      .def_property_readonly("removed_count", &DEMSystem::removed_count)
+      .def_property_readonly("contact_count", &DEMSystem::contact_count)
+      .def_property_readonly("wall_contact_count", &DEMSystem::wall_contact_count)
+      .def_property_readonly("neighbour_builds", &DEMSystem::neighbour_builds)
+      .def("energy", &DEMSystem::energy)
+      .def("mass", &DEMSystem::mass, py::arg("i"))
+      .def("volume", &DEMSystem::volume, py::arg("i"))
+      .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
+      .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
+      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)
+      .def("export_state", [](const DEMSystem& s) { return state_to_dict(s.export_state()); })
+      .def("import_state", [](DEMSystem& s, const py::dict& d) { s.import_state(dict_to_state(d)); }, py::arg("state"))
+      .def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
+      .def_property_readonly("disc_pos", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_pos, self); })
+      .def_property_readonly("disc_vel", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_vel, self); })
+      .def_property_readonly("disc_force_ext",
+                             [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_force_ext, self); })
+      .def_property_readonly("disc_force", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_force, self); })
+      .def_property_readonly("disc_acc", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_acc, self); })
+      .def_property_readonly("disc_angle", [](py::object self) { return view(self.cast<DEMSystem&>().disc_angle, self); })
+      .def_property_readonly("disc_omega", [](py::object self) { return view(self.cast<DEMSystem&>().disc_omega, self); })
+      .def_property_readonly("disc_radius",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_radius, self); })
+      .def_property_readonly("disc_density",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_density, self); })
+      .def_property_readonly("disc_fixed", [](py::object self) { return view(self.cast<DEMSystem&>().disc_fixed, self); })
+      .def_property_readonly("disc_active",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_active, self); })
+      .def_property_readonly("disc_wet", [](py::object self) { return view(self.cast<DEMSystem&>().disc_wet, self); })
+      .def_property_readonly("disc_torque",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_torque, self); })
+      .def_property_readonly("disc_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().disc_alpha, self); })
+      .def_property_readonly("disc_asleep",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_asleep, self); });
+}
+
+void bind_packing(py::module_& m) {
+  py::class_<WeirSpec>(m, "WeirSpec", "Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).")
+      .def(py::init<>())
+      .def_readwrite("height", &WeirSpec::height)
+      .def_readwrite("crest", &WeirSpec::crest)
+      .def_readwrite("slope_up_deg", &WeirSpec::slope_up_deg)
+      .def_readwrite("slope_down_deg", &WeirSpec::slope_down_deg)
+      .def_readwrite("x_toe", &WeirSpec::x_toe)
+      .def_readwrite("z_bed", &WeirSpec::z_bed)
+      .def_readwrite("d_mean", &WeirSpec::d_mean)
+      .def_readwrite("d_spread", &WeirSpec::d_spread)
+      .def_readwrite("density", &WeirSpec::density)
+      .def_readwrite("seed", &WeirSpec::seed)
+      .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
+      .def_readwrite("rest_speed", &WeirSpec::rest_speed);
+  py::class_<WeirPackingReport>(m, "WeirPackingReport", "What pack_weir produced.")
+      .def_readonly("n_stones", &WeirPackingReport::n_stones)
+      .def_readonly("n_fixed", &WeirPackingReport::n_fixed)
+      .def_readonly("porosity", &WeirPackingReport::porosity)
+      .def_readonly("max_speed", &WeirPackingReport::max_speed)
+      .def_readonly("settle_time", &WeirPackingReport::settle_time)
+      .def_readonly("outline_error", &WeirPackingReport::outline_error)
+      .def_readonly("wall_seconds", &WeirPackingReport::wall_seconds)
+      .def("__repr__", [](const WeirPackingReport& r) {
+        return "WeirPackingReport(n_stones=" + std::to_string(r.n_stones) + ", n_fixed=" + std::to_string(r.n_fixed) +
+               ", porosity=" + std::to_string(r.porosity) + ", max_speed=" + std::to_string(r.max_speed) +
+               ", outline_error=" + std::to_string(r.outline_error) + ")";
+      });
+  m.def(
+      "pack_weir",
+      [](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
+         double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
+         double rest_speed, const DEMParams& params) {
+        WeirSpec spec;
+        spec.height = height;
+        spec.crest = crest;
+        spec.slope_up_deg = slope_up_deg;
+        spec.slope_down_deg = slope_down_deg;
+        spec.x_toe = x_toe;
+        spec.z_bed = z_bed;
+        spec.d_mean = d_mean;
+        spec.d_spread = d_spread;
+        spec.density = density;
+        spec.seed = seed;
+        spec.settle_time_max = settle_time_max;
+        spec.rest_speed = rest_speed;
+        WeirPackingReport report;
+        std::unique_ptr<DEMSystem> sys;
+        {
+          py::gil_scoped_release release;
+          sys = std::make_unique<DEMSystem>(pack_weir(spec, params, report));
+        }
+        return py::make_tuple(py::cast(std::move(sys)), report, spec);
+      },
+      "Packs a trapezoidal rubble mound weir; returns (DEMSystem, WeirPackingReport, WeirSpec).",
+      py::arg("height") = 0.25, py::arg("crest") = 0.20, py::arg("slope_up_deg") = 27.0,
+      py::arg("slope_down_deg") = 27.0, py::arg("x_toe") = 1.0, py::arg("z_bed") = 0.0, py::arg("d_mean") = 0.048,
+      py::arg("d_spread") = 0.1, py::arg("density") = 2650.0, py::arg("seed") = 0, py::arg("settle_time_max") = 6.0,
+      py::arg("rest_speed") = 1e-3, py::arg("params") = DEMParams());
+  m.def("weir_porosity", &weir_porosity, py::arg("system"), py::arg("spec"), py::arg("h") = 0.002);
+  m.def("weir_outline_error", &weir_outline_error, py::arg("system"), py::arg("spec"));
+}
+
+}  // namespace
+
 // the dem module registers its classes and functions here
-void bind_dem(py::module_& /*m*/) {}
+void bind_dem(py::module_& m) {
+  bind_params(m);
+  bind_system(m);
+  bind_packing(m);
+}
 
 }  // namespace vofdem::bind

@@ -1,0 +1,219 @@
+// DEM of the stones: discs in the vertical x-z plane, Maeno & Tomita (2008) sec. 2.2, eqs. (8)-(10):
+//
+//   (M_i + M'_i) x_i''  = sum_j {-f_n cos a_ij + f_s sin a_ij}_j + F_x                           (8)
+//   (M_i + M'_i) z_i''  = sum_j {-f_n sin a_ij + f_s cos a_ij}_j - (M_i - rho_w V_i) g + F_z        (9)
+//   I_i theta_i''      = (d_i / 2) sum_j {f_s}_j                                                (10)
+//
+// with M_i = rho_s V_i, V_i = pi d_i^3 / 6 (a sphere of the disc's diameter, the paper's V_i; its
+// projected area A_pi = pi d_i^2 / 4), added mass M'_i = rho_w C_M V_i, and I_i = inertia_factor M_i
+// (d_i/2)^2 (0.4: a sphere, the default; 0.5: a disc). The wet fraction w_i in [0, 1] of each stone
+// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h.
+// F_x, F_z: disc_force_ext, set by the coupler (the fluid's drag and pressure-gradient forces).
+//
+// Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
+// evaluation per step. Walls are half-planes (the flume bed, its end walls); fixed stones are discs
+// that never move. Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept
+// sorted by (i, j) so that contact histories and force sums are evaluated in one fixed order: runs are
+// bit-for-bit reproducible, and export_state()/import_state() restart them bit-for-bit.
+//
+// References: Maeno, S. & Tomita, A. (2008), ICHE 2008, Nagoya. Gotoh, H. & Sakai, T. (1997), J. Waterway
+// Port Coastal Ocean Eng. 123(6), 329-336. Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29, 47-65.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "vofdem/profile.h"
+
+namespace vofdem {
+
+// effect flags of DEMParams::flags; each stage checks its bit first
+enum DEMFlag : unsigned {
+  kDEMGravity = 1u << 0,        // gravity (and buoyancy if kDEMBuoyancy)
+  kDEMRotation = 1u << 1,       // eq. (10): stones spin; off: omega stays 0
+  kDEMFriction = 1u << 2,       // Coulomb cap of the tangential spring; off: tangential force 0
+  kDEMAddedMass = 1u << 3,      // M' = rho_w C_M V w in eqs. (8)-(9)
+  kDEMBuoyancy = 1u << 4,       // rho_w V w g in eq. (9)
+  kDEMSleeping = 1u << 5,       // stones at rest under small forces are not integrated (Box2D-like)
+  kDEMDamping = 1u << 6,        // contact dashpots
+  kDEMExternalForce = 1u << 7,  // disc_force_ext (fluid forces from the coupler)
+  kDEMRemoval = 1u << 8,        // stones leaving the domain box are deactivated and counted
+  kDEMAllEffects = (1u << 9) - 1u - (1u << 5),  // everything but sleeping
+};
+
+// a half-plane wall: the solid lies on the side opposite to `normal`
+struct DEMWall {
+  std::array<double, 2> point{0.0, 0.0};   // a point of the wall line (x, z) [m]
+  std::array<double, 2> normal{0.0, 1.0};  // unit normal pointing into the flow (normalised on use)
+  double friction = 0.176;                 // stone-wall Coulomb coefficient [-] (paper: 0.176)
+};
+
+// constant parameters of a DEM run (SI units)
+struct DEMParams {
+  std::array<double, 2> gravity{0.0, -9.81};  // gravitational acceleration (x, z) [m/s^2]
+  double fluid_density = 0.0;                 // rho_w [kg/m^3]; 1000 for water, 0 = dry
+  double added_mass_coefficient = 1.0;        // C_M [-]; paper's run 1.0 (its text 0.5)
+  double dt = 1e-4;                           // DEM step [s]; advance() substeps never exceed it (paper 1e-4)
+  double stiffness_normal = 0.0;              // k_n [N/m]; 0 = automatic (Gotoh & Sakai): see dem_contact.h
+  double contact_steps = 20.0;                // automatic k_n: steps per undamped contact of mean stones [-]
+  double stiffness_ratio = 2.0 / 7.0;         // k_t / k_n [-]; 2/7 usual
+  double restitution = 0.0;                   // normal restitution e [-] in [0, 1]; 0 = critical damping
+  double tangential_damping_factor = 0.5;     // c_t / c_n [-]; 0.5 usual (LAMMPS default)
+  double friction_stone = 0.577;              // stone-stone Coulomb coefficient [-] (paper 0.577)
+  double inertia_factor = 0.4;                // I = factor M r^2 [-]; 0.4 sphere, 0.5 disc
+  std::array<double, 2> domain_min{-1e30, -1e30};  // removal box, lower corner (x, z) [m]
+  std::array<double, 2> domain_max{1e30, 1e30};    // removal box, upper corner (x, z) [m]
+  double neighbour_skin = 0.0;                // Verlet-list skin [m]; 0 = 0.1 x the largest diameter
+  double sleep_velocity = 1e-3;               // a stone may sleep below this speed (and omega r) [m/s]
+  double sleep_time = 0.2;                    // ... held for this long [s]
+  double wake_acceleration = 0.2;             // a sleeping stone wakes when its net force gives more [m/s^2]
+  std::vector<DEMWall> walls;                 // half-plane walls (bed, end walls)
+  unsigned flags = kDEMAllEffects;            // DEMFlag bits
+
+  // adds the flume: bed z = z_bed and end walls x = x_min, x_max [m], all with stone-wall friction mu
+  void add_flume(double x_min, double x_max, double z_bed, double mu = 0.176);
+};
+
+// named stages of a DEM step (StageProfile indices)
+enum DEMStage : int { kStageIntegrate = 0, kStageRemoval, kStageNeighbours, kStageBodyForces, kStageContacts,
+                      kStageWalls, kStageSleep, kStageChecks, kDEMStageCount };
+
+// energy bookkeeping [J]: kinetic + potential + elastic - work_external + dissipated is conserved
+struct DEMEnergy {
+  double kinetic = 0.0;        // sum 1/2 (M + M') v^2 + 1/2 I omega^2 [J]
+  double potential = 0.0;      // sum -(M - rho_w V w) g . x [J] (zero at the origin)
+  double elastic = 0.0;        // energy in the contact springs at the last force evaluation [J]
+  double dissipated = 0.0;     // dashpots + Coulomb slip + sleeping, accumulated [J]
+  double work_external = 0.0;  // work of disc_force_ext, accumulated [J]
+  double total() const { return kinetic + potential + elastic + dissipated - work_external; }
+};
+
+class DEMSystem {
+ public:
+  // n stones, all at the origin with zero radius: fill the arrays before stepping
+  DEMSystem(const DEMParams& params, int n);
+  // stones at pos (x, z pairs) [m] with radius [m], density [kg/m^3], fixed flags (empty: none fixed)
+  DEMSystem(const DEMParams& params, const std::vector<double>& pos, const std::vector<double>& radius,
+            const std::vector<double>& density, const std::vector<std::uint8_t>& fixed = {});
+
+  // resizes every per-stone array to n stones (new ones zeroed); invalidates views and histories
+  void resize(int n);
+
+  int n() const { return n_; }
+  const DEMParams& params() const { return params_; }
+  // replaces the parameters (walls, flags, stiffness...); checked on the next step
+  void set_params(const DEMParams& p);
+
+  // the contact's stable step [s]: 1/10 of the shortest undamped contact period pi / omega_max
+  // (normal and tangential-rotational modes of the lightest stone)
+  double stable_dt();
+  // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise)
+  void step(double dt);
+  // advances by duration [s] in equal substeps no larger than params().dt
+  void advance(double duration);
+
+  // contact constants in use (after the automatic choice) [N/m]
+  double stiffness_normal() const { return kn_; }
+  double stiffness_tangential() const { return kt_; }
+  // damping ratio zeta [-] from the restitution coefficient
+  double damping_ratio() const { return zeta_; }
+
+  double time() const { return time_; }
+  long long steps() const { return steps_; }
+  int removed_count() const { return removed_; }   // stones deactivated by leaving the domain box
+  int contact_count() const { return ncontact_; }  // stone-stone contacts at the last force evaluation
+  int wall_contact_count() const { return nwall_contact_; }
+  int neighbour_builds() const { return nbuilds_; }
+  DEMEnergy energy() const;
+
+  // derived per-stone properties of the sphere of the disc's diameter (read-only for users)
+  double mass(int i) const;    // M_i [kg]
+  double volume(int i) const;  // V_i [m^3]
+  // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
+  std::vector<std::array<int, 2>> neighbour_pairs() const;
+  // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
+  std::vector<std::array<int, 2>> overlapping_pairs_reference() const;
+  // pairs that overlap now, from the fast neighbour search
+  std::vector<std::array<int, 2>> overlapping_pairs() ;
+
+  // every piece of the state (stone arrays, accelerations, contact histories, counters, time) as
+  // named flat arrays; import_state() restores it exactly (bit-for-bit restart)
+  std::map<std::string, std::vector<double>> export_state() const;
+  void import_state(const std::map<std::string, std::vector<double>>& state);
+
+  StageProfile& profile() { return profile_; }
+
+  // ---- state arrays (flat; vectors stored as (x, z) pairs) ----
+  std::vector<double> disc_pos;             // centre (x along the flume, z up) [m], 2n
+  std::vector<double> disc_vel;             // velocity [m/s], 2n
+  std::vector<double> disc_angle;           // rotation angle, counter-clockwise in (x, z) [rad], n
+  std::vector<double> disc_omega;           // angular velocity [rad/s], n
+  std::vector<double> disc_radius;          // radius d/2 [m], n (usual 0.024)
+  std::vector<double> disc_density;         // rho_s [kg/m^3], n (usual 2650)
+  std::vector<std::uint8_t> disc_fixed;     // 1: never moves (bed layer), n
+  std::vector<std::uint8_t> disc_active;    // 0: left the domain (kept, not integrated), n
+  std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
+  std::vector<double> disc_wet;             // wet fraction in [0, 1], n (1 when fluid_density > 0)
+  std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
+  std::vector<double> disc_torque;          // total torque of the last evaluation [N m], n (output)
+  std::vector<double> disc_acc;             // acceleration of the last evaluation [m/s^2], 2n
+  std::vector<double> disc_alpha;           // angular acceleration of the last evaluation [rad/s^2], n
+  std::vector<std::uint8_t> disc_asleep;    // 1: sleeping (not integrated), n
+  std::vector<double> disc_sleep_timer;     // time spent below the sleep speed [s], n
+
+ private:
+  struct Pair {
+    int i, j;
+    double xi;  // tangential spring [m]
+  };
+  void prepare();
+  void check_params() const;
+  void check_stones() const;
+  void update_properties();
+  void build_neighbours();
+  bool neighbours_stale() const;
+  void advance_checked(double dt, long long nsub);
+  void substep(double dt);
+  bool moving(int i) const;
+  void integrate_first_half(double dt);
+  void integrate_second_half(double dt);
+  void remove_escaped();
+  void body_forces(double dt);
+  void contact_forces(double dt);
+  void wall_forces(double dt);
+  void sleep_update(double dt);
+  double reduced_stiffness_mass() const;
+
+  DEMParams params_;
+  int n_ = 0;
+  bool prepared_ = false;
+  double kn_ = 0.0, kt_ = 0.0, zeta_ = 0.0;
+  double time_ = 0.0;
+  long long steps_ = 0;
+  int removed_ = 0;
+  int ncontact_ = 0, nwall_contact_ = 0, nbuilds_ = 0;
+  double elastic_ = 0.0, dissipated_ = 0.0, work_external_ = 0.0;
+
+  // derived per stone (refreshed by prepare())
+  std::vector<double> mass_eff_;     // M + M' [kg]
+  std::vector<double> inv_mass_;     // 1 / (M + M'), 0 if fixed or inactive [1/kg]
+  std::vector<double> inv_inertia_;  // 1 / I [1/(kg m^2)]
+  std::vector<double> weight_;       // (M - rho_w V w) [kg]: multiplies g
+
+  // neighbour list and contact histories
+  std::vector<Pair> pairs_;
+  std::vector<double> wall_xi_;      // tangential spring per (stone, wall) [m], n * nwall
+  std::vector<double> build_pos_;    // positions at the last neighbour build
+  double skin_ = 0.0;
+  bool rebuild_ = true;
+  std::vector<int> cell_start_, cell_next_;
+  std::vector<Pair> new_pairs_;
+
+  StageProfile profile_;
+};
+
+}  // namespace vofdem

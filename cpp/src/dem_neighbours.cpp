@@ -1,0 +1,126 @@
+// Neighbour search of DEMSystem: a Verlet list with a skin, built in O(N) from a cell grid.
+//
+// Pairs (i < j) whose gap is below the skin are listed in (i, j) order; the list is rebuilt when a
+// stone has moved more than half the skin since the last build, so no contact can be missed. Each
+// pair carries its tangential spring (the contact history); a rebuild carries the histories over by a
+// merge of the two sorted lists, so the order of every force sum is fixed and runs are reproducible.
+#include <algorithm>
+#include <cmath>
+
+#include "vofdem/dem_system.h"
+
+namespace vofdem {
+
+bool DEMSystem::neighbours_stale() const {
+  if (build_pos_.size() != disc_pos.size()) return true;
+  const double lim2 = 0.25 * skin_ * skin_;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    const double dx = disc_pos[2 * i] - build_pos_[2 * i];
+    const double dz = disc_pos[2 * i + 1] - build_pos_[2 * i + 1];
+    if (dx * dx + dz * dz > lim2) return true;
+  }
+  return false;
+}
+
+void DEMSystem::build_neighbours() {
+  ++nbuilds_;
+  rebuild_ = false;
+  build_pos_ = disc_pos;
+  new_pairs_.clear();
+  double rmax = 0.0, xmin = INFINITY, xmax = -INFINITY, zmin = INFINITY, zmax = -INFINITY;
+  int nact = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    ++nact;
+    rmax = std::max(rmax, disc_radius[i]);
+    xmin = std::min(xmin, disc_pos[2 * i]);
+    xmax = std::max(xmax, disc_pos[2 * i]);
+    zmin = std::min(zmin, disc_pos[2 * i + 1]);
+    zmax = std::max(zmax, disc_pos[2 * i + 1]);
+  }
+  if (nact < 2) {
+    pairs_.swap(new_pairs_);
+    pairs_.clear();
+    return;
+  }
+  // cells no smaller than the largest cut-off; at most ~4 cells per stone even if stones spread far
+  double h = 2.0 * rmax + skin_;
+  const double max_cells = 4.0 * nact + 16.0;
+  while (std::floor((xmax - xmin) / h + 1.0) * std::floor((zmax - zmin) / h + 1.0) > max_cells) h *= 1.5;
+  const int ncx = static_cast<int>((xmax - xmin) / h) + 1;
+  const int ncz = static_cast<int>((zmax - zmin) / h) + 1;
+  cell_start_.assign(static_cast<std::size_t>(ncx) * ncz, -1);
+  cell_next_.assign(static_cast<std::size_t>(n_), -1);
+  auto cell_x = [&](int i) { return std::min(ncx - 1, static_cast<int>((disc_pos[2 * i] - xmin) / h)); };
+  auto cell_z = [&](int i) { return std::min(ncz - 1, static_cast<int>((disc_pos[2 * i + 1] - zmin) / h)); };
+  // head insertion in descending order leaves every cell's list ascending
+  for (int i = n_ - 1; i >= 0; --i) {
+    if (!disc_active[i]) continue;
+    const std::size_t c = static_cast<std::size_t>(cell_x(i)) + static_cast<std::size_t>(ncx) * cell_z(i);
+    cell_next_[i] = cell_start_[c];
+    cell_start_[c] = i;
+  }
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    const int cx = cell_x(i), cz = cell_z(i);
+    const std::size_t first = new_pairs_.size();
+    const double xi = disc_pos[2 * i], zi = disc_pos[2 * i + 1], ri = disc_radius[i];
+    for (int kz = std::max(0, cz - 1); kz <= std::min(ncz - 1, cz + 1); ++kz) {
+      for (int kx = std::max(0, cx - 1); kx <= std::min(ncx - 1, cx + 1); ++kx) {
+        for (int j = cell_start_[static_cast<std::size_t>(kx) + static_cast<std::size_t>(ncx) * kz]; j >= 0;
+             j = cell_next_[j]) {
+          if (j <= i || (disc_fixed[i] && disc_fixed[j])) continue;
+          const double dx = disc_pos[2 * j] - xi, dz = disc_pos[2 * j + 1] - zi;
+          const double cut = ri + disc_radius[j] + skin_;
+          if (dx * dx + dz * dz < cut * cut) new_pairs_.push_back({i, j, 0.0});
+        }
+      }
+    }
+    std::sort(new_pairs_.begin() + static_cast<std::ptrdiff_t>(first), new_pairs_.end(),
+              [](const Pair& a, const Pair& b) { return a.j < b.j; });
+  }
+  // carry the tangential springs over (both lists sorted by (i, j))
+  std::size_t k = 0;
+  for (Pair& p : new_pairs_) {
+    while (k < pairs_.size() && (pairs_[k].i < p.i || (pairs_[k].i == p.i && pairs_[k].j < p.j))) ++k;
+    if (k < pairs_.size() && pairs_[k].i == p.i && pairs_[k].j == p.j) p.xi = pairs_[k].xi;
+  }
+  pairs_.swap(new_pairs_);
+}
+
+std::vector<std::array<int, 2>> DEMSystem::neighbour_pairs() const {
+  std::vector<std::array<int, 2>> out;
+  out.reserve(pairs_.size());
+  for (const Pair& p : pairs_) out.push_back({p.i, p.j});
+  return out;
+}
+
+std::vector<std::array<int, 2>> DEMSystem::overlapping_pairs_reference() const {
+  std::vector<std::array<int, 2>> out;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    for (int j = i + 1; j < n_; ++j) {
+      if (!disc_active[j] || (disc_fixed[i] && disc_fixed[j])) continue;
+      const double dx = disc_pos[2 * j] - disc_pos[2 * i], dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
+      const double rs = disc_radius[i] + disc_radius[j];
+      if (dx * dx + dz * dz < rs * rs) out.push_back({i, j});
+    }
+  }
+  return out;
+}
+
+std::vector<std::array<int, 2>> DEMSystem::overlapping_pairs() {
+  prepare();
+  build_neighbours();
+  std::vector<std::array<int, 2>> out;
+  for (const Pair& p : pairs_) {
+    const int i = p.i, j = p.j;
+    const double dx = disc_pos[2 * j] - disc_pos[2 * i], dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
+    const double rs = disc_radius[i] + disc_radius[j];
+    if (dx * dx + dz * dz < rs * rs) out.push_back({i, j});
+  }
+  return out;
+}
+
+}  // namespace vofdem

@@ -1,0 +1,511 @@
+// DEM of the stones, eqs. (8)-(10) of Maeno & Tomita (2008): see dem_system.h.
+#include "vofdem/dem_system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "vofdem/check.h"
+#include "vofdem/dem_contact.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+const char* kStageNames[kDEMStageCount] = {"integrate", "removal", "neighbours", "body_forces",
+                                            "contacts",  "walls",   "sleep",      "checks"};
+
+// sphere of the disc's diameter: volume [m^3]
+inline double sphere_volume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }
+
+[[noreturn]] void fail(const std::string& stage, int stone, double t, const std::string& what) {
+  throw std::runtime_error("DEM stage '" + stage + "': " + what + " of stone " + std::to_string(stone) +
+                           " at t = " + format_value(t) + " s (state restored to the start of the call)");
+}
+}  // namespace
+
+void DEMParams::add_flume(double x_min, double x_max, double z_bed, double mu) {
+  require_finite("x_min", x_min);
+  require_finite("z_bed", z_bed);
+  if (!(x_max > x_min)) require_in_open_closed("x_max", x_max, x_min, INFINITY);
+  require_non_negative("mu", mu);
+  walls.push_back({{x_min, z_bed}, {0.0, 1.0}, mu});
+  walls.push_back({{x_min, z_bed}, {1.0, 0.0}, mu});
+  walls.push_back({{x_max, z_bed}, {-1.0, 0.0}, mu});
+}
+
+DEMSystem::DEMSystem(const DEMParams& params, int n) : params_(params) {
+  for (int s = 0; s < kDEMStageCount; ++s) profile_.add_stage(kStageNames[s]);
+  check_params();
+  resize(n);
+}
+
+DEMSystem::DEMSystem(const DEMParams& params, const std::vector<double>& pos, const std::vector<double>& radius,
+                     const std::vector<double>& density, const std::vector<std::uint8_t>& fixed)
+    : DEMSystem(params, static_cast<int>(radius.size())) {
+  if (pos.size() != 2 * radius.size())
+    require_in_closed("pos size", static_cast<double>(pos.size()), 2.0 * radius.size(), 2.0 * radius.size());
+  if (density.size() != radius.size() && density.size() != 1)
+    require_in_closed("density size", static_cast<double>(density.size()), 1.0, 1.0 * radius.size());
+  if (!fixed.empty() && fixed.size() != radius.size())
+    require_in_closed("fixed size", static_cast<double>(fixed.size()), 0.0, 1.0 * radius.size());
+  disc_pos = pos;
+  disc_radius = radius;
+  for (int i = 0; i < n_; ++i) disc_density[i] = density.size() == 1 ? density[0] : density[i];
+  if (!fixed.empty()) disc_fixed = fixed;
+  check_stones();
+}
+
+void DEMSystem::resize(int n) {
+  if (n < 0) require_non_negative("n", n);
+  n_ = n;
+  const std::size_t un = static_cast<std::size_t>(n);
+  const double wet = params_.fluid_density > 0.0 ? 1.0 : 0.0;
+  disc_pos.assign(2 * un, 0.0);
+  disc_vel.assign(2 * un, 0.0);
+  disc_angle.assign(un, 0.0);
+  disc_omega.assign(un, 0.0);
+  disc_radius.assign(un, 0.0);
+  disc_density.assign(un, 2650.0);
+  disc_fixed.assign(un, 0);
+  disc_active.assign(un, 1);
+  disc_force_ext.assign(2 * un, 0.0);
+  disc_wet.assign(un, wet);
+  disc_force.assign(2 * un, 0.0);
+  disc_torque.assign(un, 0.0);
+  disc_acc.assign(2 * un, 0.0);
+  disc_alpha.assign(un, 0.0);
+  disc_asleep.assign(un, 0);
+  disc_sleep_timer.assign(un, 0.0);
+  pairs_.clear();
+  wall_xi_.assign(un * params_.walls.size(), 0.0);
+  rebuild_ = true;
+  prepared_ = false;
+}
+
+void DEMSystem::set_params(const DEMParams& p) {
+  const std::size_t old_walls = params_.walls.size();
+  params_ = p;
+  check_params();
+  if (params_.walls.size() != old_walls) wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
+  rebuild_ = true;
+  prepared_ = false;
+}
+
+void DEMSystem::check_params() const {
+  const DEMParams& p = params_;
+  require_finite("gravity[0]", p.gravity[0]);
+  require_finite("gravity[1]", p.gravity[1]);
+  require_non_negative("fluid_density", p.fluid_density);
+  require_non_negative("added_mass_coefficient", p.added_mass_coefficient);
+  require_positive("dt", p.dt);
+  require_non_negative("stiffness_normal", p.stiffness_normal);
+  require_in_closed("contact_steps", p.contact_steps, 5.0, 1e6);
+  require_non_negative("stiffness_ratio", p.stiffness_ratio);
+  require_in_closed("restitution", p.restitution, 0.0, 1.0);
+  require_non_negative("tangential_damping_factor", p.tangential_damping_factor);
+  require_non_negative("friction_stone", p.friction_stone);
+  require_in_open_closed("inertia_factor", p.inertia_factor, 0.0, 1.0);
+  require_non_negative("neighbour_skin", p.neighbour_skin);
+  require_non_negative("sleep_velocity", p.sleep_velocity);
+  require_non_negative("sleep_time", p.sleep_time);
+  require_non_negative("wake_acceleration", p.wake_acceleration);
+  for (int c = 0; c < 2; ++c) {
+    if (!(p.domain_max[c] > p.domain_min[c]))
+      require_in_open_closed(c == 0 ? "domain_max[0]" : "domain_max[1]", p.domain_max[c], p.domain_min[c], INFINITY);
+  }
+  for (const DEMWall& w : p.walls) {
+    require_finite("wall point", w.point[0]);
+    require_finite("wall point", w.point[1]);
+    require_positive("wall normal length", std::hypot(w.normal[0], w.normal[1]));
+    require_non_negative("wall friction", w.friction);
+  }
+}
+
+void DEMSystem::check_stones() const {
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    require_positive("disc_radius", disc_radius[i]);
+    require_positive("disc_density", disc_density[i]);
+    require_in_closed("disc_wet", disc_wet[i], 0.0, 1.0);
+    require_finite("disc_pos", disc_pos[2 * i]);
+    require_finite("disc_pos", disc_pos[2 * i + 1]);
+    require_finite("disc_force_ext", disc_force_ext[2 * i]);
+    require_finite("disc_force_ext", disc_force_ext[2 * i + 1]);
+  }
+}
+
+double DEMSystem::mass(int i) const { return disc_density[i] * sphere_volume(disc_radius[i]); }
+double DEMSystem::volume(int i) const { return sphere_volume(disc_radius[i]); }
+
+// derived masses (eqs. 8-9): M + M', buoyant weight, inertia; fixed or inactive stones get 1/M = 0
+void DEMSystem::update_properties() {
+  const DEMParams& p = params_;
+  const std::size_t un = static_cast<std::size_t>(n_);
+  mass_eff_.resize(un);
+  inv_mass_.resize(un);
+  inv_inertia_.resize(un);
+  weight_.resize(un);
+  const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
+  const bool buoy = (p.flags & kDEMBuoyancy) && p.fluid_density > 0.0;
+  for (int i = 0; i < n_; ++i) {
+    const double v = sphere_volume(disc_radius[i]);
+    const double m = disc_density[i] * v;
+    const double wv = v * disc_wet[i];
+    mass_eff_[i] = m + (added ? p.fluid_density * p.added_mass_coefficient * wv : 0.0);
+    weight_[i] = m - (buoy ? p.fluid_density * wv : 0.0);
+    const bool mobile = disc_active[i] && !disc_fixed[i];
+    inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
+    const double inertia = p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+    inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
+  }
+}
+
+// reduced mass of two mean mobile stones [kg], for the automatic stiffness
+double DEMSystem::reduced_stiffness_mass() const {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i] || disc_fixed[i]) continue;
+    sum += mass(i);
+    ++count;
+  }
+  if (count == 0) {
+    for (int i = 0; i < n_; ++i) sum += mass(i), ++count;
+  }
+  return count > 0 ? 0.5 * sum / count : 0.0;
+}
+
+void DEMSystem::prepare() {
+  check_stones();
+  const DEMParams& p = params_;
+  if (p.stiffness_normal > 0.0) {
+    kn_ = p.stiffness_normal;
+  } else {
+    const double w = kPi / (p.contact_steps * p.dt);
+    kn_ = reduced_stiffness_mass() * w * w;
+  }
+  kt_ = p.stiffness_ratio * kn_;
+  zeta_ = damping_ratio_from_restitution(p.restitution);
+  double rmax = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (disc_active[i]) rmax = std::max(rmax, disc_radius[i]);
+  const double skin = p.neighbour_skin > 0.0 ? p.neighbour_skin : 0.2 * rmax;
+  if (skin != skin_) rebuild_ = true;
+  skin_ = skin;
+  if (wall_xi_.size() != static_cast<std::size_t>(n_) * p.walls.size())
+    wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
+  if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
+  update_properties();
+  // radii or activity may have been changed through the views
+  rebuild_ = true;
+  prepared_ = true;
+}
+
+double DEMSystem::stable_dt() {
+  prepare();
+  double m_min = INFINITY;
+  for (int i = 0; i < n_; ++i)
+    if (disc_active[i] && !disc_fixed[i]) m_min = std::min(m_min, mass(i));
+  if (!std::isfinite(m_min) || kn_ <= 0.0) return INFINITY;
+  // two of the lightest stones: normal mode and the tangential mode that includes their spin
+  const double w2_n = 2.0 * kn_ / m_min;
+  const double rot = (params_.flags & kDEMRotation) ? 1.0 / params_.inertia_factor : 0.0;
+  const double w2_t = 2.0 * kt_ * (1.0 + rot) / m_min;
+  const double w = std::sqrt(std::max(w2_n, w2_t));
+  return kPi / (10.0 * w);
+}
+
+void DEMSystem::step(double dt) { advance_checked(dt, 1); }
+
+void DEMSystem::advance(double duration) {
+  require_positive("duration", duration);
+  const long long nsub = std::max(1LL, static_cast<long long>(std::ceil(duration / params_.dt - 1e-9)));
+  advance_checked(duration / static_cast<double>(nsub), nsub);
+}
+
+void DEMSystem::advance_checked(double dt, long long nsub) {
+  require_positive("dt", dt);
+  const double limit = stable_dt();  // also prepares
+  if (dt > limit)
+    throw std::invalid_argument("dt = " + format_value(dt) +
+                                " s exceeds the DEM contact's stable step: allowed range (0, " +
+                                format_value(limit) + "] (stable_dt(); lower dt or stiffness_normal)");
+  const auto backup = export_state();
+  try {
+    for (long long s = 0; s < nsub; ++s) substep(dt);
+  } catch (const std::runtime_error&) {
+    import_state(backup);
+    throw;
+  }
+}
+
+// one velocity-Verlet step: kick-drift, forces at the new positions, kick
+void DEMSystem::substep(double dt) {
+  const unsigned f = params_.flags;
+  {
+    ScopedStage s(profile_, kStageIntegrate);
+    integrate_first_half(dt);
+  }
+  if (f & kDEMRemoval) {
+    ScopedStage s(profile_, kStageRemoval);
+    remove_escaped();
+  }
+  {
+    ScopedStage s(profile_, kStageNeighbours);
+    if (rebuild_ || neighbours_stale()) build_neighbours();
+  }
+  {
+    ScopedStage s(profile_, kStageBodyForces);
+    body_forces(dt);
+  }
+  {
+    ScopedStage s(profile_, kStageContacts);
+    contact_forces(dt);
+  }
+  if (!params_.walls.empty()) {
+    ScopedStage s(profile_, kStageWalls);
+    wall_forces(dt);
+  }
+  time_ += dt;
+  ++steps_;
+  {
+    ScopedStage s(profile_, kStageChecks);
+    integrate_second_half(dt);
+  }
+  if (f & kDEMSleeping) {
+    ScopedStage s(profile_, kStageSleep);
+    sleep_update(dt);
+  }
+}
+
+bool DEMSystem::moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
+
+void DEMSystem::integrate_first_half(double dt) {
+  const double h = 0.5 * dt;
+  for (int i = 0; i < n_; ++i) {
+    if (!moving(i)) continue;
+    double* v = &disc_vel[2 * i];
+    double* x = &disc_pos[2 * i];
+    const double* a = &disc_acc[2 * i];
+    v[0] += h * a[0];
+    v[1] += h * a[1];
+    x[0] += dt * v[0];
+    x[1] += dt * v[1];
+    disc_omega[i] += h * disc_alpha[i];
+    disc_angle[i] += dt * disc_omega[i];
+  }
+}
+
+// second kick from the new accelerations; a non-finite value aborts the call
+void DEMSystem::integrate_second_half(double dt) {
+  const double h = 0.5 * dt;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    double* a = &disc_acc[2 * i];
+    a[0] = disc_force[2 * i] * inv_mass_[i];
+    a[1] = disc_force[2 * i + 1] * inv_mass_[i];
+    disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
+    if (disc_asleep[i]) continue;
+    double* v = &disc_vel[2 * i];
+    v[0] += h * a[0];
+    v[1] += h * a[1];
+    disc_omega[i] += h * disc_alpha[i];
+    if (!std::isfinite(v[0] + v[1] + disc_omega[i] + disc_pos[2 * i] + disc_pos[2 * i + 1]))
+      fail("integrate", i, time_, "non-finite position or velocity");
+  }
+}
+
+void DEMSystem::remove_escaped() {
+  const DEMParams& p = params_;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    const double x = disc_pos[2 * i], z = disc_pos[2 * i + 1];
+    if (x >= p.domain_min[0] && x <= p.domain_max[0] && z >= p.domain_min[1] && z <= p.domain_max[1]) continue;
+    // kept in the arrays (indices stay stable), no longer simulated
+    disc_active[i] = 0;
+    inv_mass_[i] = 0.0;
+    inv_inertia_[i] = 0.0;
+    disc_vel[2 * i] = disc_vel[2 * i + 1] = 0.0;
+    disc_omega[i] = 0.0;
+    disc_acc[2 * i] = disc_acc[2 * i + 1] = 0.0;
+    disc_alpha[i] = 0.0;
+    for (std::size_t w = 0; w < p.walls.size(); ++w) wall_xi_[i * p.walls.size() + w] = 0.0;
+    ++removed_;
+    rebuild_ = true;
+  }
+}
+
+void DEMSystem::body_forces(double dt) {
+  const DEMParams& p = params_;
+  const bool grav = p.flags & kDEMGravity;
+  const bool ext = p.flags & kDEMExternalForce;
+  for (int i = 0; i < n_; ++i) {
+    double* f = &disc_force[2 * i];
+    f[0] = f[1] = 0.0;
+    disc_torque[i] = 0.0;
+    if (inv_mass_[i] == 0.0) continue;
+    if (grav) {
+      f[0] += weight_[i] * p.gravity[0];
+      f[1] += weight_[i] * p.gravity[1];
+    }
+    if (ext) {
+      const double* fe = &disc_force_ext[2 * i];
+      f[0] += fe[0];
+      f[1] += fe[1];
+      work_external_ += (fe[0] * disc_vel[2 * i] + fe[1] * disc_vel[2 * i + 1]) * dt;
+    }
+  }
+}
+
+void DEMSystem::contact_forces(double dt) {
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double ct_factor = p.tangential_damping_factor;
+  const double kt = friction ? kt_ : 0.0;
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (Pair& c : pairs_) {
+    const int i = c.i, j = c.j;
+    const double dx = disc_pos[2 * j] - disc_pos[2 * i];
+    const double dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
+    const double ri = disc_radius[i], rj = disc_radius[j];
+    const double rs = ri + rj;
+    const double d2 = dx * dx + dz * dz;
+    if (d2 >= rs * rs) {
+      c.xi = 0.0;
+      continue;
+    }
+    ++ncontact;
+    const double d = std::sqrt(d2);
+    const double nx = d > 0.0 ? dx / d : 1.0, nz = d > 0.0 ? dz / d : 0.0;
+    const double vrx = disc_vel[2 * i] - disc_vel[2 * j];
+    const double vrz = disc_vel[2 * i + 1] - disc_vel[2 * j + 1];
+    const double vn = vrx * nx + vrz * nz;
+    const double vt = -vrx * nz + vrz * nx + disc_omega[i] * ri + disc_omega[j] * rj;
+    const double m_red = 1.0 / (inv_mass_[i] + inv_mass_[j]);
+    const double cn = damp * std::sqrt(m_red);
+    const ContactForce f = friction ? linear_contact(rs - d, vn, vt, c.xi, dt, kn_, kt, cn, ct_factor * cn,
+                                                     p.friction_stone, true)
+                                    : linear_contact(rs - d, vn, 0.0, c.xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+    // force on i: -f_n n + f_s t, with t = (-n_z, n_x)
+    const double fx = -f.fn * nx - f.ft * nz;
+    const double fz = -f.fn * nz + f.ft * nx;
+    disc_force[2 * i] += fx;
+    disc_force[2 * i + 1] += fz;
+    disc_force[2 * j] -= fx;
+    disc_force[2 * j + 1] -= fz;
+    disc_torque[i] += ri * f.ft;
+    disc_torque[j] += rj * f.ft;
+    elastic += f.energy_spring;
+    dissipated += f.power_damp * dt + f.energy_slip;
+  }
+  elastic_ = elastic;
+  dissipated_ += dissipated;
+  ncontact_ = ncontact;
+}
+
+void DEMSystem::wall_forces(double dt) {
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double kt = friction ? kt_ : 0.0;
+  const std::size_t nw = p.walls.size();
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (std::size_t w = 0; w < nw; ++w) {
+    const DEMWall& wall = p.walls[w];
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    // contact normal from the stone into the wall
+    const double nx = -wx, nz = -wz;
+    for (int i = 0; i < n_; ++i) {
+      if (inv_mass_[i] == 0.0) continue;
+      double& xi = wall_xi_[static_cast<std::size_t>(i) * nw + w];
+      const double r = disc_radius[i];
+      const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
+      if (s >= r) {
+        xi = 0.0;
+        continue;
+      }
+      ++ncontact;
+      const double vx = disc_vel[2 * i], vz = disc_vel[2 * i + 1];
+      const double vn = vx * nx + vz * nz;
+      const double vt = -vx * nz + vz * nx + disc_omega[i] * r;
+      const double cn = damp * std::sqrt(mass_eff_[i]);
+      const ContactForce f = friction ? linear_contact(r - s, vn, vt, xi, dt, kn_, kt,
+                                                       cn, p.tangential_damping_factor * cn, wall.friction, true)
+                                      : linear_contact(r - s, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+      disc_force[2 * i] += -f.fn * nx - f.ft * nz;
+      disc_force[2 * i + 1] += -f.fn * nz + f.ft * nx;
+      disc_torque[i] += r * f.ft;
+      elastic += f.energy_spring;
+      dissipated += f.power_damp * dt + f.energy_slip;
+    }
+  }
+  elastic_ += elastic;
+  dissipated_ += dissipated;
+  nwall_contact_ = ncontact;
+}
+
+// Box2D-like sleeping: slow for sleep_time -> frozen; woken when its net force would accelerate it
+void DEMSystem::sleep_update(double dt) {
+  const DEMParams& p = params_;
+  const double v2 = p.sleep_velocity * p.sleep_velocity;
+  const double a2 = p.wake_acceleration * p.wake_acceleration;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    const double* a = &disc_acc[2 * i];
+    const double r = disc_radius[i];
+    if (disc_asleep[i]) {
+      const double ar = disc_alpha[i] * r;
+      if (a[0] * a[0] + a[1] * a[1] + ar * ar > a2) {
+        disc_asleep[i] = 0;
+        disc_sleep_timer[i] = 0.0;
+      }
+      continue;
+    }
+    double* v = &disc_vel[2 * i];
+    const double wr = disc_omega[i] * r;
+    if (v[0] * v[0] + v[1] * v[1] < v2 && wr * wr < v2) {
+      disc_sleep_timer[i] += dt;
+      if (disc_sleep_timer[i] >= p.sleep_time) {
+        dissipated_ += 0.5 * mass_eff_[i] * (v[0] * v[0] + v[1] * v[1]) +
+                       (inv_inertia_[i] > 0.0 ? 0.5 * disc_omega[i] * disc_omega[i] / inv_inertia_[i] : 0.0);
+        disc_asleep[i] = 1;
+        v[0] = v[1] = 0.0;
+        disc_omega[i] = 0.0;
+      }
+    } else {
+      disc_sleep_timer[i] = 0.0;
+    }
+  }
+}
+
+DEMEnergy DEMSystem::energy() const {
+  const DEMParams& p = params_;
+  DEMEnergy e;
+  const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
+  const bool buoy = (p.flags & kDEMBuoyancy) && p.fluid_density > 0.0;
+  const bool grav = p.flags & kDEMGravity;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i] || disc_fixed[i]) continue;
+    const double v = sphere_volume(disc_radius[i]);
+    const double m = disc_density[i] * v;
+    const double wv = v * disc_wet[i];
+    const double me = m + (added ? p.fluid_density * p.added_mass_coefficient * wv : 0.0);
+    const double mw = m - (buoy ? p.fluid_density * wv : 0.0);
+    const double inertia = p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+    const double* u = &disc_vel[2 * i];
+    e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * disc_omega[i] * disc_omega[i];
+    if (grav) e.potential -= mw * (p.gravity[0] * disc_pos[2 * i] + p.gravity[1] * disc_pos[2 * i + 1]);
+  }
+  e.elastic = elastic_;
+  e.dissipated = dissipated_;
+  e.work_external = work_external_;
+  return e;
+}
+
+}  // namespace vofdem

@@ -1,0 +1,284 @@
+// Packing generator of a trapezoidal rubble mound weir: see weir_packing.h.
+#include "vofdem/weir_packing.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <cstdio>
+#include <cstdlib>
+
+#include "vofdem/check.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// uniform in [0, 1) from the top 53 bits, independent of the standard library's distributions
+double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+
+double draw_diameter(std::mt19937_64& g, const WeirSpec& s) {
+  return s.d_mean * (1.0 + s.d_spread * (2.0 * uniform01(g) - 1.0));
+}
+
+void check_spec(const WeirSpec& s) {
+  require_positive("height", s.height);
+  require_non_negative("crest", s.crest);
+  require_in_open_closed("slope_up_deg", s.slope_up_deg, 0.0, 90.0);
+  require_in_open_closed("slope_down_deg", s.slope_down_deg, 0.0, 90.0);
+  require_finite("x_toe", s.x_toe);
+  require_finite("z_bed", s.z_bed);
+  require_positive("d_mean", s.d_mean);
+  require_in_closed("d_spread", s.d_spread, 0.0, 0.5);
+  require_positive("density", s.density);
+  require_positive("settle_time_max", s.settle_time_max);
+  require_positive("rest_speed", s.rest_speed);
+  if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
+}
+
+double max_speed(const DEMSystem& sys) {
+  double v2 = 0.0;
+  for (int i = 0; i < sys.n(); ++i) {
+    if (!sys.disc_active[i] || sys.disc_fixed[i]) continue;
+    const double vx = sys.disc_vel[2 * i], vz = sys.disc_vel[2 * i + 1];
+    const double wr = sys.disc_omega[i] * sys.disc_radius[i];
+    v2 = std::max(v2, std::max(vx * vx + vz * vz, wr * wr));
+  }
+  return std::sqrt(v2);
+}
+
+// runs until every stone has been slower than rest_speed for `hold` seconds, or time runs out
+double settle(DEMSystem& sys, const WeirSpec& s, double hold) {
+  const double chunk = 0.01;
+  double t = 0.0, quiet = 0.0;
+  while (t < s.settle_time_max) {
+    sys.advance(chunk);
+    t += chunk;
+    quiet = max_speed(sys) < s.rest_speed ? quiet + chunk : 0.0;
+    if (quiet >= hold - 1e-12) break;
+  }
+  return t;
+}
+
+// adds stones at the free sites of a loose triangular lattice filling the trapezoid (centres up to the
+// crest, within `off` [m] outside the slopes); returns how many
+int pour_round(const WeirSpec& spec, double off, std::mt19937_64& rng, std::vector<double>& pos,
+               std::vector<double>& radius, std::vector<std::uint8_t>& fixed) {
+  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
+  const double d_max = spec.d_mean * (1.0 + spec.d_spread);
+  const double pitch = 1.04 * d_max;
+  const double row = pitch * std::sqrt(3.0) / 2.0;
+  const double z_fill = spec.z_bed + spec.height;
+  int added = 0, k = 0;
+  for (double z = spec.z_bed + 1.6 * d_max; z <= z_fill; z += row, ++k) {
+    const double hz = z - spec.z_bed;
+    const double xa = spec.x_toe + hz / std::tan(au) + (0.5 * pitch - off) / std::sin(au);
+    const double xb = spec.x_end() - hz / std::tan(ad) - (0.5 * pitch - off) / std::sin(ad);
+    for (double xc = xa + (k % 2) * 0.5 * pitch; xc <= xb; xc += pitch) {
+      const double rc = 0.5 * draw_diameter(rng, spec);
+      const double xj = xc + 0.02 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean;
+      bool free_site = true;
+      for (std::size_t i = 0; i < radius.size() && free_site; ++i) {
+        const double gap = std::hypot(xj - pos[2 * i], z - pos[2 * i + 1]) - radius[i] - rc;
+        free_site = gap > 0.02 * spec.d_mean;
+      }
+      if (!free_site) continue;
+      pos.push_back(xj);
+      pos.push_back(z);
+      radius.push_back(rc);
+      fixed.push_back(0);
+      ++added;
+    }
+  }
+  return added;
+}
+
+// distance from (x, z) to the segment a-b [m]
+double segment_distance(double x, double z, double ax, double az, double bx, double bz) {
+  const double ex = bx - ax, ez = bz - az;
+  const double len2 = ex * ex + ez * ez;
+  double t = len2 > 0.0 ? ((x - ax) * ex + (z - az) * ez) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(x - ax - t * ex, z - az - t * ez);
+}
+
+struct Trapezoid {
+  double px[4], pz[4];  // corners counter-clockwise: toe, upstream crest, downstream crest, downstream toe
+  explicit Trapezoid(const WeirSpec& s) {
+    const double x1 = s.x_toe + s.height / std::tan(s.slope_up_deg * kPi / 180.0);
+    const double x2 = x1 + s.crest;
+    const double zt = s.z_bed + s.height;
+    const double xs[4] = {s.x_toe, s.x_end(), x2, x1};
+    const double zs[4] = {s.z_bed, s.z_bed, zt, zt};
+    for (int k = 0; k < 4; ++k) px[k] = xs[k], pz[k] = zs[k];
+  }
+  bool inside(double x, double z) const {
+    for (int k = 0; k < 4; ++k) {
+      const int l = (k + 1) % 4;
+      const double cross = (px[l] - px[k]) * (z - pz[k]) - (pz[l] - pz[k]) * (x - px[k]);
+      if (cross < 0.0) return false;
+    }
+    return true;
+  }
+  // signed distance (< 0 inside)
+  double distance(double x, double z) const {
+    double d = INFINITY;
+    for (int k = 0; k < 4; ++k) {
+      const int l = (k + 1) % 4;
+      d = std::min(d, segment_distance(x, z, px[k], pz[k], px[l], pz[l]));
+    }
+    return inside(x, z) ? -d : d;
+  }
+};
+}  // namespace
+
+double WeirSpec::x_end() const {
+  return x_toe + height / std::tan(slope_up_deg * kPi / 180.0) + crest +
+         height / std::tan(slope_down_deg * kPi / 180.0);
+}
+
+double WeirSpec::top(double x) const {
+  const double up = (x - x_toe) * std::tan(slope_up_deg * kPi / 180.0);
+  const double down = (x_end() - x) * std::tan(slope_down_deg * kPi / 180.0);
+  return std::max(0.0, std::min(height, std::min(up, down)));
+}
+
+double WeirSpec::area() const { return 0.5 * height * (crest + (x_end() - x_toe)); }
+
+DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report) {
+  check_spec(spec);
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::mt19937_64 rng(spec.seed);
+  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
+  const double x_end = spec.x_end();
+
+  std::vector<double> pos, radius;
+  std::vector<std::uint8_t> fixed;
+  // (1) the fixed bottom row: touching stones on the bed along the base
+  double r = 0.5 * draw_diameter(rng, spec);
+  double x = spec.x_toe + r;
+  while (x + r <= x_end + 1e-12) {
+    pos.push_back(x);
+    pos.push_back(spec.z_bed + r);
+    radius.push_back(r);
+    fixed.push_back(1);
+    const double r_next = 0.5 * draw_diameter(rng, spec);
+    x += r + r_next;
+    r = r_next;
+  }
+  const int n_fixed = static_cast<int>(radius.size());
+
+  // (2) free stones poured in rounds: the free sites of a loose triangular lattice filling the
+  // trapezoid are occupied, the stones settle inside temporary slope walls, and the gaps left at the
+  // top by the compaction are filled again in the next round
+  DEMParams p = params;
+  if (p.walls.empty()) p.walls.push_back({{spec.x_toe, spec.z_bed}, {0.0, 1.0}, 0.176});
+  const std::vector<DEMWall> final_walls = p.walls;
+  p.flags &= ~static_cast<unsigned>(kDEMSleeping | kDEMExternalForce);
+  // slope walls half a mean diameter outside the slopes: stone centres end near the slope lines
+  const double off = 0.5 * spec.d_mean;
+  p.walls.push_back({{spec.x_toe - off / std::sin(au), spec.z_bed}, {std::sin(au), -std::cos(au)},
+                     p.walls.front().friction});
+  p.walls.push_back({{x_end + off / std::sin(ad), spec.z_bed}, {-std::sin(ad), -std::cos(ad)},
+                     p.walls.front().friction});
+  double t_total = 0.0;
+  DEMSystem box(p, 0);
+  for (int round = 0; round < 6; ++round) {
+    if (pour_round(spec, off, rng, pos, radius, fixed) == 0 && round > 0) break;
+    box = DEMSystem(p, pos, radius, {spec.density}, fixed);
+    t_total += settle(box, spec, 0.2);
+    pos = box.disc_pos;
+  }
+
+  // (3) keep the stones whose centres lie below the crest
+  const double z_crest = spec.z_bed + spec.height;
+  pos.clear();
+  radius.clear();
+  fixed.clear();
+  for (int i = 0; i < box.n(); ++i) {
+    if (!box.disc_active[i]) continue;
+    if (!box.disc_fixed[i] && box.disc_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
+    pos.push_back(box.disc_pos[2 * i]);
+    pos.push_back(box.disc_pos[2 * i + 1]);
+    radius.push_back(box.disc_radius[i]);
+    fixed.push_back(box.disc_fixed[i]);
+  }
+
+  // (4) slope walls removed: the mound settles on its own
+  DEMParams q = params;
+  q.walls = final_walls;
+  DEMSystem weir(q, pos, radius, {spec.density}, fixed);
+  t_total += settle(weir, spec, 0.5);
+  // (5) hollows left where stones rolled off the crest corners are topped up, without the walls
+  for (int round = 0; round < 3; ++round) {
+    pos = weir.disc_pos;
+    if (pour_round(spec, off, rng, pos, radius, fixed) == 0) break;
+    weir = DEMSystem(q, pos, radius, {spec.density}, fixed);
+    t_total += settle(weir, spec, 0.5);
+  }
+
+  report.n_stones = weir.n();
+  report.n_fixed = n_fixed;
+  report.max_speed = max_speed(weir);
+  report.settle_time = t_total;
+  report.porosity = weir_porosity(weir, spec);
+  report.outline_error = weir_outline_error(weir, spec);
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return weir;
+}
+
+double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
+  const Trapezoid trap(spec);
+  double err = 0.0;
+  // (a) discs reaching outside
+  for (int i = 0; i < sys.n(); ++i) {
+    if (!sys.disc_active[i]) continue;
+    const double out = trap.distance(sys.disc_pos[2 * i], sys.disc_pos[2 * i + 1]) + sys.disc_radius[i];
+    err = std::max(err, out);
+  }
+  // (b) points of the slopes and crest far from every disc
+  for (int e = 1; e <= 3; ++e) {
+    const int a = e % 4, b = (e + 1) % 4;
+    const double len = std::hypot(trap.px[b] - trap.px[a], trap.pz[b] - trap.pz[a]);
+    const int m = std::max(2, static_cast<int>(len / 0.002));
+    for (int s = 0; s <= m; ++s) {
+      const double t = static_cast<double>(s) / m;
+      const double x = trap.px[a] + t * (trap.px[b] - trap.px[a]);
+      const double z = trap.pz[a] + t * (trap.pz[b] - trap.pz[a]);
+      double gap = INFINITY;
+      for (int i = 0; i < sys.n(); ++i) {
+        if (!sys.disc_active[i]) continue;
+        const double g = std::hypot(x - sys.disc_pos[2 * i], z - sys.disc_pos[2 * i + 1]) - sys.disc_radius[i];
+        gap = std::min(gap, std::max(g, 0.0));
+      }
+      err = std::max(err, gap);
+    }
+  }
+  return err;
+}
+
+double weir_porosity(const DEMSystem& sys, const WeirSpec& spec, double h) {
+  require_positive("h", h);
+  const Trapezoid trap(spec);
+  long long inside = 0, covered = 0;
+  for (double z = spec.z_bed + 0.5 * h; z < spec.z_bed + spec.height; z += h) {
+    for (double x = spec.x_toe + 0.5 * h; x < spec.x_end(); x += h) {
+      if (!trap.inside(x, z)) continue;
+      ++inside;
+      for (int i = 0; i < sys.n(); ++i) {
+        if (!sys.disc_active[i]) continue;
+        const double dx = x - sys.disc_pos[2 * i], dz = z - sys.disc_pos[2 * i + 1];
+        const double r = sys.disc_radius[i];
+        if (dx * dx + dz * dz < r * r) {
+          ++covered;
+          break;
+        }
+      }
+    }
+  }
+  return inside > 0 ? 1.0 - static_cast<double>(covered) / inside : 1.0;
+}
+
+}  // namespace vofdem
