@@ -1,0 +1,66 @@
+"""From a scene to solver objects: the DEM of the stones (packed weir), the flow solver, the coupler.
+
+Each function maps the scene's parameters (SI units, see scene.py) onto the parameter structs of the
+C++ core; no physics lives here.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core
+from .scene import Scene
+
+WATER_DENSITY = 1000.0  # kg/m^3, the water density felt by the stones (buoyancy, added mass)
+
+
+def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
+    """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags."""
+    st, fx = scene.stones, scene.effects
+    p = _core.DEMParams()
+    p.fluid_density = fluid_density
+    p.added_mass_coefficient = st.added_mass_coefficient
+    p.dt = scene.numerics.dem_dt
+    p.friction_stone = st.friction_stone
+    # the bed and the upstream end wall; downstream the stones leave over the outflow end
+    p.walls = [_core.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=st.friction_wall),
+               _core.DEMWall(point=[0.0, 0.0], normal=[1.0, 0.0], friction=st.friction_wall)]
+    # stones leaving the flume (past its end, or falling below the bed level there) are removed
+    p.domain_min = [-0.5 * scene.flume.length, -0.5 * scene.flume.height]
+    p.domain_max = [scene.flume.length, 4.0 * scene.flume.height]
+    flags = _core.DEM_GRAVITY | _core.DEM_DAMPING | _core.DEM_REMOVAL
+    if fx.rotation:
+        flags |= _core.DEM_ROTATION
+    if fx.friction:
+        flags |= _core.DEM_FRICTION
+    if fx.added_mass:
+        flags |= _core.DEM_ADDED_MASS
+    if fx.buoyancy:
+        flags |= _core.DEM_BUOYANCY
+    if fx.drag or fx.pressure_gradient:
+        flags |= _core.DEM_EXTERNAL_FORCE
+    p.flags = int(flags)
+    return p
+
+
+def build_stones(scene: Scene):
+    """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
+    scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
+    st, w = scene.stones, scene.weir
+    if st.positions:
+        pos = np.asarray(st.positions, float)
+        d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
+        fixed = (pos[:, 1] - 0.5 * d <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
+        sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density),
+                               [int(f) for f in fixed])
+        return sys_, None
+    # packed dry (the rest state does not depend on the fluid), then given the run's parameters
+    pack = dem_params(scene, fluid_density=0.0)
+    pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
+    sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
+                                      slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
+                                      d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
+                                      seed=scene.seed, params=pack)
+    sys_.params = dem_params(scene)
+    if not st.fix_bottom_layer:
+        sys_.disc_fixed[:] = 0
+    return sys_, report
