@@ -17,11 +17,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import List, Optional, Sequence
 
+import matplotlib
 import numpy as np
 from matplotlib.collections import EllipseCollection
 from matplotlib.figure import Figure
 
 WEIR_COLOR = "tab:orange"
+# matplotlib 3.6 renamed transOffset to offset_transform
+_MPL_36 = tuple(int(v) for v in matplotlib.__version__.split(".")[:2]) >= (3, 6)
 
 
 def _axes(scene, data, width=9.0, height=3.6, layout="constrained"):
@@ -47,8 +50,9 @@ def _stones(ax, data, k, colors=None, alpha=1.0):
     if colors is None:
         colors = np.where(data.fixed, "0.45", "tan")
     col = EllipseCollection(data.diameter[keep], data.diameter[keep], np.zeros(keep.sum()), units="xy",
-                            offsets=pos[keep], offset_transform=ax.transData, facecolors=np.asarray(colors)[keep],
-                            edgecolors="0.2", linewidths=0.4, alpha=alpha, zorder=3)
+                            offsets=pos[keep], facecolors=np.asarray(colors)[keep],
+                            edgecolors="0.2", linewidths=0.4, alpha=alpha, zorder=3,
+                            **{"offset_transform" if _MPL_36 else "transOffset": ax.transData})
     ax.add_collection(col)
     return col
 
