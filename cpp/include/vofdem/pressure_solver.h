@@ -12,6 +12,12 @@
 // of active cells with no Dirichlet face is singular, and the solver then returns the solution whose
 // mean over that group is zero after removing the mean of b from it (the compatible part).
 //
+// Written with A0 the operator with homogeneous boundary values and g_c = sum over the Dirichlet faces
+// of c of a_f p_bc, (P) reads A0 p = b - g. The solvers work on the symmetric positive (semi-)definite
+// M = -A0 and f = g - b (projected on the compatible part in singular groups). The relative residual
+// reported and tested against tol is ||f - M p||_2 / ||f||_2 = ||b - A p||_2 / ||b - g||_2 (compatible
+// parts), which stays meaningful when b = 0 but the boundary values are not.
+//
 // Two solvers share this interface: Eigen's sparse direct solver (the reference) and a geometric
 // multigrid preconditioned conjugate gradient (the fast default).
 #pragma once
@@ -41,9 +47,16 @@ enum class PressureSolverKind {
   kMultigridCG = 1,  // conjugate gradient preconditioned by a geometric multigrid V-cycle: the default
 };
 
+// solver parameters, constant between setups
+struct PressureSolverParams {
+  int max_iterations = 200;  // CG iteration limit [-], usual 200 (a solve needs ~10-20)
+  int smoothing_sweeps = 1;  // pre- and post-smoothing sweeps per multigrid level [-], usual 1
+  int coarsest_cells = 64;   // the hierarchy stops coarsening at or below this many cells [-], usual 64
+};
+
 struct PressureSolveStats {
   int iterations = 0;        // CG iterations (0 for the direct solver)
-  double residual = 0.0;     // final ||b - A p||_2 / ||b||_2 (0 when b = 0)
+  double residual = 0.0;     // final ||f - M p||_2 / ||f||_2 (see above; 0 when f = 0)
   double setup_seconds = 0;  // factorisation or multigrid hierarchy build
   double solve_seconds = 0;
 };
@@ -59,7 +72,8 @@ class PressureSolver {
   virtual PressureSolverKind kind() const = 0;
 };
 
-std::unique_ptr<PressureSolver> make_pressure_solver(PressureSolverKind kind);
+std::unique_ptr<PressureSolver> make_pressure_solver(PressureSolverKind kind,
+                                                    const PressureSolverParams& params = PressureSolverParams());
 
 // residual r = b - A p on active cells (0 on inactive ones); for tests and diagnostics
 void pressure_residual(const Grid2D& grid, const PressureProblem& problem, const std::vector<double>& rhs,

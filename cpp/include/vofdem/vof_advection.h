@@ -20,33 +20,55 @@
 namespace vofdem {
 
 // water fraction carried in by each boundary face where the flow enters the domain; faces where the
-// flow leaves take the fraction of the cell they leave. Sizes: left/right nz, bottom/top nx.
+// flow leaves take the fraction of the cell they leave. Sizes: left/right nz, bottom/top nx
+// (fractions in [0, 1], e.g. 1 below the inflow water level). An empty vector means 0 on that side.
 struct VofBoundaryInflow {
   std::vector<double> left, right, bottom, top;
   void resize(const Grid2D& grid, double value = 0.0);
 };
 
-// work arrays reused from step to step so that advection allocates nothing while stepping
+// work arrays reused from step to step so that advection allocates nothing while stepping (they are
+// sized on first use, or again if the grid grows), and the clipping report
 struct VofScratch {
   std::vector<double> flux, cell_c, f_tmp;
+  // F leaves [0, 1] only by round-off when the CFL limit holds; such excursions are clipped silently.
+  // Larger ones (beyond kVofClipTolerance) are clipped too but counted here, summed over all steps:
+  long long clip_count = 0;  // number of cell updates clipped by more than kVofClipTolerance
+  double clip_max = 0.0;     // largest such excursion [-]
 };
 
+// excursions of F outside [0, 1] up to this size [-] are round-off and clipped without report
+constexpr double kVofClipTolerance = 1e-12;
+
 // advances cell_F (size ncell) by dt [s]. cell_porosity: n per cell, 0 = solid (never changed);
-// face_u (size nface_x), face_w (size nface_z): superficial velocities [m/s]. x_first chooses the
-// sweep order (alternate it from step to step). Throws std::runtime_error if the advective CFL
-// (|u| dt / (n dx), per direction) exceeds 1.
+// face_u (size nface_x), face_w (size nface_z): superficial velocities [m/s], zero on every face of a
+// solid cell. x_first chooses the sweep order (alternate it from step to step). Throws
+// std::invalid_argument for wrong sizes, dt <= 0 or a non-zero velocity on a solid cell's face, and
+// std::runtime_error (cell_F untouched) if a velocity is not finite or the directional CFL number
+// |u| dt / (n dx) (resp. |w| dt / (n dz)) of a face and a fluid cell next to it exceeds 1; F stays
+// in [0, 1] only for a CFL number up to 1/2 (see vof_stable_dt).
 void advect_vof(const Grid2D& grid, const std::vector<double>& cell_porosity, const std::vector<double>& face_u,
                 const std::vector<double>& face_w, const VofBoundaryInflow& inflow, double dt, bool x_first,
                 std::vector<double>& cell_F, VofScratch& scratch);
 
+// the same on raw arrays of the sizes above (the numpy binding's entry: cell_F updated in place)
+void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* face_u, const double* face_w,
+                const VofBoundaryInflow& inflow, double dt, bool x_first, double* cell_F, VofScratch& scratch);
+
 // the largest stable advection step [s] for these velocities at a directional CFL number `cfl`
+// (usual value 0.3-0.45; at most 0.5 keeps F bounded): min over faces and their fluid cells of
+// cfl n dx / |u| (resp. cfl n dz / |w|); +inf when nothing moves
 double vof_stable_dt(const Grid2D& grid, const std::vector<double>& cell_porosity, const std::vector<double>& face_u,
                      const std::vector<double>& face_w, double cfl);
+double vof_stable_dt(const Grid2D& grid, const double* cell_porosity, const double* face_u, const double* face_w,
+                     double cfl);
 
-// PLIC helpers (unit square cell scaled to dx x dz), exposed for tests:
-// line constant alpha such that the area below m.x = alpha inside [0,dx]x[0,dz] equals f dx dz
+// PLIC helpers (unit square cell scaled to dx x dz), exposed for tests. The normal (mx, mz) points out
+// of the water, any length; coordinates are relative to the rectangle's lower-left corner [m].
+// line constant alpha [m x |m|] such that the area below m.x = alpha inside [0,dx]x[0,dz] equals
+// f dx dz (f in [0, 1]); exact (Scardovelli & Zaleski 2000)
 double plic_line_constant(double mx, double mz, double dx, double dz, double f);
-// area of {m.x <= alpha} inside the rectangle [0,dx]x[0,dz]
+// area [m^2] of {m.x <= alpha} inside the rectangle [0,dx]x[0,dz]
 double plic_area_below(double mx, double mz, double dx, double dz, double alpha);
 
 }  // namespace vofdem

@@ -1,0 +1,234 @@
+// Free-surface flow over and through a porous medium on a vertical 2D MAC grid: seed paper eqs. (1)-(4).
+//
+//   du/dx + dw/dz = 0                                                                        (1)
+//   du/dt + div(u u / n) = n (-(1/rho) grad p + g + R) + (1/rho) div(mu_e (grad u + grad u^T))   (2)-(3)
+//   n dF/dt + div(u F) = 0                                                                   (4)
+//
+// u = (u, w) are the superficial (mesh-averaged) velocities of the paper, n the porosity, F the water
+// fraction, rho = F rho_w + (1 - F) rho_a and mu = F mu_w + (1 - F) mu_a the one-fluid density and
+// viscosity (two phases: air pockets in the rubble and plunging jets behave), mu_e = mu + rho nu_t.
+//
+// Form of the terms (documented choices):
+// - eq. (2) of the paper divided by n. The convective term is written div(u u / n) = div(n U U) with
+//   the pore velocity U = u / n, the consistent volume-averaged form; for uniform n it is the paper's
+//   (1/n) d(uu)/dx. The momentum of a face is convected with its pore velocity u_f / n_f.
+// - R is the closure law of porous_resistance.h, which carries its own minus sign: R = -u (a + b |u|)
+//   points against the flow. In steady uniform flow the equation gives -dp/dx = rho u (a + b |u|).
+//   R is treated semi-implicitly, u^{n+1} (1 + dt n (a + b |u^n|)) = ..., so any n in (0, 1] (down to
+//   1e-6 next to fast flow) stays bounded. With the relative-velocity option R uses u - n u_s, u_s the
+//   stones' velocity at the face.
+// - The viscous term acts on the superficial velocity (porosity gradients in it are neglected, as in
+//   most VARANS codes); the -2/3 grad k of the paper is absorbed into the pressure.
+// - Pressure projection: u^{n+1} = u* - beta_f grad p, beta_f = dt n_f / (rho_f (1 + dt n_f R'_f)),
+//   p the absolute pressure [Pa] with p = 0 at the open top (see pressure_solver.h).
+//
+// Porosity at faces (documented rule): a face is as open as its tighter neighbour,
+//   n_f = min(n_L, n_R) (0 when either side is solid), D_f = D of that neighbour (mean on a tie),
+// so a nearly closed cell (n = 1e-6) is nearly closed on every face and its pore velocity stays bounded.
+// A boundary face takes the porosity of its cell.
+//
+// Boundaries: left end wall or discharge inlet Q(t) [m^3/s] / flume width B spread over the wetted
+// inlet rows in proportion to their water fraction (water fraction 1 entering, inlet level free);
+// right end wall, free overfall (the end face is the brink: p = 0 there, the water falls freely out)
+// or a fixed tailwater level (hydrostatic pressure below it); bed and end walls slip or no-slip; top
+// open to the atmosphere (p = 0) or a slip lid.
+//
+// References: S. Maeno and A. Tomita (2008), ICHE 2008 (eqs. 1-7); F. H. Harlow and J. E. Welch (1965)
+// (MAC grid); A. J. Chorin (1968) (projection); P. Higuera, J. L. Lara and I. J. Losada (2014), Coastal
+// Eng. 83 (VARANS with semi-implicit porous resistance).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vofdem/grid.h"
+#include "vofdem/inflow.h"
+#include "vofdem/momentum.h"
+#include "vofdem/pressure_solver.h"
+#include "vofdem/profile.h"
+#include "vofdem/vof_advection.h"
+
+namespace vofdem {
+
+// physical effects of the flow solver, one bit each (FlowParams::flags)
+enum FlowEffect : std::uint32_t {
+  kFlowFreeSurface = 1u << 0,         // two phases and VOF advection; off: water everywhere, F = 1
+  kFlowPorousDarcy = 1u << 1,         // linear (Darcy) term nu/K of eqs. (5)-(7)
+  kFlowPorousForchheimer = 1u << 2,   // quadratic term C/sqrt(K) |u| of eqs. (5)-(7)
+  kFlowTurbulence = 1u << 3,          // k-epsilon eddy viscosity nu_t (laminar when off)
+  kFlowViscosity = 1u << 4,           // viscous stresses
+  kFlowGravity = 1u << 5,             // gravity
+  kFlowRelativeVelocity = 1u << 6,    // porous resistance on the velocity relative to the stones
+  kFlowConvection = 1u << 7,          // momentum convection
+  kFlowPorousResistance = kFlowPorousDarcy | kFlowPorousForchheimer,
+  kFlowDefault = kFlowFreeSurface | kFlowPorousResistance | kFlowViscosity | kFlowGravity | kFlowConvection,
+};
+
+enum class InletBoundary { kWall = 0, kDischarge = 1 };
+enum class OutletBoundary { kWall = 0, kFreeOverfall = 1, kTailwater = 2 };
+enum class TopBoundary { kOpen = 0, kWall = 1 };
+enum class WallCondition { kSlip = 0, kNoSlip = 1 };
+
+// parameters of the flow, constant while stepping (SI units)
+struct FlowParams {
+  double rho_water = 998.2;    // water density [kg/m^3], 998.2 at 20 C
+  double rho_air = 1.204;      // air density [kg/m^3], 1.204 at 20 C
+  double nu_water = 1.004e-6;  // water kinematic viscosity [m^2/s], 1.004e-6 at 20 C
+  double nu_air = 1.516e-5;    // air kinematic viscosity [m^2/s], 1.516e-5 at 20 C
+  double gravity_x = 0.0;      // gravity along the flume [m/s^2], 0 (or g sin(slope))
+  double gravity_z = -9.81;    // gravity upwards component [m/s^2], -9.81
+  double cfl = 0.4;            // target advective Courant number (pore velocity) [-], 0.2-0.45
+  double max_dt = 0.01;        // largest time step [s], 0.01
+  double min_dt = 1e-8;        // a stable step below this [s] is a failure (velocity blow-up), 1e-8
+  double k1 = 200.0;           // linear resistance coefficient of eq. (7) [-], 200 (Ergun 150)
+  double k2 = 2.8;             // quadratic resistance coefficient of eq. (7) [-], 2.8 (Ergun 1.75)
+  double flume_width = 0.3;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.3
+  PressureSolverKind pressure_solver = PressureSolverKind::kEigenDirect;  // projection solver
+  double pressure_tol = 1e-10;  // relative residual of the iterative pressure solve [-], 1e-10
+  InletBoundary inlet = InletBoundary::kWall;          // left end (x = x0)
+  OutletBoundary outlet = OutletBoundary::kWall;       // right end (x = x0 + length)
+  double tailwater_level = 0.0;                        // water level [m] at the right end for kTailwater
+  TopBoundary top = TopBoundary::kOpen;                // top of the domain
+  WallCondition walls = WallCondition::kSlip;          // bed and end walls
+  std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
+
+  // throws std::invalid_argument naming the first bad parameter
+  void validate() const;
+};
+
+// each term's largest stable step [s] (infinity when the term imposes none)
+struct FlowStableDt {
+  double advective = 0;   // cfl * min over faces of h / |u / n| (pore velocity)
+  double viscous = 0;     // 1 / (4 nu_max (1/dx^2 + 1/dz^2))
+  double gravity = 0;     // cfl * sqrt(2 h_min / |g|): a cell crossed by a fall from rest
+  double turbulence = 0;  // from the k-epsilon model when on
+  double max_dt = 0;      // FlowParams::max_dt
+  double min() const;
+};
+
+class VOFGrid {
+ public:
+  VOFGrid(const Grid2D& grid, const FlowParams& params);
+  ~VOFGrid();
+  VOFGrid(const VOFGrid&) = delete;
+  VOFGrid& operator=(const VOFGrid&) = delete;
+
+  const Grid2D& grid() const { return grid_; }
+  const FlowParams& params() const { return params_; }
+  // replaces the parameters between steps (checked)
+  void set_params(const FlowParams& params);
+  void set_discharge(const DischargeTable& table);
+  const DischargeTable& discharge() const { return discharge_; }
+
+  // ---- state (flat arrays; cells (nz, nx), x-faces (nz, nx + 1), z-faces (nz + 1, nx)) ----
+  std::vector<double> face_u;               // superficial x-velocity [m/s] on x-faces
+  std::vector<double> face_w;               // superficial z-velocity [m/s] on z-faces
+  std::vector<double> cell_p;               // pressure [Pa] (0 at the open top)
+  std::vector<double> cell_F;               // water fraction [-] in [0, 1]
+  std::vector<double> cell_porosity;        // n [-] in [0, 1], 0 = solid; call update_face_porosity()
+  std::vector<double> face_x_porosity;      // n_f on x-faces (derived: min of the two cells)
+  std::vector<double> face_z_porosity;      // n_f on z-faces (derived)
+  std::vector<double> cell_stone_diameter;  // D_sp of eq. (7) [m], > 0 where 0 < n < 1; 0.048
+  std::vector<double> cell_nut;             // eddy viscosity nu_t [m^2/s], 0 when turbulence is off
+  std::vector<double> face_x_solid_u;       // stones' x-velocity at x-faces [m/s], 0
+  std::vector<double> face_z_solid_w;       // stones' z-velocity at z-faces [m/s], 0
+
+  // sets cell_porosity (size ncell, values in [0, 1]) and recomputes the face porosities
+  void set_porosity(const std::vector<double>& porosity);
+  // recomputes face_*_porosity and the face stone diameters from the cell arrays (after writing
+  // cell_porosity or cell_stone_diameter directly); closes the faces of solid cells (u = 0)
+  void update_face_porosity();
+
+  // ---- scene helpers (rectangles [x0, x1] x [z0, z1] in m; a cell belongs if its centre is inside) ----
+  // F = 1 below `level` [m] (partial fraction in the cut row), 0 above
+  void fill_water_below(double level);
+  // F = 1 inside the rectangle (cells whose centre is inside), untouched elsewhere
+  void fill_water_box(double x0, double x1, double z0, double z1, double value = 1.0);
+  // porosity n and stone diameter d [m] inside the rectangle; n = 0 makes solid cells
+  void set_porosity_box(double x0, double x1, double z0, double z1, double n, double d);
+  // hydrostatic pressure from the water fraction, p = 0 at the top
+  void set_hydrostatic_pressure();
+
+  // ---- time stepping ----
+  double time() const { return time_; }
+  void set_time(double t) { time_ = t; }
+  long long step_count() const { return step_count_; }
+  FlowStableDt stable_dt_terms() const;
+  double stable_dt() const { return stable_dt_terms().min(); }
+  // one step of dt [s]; throws std::runtime_error (stage, cell, time) after restoring the state
+  void step(double dt);
+  // steps of stable_dt() until time() reaches t_end [s]; returns the number of steps
+  long long advance(double t_end);
+
+  // ---- diagnostics and coupling helpers ----
+  // pore velocity U = u/n, W = w/n at cell centres [m/s] (0 in solid cells); sizes ncell
+  void pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const;
+  // pressure gradient dp/dx, dp/dz at cell centres [Pa/m] (central, one-sided at walls and solids)
+  void pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const;
+  // water volume sum(n F V) per metre of flume width [m^2]
+  double water_volume() const;
+  // discharge per unit width [m^2/s] through x-face column i (sum u dz over water faces weighted by
+  // the upwind F)
+  double discharge_through(int i) const;
+  // inlet discharge per unit width now [m^2/s]
+  double inlet_discharge_per_width() const;
+
+  StageProfile& profile() { return profile_; }
+  const StageProfile& profile() const { return profile_; }
+  const PressureSolveStats& last_pressure_stats() const { return pressure_stats_; }
+
+ private:
+  struct Snapshot;
+  void check_sizes() const;
+  void update_phase_properties() const;
+  void stage_advect_vof(double dt);
+  void stage_momentum(double dt);
+  void stage_porous_resistance(double dt);
+  void stage_turbulence(double dt);
+  void stage_pressure(double dt);
+  void stage_correct();
+  void stage_checks(double dt);
+  // inlet face velocities of Q(t) into u (face_u or u*)
+  void apply_inlet(double t, std::vector<double>& u);
+  void prime_inlet(double dt);
+  MomentumFields momentum_fields() const;
+  MomentumBoundary momentum_boundary() const;
+  double outlet_pressure(int k) const;
+  // kind: 0 = cell, 1 = x-face, 2 = z-face
+  void check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind);
+  [[noreturn]] void fail(const std::string& stage, const std::string& what, int kind, int index);
+  void save_state();
+  void restore_state();
+  // largest directional Courant number |u| dt / (n_f h) and where it is (kind 1 = x-face, 2 = z-face)
+  double max_cfl(double dt, int& kind, int& index) const;
+
+  Grid2D grid_;
+  FlowParams params_;
+  DischargeTable discharge_;
+  double time_ = 0.0;
+  long long step_count_ = 0;
+
+  // derived per step
+  // phase properties from F (caches: refreshed by const queries too)
+  mutable std::vector<double> cell_rho_, cell_mu_;
+  mutable std::vector<double> face_x_rho_, face_z_rho_;
+  std::vector<double> face_x_diameter_, face_z_diameter_;
+  std::vector<double> face_x_beta_, face_z_beta_;  // dt n / (rho (1 + dt n R')) of the projection
+  std::vector<double> inlet_u_, inlet_dz_;
+  MomentumScratch momentum_scratch_;
+  std::vector<double> u_star_, w_star_;
+  std::vector<double> rhs_;
+  PressureProblem problem_;
+  std::unique_ptr<PressureSolver> solver_;
+  PressureSolveStats pressure_stats_;
+  VofBoundaryInflow vof_inflow_;
+  VofScratch vof_scratch_;
+  std::unique_ptr<Snapshot> snapshot_;
+
+  StageProfile profile_;
+  int st_advect_, st_momentum_, st_porous_, st_turbulence_, st_pressure_, st_correct_, st_checks_;
+};
+
+}  // namespace vofdem

@@ -1,0 +1,709 @@
+#include "vofdem/vof_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "vofdem/check.h"
+#include "vofdem/porous_resistance.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// a water fraction further than this outside [0, 1] is a failure, not round-off
+constexpr double kFractionSlack = 1e-6;
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// parameters
+
+void FlowParams::validate() const {
+  require_positive("rho_water", rho_water);
+  require_positive("rho_air", rho_air);
+  require_non_negative("nu_water", nu_water);
+  require_non_negative("nu_air", nu_air);
+  require_finite("gravity_x", gravity_x);
+  require_finite("gravity_z", gravity_z);
+  require_in_open_closed("cfl", cfl, 0.0, 1.0);
+  require_positive("max_dt", max_dt);
+  require_positive("min_dt", min_dt);
+  require_positive("k1", k1);
+  require_non_negative("k2", k2);
+  require_positive("flume_width", flume_width);
+  require_positive("pressure_tol", pressure_tol);
+  require_finite("tailwater_level", tailwater_level);
+  if (flags & kFlowTurbulence)
+    throw std::invalid_argument("flags: the turbulence effect (kFlowTurbulence) is not available in this build");
+  if (flags >= (1u << 8))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
+}
+
+double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt}); }
+
+struct VOFGrid::Snapshot {
+  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut;
+  double time = 0.0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// construction and scene
+
+VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
+    : grid_(grid), params_(params), snapshot_(std::make_unique<Snapshot>()) {
+  params_.validate();
+  const int nc = grid_.ncell(), nfx = grid_.nface_x(), nfz = grid_.nface_z();
+  face_u.assign(nfx, 0.0);
+  face_w.assign(nfz, 0.0);
+  cell_p.assign(nc, 0.0);
+  cell_F.assign(nc, 0.0);
+  cell_porosity.assign(nc, 1.0);
+  face_x_porosity.assign(nfx, 1.0);
+  face_z_porosity.assign(nfz, 1.0);
+  cell_stone_diameter.assign(nc, 0.048);
+  cell_nut.assign(nc, 0.0);
+  face_x_solid_u.assign(nfx, 0.0);
+  face_z_solid_w.assign(nfz, 0.0);
+  if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
+  cell_rho_.assign(nc, 0.0);
+  cell_mu_.assign(nc, 0.0);
+  face_x_rho_.assign(nfx, 0.0);
+  face_z_rho_.assign(nfz, 0.0);
+  face_x_diameter_.assign(nfx, 0.048);
+  face_z_diameter_.assign(nfz, 0.048);
+  face_x_beta_.assign(nfx, 0.0);
+  face_z_beta_.assign(nfz, 0.0);
+  u_star_.assign(nfx, 0.0);
+  w_star_.assign(nfz, 0.0);
+  rhs_.assign(nc, 0.0);
+  inlet_u_.assign(grid_.nz(), 0.0);
+  for (int k = 0; k < grid_.nz(); ++k) inlet_dz_.push_back(grid_.dz(k));
+  problem_.resize(grid_);
+  vof_inflow_.resize(grid_, 0.0);
+  solver_ = make_pressure_solver(params_.pressure_solver);
+  discharge_ = DischargeTable::constant(0.0);
+  update_face_porosity();
+  st_advect_ = profile_.add_stage("advect_vof");
+  st_momentum_ = profile_.add_stage("momentum");
+  st_porous_ = profile_.add_stage("porous_resistance");
+  st_turbulence_ = profile_.add_stage("turbulence");
+  st_pressure_ = profile_.add_stage("pressure");
+  st_correct_ = profile_.add_stage("correct");
+  st_checks_ = profile_.add_stage("checks");
+}
+
+VOFGrid::~VOFGrid() = default;
+
+void VOFGrid::set_params(const FlowParams& params) {
+  params.validate();
+  const bool new_solver = params.pressure_solver != params_.pressure_solver;
+  params_ = params;
+  if (new_solver) solver_ = make_pressure_solver(params_.pressure_solver);
+  if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
+}
+
+void VOFGrid::set_discharge(const DischargeTable& table) {
+  table.validate();
+  discharge_ = table;
+}
+
+void VOFGrid::check_sizes() const {
+  auto need = [](const char* name, const std::vector<double>& a, int n) {
+    if (static_cast<int>(a.size()) != n)
+      throw std::invalid_argument(std::string(name) + " has " + std::to_string(a.size()) + " values, expected " +
+                                  std::to_string(n));
+  };
+  need("cell_porosity", cell_porosity, grid_.ncell());
+  need("cell_stone_diameter", cell_stone_diameter, grid_.ncell());
+}
+
+void VOFGrid::set_porosity(const std::vector<double>& porosity) {
+  if (static_cast<int>(porosity.size()) != grid_.ncell())
+    throw std::invalid_argument("porosity has " + std::to_string(porosity.size()) + " values, expected ncell = " +
+                                std::to_string(grid_.ncell()));
+  for (double n : porosity) require_in_closed("porosity", n, 0.0, 1.0);
+  cell_porosity = porosity;
+  update_face_porosity();
+}
+
+void VOFGrid::update_face_porosity() {
+  check_sizes();
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  for (int c = 0; c < grid_.ncell(); ++c) {
+    require_in_closed("cell_porosity", cell_porosity[c], 0.0, 1.0);
+    if (cell_porosity[c] > 0.0 && cell_porosity[c] < 1.0) require_positive("cell_stone_diameter", cell_stone_diameter[c]);
+  }
+  // a face is as open as its tighter neighbour and takes that neighbour's stone diameter
+  auto pick = [&](int a, int b, double& n, double& d) {
+    const double na = cell_porosity[a], nb = cell_porosity[b];
+    n = std::min(na, nb);
+    d = na < nb ? cell_stone_diameter[a] : nb < na ? cell_stone_diameter[b]
+                                                  : 0.5 * (cell_stone_diameter[a] + cell_stone_diameter[b]);
+  };
+  for (int k = 0; k < nz; ++k) {
+    for (int i = 0; i <= nx; ++i) {
+      const int j = i + sx * k;
+      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
+      pick(a, b, face_x_porosity[j], face_x_diameter_[j]);
+      // walls are closed; the inlet and an open end stay open as far as their cell is
+      const bool open_end = (i == 0 && params_.inlet == InletBoundary::kDischarge) ||
+                            (i == nx && params_.outlet != OutletBoundary::kWall);
+      if ((i == 0 || i == nx) && !open_end) face_x_porosity[j] = 0.0;
+      if (face_x_porosity[j] == 0.0) face_u[j] = 0.0;
+    }
+  }
+  for (int k = 0; k <= nz; ++k) {
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
+      pick(a, b, face_z_porosity[j], face_z_diameter_[j]);
+      if (k == 0 || (k == nz && params_.top == TopBoundary::kWall)) face_z_porosity[j] = 0.0;
+      if (face_z_porosity[j] == 0.0) face_w[j] = 0.0;
+    }
+  }
+}
+
+namespace {
+// the cells whose centre lies inside [x0, x1] x [z0, z1]
+template <class F>
+void for_cells_in_box(const Grid2D& g, double x0, double x1, double z0, double z1, F&& f) {
+  for (int k = 0; k < g.nz(); ++k) {
+    const double z = g.z_center(k);
+    if (z < z0 || z > z1) continue;
+    for (int i = 0; i < g.nx(); ++i) {
+      const double x = g.x_center(i);
+      if (x >= x0 && x <= x1) f(g.cell(i, k));
+    }
+  }
+}
+}  // namespace
+
+void VOFGrid::fill_water_below(double level) {
+  require_finite("level", level);
+  for (int k = 0; k < grid_.nz(); ++k) {
+    const double f = std::clamp((level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0);
+    for (int i = 0; i < grid_.nx(); ++i) cell_F[grid_.cell(i, k)] = f;
+  }
+}
+
+void VOFGrid::fill_water_box(double x0, double x1, double z0, double z1, double value) {
+  require_in_closed("value", value, 0.0, 1.0);
+  for_cells_in_box(grid_, x0, x1, z0, z1, [&](int c) { cell_F[c] = value; });
+}
+
+void VOFGrid::set_porosity_box(double x0, double x1, double z0, double z1, double n, double d) {
+  require_in_closed("n", n, 0.0, 1.0);
+  require_positive("d", d);
+  for_cells_in_box(grid_, x0, x1, z0, z1, [&](int c) {
+    cell_porosity[c] = n;
+    cell_stone_diameter[c] = d;
+  });
+  update_face_porosity();
+}
+
+void VOFGrid::update_phase_properties() const {
+  const bool two_phase = params_.flags & kFlowFreeSurface;
+  const double rw = params_.rho_water, ra = params_.rho_air;
+  const double mw = rw * params_.nu_water, ma = ra * params_.nu_air;
+  const bool turb = params_.flags & kFlowTurbulence;
+  for (int c = 0; c < grid_.ncell(); ++c) {
+    const double f = two_phase ? std::clamp(cell_F[c], 0.0, 1.0) : 1.0;
+    cell_rho_[c] = f * rw + (1.0 - f) * ra;
+    cell_mu_[c] = f * mw + (1.0 - f) * ma + (turb ? cell_rho_[c] * cell_nut[c] : 0.0);
+  }
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) {
+      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
+      face_x_rho_[i + sx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
+    }
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
+      face_z_rho_[i + nx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
+    }
+}
+
+void VOFGrid::set_hydrostatic_pressure() {
+  update_phase_properties();
+  const double g = std::abs(params_.gravity_z);
+  const int nx = grid_.nx(), nz = grid_.nz();
+  for (int i = 0; i < nx; ++i) {
+    // the discrete balance of the projection: p_k - p_{k+1} = rho_face g (z_{k+1} - z_k), p = 0 on top
+    double p = cell_rho_[i + nx * (nz - 1)] * g * 0.5 * grid_.dz(nz - 1);
+    cell_p[i + nx * (nz - 1)] = p;
+    for (int k = nz - 2; k >= 0; --k) {
+      p += face_z_rho_[i + nx * (k + 1)] * g * (grid_.z_center(k + 1) - grid_.z_center(k));
+      cell_p[i + nx * k] = p;
+    }
+  }
+  for (int c = 0; c < grid_.ncell(); ++c)
+    if (cell_porosity[c] <= 0.0) cell_p[c] = 0.0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// time step
+
+MomentumFields VOFGrid::momentum_fields() const {
+  return {face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
+          cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
+}
+
+MomentumBoundary VOFGrid::momentum_boundary() const {
+  MomentumBoundary bc;
+  bc.left_inlet = params_.inlet == InletBoundary::kDischarge;
+  bc.right_open = params_.outlet != OutletBoundary::kWall;
+  bc.top_open = params_.top == TopBoundary::kOpen;
+  bc.no_slip = params_.walls == WallCondition::kNoSlip;
+  return bc;
+}
+
+double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  double worst = 0.0;
+  kind = 0;
+  index = -1;
+  for (int k = 0; k < nz; ++k) {
+    const double inv_h = dt / grid_.dx();
+    for (int i = 0; i <= nx; ++i) {
+      const int j = i + sx * k;
+      const double n = face_x_porosity[j];
+      if (n <= 0.0) continue;
+      const double c = std::abs(face_u[j]) / n * inv_h;
+      if (c > worst) worst = c, kind = 1, index = j;
+    }
+  }
+  for (int k = 0; k <= nz; ++k) {
+    const double h = std::min(grid_.dz(std::max(k - 1, 0)), grid_.dz(std::min(k, nz - 1)));
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      const double n = face_z_porosity[j];
+      if (n <= 0.0) continue;
+      const double c = std::abs(face_w[j]) / n * dt / h;
+      if (c > worst) worst = c, kind = 2, index = j;
+    }
+  }
+  return worst;
+}
+
+FlowStableDt VOFGrid::stable_dt_terms() const {
+  FlowStableDt s;
+  int kind, index;
+  const double rate = max_cfl(1.0, kind, index);
+  s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
+  s.viscous = kInf;
+  if (params_.flags & kFlowViscosity) {
+    // the viscosities of the current phases (stable_dt may be called between steps)
+    update_phase_properties();
+    s.viscous = viscous_stable_dt(grid_, momentum_fields());
+  }
+  const double g = std::hypot(params_.gravity_x, params_.gravity_z);
+  s.gravity = (params_.flags & kFlowGravity) && g > 0.0
+                  ? params_.cfl * std::sqrt(2.0 * std::min(grid_.dx(), grid_.min_dz()) / g)
+                  : kInf;
+  s.turbulence = kInf;
+  s.max_dt = params_.max_dt;
+  return s;
+}
+
+void VOFGrid::save_state() {
+  Snapshot& s = *snapshot_;
+  s.face_u = face_u;
+  s.face_w = face_w;
+  s.cell_p = cell_p;
+  s.cell_F = cell_F;
+  s.cell_nut = cell_nut;
+  s.time = time_;
+}
+
+void VOFGrid::restore_state() {
+  Snapshot& s = *snapshot_;
+  face_u = s.face_u;
+  face_w = s.face_w;
+  cell_p = s.cell_p;
+  cell_F = s.cell_F;
+  cell_nut = s.cell_nut;
+  time_ = s.time;
+}
+
+void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, int index) {
+  restore_state();
+  const int nx = grid_.nx();
+  int i = 0, k = 0;
+  double x = 0, z = 0;
+  const char* where = "cell";
+  if (kind == 0) {
+    i = index % nx, k = index / nx;
+    x = grid_.x_center(i), z = grid_.z_center(k);
+  } else if (kind == 1) {
+    i = index % (nx + 1), k = index / (nx + 1);
+    x = grid_.x_face(i), z = grid_.z_center(k);
+    where = "x-face";
+  } else {
+    i = index % nx, k = index / nx;
+    x = grid_.x_center(i), z = grid_.z_face(k);
+    where = "z-face";
+  }
+  std::ostringstream os;
+  os << "VOFGrid stage '" << stage << "': " << what;
+  if (index >= 0)
+    os << " at " << where << " (i=" << i << ", k=" << k << ", x=" << format_value(x) << " m, z=" << format_value(z)
+       << " m)";
+  os << ", t = " << format_value(time_) << " s (step " << step_count_ << "); state restored to t = "
+     << format_value(time_) << " s";
+  throw std::runtime_error(os.str());
+}
+
+void VOFGrid::check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind) {
+  // a sum propagates any non-finite value: one pass of adds, searched only on failure
+  double s = 0.0;
+  for (double v : a) s += v * 0.0;
+  if (s == 0.0) return;
+  for (size_t j = 0; j < a.size(); ++j)
+    if (!std::isfinite(a[j])) fail(stage, std::string("non-finite ") + name + " (" + format_value(a[j]) + ")", kind,
+                                   static_cast<int>(j));
+}
+
+void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
+  if (params_.inlet != InletBoundary::kDischarge) return;
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const double q = discharge_.at(t) / params_.flume_width;
+  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
+  for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
+}
+
+void VOFGrid::prime_inlet(double dt) {
+  if (params_.inlet != InletBoundary::kDischarge) return;
+  const int sx = grid_.nx() + 1;
+  u_star_ = face_u;
+  apply_inlet(time_, u_star_);
+  double change = 0.0;
+  for (int k = 0; k < grid_.nz(); ++k) change = std::max(change, std::abs(u_star_[sx * k] - face_u[sx * k]));
+  if (change <= 1e-14) return;
+  // a new inlet flow: project the velocity field onto it (an impulsive start) so that the advection
+  // sees a divergence-free field
+  update_phase_properties();
+  for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
+  for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
+  w_star_ = face_w;
+  stage_pressure(dt);
+  stage_correct();
+}
+
+double VOFGrid::outlet_pressure(int k) const {
+  if (params_.outlet != OutletBoundary::kTailwater) return 0.0;
+  const double depth = params_.tailwater_level - grid_.z_center(k);
+  return depth > 0.0 ? params_.rho_water * std::abs(params_.gravity_z) * depth : 0.0;
+}
+
+double VOFGrid::inlet_discharge_per_width() const {
+  return params_.inlet == InletBoundary::kDischarge ? discharge_.at(time_) / params_.flume_width : 0.0;
+}
+
+void VOFGrid::stage_advect_vof(double dt) {
+  ScopedStage timer(profile_, st_advect_);
+  // the inlet fills with water; an open end lets in water below the tailwater level, air above
+  const int nz = grid_.nz();
+  if (params_.inlet == InletBoundary::kDischarge)
+    for (int k = 0; k < nz; ++k) vof_inflow_.left[k] = 1.0;
+  for (int k = 0; k < nz; ++k)
+    vof_inflow_.right[k] = params_.outlet == OutletBoundary::kTailwater && grid_.z_center(k) < params_.tailwater_level;
+  try {
+    advect_vof(grid_, cell_porosity, face_u, face_w, vof_inflow_, dt, step_count_ % 2 == 0, cell_F, vof_scratch_);
+  } catch (const std::runtime_error& e) {
+    fail("advect_vof", e.what(), 0, -1);
+  }
+  check_finite("advect_vof", "water fraction", cell_F, 0);
+}
+
+void VOFGrid::stage_momentum(double dt) {
+  ScopedStage timer(profile_, st_momentum_);
+  MomentumTerms terms;
+  terms.convection = params_.flags & kFlowConvection;
+  terms.viscosity = params_.flags & kFlowViscosity;
+  if (params_.flags & kFlowGravity) terms.gravity_x = params_.gravity_x, terms.gravity_z = params_.gravity_z;
+  momentum_explicit(grid_, momentum_fields(), terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);
+  // projection coefficients without resistance; the porous stage divides them by 1 + dt n R'
+  for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
+  for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
+  check_finite("momentum", "x-velocity", u_star_, 1);
+  check_finite("momentum", "z-velocity", w_star_, 2);
+}
+
+void VOFGrid::stage_porous_resistance(double dt) {
+  ScopedStage timer(profile_, st_porous_);
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const bool lin = params_.flags & kFlowPorousDarcy, quad = params_.flags & kFlowPorousForchheimer;
+  const bool rel = params_.flags & kFlowRelativeVelocity;
+  const double k1 = params_.k1, k2 = params_.k2;
+  // R' = a + b |u_rel| from the velocity of the last step (Picard), then (1 + dt n R') u = u* + dt n R' n u_s
+  auto apply = [&](double n, double d, double rho, double mu, double u_rel_mag, double us, double& ustar, double& beta) {
+    if (n <= 0.0 || n >= 1.0) return;
+    const PorousCoefficients pc = porous_coefficients_unchecked(n, d, mu / rho, k1, k2);
+    const double r = (lin ? pc.linear : 0.0) + (quad ? pc.quadratic * u_rel_mag : 0.0);
+    const double denom = 1.0 + dt * n * r;
+    ustar = (ustar + (rel ? dt * n * r * n * us : 0.0)) / denom;
+    beta /= denom;
+  };
+  auto mu_face = [&](int a, int b) { return 0.5 * (cell_mu_[a] + cell_mu_[b]); };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) {
+      const int j = i + sx * k;
+      const double n = face_x_porosity[j];
+      if (n <= 0.0 || n >= 1.0) continue;
+      const int a = std::max(i - 1, 0), b = std::min(i, nx - 1);
+      const double wm = 0.25 * (face_w[a + nx * k] + face_w[b + nx * k] + face_w[a + nx * (k + 1)] + face_w[b + nx * (k + 1)]);
+      double ur = face_u[j], wr = wm;
+      if (rel) {
+        ur -= n * face_x_solid_u[j];
+        wr -= n * 0.25 * (face_z_solid_w[a + nx * k] + face_z_solid_w[b + nx * k] + face_z_solid_w[a + nx * (k + 1)] +
+                          face_z_solid_w[b + nx * (k + 1)]);
+      }
+      apply(n, face_x_diameter_[j], face_x_rho_[j], mu_face(a + nx * k, b + nx * k), std::hypot(ur, wr),
+            face_x_solid_u[j], u_star_[j], face_x_beta_[j]);
+    }
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      const double n = face_z_porosity[j];
+      if (n <= 0.0 || n >= 1.0) continue;
+      const int a = std::max(k - 1, 0), b = std::min(k, nz - 1);
+      const double um = 0.25 * (face_u[i + sx * a] + face_u[i + 1 + sx * a] + face_u[i + sx * b] + face_u[i + 1 + sx * b]);
+      double ur = um, wr = face_w[j];
+      if (rel) {
+        wr -= n * face_z_solid_w[j];
+        ur -= n * 0.25 * (face_x_solid_u[i + sx * a] + face_x_solid_u[i + 1 + sx * a] + face_x_solid_u[i + sx * b] +
+                          face_x_solid_u[i + 1 + sx * b]);
+      }
+      apply(n, face_z_diameter_[j], face_z_rho_[j], mu_face(i + nx * a, i + nx * b), std::hypot(ur, wr),
+            face_z_solid_w[j], w_star_[j], face_z_beta_[j]);
+    }
+  check_finite("porous_resistance", "x-velocity", u_star_, 1);
+  check_finite("porous_resistance", "z-velocity", w_star_, 2);
+}
+
+void VOFGrid::stage_turbulence(double /*dt*/) {
+  ScopedStage timer(profile_, st_turbulence_);
+  // the k-epsilon model is refused by FlowParams::validate() until it is integrated
+}
+
+void VOFGrid::stage_pressure(double /*dt*/) {
+  ScopedStage timer(profile_, st_pressure_);
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const double dx = grid_.dx();
+  for (int c = 0; c < grid_.ncell(); ++c) problem_.cell_active[c] = cell_porosity[c] > 0.0;
+  // x-faces: a = beta dz / dx inside; an open end is a Dirichlet face half a cell from the centre
+  for (int k = 0; k < nz; ++k) {
+    const double dz = grid_.dz(k);
+    for (int i = 0; i <= nx; ++i) {
+      const int j = i + sx * k;
+      double a = 0.0;
+      if (face_x_porosity[j] > 0.0) {
+        if (i > 0 && i < nx) a = face_x_beta_[j] * dz / dx;
+        else if (i == nx && params_.outlet != OutletBoundary::kWall) a = face_x_beta_[j] * dz / (0.5 * dx);
+      }
+      problem_.face_x_coef[j] = a;
+      problem_.face_x_bc[j] = i == nx ? outlet_pressure(k) : 0.0;
+    }
+  }
+  for (int k = 0; k <= nz; ++k) {
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      double a = 0.0;
+      if (face_z_porosity[j] > 0.0) {
+        if (k > 0 && k < nz) a = face_z_beta_[j] * dx / (grid_.z_center(k) - grid_.z_center(k - 1));
+        else if (k == nz) a = face_z_beta_[j] * dx / (0.5 * grid_.dz(nz - 1));
+      }
+      problem_.face_z_coef[j] = a;
+      problem_.face_z_bc[j] = 0.0;
+    }
+  }
+  // b = net outflow of u* per metre of width [m^2/s]
+  for (int k = 0; k < nz; ++k) {
+    const double dz = grid_.dz(k);
+    for (int i = 0; i < nx; ++i) {
+      const int c = i + nx * k;
+      rhs_[c] = problem_.cell_active[c]
+                    ? (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx
+                    : 0.0;
+    }
+  }
+  try {
+    solver_->setup(grid_, problem_);
+    pressure_stats_ = solver_->solve(rhs_, cell_p, params_.pressure_tol);
+  } catch (const std::runtime_error& e) {
+    fail("pressure", e.what(), 0, -1);
+  }
+  check_finite("pressure", "pressure", cell_p, 0);
+}
+
+void VOFGrid::stage_correct() {
+  ScopedStage timer(profile_, st_correct_);
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const double dx = grid_.dx();
+  for (int k = 0; k < nz; ++k) {
+    for (int i = 0; i <= nx; ++i) {
+      const int j = i + sx * k;
+      const double a = problem_.face_x_coef[j];
+      double u = u_star_[j];
+      if (a > 0.0) {
+        const double pl = i > 0 ? cell_p[i - 1 + nx * k] : 0.0;
+        const double pr = i < nx ? cell_p[i + nx * k] : problem_.face_x_bc[j];
+        const double dist = (i == 0 || i == nx) ? 0.5 * dx : dx;
+        u -= face_x_beta_[j] * (pr - pl) / dist;
+      }
+      face_u[j] = u;
+    }
+  }
+  for (int k = 0; k <= nz; ++k) {
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      const double a = problem_.face_z_coef[j];
+      double w = w_star_[j];
+      if (a > 0.0) {
+        const double pb = k > 0 ? cell_p[i + nx * (k - 1)] : 0.0;
+        const double pt = k < nz ? cell_p[i + nx * k] : problem_.face_z_bc[j];
+        const double dist = k == nz ? 0.5 * grid_.dz(nz - 1) : grid_.z_center(k) - grid_.z_center(k - 1);
+        w -= face_z_beta_[j] * (pt - pb) / dist;
+      }
+      face_w[j] = w;
+    }
+  }
+  check_finite("correct", "x-velocity", face_u, 1);
+  check_finite("correct", "z-velocity", face_w, 2);
+}
+
+void VOFGrid::stage_checks(double dt) {
+  ScopedStage timer(profile_, st_checks_);
+  for (int c = 0; c < grid_.ncell(); ++c)
+    if (cell_F[c] < -kFractionSlack || cell_F[c] > 1.0 + kFractionSlack)
+      fail("checks", "water fraction out of [0, 1] (" + format_value(cell_F[c]) + ")", 0, c);
+  int kind, index;
+  const double cfl = max_cfl(dt, kind, index);
+  if (cfl > 1.0)
+    fail("checks", "CFL breach: the new velocity crosses " + format_value(cfl) + " cells in dt = " + format_value(dt) +
+                       " s",
+         kind, index);
+}
+
+void VOFGrid::step(double dt) {
+  require_positive("dt", dt);
+  save_state();
+  int kind, index;
+  const double cfl = max_cfl(dt, kind, index);
+  if (cfl > 1.0)
+    fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
+                     " (pore velocity)",
+         kind, index);
+  // the water entering over the step is q(t) dt: the inlet velocities of the step's start, which the
+  // last projection set already (except on the first step or after a change of discharge)
+  prime_inlet(dt);
+  if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
+  update_phase_properties();
+  stage_momentum(dt);
+  if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);
+  if (params_.flags & kFlowTurbulence) stage_turbulence(dt);
+  apply_inlet(time_ + dt, u_star_);
+  stage_pressure(dt);
+  stage_correct();
+  stage_checks(dt);
+  time_ += dt;
+  ++step_count_;
+}
+
+long long VOFGrid::advance(double t_end) {
+  require_finite("t_end", t_end);
+  long long n = 0;
+  // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
+  const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
+  while (time_ < t_end - eps) {
+    const FlowStableDt s = stable_dt_terms();
+    double dt = s.min();
+    if (dt < params_.min_dt) {
+      int kind, index;
+      max_cfl(1.0, kind, index);
+      save_state();
+      fail("checks", "time step collapsed to " + format_value(dt) + " s (advective " + format_value(s.advective) +
+                         ", viscous " + format_value(s.viscous) + ")",
+           kind, index);
+    }
+    // the last steps split the remainder evenly rather than leaving a sliver
+    const double left = t_end - time_;
+    if (dt >= left) dt = left;
+    else if (dt > 0.5 * left) dt = 0.5 * left;
+    step(dt);
+    ++n;
+  }
+  return n;
+}
+
+// ---------------------------------------------------------------------------------------------
+// diagnostics
+
+void VOFGrid::pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const {
+  const int nx = grid_.nx(), sx = nx + 1;
+  U.assign(grid_.ncell(), 0.0);
+  W.assign(grid_.ncell(), 0.0);
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int c = i + nx * k;
+      const double n = cell_porosity[c];
+      if (n <= 0.0) continue;
+      U[c] = 0.5 * (face_u[i + sx * k] + face_u[i + 1 + sx * k]) / n;
+      W[c] = 0.5 * (face_w[c] + face_w[c + nx]) / n;
+    }
+}
+
+void VOFGrid::pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const {
+  const int nx = grid_.nx(), nz = grid_.nz();
+  dpdx.assign(grid_.ncell(), 0.0);
+  dpdz.assign(grid_.ncell(), 0.0);
+  auto active = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_porosity[i + nx * k] > 0.0; };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int c = i + nx * k;
+      if (!active(i, k)) continue;
+      // central where both neighbours are fluid, one-sided next to a wall or a solid
+      const bool l = active(i - 1, k), r = active(i + 1, k);
+      if (l && r) dpdx[c] = (cell_p[c + 1] - cell_p[c - 1]) / (2.0 * grid_.dx());
+      else if (r) dpdx[c] = (cell_p[c + 1] - cell_p[c]) / grid_.dx();
+      else if (l) dpdx[c] = (cell_p[c] - cell_p[c - 1]) / grid_.dx();
+      const bool b = active(i, k - 1), t = active(i, k + 1);
+      if (b && t) dpdz[c] = (cell_p[c + nx] - cell_p[c - nx]) / (grid_.z_center(k + 1) - grid_.z_center(k - 1));
+      else if (t) dpdz[c] = (cell_p[c + nx] - cell_p[c]) / (grid_.z_center(k + 1) - grid_.z_center(k));
+      else if (b) dpdz[c] = (cell_p[c] - cell_p[c - nx]) / (grid_.z_center(k) - grid_.z_center(k - 1));
+    }
+}
+
+double VOFGrid::water_volume() const {
+  const int nx = grid_.nx();
+  double v = 0.0;
+  for (int k = 0; k < grid_.nz(); ++k) {
+    double row = 0.0;
+    for (int i = 0; i < nx; ++i) row += cell_porosity[i + nx * k] * cell_F[i + nx * k];
+    v += row * grid_.cell_area(k);
+  }
+  return v;
+}
+
+double VOFGrid::discharge_through(int i) const {
+  if (i < 0 || i > grid_.nx())
+    throw std::invalid_argument("i = " + std::to_string(i) + " is outside the allowed range [0, " +
+                                std::to_string(grid_.nx()) + "]");
+  const int nx = grid_.nx(), sx = nx + 1;
+  double q = 0.0;
+  for (int k = 0; k < grid_.nz(); ++k) {
+    const double u = face_u[i + sx * k];
+    // the fraction of the cell the flow leaves (the inflow fraction 1 at the inlet)
+    double f;
+    if (u >= 0.0) f = i > 0 ? cell_F[i - 1 + nx * k] : 1.0;
+    else f = i < nx ? cell_F[i + nx * k] : 0.0;
+    q += u * f * grid_.dz(k);
+  }
+  return q;
+}
+
+}  // namespace vofdem
