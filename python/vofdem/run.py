@@ -240,4 +240,4 @@ def _progress_bar(duration: float, enabled: bool):
     from tqdm.auto import tqdm
 
     return tqdm(total=round(duration, 3), unit="s", unit_scale=False, dynamic_ncols=True,
-                bar_format="{l_bar}{bar}| t={n:.1f}/{total:.1f} s sim [{elapsed}<{remaining}] {postfix}")
+                bar_format="{l_bar}{bar}| t={n:.1f}/{total:.1f} s sim [{elapsed}<{remaining}]{postfix}")
