@@ -1,10 +1,184 @@
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "views.h"
+#include "vofdem/vof_grid.h"
 
 namespace py = pybind11;
 
 namespace vofdem::bind {
 
-// the vof module registers its classes and functions here
-void bind_vof(py::module_& /*m*/) {}
+namespace {
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+py::array_t<double> cells(py::object owner, std::vector<double>& v) {
+  const Grid2D& g = owner.cast<VOFGrid&>().grid();
+  return view2d(v.data(), g.nz(), g.nx(), owner);
+}
+py::array_t<double> xfaces(py::object owner, std::vector<double>& v) {
+  const Grid2D& g = owner.cast<VOFGrid&>().grid();
+  return view2d(v.data(), g.nz(), g.nx() + 1, owner);
+}
+py::array_t<double> zfaces(py::object owner, std::vector<double>& v) {
+  const Grid2D& g = owner.cast<VOFGrid&>().grid();
+  return view2d(v.data(), g.nz() + 1, g.nx(), owner);
+}
+
+// a fresh (nz, nx) array from a flat cell vector
+py::array_t<double> cell_copy(const Grid2D& g, const std::vector<double>& v) {
+  py::array_t<double> a({g.nz(), g.nx()});
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+}  // namespace
+
+void bind_vof(py::module_& m) {
+  py::enum_<FlowEffect>(m, "FlowEffect", py::arithmetic(), "Bit flags of the flow solver's physical effects.")
+      .value("FREE_SURFACE", kFlowFreeSurface, "two phases and VOF advection (off: water everywhere)")
+      .value("POROUS_DARCY", kFlowPorousDarcy, "linear porous resistance nu/K")
+      .value("POROUS_FORCHHEIMER", kFlowPorousForchheimer, "quadratic porous resistance C/sqrt(K) |u|")
+      .value("TURBULENCE", kFlowTurbulence, "k-epsilon eddy viscosity")
+      .value("VISCOSITY", kFlowViscosity, "viscous stresses")
+      .value("GRAVITY", kFlowGravity, "gravity")
+      .value("RELATIVE_VELOCITY", kFlowRelativeVelocity, "porous resistance on the velocity relative to the stones")
+      .value("CONVECTION", kFlowConvection, "momentum convection")
+      .value("POROUS_RESISTANCE", kFlowPorousResistance, "Darcy and Forchheimer terms")
+      .value("DEFAULT", kFlowDefault, "free surface, porous resistance, viscosity, gravity, convection");
+
+  py::enum_<InletBoundary>(m, "InletBoundary")
+      .value("WALL", InletBoundary::kWall)
+      .value("DISCHARGE", InletBoundary::kDischarge, "prescribed discharge Q(t) over the wetted inlet");
+  py::enum_<OutletBoundary>(m, "OutletBoundary")
+      .value("WALL", OutletBoundary::kWall)
+      .value("FREE_OVERFALL", OutletBoundary::kFreeOverfall, "the end face is a brink at atmospheric pressure")
+      .value("TAILWATER", OutletBoundary::kTailwater, "hydrostatic pressure below FlowParams.tailwater_level");
+  py::enum_<TopBoundary>(m, "TopBoundary")
+      .value("OPEN", TopBoundary::kOpen, "open to the atmosphere, p = 0")
+      .value("WALL", TopBoundary::kWall, "a slip lid");
+  py::enum_<WallCondition>(m, "WallCondition").value("SLIP", WallCondition::kSlip).value("NO_SLIP", WallCondition::kNoSlip);
+
+  py::class_<FlowParams>(m, "FlowParams", "Flow parameters, constant while stepping (SI units).")
+      .def(py::init<>())
+      .def_readwrite("rho_water", &FlowParams::rho_water, "water density [kg/m^3], 998.2")
+      .def_readwrite("rho_air", &FlowParams::rho_air, "air density [kg/m^3], 1.204")
+      .def_readwrite("nu_water", &FlowParams::nu_water, "water kinematic viscosity [m^2/s], 1.004e-6")
+      .def_readwrite("nu_air", &FlowParams::nu_air, "air kinematic viscosity [m^2/s], 1.516e-5")
+      .def_readwrite("gravity_x", &FlowParams::gravity_x, "gravity along the flume [m/s^2], 0")
+      .def_readwrite("gravity_z", &FlowParams::gravity_z, "gravity, upward component [m/s^2], -9.81")
+      .def_readwrite("cfl", &FlowParams::cfl, "target Courant number of the pore velocity [-], 0.4")
+      .def_readwrite("max_dt", &FlowParams::max_dt, "largest time step [s], 0.01")
+      .def_readwrite("min_dt", &FlowParams::min_dt, "a stable step below this is a failure [s], 1e-8")
+      .def_readwrite("k1", &FlowParams::k1, "linear resistance coefficient of eq. (7) [-], 200")
+      .def_readwrite("k2", &FlowParams::k2, "quadratic resistance coefficient of eq. (7) [-], 2.8")
+      .def_readwrite("flume_width", &FlowParams::flume_width, "flume width B [m], 0.3")
+      .def_readwrite("pressure_solver", &FlowParams::pressure_solver)
+      .def_readwrite("pressure_tol", &FlowParams::pressure_tol, "relative residual of the pressure solve [-]")
+      .def_readwrite("inlet", &FlowParams::inlet)
+      .def_readwrite("outlet", &FlowParams::outlet)
+      .def_readwrite("tailwater_level", &FlowParams::tailwater_level, "tailwater level [m] for OutletBoundary.TAILWATER")
+      .def_readwrite("top", &FlowParams::top)
+      .def_readwrite("walls", &FlowParams::walls)
+      .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
+      .def("validate", &FlowParams::validate);
+
+  py::class_<DischargeTable>(m, "DischargeTable", "Piecewise-linear discharge Q(t): times [s], discharge [m^3/s].")
+      .def(py::init([](std::vector<double> t, std::vector<double> q) {
+             DischargeTable d{std::move(t), std::move(q)};
+             d.validate();
+             return d;
+           }),
+           py::arg("times"), py::arg("discharge"))
+      .def_readonly("times", &DischargeTable::times)
+      .def_readonly("discharge", &DischargeTable::discharge)
+      .def("at", &DischargeTable::at, py::arg("t"), "Q [m^3/s] at time t [s]")
+      .def_static("ramp", &DischargeTable::ramp, py::arg("q0"), py::arg("q1"), py::arg("t0"), py::arg("t1"),
+                  "linear ramp from q0 to q1 [m^3/s] over [t0, t1] [s]")
+      .def_static("constant", &DischargeTable::constant, py::arg("q"));
+
+  py::class_<FlowStableDt>(m, "FlowStableDt", "Largest stable time step [s] of each term (inf: no limit).")
+      .def_readonly("advective", &FlowStableDt::advective)
+      .def_readonly("viscous", &FlowStableDt::viscous)
+      .def_readonly("gravity", &FlowStableDt::gravity)
+      .def_readonly("turbulence", &FlowStableDt::turbulence)
+      .def_readonly("max_dt", &FlowStableDt::max_dt)
+      .def("min", &FlowStableDt::min);
+
+  py::class_<VOFGrid>(m, "VOFGrid",
+                      "2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are "
+                      "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).")
+      .def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
+      .def_property_readonly("grid", &VOFGrid::grid, py::return_value_policy::reference_internal)
+      .def_property("params", &VOFGrid::params, &VOFGrid::set_params, "a copy; assign a modified copy to change it")
+      .def_property("discharge", &VOFGrid::discharge, &VOFGrid::set_discharge, "DischargeTable Q(t) [m^3/s]")
+      .def_property_readonly("face_u", [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_u); },
+                             "superficial x-velocity [m/s]")
+      .def_property_readonly("face_w", [](py::object s) { return zfaces(s, s.cast<VOFGrid&>().face_w); },
+                             "superficial z-velocity [m/s]")
+      .def_property_readonly("cell_p", [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_p); }, "pressure [Pa]")
+      .def_property_readonly("cell_F", [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_F); },
+                             "water fraction [-]")
+      .def_property_readonly("cell_porosity", [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_porosity); },
+                             "porosity [-] (0 = solid); call update_face_porosity() after writing")
+      .def_property_readonly("face_x_porosity",
+                             [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_x_porosity); })
+      .def_property_readonly("face_z_porosity",
+                             [](py::object s) { return zfaces(s, s.cast<VOFGrid&>().face_z_porosity); })
+      .def_property_readonly("cell_stone_diameter",
+                             [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_stone_diameter); },
+                             "stone diameter D_sp [m]")
+      .def_property_readonly("cell_nut", [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_nut); },
+                             "eddy viscosity [m^2/s]")
+      .def_property_readonly("face_x_solid_u", [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_x_solid_u); },
+                             "stones' x-velocity at x-faces [m/s]")
+      .def_property_readonly("face_z_solid_w", [](py::object s) { return zfaces(s, s.cast<VOFGrid&>().face_z_solid_w); },
+                             "stones' z-velocity at z-faces [m/s]")
+      .def(
+          "set_porosity",
+          [](VOFGrid& f, const DoubleArray& n) { f.set_porosity(std::vector<double>(n.data(), n.data() + n.size())); },
+          py::arg("porosity"), "sets the cell porosity (ncell values in [0, 1]) and the face porosities")
+      .def("update_face_porosity", &VOFGrid::update_face_porosity)
+      .def("fill_water_below", &VOFGrid::fill_water_below, py::arg("level"))
+      .def("fill_water_box", &VOFGrid::fill_water_box, py::arg("x0"), py::arg("x1"), py::arg("z0"), py::arg("z1"),
+           py::arg("value") = 1.0)
+      .def("set_porosity_box", &VOFGrid::set_porosity_box, py::arg("x0"), py::arg("x1"), py::arg("z0"), py::arg("z1"),
+           py::arg("n"), py::arg("d"))
+      .def("set_hydrostatic_pressure", &VOFGrid::set_hydrostatic_pressure)
+      .def_property("time", &VOFGrid::time, &VOFGrid::set_time, "simulated time [s]")
+      .def_property_readonly("step_count", &VOFGrid::step_count)
+      .def("stable_dt", &VOFGrid::stable_dt)
+      .def("stable_dt_terms", &VOFGrid::stable_dt_terms)
+      .def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
+      .def("advance", &VOFGrid::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>())
+      .def("pore_velocity_at_cells",
+           [](const VOFGrid& f) {
+             std::vector<double> U, W;
+             f.pore_velocity_at_cells(U, W);
+             return py::make_tuple(cell_copy(f.grid(), U), cell_copy(f.grid(), W));
+           })
+      .def("pressure_gradient_at_cells",
+           [](const VOFGrid& f) {
+             std::vector<double> gx, gz;
+             f.pressure_gradient_at_cells(gx, gz);
+             return py::make_tuple(cell_copy(f.grid(), gx), cell_copy(f.grid(), gz));
+           })
+      .def("water_volume", &VOFGrid::water_volume, "sum(n F V) per metre of width [m^2]")
+      .def("discharge_through", &VOFGrid::discharge_through, py::arg("i"), "water discharge per width [m^2/s]")
+      .def("inlet_discharge_per_width", &VOFGrid::inlet_discharge_per_width, "q = Q(t) / B now [m^2/s]")
+      .def_property_readonly("inlet_volume", &VOFGrid::inlet_volume,
+                             "water volume per width [m^2] that entered through the inlet")
+      .def_property_readonly("profile", py::overload_cast<>(&VOFGrid::profile),
+                             py::return_value_policy::reference_internal)
+      .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)
+      .def("__repr__", [](const VOFGrid& f) {
+        return "VOFGrid(nx=" + std::to_string(f.grid().nx()) + ", nz=" + std::to_string(f.grid().nz()) +
+               ", t=" + std::to_string(f.time()) + ")";
+      });
+}
 
 }  // namespace vofdem::bind

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "pressure_direct.h"
+#include "pressure_mgcg.h"
 #include "pressure_system.h"
 
 namespace vofdem {
@@ -17,12 +18,11 @@ void PressureProblem::resize(const Grid2D& grid) {
 }
 
 std::unique_ptr<PressureSolver> make_pressure_solver(PressureSolverKind kind, const PressureSolverParams& params) {
-  (void)params;
   switch (kind) {
     case PressureSolverKind::kEigenDirect:
       return std::make_unique<detail::EigenDirectPressureSolver>();
     case PressureSolverKind::kMultigridCG:
-      throw std::invalid_argument("kind = kMultigridCG is not available yet; use kEigenDirect");
+      return std::make_unique<detail::MultigridCGPressureSolver>(params);
   }
   throw std::invalid_argument("kind = " + std::to_string(static_cast<int>(kind)) +
                               " is outside the allowed range {0 (kEigenDirect), 1 (kMultigridCG)}");

@@ -35,6 +35,9 @@ class PressureSystem {
   // subtracts from x its mean over each singular group (x has size ncell)
   void remove_singular_means(double* x) const;
   bool has_singular_groups() const { return singular_start_.size() > 1; }
+  // cells of the singular groups: group s holds singular_cells()[singular_start()[s] .. singular_start()[s + 1])
+  const std::vector<int>& singular_cells() const { return singular_cells_; }
+  const std::vector<int>& singular_start() const { return singular_start_; }
   // one cell of each singular group (the one the direct solver pins)
   std::vector<int> singular_anchor_cells() const;
 

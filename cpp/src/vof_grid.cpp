@@ -46,7 +46,7 @@ double FlowStableDt::min() const { return std::min({advective, viscous, gravity,
 
 struct VOFGrid::Snapshot {
   std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut;
-  double time = 0.0;
+  double time = 0.0, inlet_volume = 0.0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -317,6 +317,7 @@ void VOFGrid::save_state() {
   s.cell_F = cell_F;
   s.cell_nut = cell_nut;
   s.time = time_;
+  s.inlet_volume = inlet_volume_;
 }
 
 void VOFGrid::restore_state() {
@@ -327,6 +328,7 @@ void VOFGrid::restore_state() {
   cell_F = s.cell_F;
   cell_nut = s.cell_nut;
   time_ = s.time;
+  inlet_volume_ = s.inlet_volume;
 }
 
 void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, int index) {
@@ -411,6 +413,8 @@ void VOFGrid::stage_advect_vof(double dt) {
     for (int k = 0; k < nz; ++k) vof_inflow_.left[k] = 1.0;
   for (int k = 0; k < nz; ++k)
     vof_inflow_.right[k] = params_.outlet == OutletBoundary::kTailwater && grid_.z_center(k) < params_.tailwater_level;
+  if (params_.inlet == InletBoundary::kDischarge)
+    for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[(grid_.nx() + 1) * k], 0.0) * grid_.dz(k) * dt;
   try {
     advect_vof(grid_, cell_porosity, face_u, face_w, vof_inflow_, dt, step_count_ % 2 == 0, cell_F, vof_scratch_);
   } catch (const std::runtime_error& e) {

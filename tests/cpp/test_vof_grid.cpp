@@ -121,6 +121,7 @@ TEST(VOFGrid, PlungingJetIntoAPoolStaysBounded) {
   // closed except the inlet and the open top (which the water never reaches): V = V0 + q t
   const double q = Q / p.flume_width;
   EXPECT_NEAR(flow.water_volume(), v0 + q * 0.8, 1e-6 * v0);
+  EXPECT_NEAR(flow.water_volume(), v0 + flow.inlet_volume(), 1e-10 * v0);
 }
 
 TEST(VOFGrid, NaNIsCaughtWithStageCellAndTime) {

@@ -172,6 +172,8 @@ class VOFGrid {
   // discharge per unit width [m^2/s] through x-face column i (sum u dz over water faces weighted by
   // the upwind F)
   double discharge_through(int i) const;
+  // water volume per metre of width [m^2] that entered through the inlet since construction
+  double inlet_volume() const { return inlet_volume_; }
   // inlet discharge per unit width now [m^2/s]
   double inlet_discharge_per_width() const;
 
@@ -209,6 +211,7 @@ class VOFGrid {
   DischargeTable discharge_;
   double time_ = 0.0;
   long long step_count_ = 0;
+  double inlet_volume_ = 0.0;
 
   // derived per step
   // phase properties from F (caches: refreshed by const queries too)

@@ -1,0 +1,105 @@
+// Cost of the pressure solvers on a dam-break-like two-phase field: a water column (rho 1000 kg/m^3)
+// and a shallow layer under air (rho 1.2 kg/m^3), a porous mound (n = 0.4) on a solid bed step, open
+// top (p = 0), grid graded in z (dz_bed = dz / 2 near the bed) as in the flume of the seed paper.
+// Sizes about 2.5e3, 1e4 and 4e4 cells. Counters: CG iterations, setup and solve time per cell.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "vofdem/grid.h"
+#include "vofdem/pressure_solver.h"
+
+using namespace vofdem;
+
+namespace {
+
+struct Case {
+  Grid2D grid;
+  PressureProblem problem;
+  std::vector<double> rhs;
+};
+
+Case dam_break_case(int scale) {
+  // scale 1: 84 x 30 cells over 2.1 m x 0.3 m (2.5 cm x 1 cm, 0.5 cm below 2 cm)
+  const int nx = 84 * scale;
+  const double dz = 0.01 / scale, dz_bed = 0.5 * dz;
+  Grid2D g = Grid2D::graded(nx, 2.1, 0.3, dz, dz_bed, 0.02);
+  const int nz = g.nz();
+  const double dt = 1e-3;
+  std::vector<double> rho(g.ncell()), n(g.ncell(), 1.0);
+  std::vector<std::uint8_t> active(g.ncell(), 1);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const double x = g.x_center(i), z = g.z_center(k);
+      const bool water = x < 0.6 ? z < 0.25 : z < 0.05;
+      rho[g.cell(i, k)] = water ? 1000.0 : 1.2;
+      if (z < 0.01 && x > 1.6) active[g.cell(i, k)] = 0;               // solid bed step
+      if (z < 0.15 - std::abs(x - 1.2) * 0.5 && z > 0.0) n[g.cell(i, k)] = 0.4;  // porous mound
+    }
+  Case c{g, PressureProblem(), std::vector<double>(g.ncell())};
+  c.problem.resize(g);
+  c.problem.cell_active = active;
+  auto beta = [&](int a, int b) {
+    const double r = 0.5 * (rho[a] + rho[b]), nf = 0.5 * (n[a] + n[b]);
+    return dt * nf / r;
+  };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 1; i < nx; ++i) {
+      const int a = g.cell(i - 1, k), b = g.cell(i, k);
+      if (active[a] && active[b]) c.problem.face_x_coef[g.face_x(i, k)] = beta(a, b) * g.dz(k) / g.dx();
+    }
+  for (int k = 1; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int a = g.cell(i, k - 1), b = g.cell(i, k);
+      if (active[a] && active[b])
+        c.problem.face_z_coef[g.face_z(i, k)] = beta(a, b) * g.dx() / (g.z_center(k) - g.z_center(k - 1));
+    }
+  for (int i = 0; i < nx; ++i) {
+    const int a = g.cell(i, nz - 1);
+    c.problem.face_z_coef[g.face_z(i, nz)] = beta(a, a) * g.dx() / (0.5 * g.dz(nz - 1));
+  }
+  // a divergence field of the size a projection meets (about 1e-3 m^2/s per cell)
+  for (int cidx = 0; cidx < g.ncell(); ++cidx)
+    c.rhs[cidx] = active[cidx] ? 1e-3 * g.dx() * std::sin(0.7 * cidx) * std::cos(0.013 * cidx) : 0.0;
+  return c;
+}
+
+void report(benchmark::State& state, const Case& c, double setup_s, double solve_s, int iterations,
+            std::int64_t runs) {
+  const double cells = c.grid.ncell();
+  state.counters["cells"] = cells;
+  state.counters["iterations"] = iterations;
+  state.counters["setup_ms"] = 1e3 * setup_s / runs;
+  state.counters["solve_ms"] = 1e3 * solve_s / runs;
+  state.counters["us_per_cell"] = 1e6 * (setup_s + solve_s) / runs / cells;
+}
+
+// setup + solve from a zero guess, the per-step cost of a projection
+void BM_PressureSetupSolve(benchmark::State& state) {
+  const auto kind = static_cast<PressureSolverKind>(state.range(0));
+  const Case c = dam_break_case(static_cast<int>(state.range(1)));
+  auto solver = make_pressure_solver(kind);
+  std::vector<double> p(c.grid.ncell(), 0.0);
+  double setup_s = 0, solve_s = 0;
+  int iterations = 0;
+  for (auto _ : state) {
+    std::fill(p.begin(), p.end(), 0.0);
+    solver->setup(c.grid, c.problem);
+    const auto st = solver->solve(c.rhs, p, 1e-8);
+    benchmark::DoNotOptimize(p.data());
+    setup_s += st.setup_seconds;
+    solve_s += st.solve_seconds;
+    iterations = st.iterations;
+  }
+  report(state, c, setup_s, solve_s, iterations, state.iterations());
+}
+
+}  // namespace
+
+BENCHMARK(BM_PressureSetupSolve)
+    ->ArgsProduct({{static_cast<int>(PressureSolverKind::kEigenDirect), static_cast<int>(PressureSolverKind::kMultigridCG)},
+                   {1, 2, 4}})
+    ->ArgNames({"kind", "scale"})
+    ->Unit(benchmark::kMillisecond);

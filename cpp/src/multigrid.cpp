@@ -1,0 +1,291 @@
+#include "multigrid.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace vofdem::detail {
+
+namespace {
+
+void size_level(MultigridLevel& lv, int nx, int nz) {
+  lv.nx = nx;
+  lv.nz = nz;
+  lv.w = nx + 2;
+  const std::size_t n = static_cast<std::size_t>(lv.size());
+  for (auto* v : {&lv.west, &lv.south, &lv.diag, &lv.inv, &lv.up, &lv.mask, &lv.x, &lv.b}) v->assign(n, 0.0);
+}
+
+// diagonal and mask of a level from its faces
+void finish_level(MultigridLevel& lv) {
+  const int w = lv.w;
+  for (int k = 0; k < lv.nz; ++k)
+    for (int i = 0; i < lv.nx; ++i) {
+      const int c = lv.index(i, k);
+      lv.diag[c] = lv.west[c] + lv.west[c + 1] + lv.south[c] + lv.south[c + w];
+      lv.mask[c] = lv.diag[c] > 0.0 ? 1.0 : 0.0;
+    }
+}
+
+}  // namespace
+
+void Multigrid::allocate(int nx, int nz, const PressureSolverParams& params) {
+  sweeps_ = params.smoothing_sweeps;
+  scale_ = params.coarse_correction_scale;
+  levels_.clear();
+  levels_.emplace_back();
+  size_level(levels_.back(), nx, nz);
+  while (true) {
+    MultigridLevel& f = levels_.back();
+    if (f.nx * f.nz <= params.coarsest_cells || (f.nx == 1 && f.nz == 1)) break;
+    const int nxc = std::max(1, f.nx / 2), nzc = std::max(1, f.nz / 2);
+    f.parent_i.resize(f.nx);
+    f.parent_k.resize(f.nz);
+    for (int i = 0; i < f.nx; ++i) f.parent_i[i] = std::min(i / 2, nxc - 1);
+    for (int k = 0; k < f.nz; ++k) f.parent_k[k] = std::min(k / 2, nzc - 1);
+    MultigridLevel c;
+    size_level(c, nxc, nzc);
+    levels_.push_back(std::move(c));
+  }
+  const MultigridLevel& last = levels_.back();
+  const int n = last.nx * last.nz;
+  row_.assign(nx + 2, 0.0);
+  coarse_matrix_.resize(n, n);
+  coarse_rhs_.resize(n);
+  coarse_group_.assign(n, -1);
+  coarse_stack_.reserve(n);
+}
+
+void Multigrid::setup(const std::vector<double>& ax, const std::vector<double>& az,
+                      const std::vector<std::uint8_t>& active) {
+  MultigridLevel& f = levels_[0];
+  const int nx = f.nx, nz = f.nz;
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) f.west[f.index(i, k)] = ax[i + (nx + 1) * k];
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i < nx; ++i) f.south[f.index(i, k)] = az[i + nx * k];
+  finish_level(f);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i)
+      if (!active[i + nx * k]) f.mask[f.index(i, k)] = 0.0;
+  for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
+    factor_lines(levels_[l]);
+    galerkin(levels_[l], levels_[l + 1]);
+  }
+  factor_coarsest();
+}
+
+void Multigrid::galerkin(const MultigridLevel& f, MultigridLevel& c) {
+  std::fill(c.west.begin(), c.west.end(), 0.0);
+  std::fill(c.south.begin(), c.south.end(), 0.0);
+  // a fine face is a coarse face where it separates two parents (or lies on the boundary)
+  for (int k = 0; k < f.nz; ++k) {
+    const int kc = f.parent_k[k];
+    for (int i = 0; i <= f.nx; ++i) {
+      int ic;
+      if (i == f.nx)
+        ic = c.nx;
+      else if (i == 0 || f.parent_i[i] != f.parent_i[i - 1])
+        ic = f.parent_i[i];
+      else
+        continue;
+      c.west[c.index(ic, kc)] += f.west[f.index(i, k)];
+    }
+  }
+  for (int k = 0; k <= f.nz; ++k) {
+    int kc;
+    if (k == f.nz)
+      kc = c.nz;
+    else if (k == 0 || f.parent_k[k] != f.parent_k[k - 1])
+      kc = f.parent_k[k];
+    else
+      continue;
+    for (int i = 0; i < f.nx; ++i) c.south[c.index(f.parent_i[i], kc)] += f.south[f.index(i, k)];
+  }
+  finish_level(c);
+}
+
+void Multigrid::factor_lines(MultigridLevel& lv) {
+  // Thomas factors of each column's tridiagonal block: pivot_k = d_k - s_k up_{k-1}
+  const int w = lv.w;
+  for (int i = 0; i < lv.nx; ++i) {
+    double up_below = 0.0;
+    for (int k = 0; k < lv.nz; ++k) {
+      const int c = lv.index(i, k);
+      if (lv.mask[c] == 0.0) {
+        lv.inv[c] = lv.up[c] = up_below = 0.0;
+        continue;
+      }
+      double pivot = lv.diag[c] - lv.south[c] * up_below;
+      // a column segment coupled to nothing else is singular: its last pivot vanishes; keeping d there
+      // is a symmetric positive definite approximation of the block (the smoother stays convergent)
+      if (pivot < 1e-10 * lv.diag[c]) pivot = lv.diag[c];
+      lv.inv[c] = 1.0 / pivot;
+      lv.up[c] = k + 1 < lv.nz ? lv.south[c + w] / pivot : 0.0;
+      up_below = lv.up[c];
+    }
+  }
+}
+
+void Multigrid::factor_coarsest() {
+  const MultigridLevel& lv = levels_.back();
+  const int nx = lv.nx, nz = lv.nz, n = nx * nz, w = lv.w;
+  coarse_matrix_.setZero();
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k, c = lv.index(i, k);
+      if (lv.mask[c] == 0.0) {
+        coarse_matrix_(j, j) = 1.0;
+        continue;
+      }
+      coarse_matrix_(j, j) = lv.diag[c];
+      if (i > 0 && lv.mask[c - 1] != 0.0) coarse_matrix_(j, j - 1) = -lv.west[c];
+      if (i + 1 < nx && lv.mask[c + 1] != 0.0) coarse_matrix_(j, j + 1) = -lv.west[c + 1];
+      if (k > 0 && lv.mask[c - w] != 0.0) coarse_matrix_(j, j - nx) = -lv.south[c];
+      if (k + 1 < nz && lv.mask[c + w] != 0.0) coarse_matrix_(j, j + nx) = -lv.south[c + w];
+    }
+  // pin one cell of every group without a Dirichlet face (its block is singular)
+  std::fill(coarse_group_.begin(), coarse_group_.end(), -1);
+  for (int seed = 0; seed < n; ++seed) {
+    if (coarse_group_[seed] >= 0 || lv.mask[lv.index(seed % nx, seed / nx)] == 0.0) continue;
+    bool dirichlet = false;
+    coarse_stack_.assign(1, seed);
+    coarse_group_[seed] = seed;
+    while (!coarse_stack_.empty()) {
+      const int j = coarse_stack_.back();
+      coarse_stack_.pop_back();
+      const int i = j % nx, k = j / nx, c = lv.index(i, k);
+      if ((i == 0 && lv.west[c] > 0) || (i == nx - 1 && lv.west[c + 1] > 0) || (k == 0 && lv.south[c] > 0) ||
+          (k == nz - 1 && lv.south[c + w] > 0))
+        dirichlet = true;
+      auto visit = [&](bool open, int nb) {
+        if (open && coarse_group_[nb] < 0) {
+          coarse_group_[nb] = seed;
+          coarse_stack_.push_back(nb);
+        }
+      };
+      visit(i > 0 && lv.west[c] > 0, j - 1);
+      visit(i + 1 < nx && lv.west[c + 1] > 0, j + 1);
+      visit(k > 0 && lv.south[c] > 0, j - nx);
+      visit(k + 1 < nz && lv.south[c + w] > 0, j + nx);
+    }
+    if (!dirichlet) coarse_matrix_(seed, seed) *= 2.0;
+  }
+  coarse_llt_.compute(coarse_matrix_);
+  if (coarse_llt_.info() != Eigen::Success)
+    throw std::runtime_error("pressure setup (multigrid): coarsest-level Cholesky factorisation failed");
+}
+
+void Multigrid::smooth(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess) {
+  // block Gauss-Seidel over the columns of one parity: forward elimination, then back substitution;
+  // from a zero guess the neighbouring columns hold 0 and are not read
+  const int w = lv.w, nx = lv.nx;
+  const double *we = lv.west.data(), *so = lv.south.data(), *inv = lv.inv.data(), *up = lv.up.data();
+  for (int k = 0; k < lv.nz; ++k) {
+    const int row = w * (k + 1) + 1;
+    if (zero_guess) {
+      for (int i = parity; i < nx; i += 2) {
+        const int c = row + i;
+        x[c] = (b[c] + so[c] * x[c - w]) * inv[c];
+      }
+    } else {
+      for (int i = parity; i < nx; i += 2) {
+        const int c = row + i;
+        x[c] = (b[c] + we[c] * x[c - 1] + we[c + 1] * x[c + 1] + so[c] * x[c - w]) * inv[c];
+      }
+    }
+  }
+  for (int k = lv.nz - 2; k >= 0; --k) {
+    const int row = w * (k + 1) + 1;
+    for (int i = parity; i < nx; i += 2) {
+      const int c = row + i;
+      x[c] += up[c] * x[c + w];
+    }
+  }
+}
+
+void Multigrid::restrict_residual(const MultigridLevel& f, const double* b, const double* x, MultigridLevel& c) {
+  // residual row by row into a buffer, then summed over the 2 (or 3) columns of each parent
+  std::fill(c.b.begin(), c.b.end(), 0.0);
+  const int w = f.w, nx = f.nx, nxc = c.nx;
+  const double *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
+  double* res = row_.data();
+  for (int k = 0; k < f.nz; ++k) {
+    const int row = w * (k + 1) + 1;
+    for (int i = 0; i < nx; ++i) {
+      const int j = row + i;
+      res[i] = b[j] - d[j] * x[j] + we[j] * x[j - 1] + we[j + 1] * x[j + 1] + so[j] * x[j - w] + so[j + w] * x[j + w];
+    }
+    double* cb = c.b.data() + c.w * (f.parent_k[k] + 1) + 1;
+    if (nxc == nx) {
+      for (int i = 0; i < nx; ++i) cb[i] += res[i];
+    } else {
+      for (int ic = 0; ic < nxc; ++ic) cb[ic] += res[2 * ic] + res[2 * ic + 1];
+      if (nx % 2) cb[nxc - 1] += res[nx - 1];
+    }
+  }
+}
+
+void Multigrid::prolong(const MultigridLevel& f, double* xf, const MultigridLevel& c) {
+  const double sc = scale_;
+  const int nx = f.nx, nxc = c.nx;
+  for (int k = 0; k < f.nz; ++k) {
+    double* x = xf + f.w * (k + 1) + 1;
+    const double* m = f.mask.data() + f.w * (k + 1) + 1;
+    const double* cx = c.x.data() + c.w * (f.parent_k[k] + 1) + 1;
+    if (nxc == nx) {
+      for (int i = 0; i < nx; ++i) x[i] += sc * m[i] * cx[i];
+    } else {
+      for (int ic = 0; ic < nxc; ++ic) {
+        const double v = sc * cx[ic];
+        x[2 * ic] += m[2 * ic] * v;
+        x[2 * ic + 1] += m[2 * ic + 1] * v;
+      }
+      if (nx % 2) x[nx - 1] += sc * m[nx - 1] * cx[nxc - 1];
+    }
+  }
+}
+
+void Multigrid::cycle(int l, const double* b, double* x) {
+  const MultigridLevel& lv = levels_[l];
+  if (l + 1 == levels()) {
+    for (int k = 0; k < lv.nz; ++k)
+      for (int i = 0; i < lv.nx; ++i) coarse_rhs_[i + lv.nx * k] = b[lv.index(i, k)] * lv.mask[lv.index(i, k)];
+    coarse_llt_.solveInPlace(coarse_rhs_);
+    for (int k = 0; k < lv.nz; ++k)
+      for (int i = 0; i < lv.nx; ++i) x[lv.index(i, k)] = coarse_rhs_[i + lv.nx * k] * lv.mask[lv.index(i, k)];
+    return;
+  }
+  // the first half-sweep starts from x = 0 (x holds anything before), the rest are full sweeps
+  for (int s = 0; s < sweeps_; ++s) {
+    smooth(lv, b, x, 0, s == 0);
+    smooth(lv, b, x, 1, false);
+  }
+  MultigridLevel& coarse = levels_[l + 1];
+  restrict_residual(lv, b, x, coarse);
+  cycle(l + 1, coarse.b.data(), coarse.x.data());
+  prolong(lv, x, coarse);
+  for (int s = 0; s < sweeps_; ++s) {
+    smooth(lv, b, x, 1, false);
+    smooth(lv, b, x, 0, false);
+  }
+}
+
+void Multigrid::apply(const double* r, double* z) { cycle(0, r, z); }
+
+double Multigrid::multiply(const double* x, double* q) const {
+  const MultigridLevel& f = levels_[0];
+  double xq = 0.0;
+  const int w = f.w;
+  const double *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
+  for (int k = 0; k < f.nz; ++k) {
+    const int row = w * (k + 1) + 1;
+    for (int i = 0; i < f.nx; ++i) {
+      const int j = row + i;
+      q[j] = d[j] * x[j] - we[j] * x[j - 1] - we[j + 1] * x[j + 1] - so[j] * x[j - w] - so[j + w] * x[j + w];
+      xq += x[j] * q[j];
+    }
+  }
+  return xq;
+}
+
+}  // namespace vofdem::detail

@@ -1,0 +1,123 @@
+"""VOFGrid from Python: zero-copy views, scene helpers, stepping, guards, discharge tables."""
+import gc
+
+import numpy as np
+import pytest
+
+import vofdem
+from vofdem import flow as vflow
+
+
+def tank(nx=12, nz=10, length=0.24, height=0.2, params=None):
+    grid = vofdem.Grid2D.uniform(nx, nz, length, height)
+    return vofdem.VOFGrid(grid, params if params is not None else vofdem.FlowParams())
+
+
+def test_views_are_zero_copy_and_keep_the_owner_alive():
+    f = tank()
+    assert f.face_u.shape == (10, 13)
+    assert f.face_w.shape == (11, 12)
+    assert f.cell_F.shape == (10, 12)
+    F = f.cell_F
+    F[:3, :] = 1.0  # writes through
+    assert f.water_volume() == pytest.approx(3 * 12 * 0.02 * 0.02)
+    del f
+    gc.collect()
+    assert F.sum() == 36.0  # the view still holds the solver
+
+
+def test_porosity_faces_follow_the_tighter_cell():
+    f = tank()
+    n = np.ones((10, 12))
+    n[2, 5] = 0.3
+    n[4, 7] = 0.0
+    f.set_porosity(n)
+    assert f.face_x_porosity[2, 5] == 0.3 and f.face_x_porosity[2, 6] == 0.3
+    assert f.face_z_porosity[2, 5] == 0.3 and f.face_z_porosity[3, 5] == 0.3
+    assert f.face_x_porosity[4, 7] == 0.0
+    # the end walls and the bed are closed, the open top is not
+    assert np.all(f.face_x_porosity[:, 0] == 0) and np.all(f.face_x_porosity[:, -1] == 0)
+    assert np.all(f.face_z_porosity[0] == 0) and np.all(f.face_z_porosity[-1] == 1)
+    with pytest.raises(ValueError, match="porosity"):
+        f.set_porosity(np.full((10, 12), 1.5))
+
+
+def test_still_water_stays_still_and_profile_counts_stages():
+    f = tank()
+    f.fill_water_below(0.1)
+    f.set_porosity_box(0.05, 0.15, 0.0, 0.06, 0.4, 0.03)
+    f.set_hydrostatic_pressure()
+    steps = f.advance(0.2)
+    assert steps == f.step_count > 0
+    assert np.abs(f.face_u).max() < 1e-9 and np.abs(f.face_w).max() < 1e-9
+    prof = f.profile
+    calls = dict(zip(prof.names, prof.calls))
+    assert calls["momentum"] == steps and calls["turbulence"] == 0
+    # bottom pressure is hydrostatic: water 0.09 m and air 0.1 m above the lowest centre
+    assert f.cell_p[0, 0] == pytest.approx(9.81 * (998.2 * 0.09 + 1.204 * 0.1), rel=1e-12)
+
+
+def test_dam_break_front_moves_and_conserves_water():
+    f = vflow.dam_break(cells_per_a=6)
+    v0 = f.water_volume()
+    f.advance(0.1)
+    assert f.water_volume() == pytest.approx(v0, rel=1e-10)
+    U, W = f.pore_velocity_at_cells()
+    assert U.shape == f.cell_F.shape and U.max() > 0.3
+    dpdx, dpdz = f.pressure_gradient_at_cells()
+    assert dpdz[0, 0] < 0  # pressure falls upward
+
+
+def test_nan_raises_runtime_error_and_restores_state():
+    f = tank()
+    f.fill_water_below(0.1)
+    f.face_w[4, 3] = np.nan
+    with pytest.raises(RuntimeError, match=r"stage '.*'.*i=3, k=4.*t = 0 s"):
+        f.step(1e-3)
+    assert f.time == 0.0 and np.isnan(f.face_w[4, 3])
+
+
+def test_switched_off_free_surface_means_water_everywhere():
+    p = vofdem.FlowParams()
+    p.flags = vofdem.FlowEffect.GRAVITY | vofdem.FlowEffect.VISCOSITY
+    f = tank(params=p)
+    assert np.all(f.cell_F == 1.0)
+    f.step(1e-3)
+    calls = dict(zip(f.profile.names, f.profile.calls))
+    assert calls["advect_vof"] == 0 and calls["porous_resistance"] == 0
+
+
+def test_bad_parameters_raise_value_error():
+    p = vofdem.FlowParams()
+    p.cfl = 2.0
+    with pytest.raises(ValueError, match="cfl"):
+        tank(params=p)
+    p = vofdem.FlowParams()
+    p.flags = vofdem.FlowEffect.TURBULENCE
+    with pytest.raises(ValueError, match="turbulence"):
+        tank(params=p)
+
+
+def test_discharge_tables():
+    ramp = vflow.paper_discharge_ramp()
+    assert ramp.at(60.0) == pytest.approx(0.0175)
+    table = vflow.discharge_table(lambda t: 10.0 + t, t_end=10.0, dt=1.0, discharge_lps=True)
+    assert table.at(5.5) == pytest.approx(0.0155)
+    assert vflow.discharge_table(0.02).at(3.0) == 0.02
+    with pytest.raises(ValueError):
+        vofdem.DischargeTable([1.0, 0.0], [0.0, 0.0])
+
+
+def test_inflow_fills_a_closed_flume_at_the_prescribed_rate():
+    p = vofdem.FlowParams()
+    p.inlet = vofdem.InletBoundary.DISCHARGE
+    p.flume_width = 0.3
+    f = tank(nx=20, nz=10, length=0.4, height=0.2, params=p)
+    f.fill_water_below(0.05)
+    f.discharge = vflow.linear_ramp(0.0015, 0.003, 0.0, 0.5)
+    v0 = f.water_volume()
+    f.advance(0.5)
+    # exact balance with the water the inlet let in
+    assert f.water_volume() == pytest.approx(v0 + f.inlet_volume, rel=1e-12)
+    # which is the integral of q dt to first order in dt (left Riemann sum of the steps)
+    assert f.inlet_volume == pytest.approx((0.0015 + 0.003) / 2 / 0.3 * 0.5, rel=2e-2)
