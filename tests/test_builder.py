@@ -40,3 +40,30 @@ def test_explicit_stones_and_effect_flags():
     p = dem_params(s)
     assert p.friction_stone == pytest.approx(0.577) and p.walls[0].friction == pytest.approx(0.176)
     assert p.dt == 1e-4 and p.added_mass_coefficient == 1.0
+
+
+def test_fluid_of_the_scene():
+    from vofdem.builder import build_fluid, initial_level
+
+    s = Scene.maeno2008()
+    s.effects.turbulence = False
+    s.flume.outflow = "tailwater"
+    s.flume.tailwater_level = 0.1
+    s.numerics.pressure_solver = "direct"
+    f = build_fluid(s.validate())
+    g = f.grid
+    assert (g.nx, g.nz) == (147, 45 + 1)  # 3.681 m / 0.025 m; one 0.5 cm row then 1 cm rows to 0.45 m
+    assert g.z_faces[1] == pytest.approx(0.005) and g.z_faces[2] == pytest.approx(0.015)
+    p = f.params
+    assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.3, 200.0, 2.8, 0.5)
+    assert p.outlet == vofdem.OutletBoundary.TAILWATER and p.tailwater_level == 0.1
+    assert p.inlet == vofdem.InletBoundary.DISCHARGE
+    assert p.pressure_solver == vofdem.PressureSolverKind.EIGEN_DIRECT
+    assert not p.flags & int(vofdem.FlowEffect.TURBULENCE)
+    assert p.flags & int(vofdem.FlowEffect.POROUS_FORCHHEIMER)
+    assert f.discharge.at(0.0) == pytest.approx(0.010) and f.discharge.at(140.0) == pytest.approx(0.025)
+    # water at rest upstream of the crest up to the critical-depth estimate for 10 l/s over 0.5 m
+    assert initial_level(s) == pytest.approx(0.25 + 1.5 * (0.02 ** 2 / 9.81) ** (1 / 3))
+    F = np.asarray(f.cell_F)
+    assert F[:, 0].sum() * 0.01 == pytest.approx(initial_level(s), abs=0.01)
+    assert F[:, -1].sum() == 0.0

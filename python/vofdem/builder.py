@@ -64,3 +64,65 @@ def build_stones(scene: Scene):
     if not st.fix_bottom_layer:
         sys_.disc_fixed[:] = 0
     return sys_, report
+
+
+def flow_params(scene: Scene):
+    """FlowParams of a scene: fluid, gravity along a sloping bed, CFL, porous law, boundaries, effects."""
+    import math
+
+    f, n, fx, st = scene.flume, scene.numerics, scene.effects, scene.stones
+    p = _core.FlowParams()
+    g = 9.81
+    p.gravity_x = g * f.bed_slope
+    p.gravity_z = -g * math.sqrt(1.0 - f.bed_slope ** 2)
+    p.cfl = n.cfl
+    p.max_dt = n.max_dt
+    p.k1, p.k2 = st.k1, st.k2
+    p.flume_width = f.width
+    p.pressure_solver = {"multigrid_cg": _core.PressureSolverKind.MULTIGRID_CG,
+                         "direct": _core.PressureSolverKind.EIGEN_DIRECT}[n.pressure_solver]
+    p.pressure_tol = n.pressure_tolerance
+    p.inlet = _core.InletBoundary.DISCHARGE
+    if f.outflow == "tailwater":
+        p.outlet = _core.OutletBoundary.TAILWATER
+        p.tailwater_level = f.tailwater_level
+    else:
+        p.outlet = _core.OutletBoundary.FREE_OVERFALL
+    E = _core.FlowEffect
+    flags = int(E.FREE_SURFACE) | int(E.VISCOSITY) | int(E.GRAVITY) | int(E.CONVECTION)
+    if fx.porous_resistance:
+        flags |= int(E.POROUS_RESISTANCE)
+    if fx.turbulence:
+        flags |= int(E.TURBULENCE)
+    if fx.relative_velocity_resistance:
+        flags |= int(E.RELATIVE_VELOCITY)
+    p.flags = flags
+    return p
+
+
+def build_grid(scene: Scene):
+    """The scene's Grid2D: cells of about dx along the flume (a whole number over its length), dz_bed
+    up to bed_layer_height, then dz."""
+    g, f = scene.grid, scene.flume
+    nx = max(4, int(round(f.length / g.dx)))
+    top = g.bed_layer_height if g.bed_layer_height > 0 else 0.0
+    return _core.Grid2D.graded(nx=nx, length_x=f.length, height_z=f.height, dz=g.dz, dz_bed=g.dz_bed, z_bed_top=top)
+
+
+def initial_level(scene: Scene) -> float:
+    """Water level [m] upstream of the weir at the start discharge, from the critical-depth relation of
+    a broad-crested weir, H = 1.5 (q^2 / g)^(1/3), q = Q / B: only a starting guess for the spin-up."""
+    q = scene.hydrograph.discharge(0.0) / scene.flume.width
+    return scene.weir.height + 1.5 * (q * q / 9.81) ** (1.0 / 3.0)
+
+
+def build_fluid(scene: Scene):
+    """VOFGrid of a scene: grid, parameters, inflow hydrograph, water at rest upstream of the crest at
+    `initial_level` (porosity is left to the coupler, which computes it from the stones)."""
+    fluid = _core.VOFGrid(build_grid(scene), flow_params(scene))
+    t, q = scene.hydrograph.table(scene.duration)
+    fluid.discharge = _core.DischargeTable([float(v) for v in t], [float(v) for v in q])
+    fluid.cell_stone_diameter[...] = scene.stones.diameter
+    fluid.fill_water_box(0.0, scene.weir.x_crest_down, 0.0, initial_level(scene))
+    fluid.set_hydrostatic_pressure()
+    return fluid
