@@ -9,9 +9,12 @@ from . import _core
 from ._core import *  # noqa: F401,F403
 from ._core import __version__
 from .closure import drag_force, porous_resistance
+from .porosity import make_porosity_mapper, porosity_from_discs
 
 __all__ = [name for name in dir(_core) if not name.startswith("_")] + [
     "__version__",
     "drag_force",
     "porous_resistance",
+    "make_porosity_mapper",
+    "porosity_from_discs",
 ]

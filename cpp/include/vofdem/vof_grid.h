@@ -155,6 +155,8 @@ class VOFGrid {
   double time() const { return time_; }
   void set_time(double t) { time_ = t; }
   long long step_count() const { return step_count_; }
+  // restores the step counter (the split advection alternates its sweep order with it): restart only
+  void set_step_count(long long n) { step_count_ = n; }
   FlowStableDt stable_dt_terms() const;
   double stable_dt() const { return stable_dt_terms().min(); }
   // one step of dt [s]; throws std::runtime_error (stage, cell, time) after restoring the state

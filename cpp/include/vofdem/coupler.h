@@ -1,0 +1,173 @@
+// Two-way VOF-DEM coupling of the flow (VOFGrid) and the stones (DEMSystem): seed paper sections 2.2
+// and 2.4, eqs. (8)-(18).
+//
+//   stones -> flow:  n = (A_f + A_s n_exp) / (A_f + A_s)                                     (11)
+//                    porous resistance R on u - n u_s (u_s: the stones' velocity, optional)    (5)-(7)
+//   flow -> stones:  F_x, F_z of eqs. (8)-(9) = drag (16)-(18) + pressure-gradient force F_S
+//                    buoyancy and added mass through the DEM's wet fraction w (eq. 9)
+//
+// One coupling step of dt [s] runs these stages in this order, each timed into profile() and each
+// skipped when its effect is off or has nothing to act on:
+//   1. "porosity"      stones -> cell and face porosity (exact disc areas or the paper's lookup table),
+//                      water volume n F V kept per cell (water_redistribution.h), stones' velocity at
+//                      the faces for the relative-velocity resistance
+//   2. "fluid_forces"  pore velocity and pressure gradient averaged over each stone's cells
+//                      (fluid_forces.h) -> disc_force_drag, disc_force_pressure, disc_wet, disc_force_ext
+//   3. "dem"           the stones advance by dt in substeps of their own step (DEMParams::dt, 1e-4 s)
+//   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
+//   5. "checks"        non-finite forces or stone state -> std::runtime_error
+// The forces are held over the DEM substeps of a step (explicit exchange once per fluid step).
+//
+// Time step: stable_dt() = min(fluid's stable step, max_dt, a stone crossing at most stone_cfl of the
+// smallest cell, drag_relaxation x the drag relaxation time of the lightest stone). The DEM's own
+// stable step bounds its substeps, not the exchange step.
+//
+// Guards: a failure in any stage (non-finite value, CFL breach, ...) restores the state of the start of
+// the step (fluid, stones, porosity, forces) and throws std::runtime_error naming the stage, the stone
+// or cell and the time. The snapshot is taken only when both modules are stepped; a scene with one
+// module relies on that module's own restore and pays nothing extra.
+//
+// Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using a
+// VOF-DEM coupled model, ICHE 2008, Nagoya.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vofdem/dem_system.h"
+#include "vofdem/drag.h"
+#include "vofdem/porosity_map.h"
+#include "vofdem/profile.h"
+#include "vofdem/vof_grid.h"
+#include "vofdem/water_redistribution.h"
+
+namespace vofdem {
+
+// effects of the coupling, one bit each (CouplerParams::flags)
+enum CouplerEffect : unsigned {
+  kCoupleDEM = 1u << 0,               // step the stones
+  kCoupleFluid = 1u << 1,             // step the flow (off: a frozen flow field still acts on the stones)
+  kCouplePorosity = 1u << 2,          // two-way feedback: the porosity (and water volume) follows the stones
+  kCoupleDrag = 1u << 3,              // drag on the stones, eqs. (16)-(18)
+  kCouplePressureGradient = 1u << 4,  // F_S = -V (grad p - rho_w F g) on the stones
+  kCoupleRelativeVelocity = 1u << 5,  // porous resistance on the velocity relative to the stones
+  kCoupleWetFraction = 1u << 6,       // disc_wet from the water fraction (buoyancy, added mass); off: w kept
+  kCoupleChecks = 1u << 7,            // non-finite forces / stone state checked every step
+  kCoupleLookupPorosity = 1u << 8,    // porosity from the paper's lookup table instead of exact disc areas
+  kCoupleForces = kCoupleDrag | kCouplePressureGradient,
+  kCoupleOneWay = kCoupleDEM | kCoupleFluid | kCoupleForces | kCoupleWetFraction | kCoupleChecks,
+  kCoupleTwoWay = kCoupleOneWay | kCouplePorosity | kCoupleRelativeVelocity,
+  kCoupleDefault = kCoupleTwoWay,
+};
+
+// parameters of the coupling, constant while stepping (SI units)
+struct CouplerParams {
+  unsigned flags = kCoupleDefault;        // CouplerEffect bits
+  double n_exp = 0.41;                    // packing porosity of the stones, eq. (11) [-]; 0.41 in the paper
+  int lookup_m = 8;                       // sub-areas per side of the lookup table [-]; 8 (2 .. 64)
+  double lookup_dr = 5e-4;                // radius spacing of the lookup tables [m]; 5e-4
+  DragLaw drag_law = DragLaw::kPaper;     // C_D = 0.4 + 24/Re (paper) or Schiller-Naumann
+  double max_dt = 0.01;                   // largest exchange step [s]; 0.01 (sets the step without water)
+  double stone_cfl = 0.5;                 // a stone moves at most this fraction of the smallest cell per step [-]; 0.5
+  double drag_relaxation = 0.5;           // step at most this fraction of the drag relaxation time [-]; 0.5
+  double min_dt = 1e-7;                   // a stable step below this is a failure [s]; 1e-7
+
+  // throws std::invalid_argument naming the first bad parameter
+  void validate() const;
+};
+
+class Coupler {
+ public:
+  // couples `fluid` and `stones` (either may be null: a scene without water or without stones); both
+  // must outlive the coupler. The porosity of the fluid at construction is kept as the base porosity
+  // (walls, fixed porous zones) that the stones' porosity is combined with (the smaller one wins).
+  // Checks that the DEM's fluid_density and gravity match the flow's when both are present.
+  Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params);
+  Coupler(const Coupler&) = delete;
+  Coupler& operator=(const Coupler&) = delete;
+
+  VOFGrid* fluid() { return fluid_; }
+  DEMSystem* stones() { return stones_; }
+  const CouplerParams& params() const { return params_; }
+  void set_params(const CouplerParams& params);
+  int n() const { return n_; }
+
+  // ---- time stepping ----
+  double time() const { return time_; }
+  long long step_count() const { return steps_; }
+  double stable_dt();
+  // one coupling step of stable_dt() / of dt [s]
+  void step();
+  void step(double dt);
+  // steps until time() reaches t_end [s]; returns the number of steps
+  long long advance(double t_end);
+
+  // inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the fluid)
+  void set_inflow_table(const std::vector<double>& times, const std::vector<double>& discharge);
+  // maps the stones onto the porosity now (the first step does it too); keeps the water volume
+  void update_porosity();
+  // recomputes the fluid forces now (disc_force_drag, disc_force_pressure, disc_wet, disc_force_ext)
+  void update_fluid_forces();
+  // the fluid's water volume sum(n F V) per unit width [m^2] (0 without fluid)
+  double water_volume() const;
+  // water moved between cells by the redistribution, accumulated [m^2]
+  double redistributed_volume() const { return redistributed_; }
+
+  // ---- whole state (fluid fields, stones, contact histories, time, hydrograph, forces) ----
+  std::map<std::string, std::vector<double>> export_state() const;
+  void import_state(const std::map<std::string, std::vector<double>>& state);
+
+  StageProfile& profile() { return profile_; }
+
+  // ---- state arrays ----
+  std::vector<double> disc_force_drag;      // drag on each stone [N], 2n (x, z)
+  std::vector<double> disc_force_pressure;  // pressure-gradient force on each stone [N], 2n
+  std::vector<double> cell_base_porosity;   // porosity without the stones [-], ncell (from the fluid at construction)
+  std::vector<double> cell_base_diameter;   // stone diameter of the base porosity [m], ncell
+
+ private:
+  void check_scene() const;
+  void apply_flow_flags();
+  void make_mapper();
+  void stage_porosity();
+  void stage_fluid_forces();
+  void stage_dem(double dt);
+  void stage_fluid(double dt);
+  void stage_checks();
+  void solid_velocity_at_faces();
+  void map_stones();
+  void save();
+  void restore();
+  [[noreturn]] void fail(const std::string& stage, const std::string& what);
+  bool has_fluid() const { return fluid_ != nullptr; }
+  bool has_stones() const { return stones_ != nullptr && n_ > 0; }
+
+  VOFGrid* fluid_;
+  DEMSystem* stones_;
+  CouplerParams params_;
+  int n_ = 0;
+  double time_ = 0.0;
+  long long steps_ = 0;
+  bool mapped_ = false;  // the porosity reflects the stones (needed again only if they move)
+  double redistributed_ = 0.0;
+
+  std::unique_ptr<PorosityMapper> mapper_;
+  std::unique_ptr<WaterRedistribution> redistribution_;
+  std::map<std::string, std::vector<double>> snapshot_;  // state at the start of the step (guards)
+  bool snapshot_valid_ = false;
+  bool csr_current_ = false;  // the mapper's per-stone cell lists match the stones' positions
+  // scratch (sized at construction)
+  std::vector<double> disc_x_, disc_z_;
+  std::vector<double> n_old_, n_new_;
+  std::vector<double> cell_U_, cell_W_, cell_dpdx_, cell_dpdz_;
+  std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
+  std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
+
+  StageProfile profile_;
+  int st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_;
+};
+
+}  // namespace vofdem

@@ -1,0 +1,500 @@
+#include "vofdem/coupler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "vofdem/check.h"
+#include "vofdem/fluid_forces.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+void CouplerParams::validate() const {
+  if (flags >= (1u << 9))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 511]");
+  require_in_closed("n_exp", n_exp, 0.0, 1.0);
+  if (lookup_m < 2 || lookup_m > 64)
+    throw std::invalid_argument("lookup_m = " + std::to_string(lookup_m) + " is outside the allowed range [2, 64]");
+  require_positive("lookup_dr", lookup_dr);
+  require_positive("max_dt", max_dt);
+  require_in_open_closed("stone_cfl", stone_cfl, 0.0, 1.0);
+  require_positive("drag_relaxation", drag_relaxation);
+  require_positive("min_dt", min_dt);
+}
+
+// ---------------------------------------------------------------------------------------------
+// construction
+
+Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
+    : fluid_(fluid), stones_(stones), params_(params) {
+  params_.validate();
+  n_ = stones_ ? stones_->n() : 0;
+  check_scene();
+  disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  disc_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
+  disc_x_.assign(static_cast<std::size_t>(n_), 0.0);
+  disc_z_.assign(static_cast<std::size_t>(n_), 0.0);
+  if (fluid_) {
+    const Grid2D& g = fluid_->grid();
+    const std::size_t nc = static_cast<std::size_t>(g.ncell());
+    cell_base_porosity = fluid_->cell_porosity;
+    cell_base_diameter = fluid_->cell_stone_diameter;
+    n_old_.assign(nc, 0.0);
+    n_new_.assign(nc, 0.0);
+    cell_U_.assign(nc, 0.0);
+    cell_W_.assign(nc, 0.0);
+    cell_dpdx_.assign(nc, 0.0);
+    cell_dpdz_.assign(nc, 0.0);
+    cell_solid_sum_.assign(nc, 0.0);
+    cell_solid_u_.assign(nc, 0.0);
+    cell_solid_w_.assign(nc, 0.0);
+    cell_diam_sum_.assign(nc, 0.0);
+    redistribution_ = std::make_unique<WaterRedistribution>(g);
+    make_mapper();
+    apply_flow_flags();
+  }
+  time_ = fluid_ ? fluid_->time() : (stones_ ? stones_->time() : 0.0);
+  st_porosity_ = profile_.add_stage("porosity");
+  st_forces_ = profile_.add_stage("fluid_forces");
+  st_dem_ = profile_.add_stage("dem");
+  st_fluid_ = profile_.add_stage("fluid");
+  st_checks_ = profile_.add_stage("checks");
+}
+
+void Coupler::check_scene() const {
+  if (!fluid_ || !stones_ || n_ == 0) return;
+  const FlowParams& f = fluid_->params();
+  const DEMParams& d = stones_->params();
+  // buoyancy and added mass of the DEM must use the flow's water and gravity
+  if (std::abs(d.fluid_density - f.rho_water) > 1e-12 * f.rho_water)
+    throw std::invalid_argument("DEMParams.fluid_density = " + format_value(d.fluid_density) +
+                                " must equal FlowParams.rho_water = " + format_value(f.rho_water) +
+                                " when stones and water are coupled");
+  if (d.gravity[0] != f.gravity_x || d.gravity[1] != f.gravity_z)
+    throw std::invalid_argument("DEMParams.gravity = (" + format_value(d.gravity[0]) + ", " +
+                                format_value(d.gravity[1]) + ") must equal the flow's (gravity_x, gravity_z) = (" +
+                                format_value(f.gravity_x) + ", " + format_value(f.gravity_z) + ")");
+}
+
+void Coupler::make_mapper() {
+  mapper_.reset();
+  if (!fluid_ || n_ == 0) return;
+  double rmin = INFINITY, rmax = 0.0;
+  for (int j = 0; j < n_; ++j) {
+    const double r = stones_->disc_radius[j];
+    if (r > 0.0) rmin = std::min(rmin, r), rmax = std::max(rmax, r);
+  }
+  if (!(rmax > 0.0)) return;
+  PorosityParams p;
+  p.method = (params_.flags & kCoupleLookupPorosity) ? PorosityMethod::kLookup : PorosityMethod::kExact;
+  p.m = params_.lookup_m;
+  p.n_exp = params_.n_exp;
+  p.r_min = rmin;
+  p.r_max = rmax;
+  p.dr = params_.lookup_dr;
+  p.max_discs = n_;
+  mapper_ = std::make_unique<PorosityMapper>(fluid_->grid(), p);
+  csr_current_ = false;
+}
+
+// the flow's relative-velocity resistance follows the coupler's flag (it needs the stones' velocity)
+void Coupler::apply_flow_flags() {
+  FlowParams f = fluid_->params();
+  const bool on = (params_.flags & kCoupleRelativeVelocity) && (params_.flags & kCouplePorosity) && n_ > 0;
+  const std::uint32_t flags = on ? (f.flags | kFlowRelativeVelocity) : (f.flags & ~kFlowRelativeVelocity);
+  if (flags != f.flags) {
+    f.flags = flags;
+    fluid_->set_params(f);
+  }
+}
+
+void Coupler::set_params(const CouplerParams& params) {
+  params.validate();
+  const bool remap = (params.flags ^ params_.flags) & kCoupleLookupPorosity || params.n_exp != params_.n_exp ||
+                     params.lookup_m != params_.lookup_m || params.lookup_dr != params_.lookup_dr;
+  params_ = params;
+  if (fluid_) {
+    if (remap) make_mapper();
+    apply_flow_flags();
+  }
+  mapped_ = false;
+}
+
+void Coupler::set_inflow_table(const std::vector<double>& times, const std::vector<double>& discharge) {
+  if (!fluid_) throw std::invalid_argument("set_inflow_table: this scene has no fluid (fluid = null)");
+  DischargeTable t;
+  t.times = times;
+  t.discharge = discharge;
+  fluid_->set_discharge(t);
+}
+
+double Coupler::water_volume() const { return fluid_ ? fluid_->water_volume() : 0.0; }
+
+// ---------------------------------------------------------------------------------------------
+// stages
+
+void Coupler::map_stones() {
+  for (int j = 0; j < n_; ++j) {
+    disc_x_[j] = stones_->disc_pos[2 * j];
+    disc_z_[j] = stones_->disc_pos[2 * j + 1];
+  }
+  mapper_->map(n_, disc_x_.data(), disc_z_.data(), stones_->disc_radius.data(), stones_->disc_active.data());
+  csr_current_ = true;
+}
+
+void Coupler::update_porosity() {
+  if (!fluid_ || !mapper_) return;
+  stage_porosity();
+}
+
+void Coupler::stage_porosity() {
+  ScopedStage timer(profile_, st_porosity_);
+  map_stones();
+  const Grid2D& g = fluid_->grid();
+  const int nc = g.ncell();
+  std::fill(cell_solid_sum_.begin(), cell_solid_sum_.end(), 0.0);
+  std::fill(cell_diam_sum_.begin(), cell_diam_sum_.end(), 0.0);
+  std::fill(cell_solid_u_.begin(), cell_solid_u_.end(), 0.0);
+  std::fill(cell_solid_w_.begin(), cell_solid_w_.end(), 0.0);
+  const std::vector<int>& off = mapper_->disc_cell_offsets();
+  const std::vector<int>& idx = mapper_->disc_cell_index();
+  const std::vector<double>& area = mapper_->disc_cell_area();
+  for (int j = 0; j < n_; ++j) {
+    const double d = 2.0 * stones_->disc_radius[j];
+    const double u = stones_->disc_vel[2 * j], w = stones_->disc_vel[2 * j + 1];
+    for (int p = off[j]; p < off[j + 1]; ++p) {
+      const int c = idx[p];
+      cell_solid_sum_[c] += area[p];
+      cell_diam_sum_[c] += area[p] * d;
+      cell_solid_u_[c] += area[p] * u;
+      cell_solid_w_[c] += area[p] * w;
+    }
+  }
+  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins
+  const std::vector<double>& nm = mapper_->cell_porosity();
+  for (int c = 0; c < nc; ++c) {
+    n_old_[c] = fluid_->cell_porosity[c];
+    if (nm[c] < cell_base_porosity[c]) {
+      n_new_[c] = nm[c];
+      fluid_->cell_stone_diameter[c] = cell_diam_sum_[c] / cell_solid_sum_[c];
+    } else {
+      n_new_[c] = cell_base_porosity[c];
+      fluid_->cell_stone_diameter[c] = cell_base_diameter[c];
+    }
+  }
+  // water volume per cell kept (a single-phase flow has no free surface to take displaced water)
+  if (fluid_->params().flags & kFlowFreeSurface) {
+    const int bad = redistribution_->apply(n_old_, n_new_, fluid_->cell_F);
+    redistributed_ += redistribution_->moved_volume();
+    if (bad >= 0)
+      fail("porosity", "no room for the water displaced from cell (i=" + std::to_string(bad % g.nx()) +
+                           ", k=" + std::to_string(bad / g.nx()) + "): the domain is full");
+  }
+  fluid_->cell_porosity.swap(n_new_);
+  fluid_->update_face_porosity();
+  if (fluid_->params().flags & kFlowRelativeVelocity) solid_velocity_at_faces();
+  mapped_ = true;
+}
+
+// area-weighted velocity of the stones in the two cells of each face [m/s]
+void Coupler::solid_velocity_at_faces() {
+  const Grid2D& g = fluid_->grid();
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) {
+      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
+      const double s = cell_solid_sum_[a] + (a != b ? cell_solid_sum_[b] : 0.0);
+      const double m = cell_solid_u_[a] + (a != b ? cell_solid_u_[b] : 0.0);
+      fluid_->face_x_solid_u[i + sx * k] = s > 0.0 ? m / s : 0.0;
+    }
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
+      const double s = cell_solid_sum_[a] + (a != b ? cell_solid_sum_[b] : 0.0);
+      const double m = cell_solid_w_[a] + (a != b ? cell_solid_w_[b] : 0.0);
+      fluid_->face_z_solid_w[i + nx * k] = s > 0.0 ? m / s : 0.0;
+    }
+}
+
+void Coupler::update_fluid_forces() {
+  if (!fluid_ || !mapper_) return;
+  csr_current_ = false;
+  stage_fluid_forces();
+}
+
+void Coupler::stage_fluid_forces() {
+  ScopedStage timer(profile_, st_forces_);
+  // one-way coupling: the stones' cell lists without touching the flow's porosity
+  if (!csr_current_) map_stones();
+  const unsigned fl = params_.flags;
+  const FlowParams& fp = fluid_->params();
+  fluid_->pore_velocity_at_cells(cell_U_, cell_W_);
+  // without the pressure-gradient effect the sample's gradient is unused: zeros
+  if (fl & kCouplePressureGradient) fluid_->pressure_gradient_at_cells(cell_dpdx_, cell_dpdz_);
+  else std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
+  const std::vector<int>& off = mapper_->disc_cell_offsets();
+  const std::vector<int>& idx = mapper_->disc_cell_index();
+  const std::vector<double>& area = mapper_->disc_cell_area();
+  const double rho = fp.rho_water, nu = fp.nu_water;
+  for (int j = 0; j < n_; ++j) {
+    double* fd = &disc_force_drag[2 * j];
+    double* fs = &disc_force_pressure[2 * j];
+    fd[0] = fd[1] = fs[0] = fs[1] = 0.0;
+    disc_vrel_[j] = 0.0;
+    if (!stones_->disc_active[j]) continue;
+    const StoneFlowSample s = sample_flow_at_stone(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j],
+                                                   fluid_->cell_F.data(), cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
+                                                   cell_dpdz_.data(), rho, fp.gravity_x, fp.gravity_z);
+    const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
+    disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
+    if (fl & kCoupleDrag) {
+      const DragForce f = stone_drag(s, up, wp, 2.0 * stones_->disc_radius[j], rho, nu, params_.drag_law);
+      fd[0] = f.fx, fd[1] = f.fz;
+    }
+    if (fl & kCouplePressureGradient) {
+      const auto f = stone_pressure_force(s, stones_->volume(j));
+      fs[0] = f[0], fs[1] = f[1];
+    }
+    if (fl & kCoupleWetFraction) stones_->disc_wet[j] = s.wet;
+    if (fl & kCoupleForces) {
+      stones_->disc_force_ext[2 * j] = fd[0] + fs[0];
+      stones_->disc_force_ext[2 * j + 1] = fd[1] + fs[1];
+    }
+    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1]))
+      fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
+                               ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
+                               format_value(fs[1]) + " N) at x = " + format_value(stones_->disc_pos[2 * j]) +
+                               " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m");
+  }
+}
+
+void Coupler::stage_dem(double dt) {
+  ScopedStage timer(profile_, st_dem_);
+  try {
+    stones_->advance(dt);
+  } catch (const std::runtime_error& e) {
+    fail("dem", e.what());
+  }
+}
+
+void Coupler::stage_fluid(double dt) {
+  ScopedStage timer(profile_, st_fluid_);
+  try {
+    fluid_->step(dt);
+  } catch (const std::runtime_error& e) {
+    fail("fluid", e.what());
+  }
+}
+
+void Coupler::stage_checks() {
+  ScopedStage timer(profile_, st_checks_);
+  for (int j = 0; j < n_; ++j) {
+    if (!stones_->disc_active[j]) continue;
+    const double* x = &stones_->disc_pos[2 * j];
+    const double* v = &stones_->disc_vel[2 * j];
+    if (!std::isfinite(x[0] + x[1] + v[0] + v[1]))
+      fail("checks", "non-finite state of stone " + std::to_string(j) + " (x = " + format_value(x[0]) + ", " +
+                         format_value(x[1]) + " m; v = " + format_value(v[0]) + ", " + format_value(v[1]) + " m/s)");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// stepping
+
+double Coupler::stable_dt() {
+  double dt = params_.max_dt;
+  const unsigned fl = params_.flags;
+  if (fluid_ && (fl & kCoupleFluid)) dt = std::min(dt, fluid_->stable_dt());
+  if (fluid_ && has_stones() && (fl & kCoupleDEM)) {
+    const Grid2D& g = fluid_->grid();
+    const double h = std::min(g.dx(), g.min_dz());
+    const DEMParams& dp = stones_->params();
+    const bool added = (dp.flags & kDEMAddedMass) && dp.fluid_density > 0.0;
+    const double rho = fluid_->params().rho_water, nu = fluid_->params().nu_water;
+    for (int j = 0; j < n_; ++j) {
+      if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
+      // a stone crosses at most stone_cfl of a cell per exchange (smooth porosity changes)
+      const double v = std::hypot(stones_->disc_vel[2 * j], stones_->disc_vel[2 * j + 1]);
+      if (v * dt > params_.stone_cfl * h) dt = params_.stone_cfl * h / v;
+      // explicit drag held over the step: stay below its relaxation time (estimated with eq. 18)
+      if ((fl & kCoupleDrag) && stones_->disc_wet[j] > 0.0) {
+        const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
+        const double w = stones_->disc_wet[j];
+        const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
+        const double slope = w * 0.5 * rho * kPi * r * r * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
+        const double tau = mass / slope;
+        dt = std::min(dt, params_.drag_relaxation * tau);
+      }
+    }
+  }
+  return dt;
+}
+
+void Coupler::step() { step(stable_dt()); }
+
+void Coupler::save() {
+  snapshot_valid_ = false;
+  if (!(fluid_ && has_stones())) return;  // one module: it restores itself
+  snapshot_ = export_state();
+  snapshot_valid_ = true;
+}
+
+void Coupler::restore() {
+  if (snapshot_valid_) import_state(snapshot_);
+}
+
+void Coupler::fail(const std::string& stage, const std::string& what) {
+  const double t = time_;
+  restore();
+  std::ostringstream os;
+  os << "Coupler stage '" << stage << "' at t = " << format_value(t) << " s (step " << steps_ << "): " << what
+     << "; coupled state restored to t = " << format_value(time_) << " s";
+  throw std::runtime_error(os.str());
+}
+
+void Coupler::step(double dt) {
+  require_positive("dt", dt);
+  if (stones_ && stones_->n() != n_)
+    throw std::invalid_argument("stones.n = " + std::to_string(stones_->n()) + " changed since the coupler was built (" +
+                                std::to_string(n_) + "): build a new Coupler after a resize");
+  const unsigned fl = params_.flags;
+  const bool stones_move = has_stones() && (fl & kCoupleDEM);
+  save();
+  csr_current_ = false;
+  if (fluid_ && mapper_ && (fl & kCouplePorosity) && (stones_move || !mapped_)) stage_porosity();
+  if (fluid_ && mapper_ && (fl & (kCoupleForces | kCoupleWetFraction)) && stones_move) stage_fluid_forces();
+  if (stones_move) stage_dem(dt);
+  if (fluid_ && (fl & kCoupleFluid)) stage_fluid(dt);
+  if (has_stones() && (fl & kCoupleChecks)) stage_checks();
+  csr_current_ = false;
+  time_ += dt;
+  ++steps_;
+}
+
+long long Coupler::advance(double t_end) {
+  require_finite("t_end", t_end);
+  long long n = 0;
+  const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
+  while (time_ < t_end - eps) {
+    double dt = stable_dt();
+    if (dt < params_.min_dt) {
+      snapshot_valid_ = false;
+      fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " +
+                       format_value(params_.min_dt) + " s)");
+    }
+    // the last steps split the remainder evenly rather than leaving a sliver
+    const double left = t_end - time_;
+    if (dt >= left) dt = left;
+    else if (dt > 0.5 * left) dt = 0.5 * left;
+    step(dt);
+    ++n;
+  }
+  return n;
+}
+
+// ---------------------------------------------------------------------------------------------
+// checkpoint
+
+std::map<std::string, std::vector<double>> Coupler::export_state() const {
+  std::map<std::string, std::vector<double>> s;
+  s["coupler/time"] = {time_};
+  s["coupler/steps"] = {static_cast<double>(steps_)};
+  s["coupler/mapped"] = {mapped_ ? 1.0 : 0.0};
+  s["coupler/redistributed"] = {redistributed_};
+  s["coupler/disc_force_drag"] = disc_force_drag;
+  s["coupler/disc_force_pressure"] = disc_force_pressure;
+  s["coupler/disc_relative_speed"] = disc_vrel_;
+  if (fluid_) {
+    s["coupler/cell_base_porosity"] = cell_base_porosity;
+    s["coupler/cell_base_diameter"] = cell_base_diameter;
+    const VOFGrid& f = *fluid_;
+    s["fluid/face_u"] = f.face_u;
+    s["fluid/face_w"] = f.face_w;
+    s["fluid/cell_p"] = f.cell_p;
+    s["fluid/cell_F"] = f.cell_F;
+    s["fluid/cell_porosity"] = f.cell_porosity;
+    s["fluid/cell_stone_diameter"] = f.cell_stone_diameter;
+    s["fluid/cell_nut"] = f.cell_nut;
+    s["fluid/face_x_solid_u"] = f.face_x_solid_u;
+    s["fluid/face_z_solid_w"] = f.face_z_solid_w;
+    s["fluid/time"] = {f.time()};
+    s["fluid/step_count"] = {static_cast<double>(f.step_count())};
+    s["fluid/discharge_times"] = f.discharge().times;
+    s["fluid/discharge_q"] = f.discharge().discharge;
+  }
+  if (stones_)
+    for (auto& kv : stones_->export_state()) s["dem/" + kv.first] = std::move(kv.second);
+  return s;
+}
+
+namespace {
+const std::vector<double>& need(const std::map<std::string, std::vector<double>>& s, const std::string& key,
+                                std::size_t size) {
+  auto it = s.find(key);
+  if (it == s.end()) throw std::invalid_argument("state: missing entry '" + key + "'");
+  if (size != static_cast<std::size_t>(-1) && it->second.size() != size)
+    throw std::invalid_argument("state: '" + key + "' has " + std::to_string(it->second.size()) +
+                                " values, expected " + std::to_string(size));
+  return it->second;
+}
+}  // namespace
+
+void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
+  const std::size_t any = static_cast<std::size_t>(-1), n = static_cast<std::size_t>(n_);
+  // check every entry before writing anything
+  need(s, "coupler/time", 1);
+  need(s, "coupler/disc_force_drag", 2 * n);
+  need(s, "coupler/disc_force_pressure", 2 * n);
+  need(s, "coupler/disc_relative_speed", n);
+  std::map<std::string, std::vector<double>> dem;
+  if (stones_) {
+    for (const auto& kv : s)
+      if (kv.first.rfind("dem/", 0) == 0) dem[kv.first.substr(4)] = kv.second;
+    if (dem.empty()) throw std::invalid_argument("state: no 'dem/' entries for the stones");
+  }
+  if (fluid_) {
+    const Grid2D& g = fluid_->grid();
+    const std::size_t nc = g.ncell(), nfx = g.nface_x(), nfz = g.nface_z();
+    for (const char* k : {"fluid/cell_p", "fluid/cell_F", "fluid/cell_porosity", "fluid/cell_stone_diameter",
+                          "fluid/cell_nut", "coupler/cell_base_porosity", "coupler/cell_base_diameter"})
+      need(s, k, nc);
+    need(s, "fluid/face_u", nfx);
+    need(s, "fluid/face_x_solid_u", nfx);
+    need(s, "fluid/face_w", nfz);
+    need(s, "fluid/face_z_solid_w", nfz);
+    DischargeTable t;
+    t.times = need(s, "fluid/discharge_times", any);
+    t.discharge = need(s, "fluid/discharge_q", any);
+    fluid_->set_discharge(t);
+    fluid_->face_u = need(s, "fluid/face_u", nfx);
+    fluid_->face_w = need(s, "fluid/face_w", nfz);
+    fluid_->cell_p = need(s, "fluid/cell_p", nc);
+    fluid_->cell_F = need(s, "fluid/cell_F", nc);
+    fluid_->cell_porosity = need(s, "fluid/cell_porosity", nc);
+    fluid_->cell_stone_diameter = need(s, "fluid/cell_stone_diameter", nc);
+    fluid_->cell_nut = need(s, "fluid/cell_nut", nc);
+    fluid_->face_x_solid_u = need(s, "fluid/face_x_solid_u", nfx);
+    fluid_->face_z_solid_w = need(s, "fluid/face_z_solid_w", nfz);
+    fluid_->set_time(need(s, "fluid/time", 1)[0]);
+    fluid_->set_step_count(static_cast<long long>(need(s, "fluid/step_count", 1)[0]));
+    cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
+    cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
+    fluid_->update_face_porosity();
+  }
+  if (stones_) stones_->import_state(dem);
+  time_ = s.at("coupler/time")[0];
+  steps_ = static_cast<long long>(need(s, "coupler/steps", 1)[0]);
+  mapped_ = need(s, "coupler/mapped", 1)[0] != 0.0;
+  redistributed_ = need(s, "coupler/redistributed", 1)[0];
+  disc_force_drag = s.at("coupler/disc_force_drag");
+  disc_force_pressure = s.at("coupler/disc_force_pressure");
+  disc_vrel_ = s.at("coupler/disc_relative_speed");
+}
+
+}  // namespace vofdem

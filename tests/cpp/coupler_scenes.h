@@ -1,0 +1,51 @@
+// Small coupled scenes shared by the coupler's tests (tank, falling stones, bed pocket).
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "vofdem/coupler.h"
+
+namespace vofdem::test {
+
+struct Scene {
+  std::unique_ptr<VOFGrid> fluid;
+  std::unique_ptr<DEMSystem> stones;
+  std::unique_ptr<Coupler> sim;
+};
+
+inline DEMParams wet_dem(double x0, double x1) {
+  DEMParams p;
+  p.fluid_density = FlowParams().rho_water;
+  p.add_flume(x0, x1, 0.0);
+  return p;
+}
+
+// a tank width x height [m] of square cells h [m], water below `level` [m], stones at pos (x, z pairs)
+// of radius r [m] (density 2650)
+inline Scene tank(double width, double height, double h, double level, const std::vector<double>& pos, double r,
+                  unsigned flags, const FlowParams& fp = FlowParams()) {
+  Scene s;
+  const Grid2D g = Grid2D::uniform(static_cast<int>(std::lround(width / h)), static_cast<int>(std::lround(height / h)),
+                                   width, height);
+  s.fluid = std::make_unique<VOFGrid>(g, fp);
+  s.fluid->fill_water_below(level);
+  s.fluid->set_hydrostatic_pressure();
+  const std::size_t n = pos.size() / 2;
+  s.stones = std::make_unique<DEMSystem>(wet_dem(0.0, width), pos, std::vector<double>(n, r),
+                                         std::vector<double>(n, 2650.0));
+  CouplerParams cp;
+  cp.flags = flags;
+  s.sim = std::make_unique<Coupler>(s.fluid.get(), s.stones.get(), cp);
+  return s;
+}
+
+// terminal velocity [m/s] of the force balance 1/2 rho A (0.4 v^2 + 24 nu v / d) = (rho_s - rho) V g
+inline double terminal_velocity(double d, double rho_s, double rho, double nu, double g) {
+  const double a = 0.5 * rho * M_PI * d * d / 4.0, w = (rho_s - rho) * M_PI * d * d * d / 6.0 * g;
+  const double A = 0.4 * a, B = a * 24.0 * nu / d;
+  return (-B + std::sqrt(B * B + 4.0 * A * w)) / (2.0 * A);
+}
+
+}  // namespace vofdem::test
