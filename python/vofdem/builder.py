@@ -10,13 +10,23 @@ import numpy as np
 from . import _core
 from .scene import Scene
 
-WATER_DENSITY = 1000.0  # kg/m^3, the water density felt by the stones (buoyancy, added mass)
+import math
+
+WATER_DENSITY = 998.2  # kg/m^3 at 20 C, the flow solver's default water density
+GRAVITY = 9.81  # m/s^2
+
+
+def gravity(scene: Scene):
+    """(g_x, g_z) [m/s^2] in flume coordinates: along and normal to a bed of slope S0 = sin(angle)."""
+    s = scene.flume.bed_slope
+    return GRAVITY * s, -GRAVITY * math.sqrt(1.0 - s * s)
 
 
 def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags."""
     st, fx = scene.stones, scene.effects
     p = _core.DEMParams()
+    p.gravity = list(gravity(scene))
     p.fluid_density = fluid_density
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
@@ -68,13 +78,10 @@ def build_stones(scene: Scene):
 
 def flow_params(scene: Scene):
     """FlowParams of a scene: fluid, gravity along a sloping bed, CFL, porous law, boundaries, effects."""
-    import math
-
     f, n, fx, st = scene.flume, scene.numerics, scene.effects, scene.stones
     p = _core.FlowParams()
-    g = 9.81
-    p.gravity_x = g * f.bed_slope
-    p.gravity_z = -g * math.sqrt(1.0 - f.bed_slope ** 2)
+    p.rho_water = WATER_DENSITY
+    p.gravity_x, p.gravity_z = gravity(scene)
     p.cfl = n.cfl
     p.max_dt = n.max_dt
     p.k1, p.k2 = st.k1, st.k2
@@ -113,7 +120,7 @@ def initial_level(scene: Scene) -> float:
     """Water level [m] upstream of the weir at the start discharge, from the critical-depth relation of
     a broad-crested weir, H = 1.5 (q^2 / g)^(1/3), q = Q / B: only a starting guess for the spin-up."""
     q = scene.hydrograph.discharge(0.0) / scene.flume.width
-    return scene.weir.height + 1.5 * (q * q / 9.81) ** (1.0 / 3.0)
+    return scene.weir.height + 1.5 * (q * q / GRAVITY) ** (1.0 / 3.0)
 
 
 def build_fluid(scene: Scene):
