@@ -1,10 +1,111 @@
+// Python binding of the VOF-DEM coupler: thin wrappers only (see coupler.h).
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+
+#include "views.h"
+#include "vofdem/coupler.h"
 
 namespace py = pybind11;
 
 namespace vofdem::bind {
 
-// the coupler module registers its classes and functions here
-void bind_coupler(py::module_& /*m*/) {}
+namespace {
+
+using StateMap = std::map<std::string, std::vector<double>>;
+
+py::dict to_dict(const StateMap& s) {
+  py::dict d;
+  for (const auto& [key, v] : s) {
+    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(double));
+    d[py::str(key)] = a;
+  }
+  return d;
+}
+
+StateMap from_dict(const py::dict& d) {
+  StateMap s;
+  for (const auto& item : d) {
+    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
+    if (!a) throw py::value_error("state entry '" + py::str(item.first).cast<std::string>() + "' is not numeric");
+    s[py::str(item.first).cast<std::string>()] = std::vector<double>(a.data(), a.data() + a.size());
+  }
+  return s;
+}
+
+// (n, 2) view of an interleaved (x, z) array
+py::array_t<double> pairs(std::vector<double>& v, py::handle owner) {
+  return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 2), 2, owner);
+}
+
+}  // namespace
+
+void bind_coupler(py::module_& m) {
+  m.attr("COUPLE_DEM") = static_cast<unsigned>(kCoupleDEM);
+  m.attr("COUPLE_FLUID") = static_cast<unsigned>(kCoupleFluid);
+  m.attr("COUPLE_POROSITY") = static_cast<unsigned>(kCouplePorosity);
+  m.attr("COUPLE_DRAG") = static_cast<unsigned>(kCoupleDrag);
+  m.attr("COUPLE_PRESSURE_GRADIENT") = static_cast<unsigned>(kCouplePressureGradient);
+  m.attr("COUPLE_RELATIVE_VELOCITY") = static_cast<unsigned>(kCoupleRelativeVelocity);
+  m.attr("COUPLE_WET_FRACTION") = static_cast<unsigned>(kCoupleWetFraction);
+  m.attr("COUPLE_CHECKS") = static_cast<unsigned>(kCoupleChecks);
+  m.attr("COUPLE_LOOKUP_POROSITY") = static_cast<unsigned>(kCoupleLookupPorosity);
+  m.attr("COUPLE_FORCES") = static_cast<unsigned>(kCoupleForces);
+  m.attr("COUPLE_ONE_WAY") = static_cast<unsigned>(kCoupleOneWay);
+  m.attr("COUPLE_TWO_WAY") = static_cast<unsigned>(kCoupleTwoWay);
+  m.attr("COUPLE_DEFAULT") = static_cast<unsigned>(kCoupleDefault);
+
+  py::class_<CouplerParams>(m, "CouplerParams", "Parameters of the VOF-DEM coupling (SI units; see coupler.h).")
+      .def(py::init<>())
+      .def_readwrite("flags", &CouplerParams::flags, "COUPLE_* bits")
+      .def_readwrite("n_exp", &CouplerParams::n_exp, "packing porosity of eq. (11) [-], 0.41")
+      .def_readwrite("lookup_m", &CouplerParams::lookup_m, "sub-areas per side of the lookup table [-], 8")
+      .def_readwrite("lookup_dr", &CouplerParams::lookup_dr, "radius spacing of the lookup tables [m], 5e-4")
+      .def_readwrite("drag_law", &CouplerParams::drag_law, "DragLaw of the stones")
+      .def_readwrite("max_dt", &CouplerParams::max_dt, "largest exchange step [s], 0.01")
+      .def_readwrite("stone_cfl", &CouplerParams::stone_cfl, "cells a stone crosses per step at most [-], 0.5")
+      .def_readwrite("drag_relaxation", &CouplerParams::drag_relaxation,
+                     "step at most this fraction of the drag relaxation time [-], 0.5")
+      .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
+      .def("validate", &CouplerParams::validate);
+
+  py::class_<Coupler>(m, "Coupler",
+                      "Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.")
+      .def(py::init([](const py::object& fluid, const py::object& stones, const CouplerParams& p) {
+             return new Coupler(fluid.is_none() ? nullptr : fluid.cast<VOFGrid*>(),
+                                stones.is_none() ? nullptr : stones.cast<DEMSystem*>(), p);
+           }),
+           py::arg("fluid"), py::arg("stones"),
+           py::arg("params") = CouplerParams(), py::keep_alive<1, 2>(), py::keep_alive<1, 3>())
+      .def_property_readonly("fluid", py::overload_cast<>(&Coupler::fluid), py::return_value_policy::reference_internal)
+      .def_property_readonly("stones", py::overload_cast<>(&Coupler::stones), py::return_value_policy::reference_internal)
+      .def_property("params", &Coupler::params, &Coupler::set_params)
+      .def_property_readonly("n", &Coupler::n)
+      .def_property_readonly("time", &Coupler::time)
+      .def_property_readonly("step_count", &Coupler::step_count)
+      .def("stable_dt", &Coupler::stable_dt, py::call_guard<py::gil_scoped_release>())
+      .def("step", py::overload_cast<>(&Coupler::step), py::call_guard<py::gil_scoped_release>())
+      .def("step", py::overload_cast<double>(&Coupler::step), py::arg("dt"), py::call_guard<py::gil_scoped_release>())
+      .def("advance", &Coupler::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>())
+      .def("set_inflow_table", &Coupler::set_inflow_table, py::arg("times"), py::arg("discharge"))
+      .def("update_porosity", &Coupler::update_porosity)
+      .def("update_fluid_forces", &Coupler::update_fluid_forces)
+      .def("water_volume", &Coupler::water_volume)
+      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
+      .def("export_state", [](const Coupler& c) { return to_dict(c.export_state()); })
+      .def("import_state", [](Coupler& c, const py::dict& d) { c.import_state(from_dict(d)); }, py::arg("state"))
+      .def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
+      .def_property_readonly("disc_force_drag",
+                             [](py::object self) { return pairs(self.cast<Coupler&>().disc_force_drag, self); })
+      .def_property_readonly("disc_force_pressure",
+                             [](py::object self) { return pairs(self.cast<Coupler&>().disc_force_pressure, self); })
+      .def_property_readonly("cell_base_porosity",
+                             [](py::object self) { return view(self.cast<Coupler&>().cell_base_porosity, self); })
+      .def_property_readonly("cell_base_diameter",
+                             [](py::object self) { return view(self.cast<Coupler&>().cell_base_diameter, self); });
+}
 
 }  // namespace vofdem::bind

@@ -48,7 +48,7 @@ void bind_porosity(py::module_& m) {
       .def_readwrite("n_exp", &PorosityParams::n_exp, "packing porosity of the stones [-]; 0.41")
       .def_readwrite("r_min", &PorosityParams::r_min, "smallest disc radius [m]")
       .def_readwrite("r_max", &PorosityParams::r_max, "largest disc radius [m]")
-      .def_readwrite("dr", &PorosityParams::dr, "radius node spacing of the lookup tables [m]; usual 5e-4")
+      .def_readwrite("dr", &PorosityParams::dr, "radius node spacing of the lookup tables [m]; usual 1e-3")
       .def_readwrite("max_discs", &PorosityParams::max_discs, "largest number of discs of one call [-]");
 
   py::class_<PorosityMapper>(m, "PorosityMapper",

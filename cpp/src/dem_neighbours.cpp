@@ -23,10 +23,32 @@ bool DEMSystem::neighbours_stale() const {
   return false;
 }
 
+// stones within the skin of each wall; the others cannot touch it before the next build
+void DEMSystem::build_wall_candidates() {
+  const std::size_t nw = params_.walls.size();
+  wall_cand_.clear();
+  wall_cand_start_.assign(nw + 1, 0);
+  for (std::size_t w = 0; w < nw; ++w) {
+    const DEMWall& wall = params_.walls[w];
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    for (int i = 0; i < n_; ++i) {
+      if (!disc_active[i] || disc_fixed[i]) continue;
+      const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
+      if (s < disc_radius[i] + skin_)
+        wall_cand_.push_back(i);
+      else
+        wall_xi_[static_cast<std::size_t>(i) * nw + w] = 0.0;
+    }
+    wall_cand_start_[w + 1] = static_cast<int>(wall_cand_.size());
+  }
+}
+
 void DEMSystem::build_neighbours() {
   ++nbuilds_;
   rebuild_ = false;
   build_pos_ = disc_pos;
+  build_wall_candidates();
   new_pairs_.clear();
   double rmax = 0.0, xmin = INFINITY, xmax = -INFINITY, zmin = INFINITY, zmax = -INFINITY;
   int nact = 0;

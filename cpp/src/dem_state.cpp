@@ -68,7 +68,8 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
                   work_external_,
                   elastic_,
                   static_cast<double>(ncontact_),
-                  static_cast<double>(nwall_contact_)};
+                  static_cast<double>(nwall_contact_),
+                  forces_valid_ ? 1.0 : 0.0};
   return s;
 }
 
@@ -105,7 +106,7 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
     pairs_.push_back({i, j, cxi[k]});
   }
   set(wall_xi_, get(s, "wall_xi", n * params_.walls.size()));
-  const auto& sc = get(s, "scalars", 8);
+  const auto& sc = get(s, "scalars", 9);
   time_ = sc[0];
   steps_ = static_cast<long long>(sc[1]);
   removed_ = static_cast<int>(sc[2]);
@@ -114,6 +115,7 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
   elastic_ = sc[5];
   ncontact_ = static_cast<int>(sc[6]);
   nwall_contact_ = static_cast<int>(sc[7]);
+  forces_valid_ = sc[8] != 0.0;
   rebuild_ = true;
   prepared_ = false;
 }

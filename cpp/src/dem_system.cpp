@@ -82,12 +82,14 @@ void DEMSystem::resize(int n) {
   wall_xi_.assign(un * params_.walls.size(), 0.0);
   rebuild_ = true;
   prepared_ = false;
+  forces_valid_ = false;
 }
 
 void DEMSystem::set_params(const DEMParams& p) {
   const std::size_t old_walls = params_.walls.size();
   params_ = p;
   check_params();
+  forces_valid_ = false;
   if (params_.walls.size() != old_walls) wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
   rebuild_ = true;
   prepared_ = false;
@@ -241,22 +243,9 @@ void DEMSystem::advance_checked(double dt, long long nsub) {
   }
 }
 
-// one velocity-Verlet step: kick-drift, forces at the new positions, kick
-void DEMSystem::substep(double dt) {
-  const unsigned f = params_.flags;
-  {
-    ScopedStage s(profile_, kStageIntegrate);
-    integrate_first_half(dt);
-  }
-  if (f & kDEMRemoval) {
-    ScopedStage s(profile_, kStageRemoval);
-    remove_escaped();
-  }
-  {
-    ScopedStage s(profile_, kStageNeighbours);
-    if (rebuild_ || neighbours_stale()) build_neighbours();
-  }
-  {
+// body, contact and wall forces at the current positions (dt: step of the history springs)
+void DEMSystem::evaluate_forces(double dt, bool body) {
+  if (body) {
     ScopedStage s(profile_, kStageBodyForces);
     body_forces(dt);
   }
@@ -268,6 +257,37 @@ void DEMSystem::substep(double dt) {
     ScopedStage s(profile_, kStageWalls);
     wall_forces(dt);
   }
+}
+
+// one velocity-Verlet step: kick-drift, forces at the new positions, kick
+void DEMSystem::substep(double dt) {
+  const unsigned f = params_.flags;
+  if (!forces_valid_) {
+    // a fresh start: the first kick needs the accelerations of the initial state
+    if (rebuild_ || neighbours_stale()) build_neighbours();
+    evaluate_forces(0.0, true);
+    for (int i = 0; i < n_; ++i) {
+      disc_acc[2 * i] = disc_force[2 * i] * inv_mass_[i];
+      disc_acc[2 * i + 1] = disc_force[2 * i + 1] * inv_mass_[i];
+      disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
+    }
+    forces_valid_ = true;
+  }
+  // one pass: kick, drift, body forces, escape and neighbour-list checks
+  FirstHalf pass;
+  {
+    ScopedStage s(profile_, kStageIntegrate);
+    pass = integrate_first_half(dt);
+  }
+  if (pass.escaped) {
+    ScopedStage s(profile_, kStageRemoval);
+    remove_escaped();
+  }
+  if (rebuild_ || pass.stale) {
+    ScopedStage s(profile_, kStageNeighbours);
+    build_neighbours();
+  }
+  evaluate_forces(dt, false);
   time_ += dt;
   ++steps_;
   {
@@ -280,22 +300,56 @@ void DEMSystem::substep(double dt) {
   }
 }
 
-bool DEMSystem::moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
-
-void DEMSystem::integrate_first_half(double dt) {
+// kick-drift of the awake stones; body forces (gravity minus buoyancy, eq. 9, and the external force)
+// of every mobile stone, with the escape and neighbour-list checks folded into the same pass
+DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
+  const DEMParams& p = params_;
   const double h = 0.5 * dt;
+  const bool grav = p.flags & kDEMGravity;
+  const bool ext = p.flags & kDEMExternalForce;
+  const bool removal = p.flags & kDEMRemoval;
+  const double gx = p.gravity[0], gz = p.gravity[1];
+  const double lim2 = 0.25 * skin_ * skin_;
+  FirstHalf out;
+  out.stale = build_pos_.size() != disc_pos.size();
+  double work = 0.0;
   for (int i = 0; i < n_; ++i) {
-    if (!moving(i)) continue;
+    double* f = &disc_force[2 * i];
+    f[0] = f[1] = 0.0;
+    disc_torque[i] = 0.0;
+    if (inv_mass_[i] == 0.0) continue;
     double* v = &disc_vel[2 * i];
     double* x = &disc_pos[2 * i];
-    const double* a = &disc_acc[2 * i];
-    v[0] += h * a[0];
-    v[1] += h * a[1];
-    x[0] += dt * v[0];
-    x[1] += dt * v[1];
-    disc_omega[i] += h * disc_alpha[i];
-    disc_angle[i] += dt * disc_omega[i];
+    if (!disc_asleep[i]) {
+      const double* a = &disc_acc[2 * i];
+      v[0] += h * a[0];
+      v[1] += h * a[1];
+      x[0] += dt * v[0];
+      x[1] += dt * v[1];
+      disc_omega[i] += h * disc_alpha[i];
+      disc_angle[i] += dt * disc_omega[i];
+    }
+    if (removal) {
+      out.escaped |= x[0] < p.domain_min[0] || x[0] > p.domain_max[0] || x[1] < p.domain_min[1] ||
+                     x[1] > p.domain_max[1];
+    }
+    if (!out.stale) {
+      const double dx = x[0] - build_pos_[2 * i], dz = x[1] - build_pos_[2 * i + 1];
+      out.stale = dx * dx + dz * dz > lim2;
+    }
+    if (grav) {
+      f[0] += weight_[i] * gx;
+      f[1] += weight_[i] * gz;
+    }
+    if (ext) {
+      const double* fe = &disc_force_ext[2 * i];
+      f[0] += fe[0];
+      f[1] += fe[1];
+      work += fe[0] * v[0] + fe[1] * v[1];
+    }
   }
+  work_external_ += work * dt;
+  return out;
 }
 
 // second kick from the new accelerations; a non-finite value aborts the call
@@ -331,6 +385,7 @@ void DEMSystem::remove_escaped() {
     disc_omega[i] = 0.0;
     disc_acc[2 * i] = disc_acc[2 * i + 1] = 0.0;
     disc_alpha[i] = 0.0;
+    disc_force[2 * i] = disc_force[2 * i + 1] = 0.0;
     for (std::size_t w = 0; w < p.walls.size(); ++w) wall_xi_[i * p.walls.size() + w] = 0.0;
     ++removed_;
     rebuild_ = true;
@@ -421,7 +476,8 @@ void DEMSystem::wall_forces(double dt) {
     const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
     // contact normal from the stone into the wall
     const double nx = -wx, nz = -wz;
-    for (int i = 0; i < n_; ++i) {
+    for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
+      const int i = wall_cand_[c];
       if (inv_mass_[i] == 0.0) continue;
       double& xi = wall_xi_[static_cast<std::size_t>(i) * nw + w];
       const double r = disc_radius[i];

@@ -8,148 +8,117 @@ namespace vofdem {
 
 namespace {
 
-// pore velocity of a face: u / n, 0 on a closed face
-inline double pore(double v, double n) { return n > 0.0 ? v / n : 0.0; }
-
-// one momentum component's view: value and porosity of face j along a line of faces
-struct Line {
-  const double* v;
-  const double* n;
-  int stride;
-  double at(int j) const { return pore(v[j * stride], n[j * stride]); }
-};
-
-// carried value across a side between faces j and j + 1 of a line of m faces (0..m-1), advected
-// with velocity a: the upwind face's pore velocity with a limited slope where a second upwind exists
-inline double carried(const Line& line, int j, int m, double a) {
+// value carried across the side between faces j and j + 1 of a line of m faces (pore velocities p
+// with stride s), advected with velocity a: upwind with a limited slope where a second upwind exists
+inline double carried(const double* p, int s, int j, int m, double a) {
   if (a >= 0.0) {
-    const double up = line.at(j);
+    const double up = p[j * s];
     if (j - 1 < 0) return up;
-    return muscl_value(line.at(j - 1), up, line.at(j + 1));
+    return muscl_value(p[(j - 1) * s], up, p[(j + 1) * s]);
   }
-  const double up = line.at(j + 1);
+  const double up = p[(j + 1) * s];
   if (j + 2 > m - 1) return up;
-  return muscl_value(line.at(j + 2), up, line.at(j));
+  return muscl_value(p[(j + 2) * s], up, p[j * s]);
 }
 
-double corner_mu(const Grid2D& g, const double* mu, int ii, int kk) {
-  const int nx = g.nx(), nz = g.nz();
-  double s = 0.0;
-  int c = 0;
-  for (int k = kk - 1; k <= kk; ++k) {
-    if (k < 0 || k >= nz) continue;
-    for (int i = ii - 1; i <= ii; ++i) {
-      if (i < 0 || i >= nx) continue;
-      s += mu[i + nx * k];
-      ++c;
+void pore_velocities(const Grid2D& g, const MomentumFields& f, MomentumScratch& s) {
+  s.pore_u.resize(g.nface_x());
+  s.pore_w.resize(g.nface_z());
+  for (int j = 0; j < g.nface_x(); ++j) {
+    const double n = f.face_x_porosity[j];
+    s.pore_u[j] = n > 0.0 ? f.face_u[j] / n : 0.0;
+  }
+  for (int j = 0; j < g.nface_z(); ++j) {
+    const double n = f.face_z_porosity[j];
+    s.pore_w[j] = n > 0.0 ? f.face_w[j] / n : 0.0;
+  }
+}
+
+// corner viscosity: mean of the cells touching the corner
+void corner_viscosity(const Grid2D& g, const double* mu, std::vector<double>& cm) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  cm.resize(static_cast<size_t>(sx) * (nz + 1));
+  for (int kk = 0; kk <= nz; ++kk) {
+    const int k0 = std::max(kk - 1, 0), k1 = std::min(kk, nz - 1);
+    for (int ii = 0; ii <= nx; ++ii) {
+      const int i0 = std::max(ii - 1, 0), i1 = std::min(ii, nx - 1);
+      cm[ii + sx * kk] = 0.25 * (mu[i0 + nx * k0] + mu[i1 + nx * k0] + mu[i0 + nx * k1] + mu[i1 + nx * k1]);
     }
   }
-  return c ? s / c : 0.0;
 }
 
 // shear stress mu (du/dz + dw/dx) at every corner (x-face ii, z-face kk), ghost values at boundaries
-void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, std::vector<double>& tau) {
+void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
+  corner_viscosity(g, f.cell_mu, s.corner_mu);
+  std::vector<double>& tau = s.corner_tau;
   tau.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
-  for (int kk = 0; kk <= nz; ++kk) {
+  // bed: no-slip ghost -u gives du/dz = 2u/dz; a slip bed carries no shear
+  if (bc.no_slip)
+    for (int ii = 0; ii <= nx; ++ii) tau[ii] = s.corner_mu[ii] * 2.0 * f.face_u[ii] / g.dz(0);
+  // the open top and the slip lid are stress-free (row nz stays 0)
+  const bool left_shear = bc.left_inlet || bc.no_slip;
+  const bool right_shear = !bc.right_open && bc.no_slip;
+  for (int kk = 1; kk < nz; ++kk) {
+    const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
+    const double* u0 = f.face_u + sx * (kk - 1);
+    const double* u1 = f.face_u + sx * kk;
+    const double* w = f.face_w + nx * kk;
+    for (int ii = 1; ii < nx; ++ii)
+      tau[ii + sx * kk] = s.corner_mu[ii + sx * kk] * ((u1[ii] - u0[ii]) * inv_dzc + (w[ii] - w[ii - 1]) / dx);
+    // end walls: ghost w = -w (no-slip, and the inlet brings no vertical velocity)
+    if (left_shear) tau[sx * kk] = s.corner_mu[sx * kk] * ((u1[0] - u0[0]) * inv_dzc + 2.0 * w[0] / dx);
+    if (right_shear) tau[nx + sx * kk] = s.corner_mu[nx + sx * kk] * ((u1[nx] - u0[nx]) * inv_dzc - 2.0 * w[nx - 1] / dx);
+  }
+}
+
+// convective fluxes of both momentum components: cell centres and corners
+void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  s.cell_flux_u.resize(g.ncell());
+  s.cell_flux_w.resize(g.ncell());
+  s.corner_flux_u.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
+  s.corner_flux_w.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
+  const double* pu = s.pore_u.data();
+  const double* pw = s.pore_w.data();
+  // x-flux of u at cell centres; z-flux of w at cell centres
+  for (int k = 0; k < nz; ++k) {
+    const double* u = f.face_u + sx * k;
+    for (int i = 0; i < nx; ++i) {
+      const double a = 0.5 * (u[i] + u[i + 1]);
+      s.cell_flux_u[i + nx * k] = a * carried(pu + sx * k, 1, i, nx + 1, a);
+      const int c = i + nx * k;
+      const double b = 0.5 * (f.face_w[c] + f.face_w[c + nx]);
+      s.cell_flux_w[c] = b * carried(pw + i, nx, k, nz + 1, b);
+    }
+  }
+  // z-flux of u at interior corners (x-face ii, z-face kk); the open top is zero-gradient
+  for (int kk = 1; kk < nz; ++kk)
+    for (int ii = 1; ii < nx; ++ii) {
+      const double a = 0.5 * (f.face_w[ii - 1 + nx * kk] + f.face_w[ii + nx * kk]);
+      s.corner_flux_u[ii + sx * kk] = a * carried(pu + ii, sx, kk - 1, nz, a);
+    }
+  if (bc.top_open)
+    for (int ii = 1; ii < nx; ++ii) {
+      const double a = 0.5 * (f.face_w[ii - 1 + nx * nz] + f.face_w[ii + nx * nz]);
+      s.corner_flux_u[ii + sx * nz] = a * pu[ii + sx * (nz - 1)];
+    }
+  // x-flux of w at corners of interior z-faces: u interpolated to the corner height
+  for (int kk = 1; kk < nz; ++kk) {
+    const double wl = g.dz(kk) / (g.dz(kk - 1) + g.dz(kk)), wu = 1.0 - wl;
+    const double* u0 = f.face_u + sx * (kk - 1);
+    const double* u1 = f.face_u + sx * kk;
+    const double* prow = pw + nx * kk;
     for (int ii = 0; ii <= nx; ++ii) {
-      double dudz = 0.0, dwdx = 0.0;
-      if (kk == 0) {
-        // bed: no-slip ghost -u, slip ghost +u
-        if (bc.no_slip) dudz = 2.0 * f.face_u[ii] / g.dz(0);
-      } else if (kk == nz) {
-        continue;  // open top or slip lid: stress-free
-      } else {
-        dudz = (f.face_u[ii + sx * kk] - f.face_u[ii + sx * (kk - 1)]) / (g.z_center(kk) - g.z_center(kk - 1));
-      }
-      if (kk > 0) {
-        if (ii == 0) {
-          if (bc.left_inlet || bc.no_slip) dwdx = 2.0 * f.face_w[nx * kk] / dx;
-        } else if (ii == nx) {
-          if (!bc.right_open && bc.no_slip) dwdx = -2.0 * f.face_w[nx - 1 + nx * kk] / dx;
-        } else {
-          dwdx = (f.face_w[ii + nx * kk] - f.face_w[ii - 1 + nx * kk]) / dx;
-        }
-      }
-      // a slip wall carries no shear at all
-      if (kk == 0 && !bc.no_slip) continue;
-      if ((ii == 0 && !bc.left_inlet && !bc.no_slip) || (ii == nx && (bc.right_open || !bc.no_slip))) continue;
-      tau[ii + sx * kk] = corner_mu(g, f.cell_mu, ii, kk) * (dudz + dwdx);
+      const double a = wl * u0[ii] + wu * u1[ii];
+      double v;
+      if (ii == 0) v = a > 0.0 ? 0.0 : prow[0];  // the inlet brings no vertical momentum
+      else if (ii == nx) v = prow[nx - 1];       // open end: zero gradient (a = 0 at a wall)
+      else v = carried(prow, 1, ii - 1, nx, a);
+      s.corner_flux_w[ii + sx * kk] = a * v;
     }
   }
-}
-
-double x_face_rhs(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
-                  const std::vector<double>& tau, int i, int k) {
-  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  const double dx = g.dx(), dz = g.dz(k);
-  const int j = i + sx * k;
-  double rhs = f.face_x_porosity[j] * t.gravity_x;
-  if (t.convection) {
-    const Line row{f.face_u + sx * k, f.face_x_porosity + sx * k, 1};
-    // x-fluxes at the cell centres right (i) and left (i - 1) of the face
-    const double ae = 0.5 * (f.face_u[j] + f.face_u[j + 1]);
-    const double aw = 0.5 * (f.face_u[j - 1] + f.face_u[j]);
-    const double fe = ae * carried(row, i, nx + 1, ae);
-    const double fw = aw * carried(row, i - 1, nx + 1, aw);
-    // z-fluxes at the corners above (k + 1) and below (k)
-    const Line col{f.face_u + i, f.face_x_porosity + i, sx};
-    double fn = 0.0, fs = 0.0;
-    if (k + 1 < nz) {
-      const double an = 0.5 * (f.face_w[i - 1 + nx * (k + 1)] + f.face_w[i + nx * (k + 1)]);
-      fn = an * carried(col, k, nz, an);
-    } else if (bc.top_open) {
-      const double an = 0.5 * (f.face_w[i - 1 + nx * nz] + f.face_w[i + nx * nz]);
-      fn = an * col.at(k);
-    }
-    if (k > 0) {
-      const double as = 0.5 * (f.face_w[i - 1 + nx * k] + f.face_w[i + nx * k]);
-      fs = as * carried(col, k - 1, nz, as);
-    }
-    rhs -= (fe - fw) / dx + (fn - fs) / dz;
-  }
-  if (t.viscosity) {
-    const int c = i + nx * k;
-    const double txx_e = 2.0 * f.cell_mu[c] * (f.face_u[j + 1] - f.face_u[j]) / dx;
-    const double txx_w = 2.0 * f.cell_mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) / dx;
-    rhs += ((txx_e - txx_w) / dx + (tau[i + sx * (k + 1)] - tau[i + sx * k]) / dz) / f.face_x_rho[j];
-  }
-  return rhs;
-}
-
-double z_face_rhs(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
-                  const std::vector<double>& tau, int i, int k) {
-  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  const double dx = g.dx();
-  const double dzc = g.z_center(k) - g.z_center(k - 1);
-  const int j = i + nx * k;
-  double rhs = f.face_z_porosity[j] * t.gravity_z;
-  if (t.convection) {
-    const Line col{f.face_w + i, f.face_z_porosity + i, nx};
-    const double an = 0.5 * (f.face_w[j] + f.face_w[j + nx]);
-    const double as = 0.5 * (f.face_w[j - nx] + f.face_w[j]);
-    const double fn = an * carried(col, k, nz + 1, an);
-    const double fs = as * carried(col, k - 1, nz + 1, as);
-    // x-velocity at the corner height z_face(k), interpolated between the rows k - 1 and k
-    const double wl = g.dz(k) / (g.dz(k - 1) + g.dz(k)), wu = 1.0 - wl;
-    auto corner_u = [&](int ii) { return wl * f.face_u[ii + sx * (k - 1)] + wu * f.face_u[ii + sx * k]; };
-    const Line row{f.face_w + nx * k, f.face_z_porosity + nx * k, 1};
-    auto side_flux = [&](int ii) {
-      const double a = corner_u(ii);
-      if (ii == 0) return a > 0.0 ? 0.0 : a * row.at(0);  // the inlet brings no vertical momentum
-      if (ii == nx) return a * row.at(nx - 1);             // open end: zero gradient
-      return a * carried(row, ii - 1, nx, a);
-    };
-    rhs -= (side_flux(i + 1) - side_flux(i)) / dx + (fn - fs) / dzc;
-  }
-  if (t.viscosity) {
-    const double tzz_n = 2.0 * f.cell_mu[i + nx * k] * (f.face_w[j + nx] - f.face_w[j]) / g.dz(k);
-    const double tzz_s = 2.0 * f.cell_mu[i + nx * (k - 1)] * (f.face_w[j] - f.face_w[j - nx]) / g.dz(k - 1);
-    rhs += ((tau[i + 1 + sx * k] - tau[i + sx * k]) / dx + (tzz_n - tzz_s) / dzc) / f.face_z_rho[j];
-  }
-  (void)bc;
-  return rhs;
 }
 
 }  // namespace
@@ -157,14 +126,32 @@ double z_face_rhs(const Grid2D& g, const MomentumFields& f, const MomentumTerms&
 void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
                        double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  const double dx = g.dx(), inv_dx = 1.0 / dx;
   u_star.assign(g.nface_x(), 0.0);
   w_star.assign(g.nface_z(), 0.0);
-  if (t.viscosity) corner_shear(g, f, bc, s.corner_tau);
+  if (t.convection) {
+    pore_velocities(g, f, s);
+    convective_fluxes(g, f, bc, s);
+  }
+  if (t.viscosity) corner_shear(g, f, bc, s);
+  const double* mu = f.cell_mu;
+  // x-faces
   for (int k = 0; k < nz; ++k) {
+    const double dz = g.dz(k), inv_dz = 1.0 / dz;
     for (int i = 1; i < nx; ++i) {
-      const int j = i + sx * k;
+      const int j = i + sx * k, c = i + nx * k;
       if (f.face_x_porosity[j] <= 0.0) continue;
-      u_star[j] = f.face_u[j] + dt * x_face_rhs(g, f, t, bc, s.corner_tau, i, k);
+      double rhs = f.face_x_porosity[j] * t.gravity_x;
+      if (t.convection)
+        rhs -= (s.cell_flux_u[c] - s.cell_flux_u[c - 1]) * inv_dx +
+               (s.corner_flux_u[i + sx * (k + 1)] - s.corner_flux_u[i + sx * k]) * inv_dz;
+      if (t.viscosity) {
+        const double txx_e = 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
+        const double txx_w = 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
+        rhs += ((txx_e - txx_w) * inv_dx + (s.corner_tau[i + sx * (k + 1)] - s.corner_tau[i + sx * k]) * inv_dz) /
+               f.face_x_rho[j];
+      }
+      u_star[j] = f.face_u[j] + dt * rhs;
     }
     // ends: the inlet keeps its value for the boundary stage; an open end is zero-gradient
     if (bc.left_inlet) u_star[sx * k] = f.face_u[sx * k];
@@ -172,11 +159,24 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
     if (bc.right_open && f.face_x_porosity[je] > 0.0)
       u_star[je] = f.face_u[je] + dt * f.face_x_porosity[je] * t.gravity_x;
   }
+  // interior z-faces
   for (int k = 1; k < nz; ++k) {
+    const double inv_dzc = 1.0 / (g.z_center(k) - g.z_center(k - 1));
+    const double inv_dz0 = 1.0 / g.dz(k - 1), inv_dz1 = 1.0 / g.dz(k);
     for (int i = 0; i < nx; ++i) {
       const int j = i + nx * k;
       if (f.face_z_porosity[j] <= 0.0) continue;
-      w_star[j] = f.face_w[j] + dt * z_face_rhs(g, f, t, bc, s.corner_tau, i, k);
+      double rhs = f.face_z_porosity[j] * t.gravity_z;
+      if (t.convection)
+        rhs -= (s.corner_flux_w[i + 1 + sx * k] - s.corner_flux_w[i + sx * k]) * inv_dx +
+               (s.cell_flux_w[j] - s.cell_flux_w[j - nx]) * inv_dzc;
+      if (t.viscosity) {
+        const double tzz_n = 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
+        const double tzz_s = 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
+        rhs += ((s.corner_tau[i + 1 + sx * k] - s.corner_tau[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
+               f.face_z_rho[j];
+      }
+      w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
   if (bc.top_open) {
@@ -192,6 +192,8 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f) {
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
+  std::vector<double> cm;
+  corner_viscosity(g, f.cell_mu, cm);
   double worst = 0.0;
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);
@@ -199,7 +201,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f) {
       const int j = i + sx * k;
       if (f.face_x_porosity[j] <= 0.0) continue;
       const double ml = f.cell_mu[i - 1 + nx * k], mr = f.cell_mu[i + nx * k];
-      const double mn = corner_mu(g, f.cell_mu, i, k + 1), ms = corner_mu(g, f.cell_mu, i, k);
+      const double mn = cm[i + sx * (k + 1)], ms = cm[i + sx * k];
       const double diag = 2.0 * (ml + mr) / (dx * dx) + (mn + ms) / (dz * dz);
       const double cross = 2.0 * (mn + ms) / (dx * dz);
       worst = std::max(worst, (2.0 * diag + cross) / f.face_x_rho[j]);
@@ -212,7 +214,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f) {
       const int j = i + nx * k;
       if (f.face_z_porosity[j] <= 0.0) continue;
       const double mb = f.cell_mu[i + nx * (k - 1)], mt = f.cell_mu[i + nx * k];
-      const double me = corner_mu(g, f.cell_mu, i + 1, k), mw = corner_mu(g, f.cell_mu, i, k);
+      const double me = cm[i + 1 + sx * k], mw = cm[i + sx * k];
       const double diag = 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
       const double cross = 2.0 * (me + mw) / (dx * hz);
       worst = std::max(worst, (2.0 * diag + cross) / f.face_z_rho[j]);

@@ -79,7 +79,8 @@ PorosityMapper::PorosityMapper(const Grid2D& grid, const PorosityParams& params)
     max_rows = std::max(max_rows, top - k + 2);
   }
   max_rows = std::min(max_rows, grid_.nz());
-  node_phi_.assign(static_cast<std::size_t>(max_cols + 1) * (max_rows + 1), 0.0);
+  scratch_line_ = std::max(max_cols, max_rows) + 1;
+  node_phi_.assign(static_cast<std::size_t>(max_cols + 1) * (max_rows + 1) + 3 * scratch_line_, 0.0);
   max_cells_per_disc_ = max_cols * max_rows;
 
   sx_ = static_cast<int>(std::floor(rmax / grid_.dx())) + 1;
@@ -167,13 +168,29 @@ int PorosityMapper::add_exact(int /*j*/, double x, double z, double r, int p) {
   const int i0 = grid_.locate_x(x - r), i1 = grid_.locate_x(x + r);
   const int k0 = grid_.locate_z(z - r), k1 = grid_.locate_z(z + r);
   const int ni = i1 - i0 + 1, nk = k1 - k0 + 1;
-  if (static_cast<std::size_t>(ni + 1) * (nk + 1) > node_phi_.size() || ni * nk > max_cells_per_disc_)
+  if (static_cast<std::size_t>(ni + 1) * (nk + 1) + 3 * scratch_line_ > node_phi_.size() || ni + 1 > scratch_line_ ||
+      nk + 1 > scratch_line_ || ni * nk > max_cells_per_disc_)
     throw std::logic_error("porosity_map: disc stencil larger than its bound (r = " + format_value(r) + ")");
-  // Phi at every grid node around the disc: each cell area is then four reads
+  // Phi at every grid node around the disc: each cell area is then four reads. The transcendental
+  // parts of Phi depend on the column alone (G(|X|)) or on the row alone (w, G(w)): computed once each
+  double* gx = &node_phi_[node_phi_.size() - 3 * scratch_line_];
+  double* wz = gx + scratch_line_;
+  double* gw = wz + scratch_line_;
+  for (int i = 0; i <= ni; ++i) gx[i] = half_chord_primitive(std::min(std::fabs(grid_.x_face(i0 + i) - x), r), r);
+  for (int k = 0; k <= nk; ++k) {
+    const double zc = std::min(std::fabs(grid_.z_face(k0 + k) - z), r);
+    wz[k] = std::sqrt(std::max(0.0, (r - zc) * (r + zc)));
+    gw[k] = half_chord_primitive(wz[k], r);
+  }
   for (int k = 0; k <= nk; ++k) {
     const double zr = grid_.z_face(k0 + k) - z;
-    for (int i = 0; i <= ni; ++i)
-      node_phi_[k * (ni + 1) + i] = disc_corner_primitive(grid_.x_face(i0 + i) - x, zr, r);
+    const double zc = std::min(std::fabs(zr), r);
+    for (int i = 0; i <= ni; ++i) {
+      const double xr = grid_.x_face(i0 + i) - x;
+      const double xc = std::min(std::fabs(xr), r);
+      const double phi = xc <= wz[k] ? xc * zc : wz[k] * zc + gx[i] - gw[k];
+      node_phi_[k * (ni + 1) + i] = ((xr < 0.0) != (zr < 0.0)) ? -phi : phi;
+    }
   }
   for (int k = 0; k < nk; ++k) {
     for (int i = 0; i < ni; ++i) {
@@ -215,11 +232,12 @@ int PorosityMapper::add_lookup(int j, double x, double z, double r, int p) {
   const double* t0 = &tables_[row_class_[k] * nradius_ + q][sub];
   const double r2 = r * r;
   const double* t1 = nradius_ > 1 ? &tables_[row_class_[k] * nradius_ + q + 1][sub] : t0;
+  // columns of the stencil inside the grid
+  const int di_lo = std::max(-sx_, -i), di_hi = std::min(sx_, grid_.nx() - 1 - i);
   for (int s = 0; s < nrow; ++s) {
     const int kk = k + c.dk_lo + s;
-    for (int di = -sx_; di <= sx_; ++di) {
+    for (int di = di_lo; di <= di_hi; ++di) {
       const int ii = i + di;
-      if (ii < 0 || ii >= grid_.nx()) continue;
       const int e = s * ncol + di + sx_;
       const double area = r2 * (t0[e] + w * (t1[e] - t0[e]));
       if (area <= 0.0) continue;

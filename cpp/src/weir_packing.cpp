@@ -103,6 +103,8 @@ double segment_distance(double x, double z, double ax, double az, double bx, dou
   return std::hypot(x - ax - t * ex, z - az - t * ez);
 }
 
+double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz);
+
 struct Trapezoid {
   double px[4], pz[4];  // corners counter-clockwise: toe, upstream crest, downstream crest, downstream toe
   explicit Trapezoid(const WeirSpec& s) {
@@ -217,6 +219,29 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
     weir = DEMSystem(q, pos, radius, {spec.density}, fixed);
     t_total += settle(weir, spec, 0.5);
   }
+  // (6) stones laid by hand into the largest remaining hollows of the slopes and crest
+  for (int k = 0; k < 12; ++k) {
+    double px = 0.0, pz = 0.0;
+    if (largest_gap(weir, spec, px, pz) < 0.5 * spec.d_mean) break;
+    const double rc = 0.5 * draw_diameter(rng, spec);
+    pos = weir.disc_pos;
+    // lowest free spot above the hollow's point
+    bool placed = false;
+    for (double lift = 0.0; lift <= 2.0 * rc && !placed; lift += 0.05 * rc) {
+      bool free_site = true;
+      for (std::size_t i = 0; i < radius.size() && free_site; ++i)
+        free_site = std::hypot(px - pos[2 * i], pz + lift - pos[2 * i + 1]) > radius[i] + rc + 1e-4;
+      if (!free_site) continue;
+      pos.push_back(px);
+      pos.push_back(pz + lift);
+      radius.push_back(rc);
+      fixed.push_back(0);
+      placed = true;
+    }
+    if (!placed) break;
+    weir = DEMSystem(q, pos, radius, {spec.density}, fixed);
+    t_total += settle(weir, spec, 0.3);
+  }
 
   report.n_stones = weir.n();
   report.n_fixed = n_fixed;
@@ -229,16 +254,11 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   return weir;
 }
 
-double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
+namespace {
+// the point of the slopes and crest farthest from every disc; returns that distance [m]
+double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz) {
   const Trapezoid trap(spec);
-  double err = 0.0;
-  // (a) discs reaching outside
-  for (int i = 0; i < sys.n(); ++i) {
-    if (!sys.disc_active[i]) continue;
-    const double out = trap.distance(sys.disc_pos[2 * i], sys.disc_pos[2 * i + 1]) + sys.disc_radius[i];
-    err = std::max(err, out);
-  }
-  // (b) points of the slopes and crest far from every disc
+  double worst = 0.0;
   for (int e = 1; e <= 3; ++e) {
     const int a = e % 4, b = (e + 1) % 4;
     const double len = std::hypot(trap.px[b] - trap.px[a], trap.pz[b] - trap.pz[a]);
@@ -253,9 +273,29 @@ double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
         const double g = std::hypot(x - sys.disc_pos[2 * i], z - sys.disc_pos[2 * i + 1]) - sys.disc_radius[i];
         gap = std::min(gap, std::max(g, 0.0));
       }
-      err = std::max(err, gap);
+      if (gap > worst) {
+        worst = gap;
+        gx = x;
+        gz = z;
+      }
     }
   }
+  return worst;
+}
+}  // namespace
+
+double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
+  const Trapezoid trap(spec);
+  double err = 0.0;
+  // (a) discs reaching outside
+  for (int i = 0; i < sys.n(); ++i) {
+    if (!sys.disc_active[i]) continue;
+    const double out = trap.distance(sys.disc_pos[2 * i], sys.disc_pos[2 * i + 1]) + sys.disc_radius[i];
+    err = std::max(err, out);
+  }
+  // (b) points of the slopes and crest far from every disc
+  double gx = 0.0, gz = 0.0;
+  err = std::max(err, largest_gap(sys, spec, gx, gz));
   return err;
 }
 

@@ -13,7 +13,7 @@ N_EXP = 0.41  # packing porosity of the paper's stones [-]
 _METHODS = {"exact": _core.PorosityMethod.EXACT, "lookup": _core.PorosityMethod.LOOKUP}
 
 
-def make_porosity_mapper(grid, r_min, r_max, method="exact", m=8, n_exp=N_EXP, dr=5e-4, max_discs=1024):
+def make_porosity_mapper(grid, r_min, r_max, method="exact", m=8, n_exp=N_EXP, dr=1e-3, max_discs=1024):
     """A ``PorosityMapper`` for ``grid`` and radii in [r_min, r_max] [m].
 
     method: "exact" (closed-form areas) or "lookup" (the paper's table, m x m sub-areas per cell);

@@ -20,10 +20,15 @@ double max_abs(const std::vector<double>& a) {
 
 }  // namespace
 
-TEST(VOFGrid, StillWaterWithPorousBlockStaysStill) {
+class VOFGridBySolver : public ::testing::TestWithParam<PressureSolverKind> {};
+INSTANTIATE_TEST_SUITE_P(Solvers, VOFGridBySolver,
+                         ::testing::Values(PressureSolverKind::kEigenDirect, PressureSolverKind::kMultigridCG));
+
+TEST_P(VOFGridBySolver, StillWaterWithPorousBlockStaysStill) {
   // 0.4 m x 0.3 m tank, water 0.2 m deep, a porous block (n = 0.4, D = 4.8 cm) on the bed
   const Grid2D g = Grid2D::uniform(20, 15, 0.4, 0.3);
   FlowParams p;
+  p.pressure_solver = GetParam();
   VOFGrid flow(g, p);
   flow.fill_water_below(0.2);
   flow.set_porosity_box(0.1, 0.25, 0.0, 0.12, 0.4, 0.048);
@@ -37,10 +42,11 @@ TEST(VOFGrid, StillWaterWithPorousBlockStaysStill) {
   EXPECT_NEAR(flow.time(), 2.0, 1e-12);
 }
 
-TEST(VOFGrid, SteadyFlowThroughPorousBlockFollowsClosureLaw) {
+TEST_P(VOFGridBySolver, SteadyFlowThroughPorousBlockFollowsClosureLaw) {
   // single-phase channel 1 m x 0.1 m under a slip lid; a porous block fills x in [0.3, 0.7]
   const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
   FlowParams p;
+  p.pressure_solver = GetParam();
   p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection;  // no free surface, no gravity
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
@@ -62,10 +68,12 @@ TEST(VOFGrid, SteadyFlowThroughPorousBlockFollowsClosureLaw) {
   }
 }
 
-TEST(VOFGrid, SloshingInAClosedBoxConservesWater) {
+TEST_P(VOFGridBySolver, SloshingInAClosedBoxConservesWater) {
   // a tilted free surface sloshes in a 0.3 m x 0.2 m box; water volume conserved to round-off
   const Grid2D g = Grid2D::uniform(24, 16, 0.3, 0.2);
-  VOFGrid flow(g, FlowParams{});
+  FlowParams p;
+  p.pressure_solver = GetParam();
+  VOFGrid flow(g, p);
   for (int i = 0; i < g.nx(); ++i) {
     const double level = 0.08 + 0.04 * (g.x_center(i) / 0.3 - 0.5);
     for (int k = 0; k < g.nz(); ++k)

@@ -178,8 +178,13 @@ class DEMSystem {
   bool neighbours_stale() const;
   void advance_checked(double dt, long long nsub);
   void substep(double dt);
-  bool moving(int i) const;
-  void integrate_first_half(double dt);
+  void evaluate_forces(double dt, bool body);
+  bool moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
+  void build_wall_candidates();
+  struct FirstHalf {
+    bool stale = false, escaped = false;
+  };
+  FirstHalf integrate_first_half(double dt);
   void integrate_second_half(double dt);
   void remove_escaped();
   void body_forces(double dt);
@@ -191,6 +196,7 @@ class DEMSystem {
   DEMParams params_;
   int n_ = 0;
   bool prepared_ = false;
+  bool forces_valid_ = false;  // disc_acc holds the accelerations of the current state
   double kn_ = 0.0, kt_ = 0.0, zeta_ = 0.0;
   double time_ = 0.0;
   long long steps_ = 0;
@@ -211,6 +217,7 @@ class DEMSystem {
   double skin_ = 0.0;
   bool rebuild_ = true;
   std::vector<int> cell_start_, cell_next_;
+  std::vector<int> wall_cand_, wall_cand_start_;  // stones near each wall (ascending), per wall
   std::vector<Pair> new_pairs_;
 
   StageProfile profile_;

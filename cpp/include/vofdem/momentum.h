@@ -53,7 +53,10 @@ struct MomentumTerms {
 
 // work array reused from step to step (corner shear stresses)
 struct MomentumScratch {
-  std::vector<double> corner_tau;
+  std::vector<double> pore_u, pore_w;          // u / n on faces (0 on closed faces)
+  std::vector<double> corner_mu, corner_tau;   // (nx + 1) x (nz + 1) corners
+  std::vector<double> cell_flux_u, cell_flux_w;      // x-flux of u, z-flux of w at cell centres
+  std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
 };
 
 // writes u* on every x-face and w* on every z-face. Closed faces (n_f = 0) and walls get 0; the

@@ -11,7 +11,8 @@
 //
 // Two ways to obtain the areas:
 //  * exact: the closed-form area of a disc in a rectangle (disc_rect_area below), evaluated through
-//    the primitive Phi at the grid nodes around the disc, so a disc costs one Phi per node.
+//    the primitive Phi at the grid nodes around the disc (its square roots and arc tangents depend
+//    on the node's column or row alone, so a disc costs a few of them per row and column).
 //  * lookup: the paper's precomputed table. The cell holding the disc centre is split into m x m
 //    sub-areas; for the centre placed at each sub-area's centre, the covered area of every cell of
 //    the stencil around it is tabulated once. Mapping a disc is then a read and a sum per stencil
@@ -22,7 +23,9 @@
 //    by r^2 (so a disc inside the grid keeps exactly pi r^2). Tables are built at construction.
 //    Error: snapping the centre by at most half a sub-area (dx/2m, dz/2m) moves each cell's area by
 //    at most about (arc length in the cell) x (dx + dz) / 2m, first order in 1/m; the radius
-//    interpolation adds O(dr^2) away from tangency. A disc's total area is pi r^2 to round-off. Discs whose centre lies outside the grid use the exact method.
+//    interpolation adds O(dr^2) away from tangency. A disc's total area is pi r^2 to round-off.
+//    Discs whose centre lies outside the grid use the exact method. Measured costs and errors:
+//    docs/porosity.md and benchmarks/results/porosity_lookup_cost.md.
 //
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using
 // VOF-DEM coupled model, ICHE 2008, Nagoya, section 2.4 and Fig. 3.
@@ -70,8 +73,8 @@ struct PorosityParams {
   // smallest and largest disc radius that will be mapped [m]; usual 0.0216 and 0.0264 (4.8 cm +-10 %)
   double r_min = 0.024;
   double r_max = 0.024;
-  // spacing of the radius nodes of the lookup tables [m]; usual 5e-4 (0.5 mm)
-  double dr = 5e-4;
+  // spacing of the radius nodes of the lookup tables [m]; usual 1e-3 (1 mm: finer gains nothing at m <= 32)
+  double dr = 1e-3;
   // largest number of discs one call maps (sizes the per-disc cell lists) [-]
   int max_discs = 1024;
 };
@@ -137,7 +140,8 @@ class PorosityMapper {
   std::vector<double> cell_solid_area_, cell_porosity_;
   std::vector<int> disc_cell_offsets_, disc_cell_index_;
   std::vector<double> disc_cell_area_;
-  std::vector<double> node_phi_;  // scratch of the exact method
+  std::vector<double> node_phi_;  // scratch of the exact method: node values, then 3 lines of scratch_line_
+  int scratch_line_ = 0;
   int ndisc_ = 0;
 
   StageProfile profile_;

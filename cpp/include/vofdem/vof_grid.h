@@ -85,8 +85,8 @@ struct FlowParams {
   double k1 = 200.0;           // linear resistance coefficient of eq. (7) [-], 200 (Ergun 150)
   double k2 = 2.8;             // quadratic resistance coefficient of eq. (7) [-], 2.8 (Ergun 1.75)
   double flume_width = 0.3;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.3
-  PressureSolverKind pressure_solver = PressureSolverKind::kEigenDirect;  // projection solver
-  double pressure_tol = 1e-10;  // relative residual of the iterative pressure solve [-], 1e-10
+  PressureSolverKind pressure_solver = PressureSolverKind::kMultigridCG;  // projection solver (Eigen: reference)
+  double pressure_tol = 1e-9;   // relative residual of the iterative pressure solve [-], 1e-9
   InletBoundary inlet = InletBoundary::kWall;          // left end (x = x0)
   OutletBoundary outlet = OutletBoundary::kWall;       // right end (x = x0 + length)
   double tailwater_level = 0.0;                        // water level [m] at the right end for kTailwater

@@ -1,0 +1,59 @@
+"""The weir packing generator: outline, rest, porosity, reproducibility."""
+import numpy as np
+import pytest
+
+import vofdem
+
+
+@pytest.fixture(scope="module")
+def weir():
+    return vofdem.pack_weir(height=0.25, crest=0.20, slope_up_deg=27, slope_down_deg=27, x_toe=1.0, seed=0)
+
+
+def test_weir_matches_the_trapezoid_within_one_diameter(weir):
+    s, report, spec = weir
+    assert report.n_stones == s.n and report.n_fixed == int(s.disc_fixed.sum())
+    # bottom layer fixed on the bed
+    assert np.allclose(s.disc_pos[s.disc_fixed == 1, 1], s.disc_radius[s.disc_fixed == 1])
+    assert report.outline_error == pytest.approx(vofdem.weir_outline_error(s, spec))
+    # one (mean) stone diameter; seeds 0-7 give 3.6-4.6 cm
+    assert report.outline_error < spec.d_mean
+    free = s.disc_fixed == 0
+    assert s.disc_pos[free, 1].max() < spec.z_bed + spec.height + spec.d_mean / 2
+
+
+def test_weir_is_at_rest_and_stays_at_rest_for_ten_seconds(weir):
+    s, report, _ = weir
+    assert report.max_speed < 1e-3
+    speed = np.hypot(*s.disc_vel.T)
+    assert speed.max() < 1e-3
+    before = s.disc_pos.copy()
+    s.advance(10.0)
+    assert np.hypot(*s.disc_vel.T).max() < 1e-3
+    assert np.abs(s.disc_pos - before).max() < 2e-3
+    assert s.removed_count == 0
+
+
+def test_weir_porosity_is_reported(weir):
+    _, report, spec = weir
+    # 2D area porosity of discs in the trapezoid (the paper's 3D value is 0.41)
+    assert 0.1 < report.porosity < 0.45
+    assert report.porosity == pytest.approx(vofdem.weir_porosity(weir[0], spec), abs=0.01)
+
+
+def test_weir_is_reproducible_from_its_seed():
+    a, ra, _ = vofdem.pack_weir(seed=3, height=0.15, crest=0.1)
+    b, rb, _ = vofdem.pack_weir(seed=3, height=0.15, crest=0.1)
+    c, _, _ = vofdem.pack_weir(seed=4, height=0.15, crest=0.1)
+    assert ra.n_stones == rb.n_stones
+    assert np.array_equal(a.disc_pos, b.disc_pos) and np.array_equal(a.disc_radius, b.disc_radius)
+    assert a.n != c.n or not np.array_equal(a.disc_radius, c.disc_radius)
+    d = a.disc_radius * 2
+    assert 0.9 * 0.048 <= d.min() and d.max() <= 1.1 * 0.048
+
+
+def test_weir_rejects_bad_geometry():
+    with pytest.raises(ValueError, match="slope_down_deg"):
+        vofdem.pack_weir(slope_down_deg=95)
+    with pytest.raises(ValueError, match="height"):
+        vofdem.pack_weir(height=0.05)
