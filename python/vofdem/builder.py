@@ -133,3 +133,43 @@ def build_fluid(scene: Scene):
     fluid.fill_water_box(0.0, scene.weir.x_crest_down, 0.0, initial_level(scene))
     fluid.set_hydrostatic_pressure()
     return fluid
+
+
+def coupler_params(scene: Scene):
+    """CouplerParams of a scene: which couplings run, n_exp, porosity method."""
+    fx = scene.effects
+    p = _core.CouplerParams()
+    p.n_exp = scene.stones.n_exp
+    p.max_dt = scene.numerics.max_dt
+    flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
+    if fx.dem:
+        flags |= _core.COUPLE_DEM
+    if fx.two_way:
+        flags |= _core.COUPLE_POROSITY
+    if fx.drag:
+        flags |= _core.COUPLE_DRAG
+    if fx.pressure_gradient:
+        flags |= _core.COUPLE_PRESSURE_GRADIENT
+    if fx.relative_velocity_resistance:
+        flags |= _core.COUPLE_RELATIVE_VELOCITY
+    if fx.buoyancy or fx.added_mass:
+        flags |= _core.COUPLE_WET_FRACTION
+    if scene.numerics.porosity_method == "lookup":
+        flags |= _core.COUPLE_LOOKUP_POROSITY
+    p.flags = int(flags)
+    return p
+
+
+def build_simulation(scene: Scene):
+    """The coupled simulation of a scene: the flow (build_fluid), the packed weir (build_stones) and the
+    Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones."""
+    fluid = build_fluid(scene)
+    stones, _ = build_stones(scene)
+    params = stones.params
+    params.fluid_density = fluid.params.rho_water
+    stones.params = params
+    sim = _core.Coupler(fluid, stones, coupler_params(scene))
+    t, q = scene.hydrograph.table(scene.duration)
+    sim.set_inflow_table([float(v) for v in t], [float(v) for v in q])
+    sim.update_porosity()
+    return sim

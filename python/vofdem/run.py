@@ -46,13 +46,10 @@ class RunResult:
 
 
 def build_simulation(scene: Scene):
-    """Builds the coupled simulation of a scene: the fluid, the packed weir and the Coupler."""
-    from . import _core
+    """Builds the coupled simulation of a scene (see builder.build_simulation)."""
+    from .builder import build_simulation as build
 
-    if not hasattr(_core, "Coupler"):
-        raise SolverError("this build of vofdem has no coupled solver (vofdem.Coupler); "
-                          "rebuild the C++ core with the coupler module")
-    raise SolverError("build_simulation: the Coupler binding is not wired yet")  # pragma: no cover
+    return build(scene)
 
 
 def grid_faces(grid):
