@@ -94,7 +94,8 @@ def test_bad_parameters_raise_value_error():
         tank(params=p)
     p = vofdem.FlowParams()
     p.flags = vofdem.FlowEffect.TURBULENCE
-    with pytest.raises(ValueError, match="turbulence"):
+    p.turbulence_bed_roughness = -1.0
+    with pytest.raises(ValueError, match="roughness"):
         tank(params=p)
 
 

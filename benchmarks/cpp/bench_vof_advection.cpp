@@ -3,6 +3,8 @@
 //   vortex: unit square, steady single vortex, a circle of water (r = 0.15): few interface cells
 //   flume:  graded rows as the seed paper's mesh (dz 0.5 cm at the bed, 1 cm above; dx from the
 //           size), water below a wavy surface, a porous mound (n = 0.41), steady recirculation
+//   all-interface: every cell holds an interface (the cost of the reconstruction itself)
+// The *MYC variants use the mixed Youngs-centred normal instead of Youngs'.
 // Counters: ns_per_cell (CPU time / cells / steps) and the share of interface cells at the end.
 #include <benchmark/benchmark.h>
 
@@ -89,15 +91,23 @@ Case flume_case(int nx, int nz) {
   return c;
 }
 
-void run(benchmark::State& state, Case c) {
+// reset_f: restore the initial F before every step (untimed), so that the field keeps its interfaces
+void run(benchmark::State& state, Case c, bool reset_f = false,
+         vofdem::VofNormal normal = vofdem::VofNormal::kYoungs) {
   const Grid2D& g = c.grid;
   vofdem::VofBoundaryInflow inflow;
   vofdem::VofScratch scratch;
   const double dt = vofdem::vof_stable_dt(g, c.n, c.u, c.w, 0.4);
   bool x_first = true;
   long long step = 0;
+  const std::vector<double> f0 = c.f;
   for (auto _ : state) {
-    vofdem::advect_vof(g, c.n, c.u, c.w, inflow, dt, x_first, c.f, scratch);
+    if (reset_f) {
+      state.PauseTiming();
+      c.f = f0;
+      state.ResumeTiming();
+    }
+    vofdem::advect_vof(g, c.n, c.u, c.w, inflow, dt, x_first, c.f, scratch, normal);
     x_first = !x_first;
     // the flow reverses every 100 steps so that the interface stays as long as at the start
     if (++step % 100 == 0) {
@@ -116,6 +126,16 @@ void run(benchmark::State& state, Case c) {
   state.counters["clips"] = static_cast<double>(scratch.clip_count);
 }
 
+// every cell an interface cell: F = 0.5 + 0.45 sin(2 pi x / 0.2) sin(2 pi z / 0.2) in the vortex
+Case all_mixed_case(int N) {
+  Case c = vortex_case(N);
+  for (int k = 0; k < N; ++k)
+    for (int i = 0; i < N; ++i)
+      c.f[c.grid.cell(i, k)] =
+          0.5 + 0.45 * std::sin(2.0 * kPi * c.grid.x_center(i) / 0.2) * std::sin(2.0 * kPi * c.grid.z_center(k) / 0.2);
+  return c;
+}
+
 void BM_VortexCircle(benchmark::State& state) { run(state, vortex_case(static_cast<int>(state.range(0)))); }
 void BM_FlumeGraded(benchmark::State& state) {
   run(state, flume_case(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))));
@@ -123,5 +143,17 @@ void BM_FlumeGraded(benchmark::State& state) {
 
 }  // namespace
 
+void BM_AllInterface(benchmark::State& state) { run(state, all_mixed_case(static_cast<int>(state.range(0))), true); }
+void BM_AllInterfaceMYC(benchmark::State& state) {
+  run(state, all_mixed_case(static_cast<int>(state.range(0))), true, vofdem::VofNormal::kMixedYoungsCentered);
+}
+void BM_FlumeGradedMYC(benchmark::State& state) {
+  run(state, flume_case(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), false,
+      vofdem::VofNormal::kMixedYoungsCentered);
+}
+
 BENCHMARK(BM_VortexCircle)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FlumeGraded)->Args({160, 62})->Args({800, 125})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FlumeGradedMYC)->Args({160, 62})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AllInterface)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AllInterfaceMYC)->Arg(100)->Unit(benchmark::kMicrosecond);

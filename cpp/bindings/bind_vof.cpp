@@ -85,6 +85,19 @@ void bind_vof(py::module_& m) {
       .def_readwrite("top", &FlowParams::top)
       .def_readwrite("walls", &FlowParams::walls)
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
+      // the k-epsilon settings most runs touch (the rest keep the model's standard values)
+      .def_property(
+          "turbulence_bed_roughness", [](const FlowParams& p) { return p.turbulence.bed_roughness; },
+          [](FlowParams& p, double v) { p.turbulence.bed_roughness = v; }, "equivalent sand roughness k_s of the bed [m]")
+      .def_property(
+          "turbulence_wall_roughness", [](const FlowParams& p) { return p.turbulence.wall_roughness; },
+          [](FlowParams& p, double v) { p.turbulence.wall_roughness = v; }, "k_s of end walls and solid cells [m]")
+      .def_property(
+          "turbulence_inflow_intensity", [](const FlowParams& p) { return p.turbulence.inflow_intensity; },
+          [](FlowParams& p, double v) { p.turbulence.inflow_intensity = v; }, "inflow turbulence intensity [-], 0.05")
+      .def_property(
+          "turbulence_inflow_length_scale", [](const FlowParams& p) { return p.turbulence.inflow_length_scale; },
+          [](FlowParams& p, double v) { p.turbulence.inflow_length_scale = v; }, "inflow length scale [m], 0.01")
       .def("validate", &FlowParams::validate);
 
   py::class_<DischargeTable>(m, "DischargeTable", "Piecewise-linear discharge Q(t): times [s], discharge [m^3/s].")
@@ -134,6 +147,10 @@ void bind_vof(py::module_& m) {
                              "stone diameter D_sp [m]")
       .def_property_readonly("cell_nut", [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_nut); },
                              "eddy viscosity [m^2/s]")
+      .def_property_readonly("cell_k", [](py::object s) { return cells(s, s.cast<VOFGrid&>().turbulence().cell_k); },
+                             "turbulent kinetic energy [m^2/s^2] (k-epsilon)")
+      .def_property_readonly("cell_eps", [](py::object s) { return cells(s, s.cast<VOFGrid&>().turbulence().cell_eps); },
+                             "dissipation rate [m^2/s^3] (k-epsilon)")
       .def_property_readonly("face_x_solid_u", [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_x_solid_u); },
                              "stones' x-velocity at x-faces [m/s]")
       .def_property_readonly("face_z_solid_w", [](py::object s) { return zfaces(s, s.cast<VOFGrid&>().face_z_solid_w); },

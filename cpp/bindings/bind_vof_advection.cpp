@@ -52,6 +52,11 @@ void bind_vof_advection(py::module_& m) {
   def_side(inflow, "bottom", &VofBoundaryInflow::bottom, "fraction entering through the bottom, per column (nx)");
   def_side(inflow, "top", &VofBoundaryInflow::top, "fraction entering through the top, per column (nx)");
 
+  py::enum_<VofNormal>(m, "VofNormal", "Interface normal of the PLIC reconstruction.")
+      .value("YOUNGS", VofNormal::kYoungs, "Youngs (1982): weighted 3x3 gradient of F (default)")
+      .value("MIXED_YOUNGS_CENTERED", VofNormal::kMixedYoungsCentered,
+             "Aulisa et al. (2007): height-function normal of the 3x3 block, else Youngs");
+
   py::class_<VofScratch>(m, "VofScratch", "Work arrays of advect_vof and its clipping report.")
       .def(py::init<>())
       .def_readwrite("clip_count", &VofScratch::clip_count,
@@ -62,7 +67,8 @@ void bind_vof_advection(py::module_& m) {
   m.def(
       "advect_vof",
       [](const Grid2D& g, const InArray& cell_porosity, const InArray& face_u, const InArray& face_w,
-         const VofBoundaryInflow& inflow, double dt, bool x_first, InOutArray cell_F, VofScratch& scratch) {
+         const VofBoundaryInflow& inflow, double dt, bool x_first, InOutArray cell_F, VofScratch& scratch,
+         VofNormal normal) {
         require_size("cell_porosity", cell_porosity.size(), g.ncell());
         require_size("face_u", face_u.size(), g.nface_x());
         require_size("face_w", face_w.size(), g.nface_z());
@@ -70,10 +76,11 @@ void bind_vof_advection(py::module_& m) {
         if (!cell_F.writeable()) throw std::invalid_argument("cell_F is read-only; allowed: a writeable array");
         double* f = cell_F.mutable_data();
         py::gil_scoped_release release;
-        advect_vof(g, cell_porosity.data(), face_u.data(), face_w.data(), inflow, dt, x_first, f, scratch);
+        advect_vof(g, cell_porosity.data(), face_u.data(), face_w.data(), inflow, dt, x_first, f, scratch, normal);
       },
       py::arg("grid"), py::arg("cell_porosity"), py::arg("face_u"), py::arg("face_w"), py::arg("inflow"),
       py::arg("dt"), py::arg("x_first"), py::arg("cell_F").noconvert(), py::arg("scratch"),
+      py::arg("normal") = VofNormal::kYoungs,
       "Advances the water fraction cell_F (float64, C-contiguous, size ncell; updated in place) by dt [s] "
       "with the superficial face velocities face_u, face_w [m/s] (seed eq. 4, PLIC, split with the "
       "Weymouth-Yue correction). Raises RuntimeError above CFL 1 (F untouched).");
@@ -87,7 +94,8 @@ void bind_vof_advection(py::module_& m) {
         return vof_stable_dt(g, cell_porosity.data(), face_u.data(), face_w.data(), cfl);
       },
       py::arg("grid"), py::arg("cell_porosity"), py::arg("face_u"), py::arg("face_w"), py::arg("cfl") = 0.45,
-      "Largest advection step [s] at directional CFL number cfl (<= 0.5 keeps F in [0, 1]); inf if at rest.");
+      "Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers "
+      "|v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.");
 
   m.def("plic_line_constant", py::vectorize(&plic_line_constant), py::arg("mx"), py::arg("mz"), py::arg("dx"),
         py::arg("dz"), py::arg("f"),

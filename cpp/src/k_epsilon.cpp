@@ -126,6 +126,14 @@ void KEpsilonModel::initialize(double k, double eps, double nu) {
   std::fill(cell_role_prev_.begin(), cell_role_prev_.end(), kSolved);
 }
 
+void KEpsilonModel::set_flags(unsigned flags) {
+  params_.flags = flags;
+  if (has(flags, kKEpsWallFunctions)) return;
+  std::fill(cell_u_tau.begin(), cell_u_tau.end(), 0.0);
+  std::fill(face_x_wall_shear.begin(), face_x_wall_shear.end(), 0.0);
+  std::fill(face_z_wall_shear.begin(), face_z_wall_shear.end(), 0.0);
+}
+
 double KEpsilonModel::inflow_k(double u_in) const {
   const double iu = params_.inflow_intensity * std::abs(u_in);
   return std::max(1.5 * iu * iu, params_.k_min);
@@ -399,16 +407,21 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
       }
     }
   }
-  for (int e = 0; e < 2; ++e) {
-    for (int pass = 1; pass <= p.sweeps; ++pass) {
-      const bool to_target = (p.sweeps - pass) % 2 == 0;
-      std::vector<double>& dst = to_target ? *target[e] : *scratch[e];
-      const std::vector<double>& cur = to_target ? *scratch[e] : *target[e];
-      for (const JacobiRow& r : *rows[e]) {
-        const double num = r.num + r.a[0] * cur[r.nb[0]] + r.a[1] * cur[r.nb[1]] + r.a[2] * cur[r.nb[2]] +
-                           r.a[3] * cur[r.nb[3]];
-        dst[r.c] = std::max(num / r.den, floor[e]);
-      }
+  jacobi_sweeps(rows_k_, p.k_min, cell_k, scratch_);
+  jacobi_sweeps(rows_eps_, p.eps_min, cell_eps, scratch_eps_);
+}
+
+void KEpsilonModel::jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
+                                  std::vector<double>& scratch) const {
+  const int sweeps = params_.sweeps;
+  for (int pass = 1; pass <= sweeps; ++pass) {
+    const bool to_target = (sweeps - pass) % 2 == 0;
+    std::vector<double>& dst = to_target ? target : scratch;
+    const std::vector<double>& cur = to_target ? scratch : target;
+    for (const JacobiRow& r : rows) {
+      const double num =
+          r.num + r.a[0] * cur[r.nb[0]] + r.a[1] * cur[r.nb[1]] + r.a[2] * cur[r.nb[2]] + r.a[3] * cur[r.nb[3]];
+      dst[r.c] = std::max(num / r.den, floor);
     }
   }
 }
@@ -448,8 +461,11 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
   const unsigned flags = params_.flags;
   {
     ScopedStage timer(profile_, stage_setup_);
-    k_old_ = cell_k;
-    eps_old_ = cell_eps;
+    // the start of the step, floored: k and eps set by hand to 0 must not make eps/k infinite
+    for (int c = 0; c < grid_.ncell(); ++c) {
+      cell_k[c] = k_old_[c] = std::max(cell_k[c], params_.k_min);
+      cell_eps[c] = eps_old_[c] = std::max(cell_eps[c], params_.eps_min);
+    }
     nut_old_ = cell_nut;
     cell_role_prev_.swap(cell_role_);
     classify_cells(cell_porosity, cell_F);

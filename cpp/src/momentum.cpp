@@ -47,6 +47,32 @@ void corner_viscosity(const Grid2D& g, const double* mu, std::vector<double>& cm
   }
 }
 
+// wall functions: the corner stress on the bed and end walls is the log-law shear of the wall cells
+// beside it (tau = -rho tau_wall on the bed and the left wall, +rho tau_wall on the right wall, since
+// the stress difference across a control volume is the force on it)
+void wall_function_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, std::vector<double>& tau) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  if (f.face_z_wall_shear) {
+    for (int ii = 0; ii <= nx; ++ii) {
+      const int a = std::max(ii - 1, 0), b = std::min(ii, nx - 1);
+      const double rho = 0.5 * (f.cell_rho[a] + f.cell_rho[b]);
+      tau[ii] = -rho * 0.5 * (f.face_z_wall_shear[a] + f.face_z_wall_shear[b]);
+    }
+  }
+  if (f.face_x_wall_shear) {
+    for (int kk = 1; kk < nz; ++kk) {
+      if (!bc.left_inlet) {
+        const double rho = 0.5 * (f.cell_rho[nx * (kk - 1)] + f.cell_rho[nx * kk]);
+        tau[sx * kk] = -rho * 0.5 * (f.face_x_wall_shear[sx * (kk - 1)] + f.face_x_wall_shear[sx * kk]);
+      }
+      if (!bc.right_open) {
+        const double rho = 0.5 * (f.cell_rho[nx - 1 + nx * (kk - 1)] + f.cell_rho[nx - 1 + nx * kk]);
+        tau[nx + sx * kk] = rho * 0.5 * (f.face_x_wall_shear[nx + sx * (kk - 1)] + f.face_x_wall_shear[nx + sx * kk]);
+      }
+    }
+  }
+}
+
 // shear stress mu (du/dz + dw/dx) at every corner (x-face ii, z-face kk), ghost values at boundaries
 void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
@@ -71,6 +97,7 @@ void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBounda
     if (left_shear) tau[sx * kk] = s.corner_mu[sx * kk] * ((u1[0] - u0[0]) * inv_dzc + 2.0 * w[0] / dx);
     if (right_shear) tau[nx + sx * kk] = s.corner_mu[nx + sx * kk] * ((u1[nx] - u0[nx]) * inv_dzc - 2.0 * w[nx - 1] / dx);
   }
+  wall_function_shear(g, f, bc, tau);
 }
 
 // convective fluxes of both momentum components: cell centres and corners
@@ -104,6 +131,26 @@ void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumB
       const double a = 0.5 * (f.face_w[ii - 1 + nx * nz] + f.face_w[ii + nx * nz]);
       s.corner_flux_u[ii + sx * nz] = a * pu[ii + sx * (nz - 1)];
     }
+  // z-flux of u at the corners of the open end (ghost w = w of the last column)
+  if (bc.right_open) {
+    for (int kk = 1; kk < nz; ++kk) {
+      const double a = f.face_w[nx - 1 + nx * kk];
+      s.corner_flux_u[nx + sx * kk] = a * carried(pu + nx, sx, kk - 1, nz, a);
+    }
+    if (bc.top_open) s.corner_flux_u[nx + sx * nz] = f.face_w[nx - 1 + nx * nz] * pu[nx + sx * (nz - 1)];
+  }
+  // x-flux of w at the corners of the open top (ghost u = u of the top row)
+  if (bc.top_open) {
+    const double* prow = pw + nx * nz;
+    for (int ii = 0; ii <= nx; ++ii) {
+      const double a = f.face_u[ii + sx * (nz - 1)];
+      double v;
+      if (ii == 0) v = a > 0.0 ? 0.0 : prow[0];
+      else if (ii == nx) v = prow[nx - 1];
+      else v = carried(prow, 1, ii - 1, nx, a);
+      s.corner_flux_w[ii + sx * nz] = a * v;
+    }
+  }
   // x-flux of w at corners of interior z-faces: u interpolated to the corner height
   for (int kk = 1; kk < nz; ++kk) {
     const double wl = g.dz(kk) / (g.dz(kk - 1) + g.dz(kk)), wu = 1.0 - wl;
@@ -153,11 +200,17 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
       }
       u_star[j] = f.face_u[j] + dt * rhs;
     }
-    // ends: the inlet keeps its value for the boundary stage; an open end is zero-gradient
+    // ends: the inlet keeps its value for the boundary stage; an open end's control volume reaches a
+    // ghost cell of zero gradient, so the momentum leaving carries u_b u_b / n_b out
     if (bc.left_inlet) u_star[sx * k] = f.face_u[sx * k];
     const int je = nx + sx * k;
-    if (bc.right_open && f.face_x_porosity[je] > 0.0)
-      u_star[je] = f.face_u[je] + dt * f.face_x_porosity[je] * t.gravity_x;
+    if (bc.right_open && f.face_x_porosity[je] > 0.0) {
+      double rhs = f.face_x_porosity[je] * t.gravity_x;
+      if (t.convection)
+        rhs -= (f.face_u[je] * s.pore_u[je] - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
+               (s.corner_flux_u[nx + sx * (k + 1)] - s.corner_flux_u[nx + sx * k]) * inv_dz;
+      u_star[je] = f.face_u[je] + dt * rhs;
+    }
   }
   // interior z-faces
   for (int k = 1; k < nz; ++k) {
@@ -179,10 +232,17 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
       w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
+  // the open top: a ghost cell of zero gradient above, as the open end
   if (bc.top_open) {
+    const double inv_dz = 1.0 / g.dz(nz - 1);
     for (int i = 0; i < nx; ++i) {
       const int j = i + nx * nz;
-      if (f.face_z_porosity[j] > 0.0) w_star[j] = f.face_w[j] + dt * f.face_z_porosity[j] * t.gravity_z;
+      if (f.face_z_porosity[j] <= 0.0) continue;
+      double rhs = f.face_z_porosity[j] * t.gravity_z;
+      if (t.convection)
+        rhs -= (s.corner_flux_w[i + 1 + sx * nz] - s.corner_flux_w[i + sx * nz]) * inv_dx +
+               (f.face_w[j] * s.pore_w[j] - s.cell_flux_w[j - nx]) * inv_dz;
+      w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
 }

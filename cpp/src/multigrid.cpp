@@ -105,23 +105,52 @@ void Multigrid::galerkin(const MultigridLevel& f, MultigridLevel& c) {
 }
 
 void Multigrid::factor_lines(MultigridLevel& lv) {
-  // Thomas factors of each column's tridiagonal block: pivot_k = d_k - s_k up_{k-1}
-  const int w = lv.w;
-  for (int i = 0; i < lv.nx; ++i) {
-    double up_below = 0.0;
-    for (int k = 0; k < lv.nz; ++k) {
+  // lines along the stronger coupling: compare the total x and z coefficients of the interior faces
+  double sum_x = 0.0, sum_z = 0.0;
+  for (int k = 0; k < lv.nz; ++k)
+    for (int i = 0; i < lv.nx; ++i) {
       const int c = lv.index(i, k);
-      if (lv.mask[c] == 0.0) {
-        lv.inv[c] = lv.up[c] = up_below = 0.0;
-        continue;
+      if (i > 0) sum_x += lv.west[c];
+      if (k > 0) sum_z += lv.south[c];
+    }
+  lv.x_lines = sum_x > sum_z;
+  // Thomas factors of each line's tridiagonal block: pivot_j = d_j - a_j up_{j-1}, up_j = a_{j+1} / pivot_j,
+  // with a the coefficients of the faces along the line. Dead cells (mask 0) get inv = up = 0; a line
+  // segment coupled to nothing else is singular, its last pivot vanishes: keeping d there is a
+  // symmetric positive definite approximation of the block (the smoother stays convergent)
+  const int w = lv.w, nx = lv.nx, nz = lv.nz;
+  double *inv = lv.inv.data(), *up = lv.up.data();
+  const double *d = lv.diag.data(), *m = lv.mask.data();
+  if (!lv.x_lines) {
+    // row by row, all columns at once (up of the ghost row below is 0)
+    const double* a = lv.south.data();
+    for (int k = 0; k < nz; ++k) {
+      const int row = w * (k + 1) + 1;
+      const bool top = k + 1 == nz;
+      for (int c = row; c < row + nx; ++c) {
+        double pivot = d[c] - a[c] * up[c - w];
+        const double dc = d[c] > 0.0 ? d[c] : 1.0;
+        if (!(pivot >= 1e-10 * dc)) pivot = dc;
+        const double iv = m[c] != 0.0 ? 1.0 / pivot : 0.0;
+        inv[c] = iv;
+        up[c] = top ? 0.0 : a[c + w] * iv;
       }
-      double pivot = lv.diag[c] - lv.south[c] * up_below;
-      // a column segment coupled to nothing else is singular: its last pivot vanishes; keeping d there
-      // is a symmetric positive definite approximation of the block (the smoother stays convergent)
-      if (pivot < 1e-10 * lv.diag[c]) pivot = lv.diag[c];
-      lv.inv[c] = 1.0 / pivot;
-      lv.up[c] = k + 1 < lv.nz ? lv.south[c + w] / pivot : 0.0;
-      up_below = lv.up[c];
+    }
+    return;
+  }
+  const double* a = lv.west.data();
+  for (int k = 0; k < nz; ++k) {
+    const int row = w * (k + 1) + 1;
+    double up_before = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      const int c = row + i;
+      double pivot = d[c] - a[c] * up_before;
+      const double dc = d[c] > 0.0 ? d[c] : 1.0;
+      if (!(pivot >= 1e-10 * dc)) pivot = dc;
+      const double iv = m[c] != 0.0 ? 1.0 / pivot : 0.0;
+      inv[c] = iv;
+      up[c] = i + 1 < nx ? a[c + 1] * iv : 0.0;
+      up_before = up[c];
     }
   }
 }
@@ -176,6 +205,10 @@ void Multigrid::factor_coarsest() {
 }
 
 void Multigrid::smooth(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess) {
+  if (lv.x_lines) {
+    smooth_rows(lv, b, x, parity, zero_guess);
+    return;
+  }
   // block Gauss-Seidel over the columns of one parity: forward elimination, then back substitution;
   // from a zero guess the neighbouring columns hold 0 and are not read
   const int w = lv.w, nx = lv.nx;
@@ -200,6 +233,27 @@ void Multigrid::smooth(const MultigridLevel& lv, const double* b, double* x, int
       const int c = row + i;
       x[c] += up[c] * x[c + w];
     }
+  }
+}
+
+void Multigrid::smooth_rows(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess) {
+  // the same over the rows of one parity, for grids coupled more strongly along x
+  const int w = lv.w, nx = lv.nx;
+  const double *we = lv.west.data(), *so = lv.south.data(), *inv = lv.inv.data(), *up = lv.up.data();
+  for (int k = parity; k < lv.nz; k += 2) {
+    const int row = w * (k + 1) + 1;
+    if (zero_guess) {
+      for (int i = 0; i < nx; ++i) {
+        const int c = row + i;
+        x[c] = (b[c] + we[c] * x[c - 1]) * inv[c];
+      }
+    } else {
+      for (int i = 0; i < nx; ++i) {
+        const int c = row + i;
+        x[c] = (b[c] + so[c] * x[c - w] + so[c + w] * x[c + w] + we[c] * x[c - 1]) * inv[c];
+      }
+    }
+    for (int i = nx - 2; i >= 0; --i) x[row + i] += up[row + i] * x[row + i + 1];
   }
 }
 

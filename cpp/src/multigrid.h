@@ -10,9 +10,10 @@
 // operator P^T M P has the same five-point form: a coarse face coefficient is the sum of the fine face
 // coefficients it covers. The coarse operators thus follow coefficient jumps (density 1000:1, porosity
 // 1e-3) and solid cells exactly, whatever their alignment with the coarse grid.
-// Smoother: zebra z-line Gauss-Seidel (tridiagonal solves along each column, even columns then odd ones
-// before the coarse correction, the reverse after), robust to the strong vertical coupling of grids that
-// are finer in z than in x and to horizontal free surfaces. The V-cycle is symmetric and positive
+// Smoother: zebra line Gauss-Seidel (tridiagonal solves along each line, even lines then odd ones
+// before the coarse correction, the reverse after). Lines run along z (columns), robust to the strong
+// vertical coupling of grids finer in z than in x and to horizontal free surfaces; a level whose x
+// coupling dominates (total x coefficient above the total z one) uses lines along x instead. The V-cycle is symmetric and positive
 // definite, so it can precondition CG. The coarsest level is solved by a dense Cholesky factorisation
 // (one cell of each group without a Dirichlet face pinned).
 // References: Braess, Towards algebraic multigrid for elliptic problems of second order, Computing 55
@@ -31,7 +32,8 @@ struct MultigridLevel {
   int nx = 0, nz = 0, w = 0;  // cells in x and z; padded row width nx + 2
   // padded arrays of size (nx + 2) (nz + 2); cell (i, k) at (i + 1) + w (k + 1)
   std::vector<double> west, south, diag;  // face coefficient left of / below the cell, diagonal
-  std::vector<double> inv, up;            // column Thomas factors: 1 / pivot, s_{c+W} / pivot
+  std::vector<double> inv, up;            // line Thomas factors: 1 / pivot, next face coefficient / pivot
+  bool x_lines = false;                   // smoother lines along x (else along z)
   std::vector<double> mask;               // 1 on cells with d > 0, else 0
   std::vector<double> x, b;               // correction and right-hand side of this level
   // coarsening to the next level: parent column / row of each fine column / row
@@ -66,6 +68,7 @@ class Multigrid {
   void factor_lines(MultigridLevel& lv);
   void factor_coarsest();
   void smooth(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess);
+  void smooth_rows(const MultigridLevel& lv, const double* b, double* x, int parity, bool zero_guess);
   void restrict_residual(const MultigridLevel& fine, const double* b, const double* x, MultigridLevel& coarse);
   void prolong(const MultigridLevel& fine, double* x, const MultigridLevel& coarse);
   // x = one V-cycle from a zero guess on level l for the right-hand side b (padded arrays; the ghost

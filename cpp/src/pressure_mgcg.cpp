@@ -1,7 +1,9 @@
 #include "pressure_mgcg.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -61,23 +63,29 @@ void MultigridCGPressureSolver::project(double* v) const {
   }
 }
 
-void MultigridCGPressureSolver::fail(int iterations, double residual, double tol) const {
+void MultigridCGPressureSolver::fail(int iterations, double residual, double tol, double fnorm) const {
   // the cell with the largest residual locates the trouble
   const MultigridLevel& f = mg_.level(0);
   int worst_i = 0, worst_k = 0;
-  double worst = -1.0;
+  double worst = -1.0, roundoff = 0.0;
   for (int k = 0; k < f.nz; ++k)
-    for (int i = 0; i < f.nx; ++i)
-      if (std::abs(r_[f.index(i, k)]) > worst) {
-        worst = std::abs(r_[f.index(i, k)]);
+    for (int i = 0; i < f.nx; ++i) {
+      const int j = f.index(i, k);
+      roundoff += (f.diag[j] * x_[j]) * (f.diag[j] * x_[j]);
+      if (std::abs(r_[j]) > worst) {
+        worst = std::abs(r_[j]);
         worst_i = i;
         worst_k = k;
       }
+    }
+  // round-off in M x: about eps 2 d_c |x_c| per cell
+  const double floor = 2.0 * std::numeric_limits<double>::epsilon() * std::sqrt(roundoff) / fnorm;
   throw std::runtime_error("pressure solve (multigrid CG): no convergence after " + std::to_string(iterations) +
                            " iterations (max_iterations = " + std::to_string(params_.max_iterations) +
                            "): relative residual " + format_value(residual) + " > tol " + format_value(tol) +
                            "; largest residual at cell (i, k) = (" + std::to_string(worst_i) + ", " +
-                           std::to_string(worst_k) + ")");
+                           std::to_string(worst_k) + "); round-off floor of the residual about " +
+                           format_value(floor) + (tol < floor ? " (tol is below it)" : ""));
 }
 
 PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& rhs, std::vector<double>& p,
@@ -128,7 +136,7 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
       }
     rel = std::sqrt(rr) / fnorm;
     if (rel <= tol) break;
-    if (it >= params_.max_iterations || restart >= 3 || !std::isfinite(rel)) fail(it, rel, tol);
+    if (it >= params_.max_iterations || restart >= 3 || !std::isfinite(rel)) fail(it, rel, tol, fnorm);
     mg_.apply(r_.data(), z_.data());
     project(z_.data());
     double rz = 0.0;

@@ -26,7 +26,7 @@ class MultigridCGPressureSolver final : public PressureSolver {
  private:
   // removes the group means of a padded vector
   void project(double* v) const;
-  [[noreturn]] void fail(int iterations, double residual, double tol) const;
+  [[noreturn]] void fail(int iterations, double residual, double tol, double fnorm) const;
 
   PressureSolverParams params_;
   PressureSystem sys_;

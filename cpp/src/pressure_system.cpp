@@ -1,6 +1,8 @@
 #include "pressure_system.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +34,7 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
   require_size("face_z_bc", pb.face_z_bc.size(), grid.nface_z());
   require_size("cell_active", pb.cell_active.size(), grid.ncell());
   if (nx != nx_ || nz != nz_) {
+    groups_valid_ = false;
     nx_ = nx;
     nz_ = nz;
     g_.assign(grid.ncell(), 0.0);
@@ -44,18 +47,30 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
   az_ = pb.face_z_coef;
   active_ = pb.cell_active;
 
+  // checks, and the pattern of open faces and active cells: the groups change only with it
+  const int nfx = grid.nface_x(), nfz = grid.nface_z();
+  bool same = groups_valid_ && pattern_.size() == static_cast<std::size_t>(nfx + nfz + grid.ncell());
+  groups_valid_ = false;  // until this build completes
+  pattern_.resize(nfx + nfz + grid.ncell());
+  auto note = [&](int slot, std::uint8_t v) {
+    if (pattern_[slot] != v) {
+      pattern_[slot] = v;
+      same = false;
+    }
+  };
   nactive_ = 0;
   for (int c = 0; c < grid.ncell(); ++c) {
     if (active_[c] > 1) require_in_closed("cell_active", active_[c], 0, 1);
     nactive_ += active_[c];
+    note(nfx + nfz + c, active_[c]);
   }
-  auto act = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && active_[i + nx * k]; };
-  // coefficients: finite, >= 0, zero next to inactive cells; boundary values finite where used
+  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
   for (int k = 0; k < nz; ++k)
     for (int i = 0; i <= nx; ++i) {
-      const int f = grid.face_x(i, k);
+      const int f = i + (nx + 1) * k;
       const double a = ax_[f];
-      require_non_negative("face_x_coef", a);
+      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_x_coef", a);
+      note(f, a > 0.0);
       if (a == 0.0) continue;
       const bool boundary = (i == 0 || i == nx);
       if (boundary ? !act(i == 0 ? 0 : nx - 1, k) : !(act(i - 1, k) && act(i, k)))
@@ -64,9 +79,10 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
     }
   for (int k = 0; k <= nz; ++k)
     for (int i = 0; i < nx; ++i) {
-      const int f = grid.face_z(i, k);
+      const int f = i + nx * k;
       const double a = az_[f];
-      require_non_negative("face_z_coef", a);
+      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_z_coef", a);
+      note(nfx + f, a > 0.0);
       if (a == 0.0) continue;
       const bool boundary = (k == 0 || k == nz);
       if (boundary ? !act(i, k == 0 ? 0 : nz - 1) : !(act(i, k - 1) && act(i, k)))
@@ -85,13 +101,19 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
     g_[i + nx * (nz - 1)] += az_[grid.face_z(i, nz)] * pb.face_z_bc[grid.face_z(i, nz)];
   }
 
+  if (!same) find_groups();
+  groups_valid_ = true;
+}
+
+void PressureSystem::find_groups() {
   // connected groups through open faces; keep those without a Dirichlet face
+  const int nx = nx_, nz = nz_;
   std::fill(group_.begin(), group_.end(), -1);
   singular_cells_.clear();
   singular_start_.clear();
   singular_start_.push_back(0);
   int ngroup = 0;
-  for (int seed = 0; seed < grid.ncell(); ++seed) {
+  for (int seed = 0; seed < nx * nz; ++seed) {
     if (!active_[seed] || group_[seed] >= 0) continue;
     const std::size_t first = singular_cells_.size();
     bool dirichlet = false;
@@ -103,8 +125,8 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
       stack_.pop_back();
       singular_cells_.push_back(c);
       const int i = c % nx, k = c / nx;
-      const double aw = ax_[grid.face_x(i, k)], ae = ax_[grid.face_x(i + 1, k)];
-      const double as = az_[grid.face_z(i, k)], an = az_[grid.face_z(i, k + 1)];
+      const double aw = ax_[i + (nx + 1) * k], ae = ax_[i + 1 + (nx + 1) * k];
+      const double as = az_[c], an = az_[c + nx];
       if ((i == 0 && aw > 0) || (i == nx - 1 && ae > 0) || (k == 0 && as > 0) || (k == nz - 1 && an > 0))
         dirichlet = true;
       auto visit = [&](bool open, int nb) {

@@ -45,7 +45,12 @@ class PressureSystem {
   void residual(const std::vector<double>& f, const std::vector<double>& x, std::vector<double>& r) const;
 
  private:
+  void find_groups();
+
   int nx_ = 0, nz_ = 0, nactive_ = 0;
+  // open faces (x then z) and active cells of the last build, and whether its groups are known
+  std::vector<std::uint8_t> pattern_;
+  bool groups_valid_ = false;
   std::vector<double> ax_, az_, g_;
   std::vector<std::uint8_t> active_;
   // cells of the singular groups, group s holds singular_cells_[singular_start_[s] .. singular_start_[s+1])

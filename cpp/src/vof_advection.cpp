@@ -61,7 +61,7 @@ inline double line_constant(double mx, double mz, double dx, double dz, double f
 // conservation (a flux is a flux) and to boundedness (the flux stays within the cell's water)
 constexpr double kPure = 1e-12;
 
-// one-directional sweep; `dir` 0 = x, 1 = z
+// arguments of a one-directional sweep
 struct SweepArgs {
   const Grid2D& g;
   const double* n;
@@ -72,15 +72,15 @@ struct SweepArgs {
   double* F;
   double* flux;
   VofScratch& scratch;
+  VofNormal normal;
 };
 
-// Youngs' normal (pointing out of the water) of cell (i, k): mean of the four corner gradients of F,
-// each from the 2x2 cells around the corner. A neighbour outside the domain or solid is replaced by
-// the nearest fluid cell of the stencil along the grid lines (zero-gradient ghost), else by F itself.
-void youngs_normal(const Grid2D& g, const double* n, const double* F, int i, int k, double& mx, double& mz) {
+// the 3x3 stencil v[a][b] of F around cell (i, k) (a along x, b along z). A neighbour outside the
+// domain or solid is replaced by the nearest fluid cell of the stencil along the grid lines
+// (zero-gradient ghost), else by the cell itself, so a level surface next to a wall stays level.
+void stencil(const Grid2D& g, const double* n, const double* F, int i, int k, double v[3][3]) {
   const int nx = g.nx(), nz = g.nz();
   auto fluid = [&](int ii, int kk) { return ii >= 0 && ii < nx && kk >= 0 && kk < nz && n[g.cell(ii, kk)] > 0.0; };
-  double v[3][3];
   for (int b = -1; b <= 1; ++b)
     for (int a = -1; a <= 1; ++a) {
       const int ii = i + a, kk = k + b;
@@ -95,16 +95,71 @@ void youngs_normal(const Grid2D& g, const double* n, const double* F, int i, int
         val = F[g.cell(i, k)];
       v[a + 1][b + 1] = val;
     }
-  const double dx = g.dx();
-  // centre-to-centre distances below and above (the cell's own height at the domain edge)
-  const double hb = k > 0 ? g.z_center(k) - g.z_center(k - 1) : g.dz(k);
-  const double ht = k + 1 < nz ? g.z_center(k + 1) - g.z_center(k) : g.dz(k);
+}
+
+// row heights below, at and above row k (ghost rows take the cell's own) and centre distances
+struct RowGeometry {
+  double dzb, dz0, dzt, hb, ht;
+  RowGeometry(const Grid2D& g, int k) {
+    const int nz = g.nz();
+    dz0 = g.dz(k);
+    dzb = k > 0 ? g.dz(k - 1) : dz0;
+    dzt = k + 1 < nz ? g.dz(k + 1) : dz0;
+    hb = 0.5 * (dzb + dz0);
+    ht = 0.5 * (dz0 + dzt);
+  }
+};
+
+// Youngs' normal (pointing out of the water): minus the mean of the four corner gradients of F,
+// each from the 2x2 cells around the corner, with the centre distances of non-uniform rows
+void youngs(const double v[3][3], double dx, const RowGeometry& r, double& mx, double& mz) {
   // x gradient: lower corners use rows (k-1, k), upper corners rows (k, k+1)
   const double gx = ((v[2][0] + 2.0 * v[2][1] + v[2][2]) - (v[0][0] + 2.0 * v[0][1] + v[0][2])) / (8.0 * dx);
-  const double gz = ((v[0][2] + 2.0 * v[1][2] + v[2][2]) - (v[0][1] + 2.0 * v[1][1] + v[2][1])) / (8.0 * ht) +
-                    ((v[0][1] + 2.0 * v[1][1] + v[2][1]) - (v[0][0] + 2.0 * v[1][0] + v[2][0])) / (8.0 * hb);
+  const double gz = ((v[0][2] + 2.0 * v[1][2] + v[2][2]) - (v[0][1] + 2.0 * v[1][1] + v[2][1])) / (8.0 * r.ht) +
+                    ((v[0][1] + 2.0 * v[1][1] + v[2][1]) - (v[0][0] + 2.0 * v[1][0] + v[2][0])) / (8.0 * r.hb);
   mx = -gx;
   mz = -gz;
+}
+
+// mixed Youngs-centred normal (Aulisa et al. 2007): of the two height-function normals of the
+// 3x3 block, the one with the smaller slope, unless Youngs' normal is steeper relative to the
+// same axis (then the height function is not resolved by the block and Youngs' is used)
+void mixed_youngs_centered(const double v[3][3], double dx, const RowGeometry& r, double& mx, double& mz) {
+  // water heights [m] of the left/right columns and widths [m] of the bottom/top rows
+  const double hl = v[0][0] * r.dzb + v[0][1] * r.dz0 + v[0][2] * r.dzt;
+  const double hr = v[2][0] * r.dzb + v[2][1] * r.dz0 + v[2][2] * r.dzt;
+  const double wb = (v[0][0] + v[1][0] + v[2][0]) * dx, wt = (v[0][2] + v[1][2] + v[2][2]) * dx;
+  // slopes [-] of the interface as z(x) and as x(z)
+  const double sx = (hl - hr) / (2.0 * dx), sz = (wb - wt) / (r.hb + r.ht);
+  double yx, yz;
+  youngs(v, dx, r, yx, yz);
+  if (std::abs(sx) <= std::abs(sz)) {
+    mx = sx;
+    mz = wb > wt ? 1.0 : -1.0;  // water below: the normal points up
+    if (std::abs(yx) > std::abs(sx) * std::abs(yz)) {
+      mx = yx;
+      mz = yz;
+    }
+  } else {
+    mx = hl > hr ? 1.0 : -1.0;  // water on the left: the normal points to +x
+    mz = sz;
+    if (std::abs(yz) > std::abs(sz) * std::abs(yx)) {
+      mx = yx;
+      mz = yz;
+    }
+  }
+}
+
+// interface normal (pointing out of the water) of cell (i, k)
+void interface_normal(const Grid2D& g, const double* n, const double* F, int i, int k, VofNormal method, double& mx,
+                      double& mz) {
+  double v[3][3];
+  stencil(g, n, F, i, k, v);
+  const RowGeometry r(g, k);
+  if (method == VofNormal::kMixedYoungsCentered)
+    mixed_youngs_centered(v, g.dx(), r, mx, mz);
+  else
+    youngs(v, g.dx(), r, mx, mz);
   // a flat stencil gives no direction: a horizontal surface, water below
   if (mx == 0.0 && mz == 0.0) mz = 1.0;
 }
@@ -117,7 +172,7 @@ void mixed_outflow(const SweepArgs& s, int dir, int i, int k, double lo, double 
   const double f = s.F[cell], n = s.n[cell];
   const double dx = s.g.dx(), dz = s.g.dz(k);
   double mx, mz;
-  youngs_normal(s.g, s.n, s.F, i, k, mx, mz);
+  interface_normal(s.g, s.n, s.F, i, k, s.normal, mx, mz);
   const double alpha = line_constant(mx, mz, dx, dz, f);
   const double wlo = lo * s.dt / n, whi = hi * s.dt / n;  // strip widths
   if (dir == 0) {
@@ -333,12 +388,27 @@ double plic_line_constant(double mx, double mz, double dx, double dz, double f) 
 double vof_stable_dt(const Grid2D& grid, const double* cell_porosity, const double* face_u, const double* face_w,
                      double cfl) {
   require_positive("cfl", cfl);
-  // the CFL number at dt = 1 s is the inverse of the largest stable step at CFL 1
+  // the face checks name a non-finite velocity or one on a solid cell's face
   int worst = -1;
-  const double cx = max_cfl(grid, cell_porosity, face_u, 0, 1.0, &worst);
-  const double cz = max_cfl(grid, cell_porosity, face_w, 1, 1.0, &worst);
-  const double c = std::max(cx, cz);
-  return c > 0.0 ? cfl / c : std::numeric_limits<double>::infinity();
+  max_cfl(grid, cell_porosity, face_u, 0, 1.0, &worst);
+  max_cfl(grid, cell_porosity, face_w, 1, 1.0, &worst);
+  // per fluid cell and direction, the rate [1/s] whose product with dt is max(C_in, C_out / 2)
+  double rate = 0.0;
+  const int nx = grid.nx(), nz = grid.nz();
+  for (int k = 0; k < nz; ++k) {
+    const double dz = grid.dz(k);
+    for (int i = 0; i < nx; ++i) {
+      const double n = cell_porosity[grid.cell(i, k)];
+      if (!(n > 0.0)) continue;
+      const double ul = face_u[grid.face_x(i, k)], ur = face_u[grid.face_x(i + 1, k)];
+      const double wb = face_w[grid.face_z(i, k)], wt = face_w[grid.face_z(i, k + 1)];
+      const double in_x = std::max(ul, 0.0) + std::max(-ur, 0.0), out_x = std::max(-ul, 0.0) + std::max(ur, 0.0);
+      const double in_z = std::max(wb, 0.0) + std::max(-wt, 0.0), out_z = std::max(-wb, 0.0) + std::max(wt, 0.0);
+      rate = std::max(rate, std::max(in_x, 0.5 * out_x) / (n * grid.dx()));
+      rate = std::max(rate, std::max(in_z, 0.5 * out_z) / (n * dz));
+    }
+  }
+  return rate > 0.0 ? cfl / rate : std::numeric_limits<double>::infinity();
 }
 
 namespace {
@@ -363,7 +433,8 @@ double vof_stable_dt(const Grid2D& grid, const std::vector<double>& cell_porosit
 }
 
 void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* face_u, const double* face_w,
-                const VofBoundaryInflow& inflow, double dt, bool x_first, double* cell_F, VofScratch& scratch) {
+                const VofBoundaryInflow& inflow, double dt, bool x_first, double* cell_F, VofScratch& scratch,
+                VofNormal normal) {
   require_positive("dt", dt);
   check_inflow_size("left", inflow.left, grid.nz());
   check_inflow_size("right", inflow.right, grid.nz());
@@ -383,11 +454,21 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
   ensure_size(scratch.flux, static_cast<std::size_t>(std::max(grid.nface_x(), grid.nface_z())));
   ensure_size(scratch.cell_c, static_cast<std::size_t>(ncell));
   // the divergence-correction indicator is frozen at the start of the step for both sweeps
-  for (int c = 0; c < ncell; ++c) scratch.cell_c[c] = cell_F[c] > 0.5 ? 1.0 : 0.0;
+  bool finite = true;
+  for (int c = 0; c < ncell; ++c) {
+    scratch.cell_c[c] = cell_F[c] > 0.5 ? 1.0 : 0.0;
+    finite &= std::isfinite(cell_F[c]);
+  }
+  if (!finite)
+    for (int c = 0; c < ncell; ++c)
+      if (!std::isfinite(cell_F[c]) && cell_porosity[c] > 0.0)
+        throw std::runtime_error("vof advection: F = " + format_value(cell_F[c]) + " in cell (i=" +
+                                 std::to_string(c % grid.nx()) + ", k=" + std::to_string(c / grid.nx()) +
+                                 ") is not finite");
   const SweepArgs sx{grid, cell_porosity, face_u, inflow, dt, scratch.cell_c.data(), cell_F, scratch.flux.data(),
-                     scratch};
+                     scratch, normal};
   const SweepArgs sz{grid, cell_porosity, face_w, inflow, dt, scratch.cell_c.data(), cell_F, scratch.flux.data(),
-                     scratch};
+                     scratch, normal};
   if (x_first) {
     sweep_x(sx);
     sweep_z(sz);
@@ -399,10 +480,11 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
 
 void advect_vof(const Grid2D& grid, const std::vector<double>& cell_porosity, const std::vector<double>& face_u,
                 const std::vector<double>& face_w, const VofBoundaryInflow& inflow, double dt, bool x_first,
-                std::vector<double>& cell_F, VofScratch& scratch) {
+                std::vector<double>& cell_F, VofScratch& scratch, VofNormal normal) {
   require_sizes(grid, cell_porosity, face_u, face_w);
   require_size("cell_F", cell_F.size(), grid.ncell());
-  advect_vof(grid, cell_porosity.data(), face_u.data(), face_w.data(), inflow, dt, x_first, cell_F.data(), scratch);
+  advect_vof(grid, cell_porosity.data(), face_u.data(), face_w.data(), inflow, dt, x_first, cell_F.data(), scratch,
+             normal);
 }
 
 }  // namespace vofdem

@@ -36,8 +36,7 @@ void FlowParams::validate() const {
   require_positive("flume_width", flume_width);
   require_positive("pressure_tol", pressure_tol);
   require_finite("tailwater_level", tailwater_level);
-  if (flags & kFlowTurbulence)
-    throw std::invalid_argument("flags: the turbulence effect (kFlowTurbulence) is not available in this build");
+  if (flags & kFlowTurbulence) check_k_epsilon_params(turbulence);
   if (flags >= (1u << 8))
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
 }
@@ -45,7 +44,7 @@ void FlowParams::validate() const {
 double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt}); }
 
 struct VOFGrid::Snapshot {
-  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut;
+  std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps;
   double time = 0.0, inlet_volume = 0.0;
 };
 
@@ -70,6 +69,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
   cell_rho_.assign(nc, 0.0);
   cell_mu_.assign(nc, 0.0);
+  cell_nu_.assign(nc, 0.0);
   face_x_rho_.assign(nfx, 0.0);
   face_z_rho_.assign(nfz, 0.0);
   face_x_diameter_.assign(nfx, 0.048);
@@ -86,6 +86,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   solver_ = make_pressure_solver(params_.pressure_solver);
   discharge_ = DischargeTable::constant(0.0);
   update_face_porosity();
+  make_turbulence_model();
   st_advect_ = profile_.add_stage("advect_vof");
   st_momentum_ = profile_.add_stage("momentum");
   st_porous_ = profile_.add_stage("porous_resistance");
@@ -97,11 +98,30 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
 
 VOFGrid::~VOFGrid() = default;
 
+void VOFGrid::make_turbulence_model() {
+  KEpsilonBoundaries b;
+  b.left = params_.inlet == InletBoundary::kDischarge ? KEpsilonBoundary::kInflow : KEpsilonBoundary::kWall;
+  b.right = params_.outlet == OutletBoundary::kWall ? KEpsilonBoundary::kWall : KEpsilonBoundary::kZeroGradient;
+  b.bottom = KEpsilonBoundary::kWall;
+  // the open top and the slip lid are both free of shear
+  b.top = KEpsilonBoundary::kZeroGradient;
+  auto model = std::make_unique<KEpsilonModel>(grid_, params_.turbulence, b);
+  if (turbulence_) {
+    model->cell_k = turbulence_->cell_k;
+    model->cell_eps = turbulence_->cell_eps;
+    model->cell_nut = turbulence_->cell_nut;
+    model->time = turbulence_->time;
+  }
+  turbulence_ = std::move(model);
+}
+
 void VOFGrid::set_params(const FlowParams& params) {
   params.validate();
   const bool new_solver = params.pressure_solver != params_.pressure_solver;
   params_ = params;
   if (new_solver) solver_ = make_pressure_solver(params_.pressure_solver);
+  make_turbulence_model();
+  update_face_porosity();
   if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
 }
 
@@ -212,7 +232,9 @@ void VOFGrid::update_phase_properties() const {
   for (int c = 0; c < grid_.ncell(); ++c) {
     const double f = two_phase ? std::clamp(cell_F[c], 0.0, 1.0) : 1.0;
     cell_rho_[c] = f * rw + (1.0 - f) * ra;
-    cell_mu_[c] = f * mw + (1.0 - f) * ma + (turb ? cell_rho_[c] * cell_nut[c] : 0.0);
+    const double mu = f * mw + (1.0 - f) * ma;
+    cell_nu_[c] = mu / cell_rho_[c];
+    cell_mu_[c] = mu + (turb ? cell_rho_[c] * cell_nut[c] : 0.0);
   }
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   for (int k = 0; k < nz; ++k)
@@ -248,8 +270,14 @@ void VOFGrid::set_hydrostatic_pressure() {
 // time step
 
 MomentumFields VOFGrid::momentum_fields() const {
-  return {face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
-          cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
+  MomentumFields f{face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
+                   cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
+  f.cell_rho = cell_rho_.data();
+  if ((params_.flags & kFlowTurbulence) && (params_.turbulence.flags & kKEpsWallFunctions)) {
+    f.face_z_wall_shear = turbulence_->face_z_wall_shear.data();
+    f.face_x_wall_shear = turbulence_->face_x_wall_shear.data();
+  }
+  return f;
 }
 
 MomentumBoundary VOFGrid::momentum_boundary() const {
@@ -305,6 +333,10 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
                   ? params_.cfl * std::sqrt(2.0 * std::min(grid_.dx(), grid_.min_dz()) / g)
                   : kInf;
   s.turbulence = kInf;
+  if (params_.flags & kFlowTurbulence) {
+    update_phase_properties();
+    s.turbulence = turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
+  }
   s.max_dt = params_.max_dt;
   return s;
 }
@@ -316,6 +348,8 @@ void VOFGrid::save_state() {
   s.cell_p = cell_p;
   s.cell_F = cell_F;
   s.cell_nut = cell_nut;
+  s.cell_k = turbulence_->cell_k;
+  s.cell_eps = turbulence_->cell_eps;
   s.time = time_;
   s.inlet_volume = inlet_volume_;
 }
@@ -327,6 +361,10 @@ void VOFGrid::restore_state() {
   cell_p = s.cell_p;
   cell_F = s.cell_F;
   cell_nut = s.cell_nut;
+  turbulence_->cell_k = s.cell_k;
+  turbulence_->cell_eps = s.cell_eps;
+  turbulence_->cell_nut = s.cell_nut;
+  turbulence_->time = s.time;
   time_ = s.time;
   inlet_volume_ = s.inlet_volume;
 }
@@ -489,9 +527,22 @@ void VOFGrid::stage_porous_resistance(double dt) {
   check_finite("porous_resistance", "z-velocity", w_star_, 2);
 }
 
-void VOFGrid::stage_turbulence(double /*dt*/) {
+const std::vector<double>& VOFGrid::turbulence_cells_F() const {
+  static const std::vector<double> all_water;
+  return (params_.flags & kFlowFreeSurface) ? cell_F : all_water;
+}
+
+void VOFGrid::stage_turbulence(double dt) {
   ScopedStage timer(profile_, st_turbulence_);
-  // the k-epsilon model is refused by FlowParams::validate() until it is integrated
+  // k and eps advance with the velocities of the step's start; nu_t enters the next momentum stage
+  try {
+    turbulence_->time = time_;
+    turbulence_->step(dt, face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
+  } catch (const std::runtime_error& e) {
+    fail("turbulence", e.what(), 0, -1);
+  }
+  cell_nut = turbulence_->cell_nut;
+  check_finite("turbulence", "eddy viscosity", cell_nut, 0);
 }
 
 void VOFGrid::stage_pressure(double /*dt*/) {

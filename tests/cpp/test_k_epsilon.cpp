@@ -410,6 +410,25 @@ TEST(KEpsilon, SolidCellsActAsWalls) {
   EXPECT_NEAR(m.cell_k[above], ut * ut / 0.3, 1e-15);
 }
 
+// a vertical wall: the shear on its x-faces is the z component, against the tangential flow; switching
+// wall functions off clears the wall outputs
+TEST(KEpsilon, EndWallShearOpposesTheFlowAndClearsWhenSwitchedOff) {
+  const Grid2D g = Grid2D::uniform(4, 6, 0.4, 0.3);  // dx 0.1
+  KEpsilonModel m(g, {}, walled_box());
+  m.initialize(1e-4, 1e-5, kNu);
+  Flow f(g);
+  for (int k = 1; k < g.nz(); ++k) f.face_w[g.face_z(0, k)] = -0.2;  // down along the left wall
+  m.step(1e-3, f.face_u, f.face_w, f.porosity, f.F, f.nu);
+  const int k = 3;
+  const double ut = vofdem::wall_shear_velocity(0.2, 0.05, kNu, 0.0, 0.41, 9.8);
+  EXPECT_NEAR(m.face_x_wall_shear[g.face_x(0, k)], ut * ut, 1e-15);  // upwards, against the flow
+  EXPECT_NEAR(m.cell_u_tau[g.cell(0, k)], ut, 1e-15);
+  EXPECT_EQ(m.face_x_wall_shear[g.face_x(4, k)], 0.0);  // the right wall sees no flow
+  m.set_flags(vofdem::kKEpsAll & ~vofdem::kKEpsWallFunctions);
+  EXPECT_EQ(m.face_x_wall_shear[g.face_x(0, k)], 0.0);
+  EXPECT_EQ(m.cell_u_tau[g.cell(0, k)], 0.0);
+}
+
 // inflow side: k, eps from intensity and length scale are carried in; downstream they decay
 TEST(KEpsilon, InflowFeedsTheDomain) {
   const Grid2D g = Grid2D::uniform(20, 1, 2.0, 0.1);
@@ -511,8 +530,12 @@ TEST(KEpsilon, RefusesBadInput) {
   EXPECT_THROW(m.step(0.0, f.face_u, f.face_w, f.porosity, f.F, f.nu), std::invalid_argument);
   std::vector<double> short_u(3, 0.0);
   EXPECT_THROW(m.step(0.1, short_u, f.face_w, f.porosity, f.F, f.nu), std::invalid_argument);
-  // an empty cell_F means all water
+  // an empty cell_F means all water; k, eps set to zero by hand start from the floors
+  std::fill(m.cell_k.begin(), m.cell_k.end(), 0.0);
+  std::fill(m.cell_eps.begin(), m.cell_eps.end(), 0.0);
+  for (double& u : f.face_u) u = 0.5;
   EXPECT_NO_THROW(m.step(0.1, f.face_u, f.face_w, f.porosity, {}, f.nu));
+  expect_all_positive_finite(m);
   try {
     KEpsilonParams p;
     p.cfl = 2.0;

@@ -215,3 +215,30 @@ TEST(VOFGrid, SmallDamBreakRunsAndIsDeterministic) {
   };
   EXPECT_EQ(run(), run());
 }
+
+TEST(VOFGrid, TurbulentOpenChannelRunsWithEddyViscosityInTheWater) {
+  // 10 l/s per 0.3 m (q = 0.033 m^2/s) over a rough bed into a free overfall, k-epsilon on
+  const Grid2D g = Grid2D::graded(30, 1.5, 0.2, 0.01, 0.005, 0.02);
+  FlowParams p;
+  p.flags |= kFlowTurbulence;
+  p.inlet = InletBoundary::kDischarge;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  p.turbulence.bed_roughness = 0.005;
+  VOFGrid flow(g, p);
+  flow.fill_water_below(0.06);
+  flow.set_discharge(DischargeTable::constant(0.010));
+  flow.advance(1.0);
+  const StageProfile& prof = flow.profile();
+  EXPECT_EQ(prof.calls()[prof.find("turbulence")], flow.step_count());
+  double nut_water = 0.0, nut_air = 0.0;
+  for (int c = 0; c < g.ncell(); ++c) {
+    if (flow.cell_F[c] > 0.99) nut_water = std::max(nut_water, flow.cell_nut[c]);
+    if (flow.cell_F[c] < 0.01) nut_air = std::max(nut_air, flow.cell_nut[c]);
+  }
+  EXPECT_GT(nut_water, 1e-6);  // above the molecular viscosity somewhere in the water
+  EXPECT_EQ(nut_air, 0.0);     // the model holds no eddy viscosity in air
+  std::vector<double> U, W;
+  flow.pore_velocity_at_cells(U, W);
+  EXPECT_LT(max_abs(U), 3.0);
+  EXPECT_LT(max_abs(W), 3.0);
+}

@@ -111,7 +111,8 @@ struct KEpsilonParams {
 void check_k_epsilon_params(const KEpsilonParams& params);
 
 // shear velocity u_tau [m/s] of the composite wall law for tangential speed u_t >= 0 [m/s] at
-// distance y > 0 [m] from a wall of roughness ks >= 0 [m], kinematic viscosity nu > 0 [m^2/s]
+// distance y > 0 [m] from a wall of roughness ks >= 0 [m], kinematic viscosity nu > 0 [m^2/s];
+// no argument checks (an inner-loop function); u_t that is not > 0 gives 0
 double wall_shear_velocity(double u_t, double y, double nu, double ks, double kappa, double log_law_e);
 
 class KEpsilonModel {
@@ -143,8 +144,8 @@ class KEpsilonModel {
   const Grid2D& grid() const { return grid_; }
   const KEpsilonParams& params() const { return params_; }
   const KEpsilonBoundaries& boundaries() const { return boundaries_; }
-  // switches effects on/off (KEpsilonFlag bits)
-  void set_flags(unsigned flags) { params_.flags = flags; }
+  // switches effects on/off (KEpsilonFlag bits); switching wall functions off zeroes the wall outputs
+  void set_flags(unsigned flags);
   const StageProfile& profile() const { return profile_; }
   StageProfile& profile() { return profile_; }
 
@@ -189,6 +190,9 @@ class KEpsilonModel {
   void solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                        const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                        const std::vector<double>& cell_nu);
+  // passes 1..sweeps of the Jacobi iteration; the last pass writes target
+  void jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
+                     std::vector<double>& scratch) const;
   void update_eddy_viscosity(const std::vector<double>& cell_nu);
   void check_finite(double t);
 

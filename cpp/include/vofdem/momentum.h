@@ -12,8 +12,9 @@
 // Diffusion: the full stress tensor, 2 mu du/dx at cell centres and mu (du/dz + dw/dx) at corners,
 // corner viscosity the mean of its cells.
 //
-// Boundaries (ghost values): walls slip (zero shear) or no-slip (u = 0 at the wall); the inlet carries
-// no vertical velocity; open ends and the open top are zero-gradient and stress-free.
+// Boundaries (ghost values): walls slip (zero shear) or no-slip (u = 0 at the wall), or the log-law
+// shear of the wall functions when the turbulence model supplies it; the inlet carries no vertical
+// velocity; open ends and the open top are zero-gradient and stress-free.
 //
 // References: F. H. Harlow and J. E. Welch (1965), Phys. Fluids 8, 2182; B. van Leer (1979),
 // J. Comput. Phys. 32, 101.
@@ -42,6 +43,11 @@ struct MomentumFields {
   const double* cell_mu;       // ncell, effective dynamic viscosity [Pa s]
   const double* face_x_rho;    // nface_x [kg/m^3]
   const double* face_z_rho;    // nface_z [kg/m^3]
+  const double* cell_rho = nullptr;  // ncell [kg/m^3], needed with wall shear
+  // kinematic wall shear [m^2/s^2] acting on the fluid from wall functions (k-epsilon), or null for
+  // the slip / no-slip condition: x-component on the bed z-faces, z-component on the end-wall x-faces
+  const double* face_z_wall_shear = nullptr;
+  const double* face_x_wall_shear = nullptr;
 };
 
 struct MomentumTerms {

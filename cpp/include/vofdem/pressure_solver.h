@@ -72,7 +72,9 @@ class PressureSolver {
   // takes new coefficients; call whenever a_f or cell_active changed (the flow solver: every step)
   virtual void setup(const Grid2D& grid, const PressureProblem& problem) = 0;
   // solves (P) for p [Pa] (size ncell; used as the initial guess by iterative solvers);
-  // relative tolerance tol on ||b - A p|| / ||b||. Throws std::runtime_error if it does not converge.
+  // relative tolerance tol > 0 on ||f - M p|| / ||f|| (above). Iterative solvers throw std::runtime_error
+  // if they do not converge within their iteration limit (p is then left as it was); the direct solver
+  // refines its solution up to 3 times while above tol and reports the residual reached (round-off)
   virtual PressureSolveStats solve(const std::vector<double>& rhs, std::vector<double>& p, double tol) = 0;
   virtual PressureSolverKind kind() const = 0;
 };

@@ -18,7 +18,11 @@
 //   1e-6 next to fast flow) stays bounded. With the relative-velocity option R uses u - n u_s, u_s the
 //   stones' velocity at the face.
 // - The viscous term acts on the superficial velocity (porosity gradients in it are neglected, as in
-//   most VARANS codes); the -2/3 grad k of the paper is absorbed into the pressure.
+//   most VARANS codes); the -2/3 grad k of the paper is absorbed into the pressure (p is then the
+//   modified pressure p + 2/3 rho k, the usual practice).
+// - Turbulence (switchable): the standard k-epsilon model of k_epsilon.h supplies nu_t (lagged by one
+//   step: the model advances with the velocities of the step's start) and, on the bed and end walls,
+//   the log-law wall shear that replaces the slip / no-slip condition there.
 // - Pressure projection: u^{n+1} = u* - beta_f grad p, beta_f = dt n_f / (rho_f (1 + dt n_f R'_f)),
 //   p the absolute pressure [Pa] with p = 0 at the open top (see pressure_solver.h).
 //
@@ -45,6 +49,7 @@
 
 #include "vofdem/grid.h"
 #include "vofdem/inflow.h"
+#include "vofdem/k_epsilon.h"
 #include "vofdem/momentum.h"
 #include "vofdem/pressure_solver.h"
 #include "vofdem/profile.h"
@@ -93,6 +98,7 @@ struct FlowParams {
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
+  KEpsilonParams turbulence;  // k-epsilon constants, wall roughness, inflow turbulence (kFlowTurbulence)
 
   // throws std::invalid_argument naming the first bad parameter
   void validate() const;
@@ -132,6 +138,9 @@ class VOFGrid {
   std::vector<double> face_z_porosity;      // n_f on z-faces (derived)
   std::vector<double> cell_stone_diameter;  // D_sp of eq. (7) [m], > 0 where 0 < n < 1; 0.048
   std::vector<double> cell_nut;             // eddy viscosity nu_t [m^2/s], 0 when turbulence is off
+  // the k-epsilon model (its cell_k [m^2/s^2] and cell_eps [m^2/s^3]); advanced when kFlowTurbulence is on
+  KEpsilonModel& turbulence() { return *turbulence_; }
+  const KEpsilonModel& turbulence() const { return *turbulence_; }
   std::vector<double> face_x_solid_u;       // stones' x-velocity at x-faces [m/s], 0
   std::vector<double> face_z_solid_w;       // stones' z-velocity at z-faces [m/s], 0
 
@@ -231,6 +240,10 @@ class VOFGrid {
   VofBoundaryInflow vof_inflow_;
   VofScratch vof_scratch_;
   std::unique_ptr<Snapshot> snapshot_;
+  std::unique_ptr<KEpsilonModel> turbulence_;
+  mutable std::vector<double> cell_nu_;  // molecular kinematic viscosity of the cell's mixture
+  void make_turbulence_model();
+  const std::vector<double>& turbulence_cells_F() const;
 
   StageProfile profile_;
   int st_advect_, st_momentum_, st_porous_, st_turbulence_, st_pressure_, st_correct_, st_checks_;
