@@ -49,8 +49,9 @@ def _stones(ax, data, k, colors=None, alpha=1.0):
     keep = data.active[k]
     if colors is None:
         colors = np.where(data.fixed, "0.45", "tan")
+    face = "none" if isinstance(colors, str) else list(np.asarray(colors)[keep])
     col = EllipseCollection(data.diameter[keep], data.diameter[keep], np.zeros(keep.sum()), units="xy",
-                            offsets=pos[keep], facecolors=np.asarray(colors)[keep],
+                            offsets=pos[keep], facecolors=face,
                             edgecolors="0.2", linewidths=0.4, alpha=alpha, zorder=3,
                             **{"offset_transform" if _MPL_36 else "transOffset": ax.transData})
     ax.add_collection(col)
@@ -84,7 +85,7 @@ def fig_porosity(data, scene, k: int = 0) -> Figure:
     fig, ax = _axes(scene, data)
     m = ax.pcolormesh(data.x_faces, data.z_faces, f["porosity"], cmap="viridis", vmin=0.0, vmax=1.0,
                       shading="flat", zorder=1)
-    _stones(ax, data, k, colors=np.full(data.diameter.size, "none"), alpha=0.8)
+    _stones(ax, data, k, colors="none", alpha=0.8)
     fig.colorbar(m, ax=ax, label="porosity n [-]", shrink=0.8)
     _title(ax, data, k, "Porosity")
     return fig
@@ -116,7 +117,7 @@ def fig_pressure_gradient(data, scene, k: int) -> Figure:
     p = np.where(f["F"] > 0.01, f["p"], np.nan)
     m = ax.pcolormesh(data.x_faces, data.z_faces, p, cmap="Blues", shading="flat", zorder=1)
     fig.colorbar(m, ax=ax, label="pressure p [Pa]", shrink=0.8)
-    _stones(ax, data, k, np.full(data.diameter.size, "none"))
+    _stones(ax, data, k, "none")
     F = data.force_pressure[k]
     act = data.active[k] & ~data.fixed
     q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
@@ -135,7 +136,7 @@ def fig_drag(data, scene, k: int) -> Figure:
     U, W = _pore_velocity(f)
     m = ax.pcolormesh(data.x_faces, data.z_faces, np.hypot(U, W), cmap="magma_r", shading="flat", zorder=1)
     fig.colorbar(m, ax=ax, label="pore speed |U| [m/s]", shrink=0.8)
-    _stones(ax, data, k, np.full(data.diameter.size, "none"))
+    _stones(ax, data, k, "none")
     F = data.force_drag[k]
     act = data.active[k] & ~data.fixed
     q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
