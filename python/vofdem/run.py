@@ -89,9 +89,7 @@ class _Recorder:
         g = sim.fluid.grid
         self.nx, self.nz = g.nx, g.nz
         self.x_faces, self.z_faces = grid_faces(g)
-        xc = 0.5 * (self.x_faces[1:] + self.x_faces[:-1])
         self.gauge_i = int(np.clip(np.searchsorted(self.x_faces, scene.gauge_x) - 1, 0, self.nx - 1))
-        assert xc.size == self.nx
         self.pos0 = np.array(sim.stones.disc_pos, float).reshape(-1, 2).copy()
         self.diameter = 2.0 * np.asarray(sim.stones.disc_radius, float)
         self.moved = 0
