@@ -70,3 +70,29 @@ def test_solver_failure_exits_1_and_keeps_output(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.startswith("vofdem: solver failed at t = 1.2 s: fake stage 'pressure'")
     assert RunData(out / "run.h5").times.tolist() == [0.0, 0.5, 1.0]
+
+
+def test_sigterm_closes_the_output_as_interrupted(tmp_path):
+    import signal
+    import time
+
+    script = (
+        "import sys, time; sys.path.insert(0, %r)\n"
+        "from fake_sim import FakeSimulation\n"
+        "class Slow(FakeSimulation):\n"
+        "    def advance(self, t):\n"
+        "        time.sleep(0.05); super().advance(t)\n"
+        "from vofdem.cli import main\n"
+        "sys.exit(main(['run', 'maeno2008', '--quick', '--out', %r, '--no-progress'], build=Slow))\n"
+    ) % (str(ROOT / "tests"), str(tmp_path / "out"))
+    p = subprocess.Popen([sys.executable, "-c", script], env=ENV, stderr=subprocess.PIPE, text=True)
+    for _ in range(200):
+        time.sleep(0.05)
+        if (tmp_path / "out" / "run.h5").exists():
+            break
+    time.sleep(0.5)
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130 and "interrupted" in err
+    d = RunData(tmp_path / "out" / "run.h5")
+    assert d.attrs["status"] == "interrupted" and d.times.size >= 1 and d.profile is not None

@@ -7,6 +7,7 @@ is kept and marked failed in run.h5).
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from pathlib import Path
 from typing import Callable, Optional, Sequence
@@ -56,6 +57,10 @@ def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, en
     return scene
 
 
+def _terminate(signum, frame):
+    raise KeyboardInterrupt
+
+
 def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None) -> int:
     """Entry point; `build` (scene -> simulation) replaces the solver builder, for tests."""
     args = _parser().parse_args(argv)
@@ -81,6 +86,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
     from .run import SolverError, run_scene
 
     out = args.out or Path("out") / scene.name
+    # a terminated run closes its output as 'interrupted' (with the profile) once the solver returns
+    signal.signal(signal.SIGTERM, _terminate)
     try:
         res = run_scene(scene, out, progress=not args.no_progress, figures=not args.no_figures,
                         animation=not args.no_animation, build=build)
@@ -90,6 +97,9 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
     except ValueError as e:  # e.g. the solver refusing a parameter of the scene
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"vofdem: interrupted; the output written so far is kept in {out}", file=sys.stderr)
+        return 130
     print()
     print(res.profile_table)
     print(res.analysis.stage_table_markdown())
