@@ -1,0 +1,175 @@
+"""From a scene to solver objects: the DEM of the stones (packed weir), the flow solver, the coupler.
+
+Each function maps the scene's parameters (SI units, see scene.py) onto the parameter structs of the
+C++ core; no physics lives here.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core
+from .scene import Scene
+
+import math
+
+WATER_DENSITY = 998.2  # kg/m^3 at 20 C, the flow solver's default water density
+GRAVITY = 9.81  # m/s^2
+
+
+def gravity(scene: Scene):
+    """(g_x, g_z) [m/s^2] in flume coordinates: along and normal to a bed of slope S0 = sin(angle)."""
+    s = scene.flume.bed_slope
+    return GRAVITY * s, -GRAVITY * math.sqrt(1.0 - s * s)
+
+
+def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
+    """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags."""
+    st, fx = scene.stones, scene.effects
+    p = _core.DEMParams()
+    p.gravity = list(gravity(scene))
+    p.fluid_density = fluid_density
+    p.added_mass_coefficient = st.added_mass_coefficient
+    p.dt = scene.numerics.dem_dt
+    p.friction_stone = st.friction_stone
+    # the bed and the upstream end wall; downstream the stones leave over the outflow end
+    p.walls = [_core.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=st.friction_wall),
+               _core.DEMWall(point=[0.0, 0.0], normal=[1.0, 0.0], friction=st.friction_wall)]
+    # stones leaving the flume (past its end, or falling below the bed level there) are removed
+    p.domain_min = [-0.5 * scene.flume.length, -0.5 * scene.flume.height]
+    p.domain_max = [scene.flume.length, 4.0 * scene.flume.height]
+    flags = _core.DEM_GRAVITY | _core.DEM_DAMPING | _core.DEM_REMOVAL
+    if fx.rotation:
+        flags |= _core.DEM_ROTATION
+    if fx.friction:
+        flags |= _core.DEM_FRICTION
+    if fx.added_mass:
+        flags |= _core.DEM_ADDED_MASS
+    if fx.buoyancy:
+        flags |= _core.DEM_BUOYANCY
+    if fx.drag or fx.pressure_gradient:
+        flags |= _core.DEM_EXTERNAL_FORCE
+    p.flags = int(flags)
+    return p
+
+
+def build_stones(scene: Scene):
+    """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
+    scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
+    st, w = scene.stones, scene.weir
+    if st.positions:
+        pos = np.asarray(st.positions, float)
+        d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
+        fixed = (pos[:, 1] - 0.5 * d <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
+        sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density),
+                               [int(f) for f in fixed])
+        return sys_, None
+    # packed dry (the rest state does not depend on the fluid), then given the run's parameters
+    pack = dem_params(scene, fluid_density=0.0)
+    pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
+    sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
+                                      slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
+                                      d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
+                                      seed=scene.seed, params=pack)
+    sys_.params = dem_params(scene)
+    if not st.fix_bottom_layer:
+        sys_.disc_fixed[:] = 0
+    return sys_, report
+
+
+def flow_params(scene: Scene):
+    """FlowParams of a scene: fluid, gravity along a sloping bed, CFL, porous law, boundaries, effects."""
+    f, n, fx, st = scene.flume, scene.numerics, scene.effects, scene.stones
+    p = _core.FlowParams()
+    p.rho_water = WATER_DENSITY
+    p.gravity_x, p.gravity_z = gravity(scene)
+    p.cfl = n.cfl
+    p.max_dt = n.max_dt
+    p.k1, p.k2 = st.k1, st.k2
+    p.flume_width = f.width
+    p.pressure_solver = {"multigrid_cg": _core.PressureSolverKind.MULTIGRID_CG,
+                         "direct": _core.PressureSolverKind.EIGEN_DIRECT}[n.pressure_solver]
+    p.pressure_tol = n.pressure_tolerance
+    p.inlet = _core.InletBoundary.DISCHARGE
+    if f.outflow == "tailwater":
+        p.outlet = _core.OutletBoundary.TAILWATER
+        p.tailwater_level = f.tailwater_level
+    else:
+        p.outlet = _core.OutletBoundary.FREE_OVERFALL
+    E = _core.FlowEffect
+    flags = int(E.FREE_SURFACE) | int(E.VISCOSITY) | int(E.GRAVITY) | int(E.CONVECTION)
+    if fx.porous_resistance:
+        flags |= int(E.POROUS_RESISTANCE)
+    if fx.turbulence:
+        flags |= int(E.TURBULENCE)
+    if fx.relative_velocity_resistance:
+        flags |= int(E.RELATIVE_VELOCITY)
+    p.flags = flags
+    return p
+
+
+def build_grid(scene: Scene):
+    """The scene's Grid2D: cells of about dx along the flume (a whole number over its length), dz_bed
+    up to bed_layer_height, then dz."""
+    g, f = scene.grid, scene.flume
+    nx = max(4, int(round(f.length / g.dx)))
+    top = g.bed_layer_height if g.bed_layer_height > 0 else 0.0
+    return _core.Grid2D.graded(nx=nx, length_x=f.length, height_z=f.height, dz=g.dz, dz_bed=g.dz_bed, z_bed_top=top)
+
+
+def initial_level(scene: Scene) -> float:
+    """Water level [m] upstream of the weir at the start discharge, from the critical-depth relation of
+    a broad-crested weir, H = 1.5 (q^2 / g)^(1/3), q = Q / B: only a starting guess for the spin-up."""
+    q = scene.hydrograph.discharge(0.0) / scene.flume.width
+    return scene.weir.height + 1.5 * (q * q / GRAVITY) ** (1.0 / 3.0)
+
+
+def build_fluid(scene: Scene):
+    """VOFGrid of a scene: grid, parameters, inflow hydrograph, water at rest upstream of the crest at
+    `initial_level` (porosity is left to the coupler, which computes it from the stones)."""
+    fluid = _core.VOFGrid(build_grid(scene), flow_params(scene))
+    t, q = scene.hydrograph.table(scene.duration)
+    fluid.discharge = _core.DischargeTable([float(v) for v in t], [float(v) for v in q])
+    fluid.cell_stone_diameter[...] = scene.stones.diameter
+    fluid.fill_water_box(0.0, scene.weir.x_crest_down, 0.0, initial_level(scene))
+    fluid.set_hydrostatic_pressure()
+    return fluid
+
+
+def coupler_params(scene: Scene):
+    """CouplerParams of a scene: which couplings run, n_exp, porosity method."""
+    fx = scene.effects
+    p = _core.CouplerParams()
+    p.n_exp = scene.stones.n_exp
+    p.max_dt = scene.numerics.max_dt
+    flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
+    if fx.dem:
+        flags |= _core.COUPLE_DEM
+    if fx.two_way:
+        flags |= _core.COUPLE_POROSITY
+    if fx.drag:
+        flags |= _core.COUPLE_DRAG
+    if fx.pressure_gradient:
+        flags |= _core.COUPLE_PRESSURE_GRADIENT
+    if fx.relative_velocity_resistance:
+        flags |= _core.COUPLE_RELATIVE_VELOCITY
+    if fx.buoyancy or fx.added_mass:
+        flags |= _core.COUPLE_WET_FRACTION
+    if scene.numerics.porosity_method == "lookup":
+        flags |= _core.COUPLE_LOOKUP_POROSITY
+    p.flags = int(flags)
+    return p
+
+
+def build_simulation(scene: Scene):
+    """The coupled simulation of a scene: the flow (build_fluid), the packed weir (build_stones) and the
+    Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones."""
+    fluid = build_fluid(scene)
+    stones, _ = build_stones(scene)
+    params = stones.params
+    params.fluid_density = fluid.params.rho_water
+    stones.params = params
+    sim = _core.Coupler(fluid, stones, coupler_params(scene))
+    t, q = scene.hydrograph.table(scene.duration)
+    sim.set_inflow_table([float(v) for v in t], [float(v) for v in q])
+    sim.update_porosity()
+    return sim

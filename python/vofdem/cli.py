@@ -1,0 +1,111 @@
+"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N]`` and helpers.
+
+SCENE is a TOML scene file or the name of a ready scene (``maeno2008``). Exit codes: 0 success,
+2 a bad scene or bad arguments (one line on stderr), 1 a solver failure (the output written so far
+is kept and marked failed in run.h5).
+"""
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+from pathlib import Path
+from typing import Callable, Optional, Sequence
+
+READY = {"maeno2008": "Scene.maeno2008()"}
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="vofdem", description="VOF-DEM model of a rubble mound weir's destruction")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="run a scene and write HDF5/XDMF output, stage tables, figures, animation")
+    r.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes")
+    r.add_argument("--out", type=Path, default=None, help="output directory (default: out/<scene name>)")
+    r.add_argument("--seed", type=int, default=None, help="random seed of the packing (overrides the scene)")
+    r.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
+    r.add_argument("--no-figures", action="store_true", help="skip the figures")
+    r.add_argument("--no-animation", action="store_true", help="skip the animation")
+    r.add_argument("--no-progress", action="store_true", help="no progress bar")
+    c = sub.add_parser("check", help="validate a scene file and print it as resolved")
+    c.add_argument("scene")
+    c.add_argument("--quick", action="store_true")
+    a = sub.add_parser("analyse", help="redo the stage tables and figures of a finished run directory")
+    a.add_argument("out", type=Path)
+    a.add_argument("--no-animation", action="store_true")
+    sub.add_parser("params", help="print every scene parameter with its default and allowed range")
+    return p
+
+
+def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, end_time: Optional[float] = None):
+    """A scene from a file path or a ready scene's name; ValueError if neither."""
+    from .scene import Scene, load_scene
+
+    path = Path(name)
+    if path.suffix == ".toml" or path.exists():
+        scene = load_scene(path)
+    elif name in READY:
+        scene = getattr(Scene, name)()
+    else:
+        raise ValueError(f"scene {name!r} is neither a file nor a ready scene ({', '.join(READY)})")
+    if quick:
+        scene = scene.quick()
+    if seed is not None:
+        scene = scene.replace(seed=seed)
+    if end_time is not None:
+        scene = scene.replace(end_time=end_time)
+    return scene
+
+
+def _terminate(signum, frame):
+    raise KeyboardInterrupt
+
+
+def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None) -> int:
+    """Entry point; `build` (scene -> simulation) replaces the solver builder, for tests."""
+    args = _parser().parse_args(argv)
+    if args.command == "params":
+        from .scene import describe_parameters
+
+        print(describe_parameters())
+        return 0
+    try:
+        if args.command == "analyse":
+            from .run import postprocess
+
+            a = postprocess(args.out, animation=not args.no_animation)
+            print(a.stage_table_markdown())
+            return 0
+        scene = resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
+    except ValueError as e:
+        print(f"vofdem: error: {e}", file=sys.stderr)
+        return 2
+    if args.command == "check":
+        print(scene.to_toml(), end="")
+        return 0
+    from .run import SolverError, run_scene
+
+    out = args.out or Path("out") / scene.name
+    # a terminated run closes its output as 'interrupted' (with the profile) once the solver returns
+    signal.signal(signal.SIGTERM, _terminate)
+    try:
+        res = run_scene(scene, out, progress=not args.no_progress, figures=not args.no_figures,
+                        animation=not args.no_animation, build=build)
+    except SolverError as e:
+        print(f"vofdem: {e}", file=sys.stderr)
+        return 1
+    except ValueError as e:  # e.g. the solver refusing a parameter of the scene
+        print(f"vofdem: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"vofdem: interrupted; the output written so far is kept in {out}", file=sys.stderr)
+        return 130
+    print()
+    print(res.profile_table)
+    print(res.analysis.stage_table_markdown())
+    print(f"output: {out}/ (run.h5 + run.xmf for ParaView, stage_table.md/.csv, figures/, animation)")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,283 @@
+"""Figures of a run in the manner of Maeno & Tomita (2008), and an animation of the whole run.
+
+Every function takes a `RunData` (the run's HDF5 file) and draws with matplotlib's object-oriented
+API on its own `Figure` (Agg canvas, no pyplot state), so it works the same in scripts, tests and
+notebooks. Figures:
+
+* `fig_porosity`            the paper's Fig. 4: porosity field with the stones
+* `fig_stones_velocity`     Figs. 6-7: stones (coloured by displacement) with pore-velocity vectors
+* `fig_pressure_gradient`   Fig. 8: pressure-gradient force on each stone over the pressure field
+* `fig_drag`                Fig. 9: drag force on each stone over the pore speed
+* `fig_velocity_distribution` Fig. 10: velocity vectors at several discharges, weir outline in orange
+* `fig_rating_curve`        upstream water level against discharge
+* `fig_timeline`            discharge, stones removed and crest lowering against time, stages shaded
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional, Sequence
+
+import matplotlib
+import numpy as np
+from matplotlib.collections import EllipseCollection
+from matplotlib.figure import Figure
+
+WEIR_COLOR = "tab:orange"
+# matplotlib 3.6 renamed transOffset to offset_transform
+_MPL_36 = tuple(int(v) for v in matplotlib.__version__.split(".")[:2]) >= (3, 6)
+
+
+def _axes(scene, data, width=9.0, height=3.6, layout="constrained"):
+    fig = Figure(figsize=(width, height), layout=layout)
+    ax = fig.add_subplot()
+    _frame(ax, scene, data)
+    return fig, ax
+
+
+def _frame(ax, scene, data):
+    w = scene.weir
+    margin = 0.25
+    ax.set_xlim(max(data.x_faces[0], w.toe_x - margin), min(data.x_faces[-1], w.x_toe_down + margin))
+    ax.set_ylim(0.0, min(data.z_faces[-1], w.height * 1.7))
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+
+
+def _stones(ax, data, k, colors=None, alpha=1.0):
+    pos = data.pos[k]
+    keep = data.active[k]
+    if colors is None:
+        colors = np.where(data.fixed, "0.45", "tan")
+    face = "none" if isinstance(colors, str) else list(np.asarray(colors)[keep])
+    col = EllipseCollection(data.diameter[keep], data.diameter[keep], np.zeros(keep.sum()), units="xy",
+                            offsets=pos[keep], facecolors=face,
+                            edgecolors="0.2", linewidths=0.4, alpha=alpha, zorder=3,
+                            **{"offset_transform" if _MPL_36 else "transOffset": ax.transData})
+    ax.add_collection(col)
+    return col
+
+
+def _surface(ax, data, fields):
+    if np.nanmax(fields["F"]) > 0.5 > np.nanmin(fields["F"]):
+        ax.contour(data.x_centers, data.z_centers, fields["F"], levels=[0.5], colors="tab:blue", linewidths=1.2,
+                   zorder=4)
+
+
+def _outline(ax, scene):
+    x, z = scene.weir.outline()
+    ax.plot(x, z, color=WEIR_COLOR, lw=1.3, zorder=5)
+
+
+def _pore_velocity(fields):
+    n = np.clip(fields["porosity"], 0.05, 1.0)
+    wet = (fields["F"] > 0.5) & (fields["porosity"] > 0.05)
+    return np.where(wet, fields["u"] / n, np.nan), np.where(wet, fields["w"] / n, np.nan)
+
+
+def _title(ax, data, k, what):
+    ax.set_title(f"{what}  t = {data.times[k]:.1f} s, Q = {1e3 * data.discharge[k]:.2f} l/s", fontsize=10)
+
+
+def fig_porosity(data, scene, k: int = 0) -> Figure:
+    """The porosity field with the stones on it (the paper's Fig. 4)."""
+    f = data.fields(k)
+    fig, ax = _axes(scene, data)
+    m = ax.pcolormesh(data.x_faces, data.z_faces, f["porosity"], cmap="viridis", vmin=0.0, vmax=1.0,
+                      shading="flat", zorder=1)
+    _stones(ax, data, k, colors="none", alpha=0.8)
+    fig.colorbar(m, ax=ax, label="porosity n [-]", shrink=0.8)
+    _title(ax, data, k, "Porosity")
+    return fig
+
+
+def fig_stones_velocity(data, scene, k: int, stride: int = 1) -> Figure:
+    """Stones coloured by displacement, pore-velocity vectors, water surface (the paper's Figs. 6-7)."""
+    f = data.fields(k)
+    fig, ax = _axes(scene, data)
+    disp = np.linalg.norm(data.pos[k] - data.pos[0], axis=1) / data.diameter
+    colors = np.where(data.fixed, "0.45", np.where(disp > 1.0, "tab:red", np.where(disp > 0.2, "gold", "tan")))
+    _stones(ax, data, k, colors)
+    U, W = _pore_velocity(f)
+    X, Z = np.meshgrid(data.x_centers, data.z_centers)
+    s = (slice(None, None, stride), slice(None, None, stride))
+    q = ax.quiver(X[s], Z[s], U[s], W[s], angles="xy", scale_units="xy", scale=8.0, width=0.0018, color="k",
+                  zorder=6)
+    ax.quiverkey(q, 0.9, 1.03, 0.5, "0.5 m/s", labelpos="E", fontproperties={"size": 8})
+    _surface(ax, data, f)
+    _outline(ax, scene)
+    _title(ax, data, k, "Stones (red: moved > 1 d, gold: > 0.2 d) and pore velocity")
+    return fig
+
+
+def fig_pressure_gradient(data, scene, k: int) -> Figure:
+    """Pressure field and the pressure-gradient force on each stone (the paper's Fig. 8)."""
+    f = data.fields(k)
+    fig, ax = _axes(scene, data)
+    p = np.where(f["F"] > 0.01, f["p"], np.nan)
+    m = ax.pcolormesh(data.x_faces, data.z_faces, p, cmap="Blues", shading="flat", zorder=1)
+    fig.colorbar(m, ax=ax, label="pressure p [Pa]", shrink=0.8)
+    _stones(ax, data, k, "none")
+    F = data.force_pressure[k]
+    act = data.active[k] & ~data.fixed
+    q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
+                  scale=20.0, color="tab:red", width=0.003, zorder=6)
+    ax.quiverkey(q, 0.9, 1.03, 1.0, "1 N", labelpos="E", fontproperties={"size": 8})
+    _surface(ax, data, f)
+    _outline(ax, scene)
+    _title(ax, data, k, "Pressure-gradient force on stones")
+    return fig
+
+
+def fig_drag(data, scene, k: int) -> Figure:
+    """Pore speed and the drag force on each stone (the paper's Fig. 9)."""
+    f = data.fields(k)
+    fig, ax = _axes(scene, data)
+    U, W = _pore_velocity(f)
+    m = ax.pcolormesh(data.x_faces, data.z_faces, np.hypot(U, W), cmap="magma_r", shading="flat", zorder=1)
+    fig.colorbar(m, ax=ax, label="pore speed |U| [m/s]", shrink=0.8)
+    _stones(ax, data, k, "none")
+    F = data.force_drag[k]
+    act = data.active[k] & ~data.fixed
+    q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
+                  scale=20.0, color="tab:green", width=0.003, zorder=6)
+    ax.quiverkey(q, 0.9, 1.03, 1.0, "1 N", labelpos="E", fontproperties={"size": 8})
+    _surface(ax, data, f)
+    _outline(ax, scene)
+    _title(ax, data, k, "Drag force on stones")
+    return fig
+
+
+def fig_velocity_distribution(data, scene, discharges_lps: Sequence[float] = (12.0, 17.0, 22.0)) -> Figure:
+    """Velocity vectors and water surface at several discharges (the paper's Fig. 10)."""
+    q = 1e3 * data.discharge
+    fig = Figure(figsize=(9.0, 2.6 * len(discharges_lps)), layout="constrained")
+    for j, ql in enumerate(discharges_lps):
+        k = int(np.argmin(np.abs(q - ql)))
+        ax = fig.add_subplot(len(discharges_lps), 1, j + 1)
+        _frame(ax, scene, data)
+        f = data.fields(k)
+        _stones(ax, data, k, alpha=0.5)
+        U, W = _pore_velocity(f)
+        X, Z = np.meshgrid(data.x_centers, data.z_centers)
+        ax.quiver(X, Z, U, W, angles="xy", scale_units="xy", scale=8.0, width=0.0015, zorder=6)
+        _surface(ax, data, f)
+        _outline(ax, scene)
+        _title(ax, data, k, "Velocity")
+    return fig
+
+
+def fig_rating_curve(data, scene) -> Figure:
+    """Upstream water level against discharge, with the weir's crest height."""
+    fig = Figure(figsize=(5.0, 4.0), layout="constrained")
+    ax = fig.add_subplot()
+    sc = ax.scatter(1e3 * data.discharge, data.upstream_level, c=data.times, s=8, cmap="viridis")
+    ax.axhline(scene.weir.height, color=WEIR_COLOR, lw=1, ls="--", label="initial crest")
+    fig.colorbar(sc, ax=ax, label="t [s]")
+    ax.set_xlabel("discharge Q [l/s]")
+    ax.set_ylabel(f"water level at x = {scene.gauge_x:.2f} m [m]")
+    ax.set_title("Rating curve", fontsize=10)
+    ax.legend(fontsize=8)
+    return fig
+
+
+def fig_timeline(analysis, data, scene) -> Figure:
+    """Discharge, stones removed and crest lowering against time; stages shaded."""
+    a = analysis
+    fig = Figure(figsize=(8.0, 6.0), layout="constrained")
+    axs = [fig.add_subplot(3, 1, j + 1) for j in range(3)]
+    t = a.times
+    axs[0].plot(t, 1e3 * data.discharge, color="tab:blue")
+    axs[0].set_ylabel("Q [l/s]")
+    for lps, ls in ((14.0, ":"), (16.5, "--"), (20.4, "-.")):
+        axs[0].axhline(lps, color="0.5", lw=0.8, ls=ls)
+    axs[0].text(t[0], 20.6, "experiment's stages 14 / 16.5 / 20.4 l/s", fontsize=7, color="0.4")
+    axs[1].step(t, a.removed_count, where="post", color="tab:red")
+    axs[1].set_ylabel("stones removed")
+    axs[2].plot(t, 1e3 * a.crest_lowering, color="tab:brown")
+    axs[2].set_ylabel("crest lowering [mm]")
+    axs[2].set_xlabel("simulation time t [s]")
+    for ax in axs:
+        if a.ramp_start > t[0]:
+            ax.axvspan(t[0], a.ramp_start, color="0.9", zorder=0)
+        for s in a.stages:
+            ax.axvspan(s.start_time, max(s.end_time, s.start_time + 0.5 * (t[1] - t[0] if t.size > 1 else 1)),
+                       color="tab:red", alpha=0.2, zorder=0)
+    for s in a.stages:
+        axs[1].annotate(f"{s.number}", (s.start_time, a.removed_count.max() * 0.9 + 0.1), fontsize=8)
+    axs[0].set_title("Destruction timeline (grey: spin-up; red: stages)", fontsize=10)
+    return fig
+
+
+def make_figures(data, analysis, scene, out_dir) -> List[Path]:
+    """Writes every figure as PNG to out_dir; returns their paths."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    files = []
+
+    def save(fig, name):
+        p = out / name
+        fig.savefig(p, dpi=110)
+        files.append(p)
+
+    save(fig_timeline(analysis, data, scene), "timeline.png")
+    save(fig_rating_curve(data, scene), "rating_curve.png")
+    if not data.has_fields:
+        return files
+    save(fig_porosity(data, scene, 0), "porosity_initial.png")
+    moments = [(f"stage{s.number}", data.index_at(s.start_time)) for s in analysis.stages[:3]]
+    if not moments:
+        moments = [("final", data.times.size - 1)]
+    for name, k in moments:
+        save(fig_stones_velocity(data, scene, k), f"stones_velocity_{name}.png")
+        save(fig_pressure_gradient(data, scene, k), f"pressure_gradient_{name}.png")
+        save(fig_drag(data, scene, k), f"drag_{name}.png")
+    save(fig_porosity(data, scene, data.times.size - 1), "porosity_final.png")
+    q = 1e3 * data.discharge
+    levels = np.linspace(q.min(), q.max(), 3) if q.max() > q.min() else [q[0]]
+    save(fig_velocity_distribution(data, scene, levels), "velocity_distribution.png")
+    return files
+
+
+def animate(data, scene, path_base, analysis=None, fps: Optional[float] = None, max_frames: int = 400,
+            dpi: int = 80) -> Path:
+    """Animation of the run (water, porosity, stones): mp4 when ffmpeg is present, gif otherwise.
+    path_base has no suffix; returns the file written."""
+    from matplotlib import animation as anim
+
+    fps = fps or scene.output.animation_fps
+    frames = np.unique(np.linspace(0, data.times.size - 1, min(max_frames, data.times.size)).astype(int))
+    fig, ax = _axes(scene, data, 8.0, 3.4, layout=None)  # a fixed layout: much faster per frame
+    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.14, top=0.9)
+    f0 = data.fields(0)
+    mesh = ax.pcolormesh(data.x_faces, data.z_faces, _water_image(f0), cmap="Blues", vmin=0, vmax=1.5,
+                         shading="flat", zorder=1)
+    _outline(ax, scene)
+    state = {"stones": _stones(ax, data, 0)}
+    title = ax.set_title("", fontsize=10)
+    pos0 = data.pos[0]
+
+    def draw(k):
+        f = data.fields(k)
+        mesh.set_array(_water_image(f).ravel())
+        state["stones"].remove()
+        disp = np.linalg.norm(data.pos[k] - pos0, axis=1) / data.diameter
+        colors = np.where(data.fixed, "0.45", np.where(disp > 1.0, "tab:red", "tan"))
+        state["stones"] = _stones(ax, data, k, colors)
+        removed = int(analysis.removed_count[k]) if analysis is not None else int(np.sum(disp > 1.0))
+        title.set_text(f"t = {data.times[k]:.1f} s   Q = {1e3 * data.discharge[k]:.2f} l/s   removed: {removed}")
+        return [mesh, state["stones"], title]
+
+    ani = anim.FuncAnimation(fig, draw, frames=frames, blit=False)
+    if anim.writers.is_available("ffmpeg"):
+        path = Path(str(path_base) + ".mp4")
+        ani.save(path, writer=anim.FFMpegWriter(fps=fps, bitrate=1500), dpi=dpi)
+    else:
+        path = Path(str(path_base) + ".gif")
+        ani.save(path, writer=anim.PillowWriter(fps=fps), dpi=dpi)
+    return path
+
+
+def _water_image(f):
+    """Water fraction shown darker where the porosity is low (the weir's stones)."""
+    return np.where(f["F"] > 0.02, f["F"] * (1.5 - 0.5 * f["porosity"]), np.nan)

@@ -1,0 +1,238 @@
+"""The run loop: advance a coupled simulation through a scene's hydrograph, write snapshots, analyse.
+
+The loop talks to the coupled simulation only through these names:
+``sim.time`` [s]; ``sim.advance(t_end)``; ``sim.set_inflow_table(times [s], Q [m3/s])``;
+``sim.fluid`` with ``grid``, ``cell_F``, ``cell_p``, ``cell_porosity``, ``face_u``, ``face_w``;
+``sim.stones`` with ``disc_pos`` (n, 2), ``disc_vel`` (n, 2), ``disc_radius``, ``disc_active``,
+``disc_fixed``; ``sim.disc_force_drag``, ``sim.disc_force_pressure`` (n, 2) [N]; ``sim.profile`` with
+``names``, ``seconds``, ``calls``.
+
+A solver failure (RuntimeError while stepping) closes the output with everything written so far,
+marks it failed and raises ``SolverError`` with the solver's message.
+"""
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, List, Optional
+
+import numpy as np
+
+from .analysis import FailureAnalysis, analyse
+from .io import RunData, RunWriter, cell_velocities
+from .scene import Scene
+
+
+class SolverError(RuntimeError):
+    """The solver failed while stepping; the output written so far is kept."""
+
+
+@dataclass
+class RunResult:
+    out_dir: Path
+    h5_path: Path
+    xmf_path: Path
+    analysis: Optional[FailureAnalysis]
+    wall_seconds: float
+    simulated_seconds: float
+    profile_table: str
+    files: List[Path] = field(default_factory=list)
+
+    @property
+    def real_time_factor(self) -> float:
+        """Wall time per simulated time [-] (below 1: faster than the flume)."""
+        return self.wall_seconds / self.simulated_seconds if self.simulated_seconds > 0 else float("nan")
+
+
+def build_simulation(scene: Scene):
+    """Builds the coupled simulation of a scene (see builder.build_simulation)."""
+    from .builder import build_simulation as build
+
+    return build(scene)
+
+
+def grid_faces(grid):
+    """(x_faces [m], z_faces [m]) of a Grid2D."""
+    x = grid.x0 + grid.dx * np.arange(grid.nx + 1)
+    return x, np.asarray(grid.z_faces, float)
+
+
+def water_level(F: np.ndarray, z_faces: np.ndarray, i: int) -> float:
+    """Water level [m] above the bed in cell column i: the column's water volume per unit length."""
+    dz = np.diff(z_faces)
+    return float(np.sum(np.asarray(F)[:, i] * dz))
+
+
+def profile_table(profile, wall_seconds: Optional[float] = None, simulated: Optional[float] = None) -> str:
+    """Markdown table of a StageProfile: stage, seconds, share, calls, ms per call."""
+    names, seconds, calls = list(profile.names), np.asarray(profile.seconds, float), np.asarray(profile.calls)
+    total = float(seconds.sum())
+    rows = ["| stage | seconds | share | calls | ms per call |", "|---|---|---|---|---|"]
+    for name, s, c in sorted(zip(names, seconds, calls), key=lambda r: -r[1]):
+        share = 100 * s / total if total > 0 else 0.0
+        per = 1e3 * s / c if c else 0.0
+        rows.append(f"| {name} | {s:.3f} | {share:.1f} % | {int(c)} | {per:.4f} |")
+    rows.append(f"| total (stages) | {total:.3f} | 100 % | | |")
+    if wall_seconds is not None and simulated:
+        rows.append("")
+        rows.append(f"Wall time {wall_seconds:.1f} s for {simulated:.1f} s simulated: real-time factor "
+                    f"{wall_seconds / simulated:.3g} (wall / simulated).")
+    return "\n".join(rows) + "\n"
+
+
+class _Recorder:
+    """Reads the simulation's views and appends one snapshot to the writer."""
+
+    def __init__(self, sim, scene: Scene, writer: RunWriter):
+        self.sim, self.scene, self.writer = sim, scene, writer
+        g = sim.fluid.grid
+        self.nx, self.nz = g.nx, g.nz
+        self.x_faces, self.z_faces = grid_faces(g)
+        self.gauge_i = int(np.clip(np.searchsorted(self.x_faces, scene.gauge_x) - 1, 0, self.nx - 1))
+        self.pos0 = np.array(sim.stones.disc_pos, float).reshape(-1, 2).copy()
+        self.diameter = 2.0 * np.asarray(sim.stones.disc_radius, float)
+        self.moved = 0
+
+    def record(self) -> None:
+        sim, fl, st = self.sim, self.sim.fluid, self.sim.stones
+        shape = (self.nz, self.nx)
+        F = np.asarray(fl.cell_F).reshape(shape)
+        u, w = cell_velocities(fl.face_u, fl.face_w, self.nx, self.nz)
+        fields = {"F": F, "p": np.asarray(fl.cell_p).reshape(shape),
+                  "porosity": np.asarray(fl.cell_porosity).reshape(shape), "u": u, "w": w}
+        pos = np.asarray(st.disc_pos, float).reshape(-1, 2)
+        stones = {"pos": pos, "vel": np.asarray(st.disc_vel).reshape(-1, 2),
+                  "force_drag": np.asarray(sim.disc_force_drag).reshape(-1, 2),
+                  "force_pressure": np.asarray(sim.disc_force_pressure).reshape(-1, 2),
+                  "active": np.asarray(st.disc_active).astype(bool)}
+        t = float(sim.time)
+        disp = np.linalg.norm(pos - self.pos0, axis=1)
+        self.moved = int(np.sum((disp > self.diameter) | ~stones["active"]))
+        self.writer.write_snapshot(t, self.scene.hydrograph.discharge(t), water_level(F, self.z_faces, self.gauge_i),
+                                   fields if self.writer.write_fields else None, stones)
+
+
+def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: Optional[bool] = None,
+              animation: Optional[bool] = None, build: Optional[Callable] = None, log=print) -> RunResult:
+    """Runs a scene to its end, writing ``out_dir``/run.h5 + run.xmf, the stage tables, the figures,
+    the animation and the per-stage cost table. Returns a RunResult; raises SolverError on a solver
+    failure (after closing the output)."""
+    from . import __version__
+
+    scene.validate()
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "scene.toml").write_text(scene.to_toml(), encoding="utf-8")
+    if sim is None:
+        sim = (build or build_simulation)(scene)
+    t_tab, q_tab = scene.hydrograph.table(scene.duration)
+    sim.set_inflow_table(np.asarray(t_tab, float), np.asarray(q_tab, float))
+    x_faces, z_faces = grid_faces(sim.fluid.grid)
+    st = sim.stones
+    fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
+    writer = RunWriter(out / "run.h5", x_faces, z_faces, 2.0 * np.asarray(st.disc_radius, float), fixed0,
+                       scene_toml=scene.to_toml(), seed=scene.seed, version=__version__)
+    rec = _Recorder(sim, scene, writer)
+    duration, dt_snap = scene.duration, scene.output.snapshot_interval
+    ramp = scene.hydrograph.ramp_start
+    hold = scene.hydrograph.hold_stones_during_spin_up and ramp > float(sim.time) and len(fixed0) > 0
+    if hold:
+        st.disc_fixed[:] = True
+    wall0 = _time.perf_counter()
+    bar = _progress_bar(duration, progress)
+    t0 = float(sim.time)
+    try:
+        rec.record()
+        for t_next in _targets(t0, duration, dt_snap, ramp if hold else None):
+            sim.advance(t_next)
+            if hold and float(sim.time) >= ramp - 1e-9:
+                st.disc_fixed[:] = fixed0
+                hold = False
+            rec.record()
+            if bar is not None:
+                bar.n = round(min(float(sim.time), duration), 3)
+                bar.set_postfix_str(f"Q={scene.hydrograph.discharge_lps_at(float(sim.time)):.2f} l/s, "
+                                    f"stones moved={rec.moved}", refresh=False)
+                bar.refresh()
+    except RuntimeError as e:
+        if bar is not None:
+            bar.close()
+        writer.close(f"failed: {e}", profile=_profile_tuple(sim))
+        raise SolverError(f"solver failed at t = {float(sim.time):.4g} s: {e} (output so far kept in {out})") from e
+    except BaseException:
+        if bar is not None:
+            bar.close()
+        writer.close("interrupted", profile=_profile_tuple(sim))
+        raise
+    if bar is not None:
+        bar.close()
+    wall = _time.perf_counter() - wall0
+    simulated = float(sim.time) - t0
+    table = profile_table(sim.profile, wall, simulated)
+    writer.close("completed", profile=_profile_tuple(sim),
+                 extra_attrs={"wall_seconds": wall, "simulated_seconds": simulated})
+    (out / "profile.md").write_text(table, encoding="utf-8")
+    result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
+                       [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"])
+    result.analysis = postprocess(out, scene, figures=scene.output.figures if figures is None else figures,
+                                  animation=scene.output.animation if animation is None else animation,
+                                  files=result.files)
+    return result
+
+
+def analyse_run(data: RunData, scene: Scene) -> FailureAnalysis:
+    """Failure analysis of a written run."""
+    return analyse(data.times, data.pos, data.diameter, scene.weir, scene.hydrograph.discharge_lps_at,
+                   active=data.active, fixed=data.fixed, ramp_start=scene.hydrograph.ramp_start)
+
+
+def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, animation: bool = True,
+                files: Optional[list] = None) -> FailureAnalysis:
+    """Stage tables (markdown + CSV), crest lowering (CSV), figures and animation of a written run."""
+    out = Path(out_dir)
+    data = RunData(out / "run.h5")
+    scene = scene or data.scene()
+    a = analyse_run(data, scene)
+    files = files if files is not None else []
+    (out / "stage_table.md").write_text(a.stage_table_markdown(), encoding="utf-8")
+    (out / "stage_table.csv").write_text(a.stage_table_csv(), encoding="utf-8")
+    np.savetxt(out / "crest_lowering.csv",
+               np.column_stack([a.times, data.discharge * 1e3, a.crest_level, a.crest_lowering, a.removed_count]),
+               delimiter=",", header="time_s,discharge_lps,crest_level_m,crest_lowering_m,stones_removed",
+               comments="", fmt="%.6g")
+    files += [out / "stage_table.md", out / "stage_table.csv", out / "crest_lowering.csv"]
+    if figures or animation:
+        from . import plots
+
+        if figures:
+            files += plots.make_figures(data, a, scene, out / "figures")
+        if animation and data.has_fields and data.times.size > 1:
+            files.append(plots.animate(data, scene, out / "animation", analysis=a))
+    return a
+
+
+def _targets(t0: float, duration: float, dt: float, release: Optional[float]):
+    """Snapshot times after t0 up to duration (every dt), plus the release time of held stones."""
+    n = int(np.ceil((duration - t0) / dt - 1e-9))
+    ts = [min(t0 + k * dt, duration) for k in range(1, n + 1)]
+    if release is not None and t0 < release < duration:
+        ts.append(release)
+    return sorted({round(t, 12) for t in ts})
+
+
+def _profile_tuple(sim):
+    try:
+        p = sim.profile
+        return list(p.names), list(p.seconds), list(p.calls)
+    except Exception:  # noqa: BLE001 - a broken profile must not hide the solver's own error
+        return None
+
+
+def _progress_bar(duration: float, enabled: bool):
+    if not enabled:
+        return None
+    from tqdm.auto import tqdm
+
+    return tqdm(total=round(duration, 3), unit="s", unit_scale=False, dynamic_ncols=True,
+                bar_format="{l_bar}{bar}| t={n:.1f}/{total:.1f} s sim [{elapsed}<{remaining}]{postfix}")

@@ -1,0 +1,75 @@
+"""TEST DOUBLE ONLY: a tiny pure-Python stand-in for the coupled simulation, used to test the run
+loop, the output and the CLI without the C++ solver. Its "physics" is made up: the water level
+follows a weir formula of the inflow, and stones of the downstream face are pushed off one by one
+once the discharge passes a per-stone threshold. It is never shipped as a solver."""
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+
+class FakeProfile:
+    def __init__(self):
+        self.names = ["fake_fluid", "fake_dem"]
+        self.seconds = [0.0, 0.0]
+        self.calls = [0, 0]
+
+
+class FakeSimulation:
+    def __init__(self, scene, fail_at=None, thresholds_lps=None):
+        self.scene = scene
+        g = scene.grid
+        nx = int(round(scene.flume.length / g.dx))
+        z_faces = np.arange(0.0, scene.flume.height + 1e-9, g.dz)
+        self.fluid = SimpleNamespace(grid=SimpleNamespace(nx=nx, nz=z_faces.size - 1, dx=g.dx, x0=0.0,
+                                                          z_faces=list(z_faces)))
+        nz = z_faces.size - 1
+        self.fluid.cell_F = np.zeros(nx * nz)
+        self.fluid.cell_p = np.zeros(nx * nz)
+        self.fluid.cell_porosity = np.ones(nx * nz)
+        self.fluid.face_u = np.zeros((nx + 1) * nz)
+        self.fluid.face_w = np.zeros(nx * (nz + 1))
+        w, d = scene.weir, scene.stones.diameter
+        xs = np.arange(w.toe_x + d, w.x_toe_down - d / 2, d)
+        pos = np.stack([xs, np.maximum(w.surface(xs) - d / 2, d / 2)], axis=1)
+        n = len(pos)
+        self.stones = SimpleNamespace(disc_pos=pos, disc_vel=np.zeros((n, 2)), disc_radius=np.full(n, d / 2),
+                                      disc_active=np.ones(n, bool), disc_fixed=pos[:, 1] <= d / 2 + 1e-12)
+        self.disc_force_drag = np.zeros((n, 2))
+        self.disc_force_pressure = np.zeros((n, 2))
+        self.profile = FakeProfile()
+        self.time = 0.0
+        self.fail_at = fail_at
+        self.table = None
+        # stones of the downstream face go at given discharges (default 15, 15.2, 18, 18.1, 18.3 l/s)
+        down = [i for i in np.argsort(-pos[:, 0]) if pos[i, 0] > w.x_crest_down and not self.stones.disc_fixed[i]]
+        self.thresholds = dict(zip(down, thresholds_lps or [15.0, 15.2, 18.0, 18.1, 18.3]))
+
+    def set_inflow_table(self, times, q):
+        assert np.all(np.diff(times) > 0)
+        self.table = (np.asarray(times), np.asarray(q))
+
+    def advance(self, t_end):
+        if self.fail_at is not None and t_end > self.fail_at:
+            self.time = self.fail_at
+            raise RuntimeError(f"fake stage 'pressure': no convergence in cell (3, 4) at t = {self.fail_at} s")
+        dt = t_end - self.time
+        q = float(np.interp(t_end, *self.table))
+        nx, nz = self.fluid.grid.nx, self.fluid.grid.nz
+        zc = 0.5 * (np.asarray(self.fluid.grid.z_faces[1:]) + np.asarray(self.fluid.grid.z_faces[:-1]))
+        level = self.scene.weir.height + (q / (1.7 * self.scene.flume.width)) ** (2 / 3)
+        F = np.clip((level - zc[:, None]) / self.scene.grid.dz + 0.5, 0, 1) * np.ones((1, nx))
+        self.fluid.cell_F[:] = F.ravel()
+        self.fluid.cell_p[:] = (1000 * 9.81 * np.clip(level - zc, 0, None)[:, None] * np.ones((1, nx))).ravel()
+        self.fluid.face_u[:] = q / self.scene.flume.width / max(level, 1e-3)
+        st = self.stones
+        for i, thr in self.thresholds.items():
+            if q * 1e3 >= thr and not st.disc_fixed[i]:
+                st.disc_vel[i] = (0.3, -0.05)
+                st.disc_pos[i] += dt * st.disc_vel[i]
+                self.disc_force_drag[i] = (1.0, 0.1)
+                self.disc_force_pressure[i] = (0.5, 1.0)
+        st.disc_active[:] = st.disc_pos[:, 0] < self.scene.flume.length
+        self.profile.seconds = [s + 1e-3 for s in self.profile.seconds]
+        self.profile.calls = [c + 1 for c in self.profile.calls]
+        self.time = float(t_end)

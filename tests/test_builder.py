@@ -1,0 +1,69 @@
+"""Scene -> solver objects: the packed weir of the Maeno 2008 scene and the DEM parameters."""
+import numpy as np
+import pytest
+
+import vofdem
+from vofdem.builder import build_stones, dem_params
+from vofdem.scene import Scene
+
+
+def test_packed_weir_fits_the_scene_and_is_reproducible():
+    s = Scene.maeno2008()
+    a, rep = build_stones(s)
+    b, _ = build_stones(s)
+    assert np.array_equal(a.disc_pos, b.disc_pos)  # same seed, same weir
+    pos, r = np.asarray(a.disc_pos), np.asarray(a.disc_radius)
+    # within one stone diameter of the requested trapezoid (the packing generator's own guarantee)
+    assert rep.outline_error < s.stones.diameter
+    assert np.all(pos[:, 1] + r <= s.weir.surface(pos[:, 0]) + s.stones.diameter)
+    assert np.all(pos[:, 0] > s.weir.toe_x - s.stones.diameter) and np.all(pos[:, 0] < s.weir.x_toe_down + 0.05)
+    # diameters within the scene's spread, bottom layer fixed on the bed
+    d = 2 * r
+    assert np.all(np.abs(d / s.stones.diameter - 1) <= s.stones.diameter_spread + 1e-12)
+    fixed = np.asarray(a.disc_fixed).astype(bool)
+    assert fixed.sum() == rep.n_fixed > 0 and np.allclose(pos[fixed, 1], r[fixed], atol=1e-9)
+    c, _ = build_stones(s.replace(seed=1))
+    assert not np.array_equal(np.asarray(c.disc_pos)[:10], pos[:10])
+
+
+def test_explicit_stones_and_effect_flags():
+    s = Scene.maeno2008()
+    s.stones.positions = [[1.5, 0.024], [1.5, 0.072]]
+    s.effects.rotation = False
+    s.effects.added_mass = False
+    s.validate()
+    sys_, rep = build_stones(s)
+    assert rep is None and np.asarray(sys_.disc_fixed).tolist() == [1, 0]
+    flags = dem_params(s).flags
+    assert not flags & vofdem.DEM_ROTATION and not flags & vofdem.DEM_ADDED_MASS
+    assert flags & vofdem.DEM_FRICTION and flags & vofdem.DEM_EXTERNAL_FORCE
+    p = dem_params(s)
+    assert p.friction_stone == pytest.approx(0.577) and p.walls[0].friction == pytest.approx(0.176)
+    assert p.dt == 1e-4 and p.added_mass_coefficient == 1.0
+
+
+def test_fluid_of_the_scene():
+    from vofdem.builder import build_fluid, initial_level
+
+    s = Scene.maeno2008()
+    s.effects.turbulence = False
+    s.flume.outflow = "tailwater"
+    s.flume.tailwater_level = 0.1
+    s.numerics.pressure_solver = "direct"
+    f = build_fluid(s.validate())
+    g = f.grid
+    assert (g.nx, g.nz) == (147, 45 + 1)  # 3.681 m / 0.025 m; one 0.5 cm row then 1 cm rows to 0.45 m
+    assert g.z_faces[1] == pytest.approx(0.005) and g.z_faces[2] == pytest.approx(0.015)
+    p = f.params
+    assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.3, 200.0, 2.8, 0.5)
+    assert p.outlet == vofdem.OutletBoundary.TAILWATER and p.tailwater_level == 0.1
+    assert p.inlet == vofdem.InletBoundary.DISCHARGE
+    assert p.pressure_solver == vofdem.PressureSolverKind.EIGEN_DIRECT
+    assert not p.flags & int(vofdem.FlowEffect.TURBULENCE)
+    assert p.flags & int(vofdem.FlowEffect.POROUS_FORCHHEIMER)
+    assert f.discharge.at(0.0) == pytest.approx(0.010) and f.discharge.at(140.0) == pytest.approx(0.025)
+    # water at rest upstream of the crest up to the critical-depth estimate for 10 l/s over 0.5 m
+    assert initial_level(s) == pytest.approx(0.25 + 1.5 * (0.02 ** 2 / 9.81) ** (1 / 3))
+    F = np.asarray(f.cell_F)
+    assert F[:, 0].sum() * 0.01 == pytest.approx(initial_level(s), abs=0.01)
+    assert F[:, -1].sum() == 0.0

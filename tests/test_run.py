@@ -1,0 +1,65 @@
+"""The run loop against a pure-Python test double of the coupled simulation (tests/fake_sim.py)."""
+import numpy as np
+import pytest
+from fake_sim import FakeSimulation
+
+from vofdem.io import RunData, check_xdmf
+from vofdem.run import SolverError, run_scene
+from vofdem.scene import Hydrograph, Scene
+
+
+def _scene():
+    s = Scene.maeno2008().quick()
+    s.hydrograph = Hydrograph(discharge_start_lps=10, discharge_end_lps=25, ramp_duration=30, spin_up_duration=2)
+    s.output.snapshot_interval = 1.0
+    return s.validate()
+
+
+def test_run_writes_output_and_finds_the_stages(tmp_path):
+    s = _scene()
+    sim = FakeSimulation(s)
+    res = run_scene(s, tmp_path, sim=sim, progress=False, figures=True, animation=True)
+    d = RunData(tmp_path / "run.h5")
+    assert d.attrs["status"] == "completed"
+    assert d.times[0] == 0.0 and d.times[-1] == pytest.approx(32.0)
+    assert 2.0 in d.times.tolist()  # the release of the held stones is a snapshot
+    assert np.allclose(d.discharge, [s.hydrograph.discharge(t) for t in d.times])
+    assert check_xdmf(tmp_path / "run.xmf") > 0
+    # the double removes 2 stones at 15-15.2 l/s and 3 at 18-18.3 l/s: two stages
+    a = res.analysis
+    assert [st.n_stones for st in a.stages] == [2, 3]
+    assert all(st.location in ("downstream slope", "shoulder") for st in a.stages)
+    assert 15.0 <= a.stages[0].discharge_lps <= 15.2 + 0.5 + 1e-9  # snapshot every 1 s = 0.5 l/s
+    assert 18.0 <= a.stages[1].discharge_lps <= 18.5 + 1e-9
+    for name in ("stage_table.md", "stage_table.csv", "crest_lowering.csv", "profile.md", "scene.toml",
+                 "figures/timeline.png", "figures/porosity_initial.png", "figures/stones_velocity_stage1.png",
+                 "figures/pressure_gradient_stage2.png", "figures/drag_stage1.png", "figures/rating_curve.png",
+                 "figures/velocity_distribution.png"):
+        assert (tmp_path / name).stat().st_size > 0, name
+    anim = [p for p in res.files if p.name.startswith("animation")]
+    assert anim and anim[0].stat().st_size > 0 and anim[0].suffix in (".mp4", ".gif")
+    assert "| fake_fluid |" in res.profile_table and "real-time factor" in res.profile_table
+    # the upstream level follows the double's weir formula
+    assert np.allclose(d.upstream_level[1:], s.weir.height + (d.discharge[1:] / (1.7 * s.flume.width)) ** (2 / 3),
+                       atol=s.grid.dz)
+
+
+def test_stones_are_held_during_the_spin_up(tmp_path):
+    s = _scene()
+    s.hydrograph.spin_up_duration = 12.0  # the double would push stones off at 15 l/s only, but
+    sim = FakeSimulation(s, thresholds_lps=[9.0, 9.0])  # these two go at once unless held
+    run_scene(s, tmp_path, sim=sim, progress=False, figures=False, animation=False)
+    d = RunData(tmp_path / "run.h5")
+    moved = np.linalg.norm(d.pos - d.pos[0], axis=2).max(axis=1)
+    assert moved[d.times <= 12.0].max() == 0.0 and moved[-1] > 0
+    assert np.array_equal(sim.stones.disc_fixed, d.fixed)  # fixed flags restored after the spin-up
+
+
+def test_solver_failure_keeps_the_output(tmp_path):
+    s = _scene()
+    with pytest.raises(SolverError, match=r"solver failed at t = 7.5 s: fake stage 'pressure': no convergence"):
+        run_scene(s, tmp_path, sim=FakeSimulation(s, fail_at=7.5), progress=False)
+    d = RunData(tmp_path / "run.h5")
+    assert d.times.tolist() == [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]
+    assert d.attrs["status"].startswith("failed: fake stage 'pressure'")
+    assert check_xdmf(tmp_path / "run.xmf") > 0
