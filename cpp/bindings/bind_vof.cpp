@@ -62,6 +62,9 @@ void bind_vof(py::module_& m) {
       .value("OPEN", TopBoundary::kOpen, "open to the atmosphere, p = 0")
       .value("WALL", TopBoundary::kWall, "a slip lid");
   py::enum_<WallCondition>(m, "WallCondition").value("SLIP", WallCondition::kSlip).value("NO_SLIP", WallCondition::kNoSlip);
+  py::enum_<ViscousScheme>(m, "ViscousScheme")
+      .value("EXPLICIT", ViscousScheme::kExplicit)
+      .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical);
 
   py::class_<FlowParams>(m, "FlowParams", "Flow parameters, constant while stepping (SI units).")
       .def(py::init<>())
@@ -84,6 +87,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("tailwater_level", &FlowParams::tailwater_level, "tailwater level [m] for OutletBoundary.TAILWATER")
       .def_readwrite("top", &FlowParams::top)
       .def_readwrite("walls", &FlowParams::walls)
+      .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme)
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
       // the k-epsilon settings most runs touch (the rest keep the model's standard values)
       .def_property(

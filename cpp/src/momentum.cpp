@@ -100,6 +100,74 @@ void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBounda
   wall_function_shear(g, f, bc, tau);
 }
 
+// the corner stress of the u-equation without its vertical part mu du/dz, which the column solve
+// takes implicitly (interior corners, and the no-slip bed unless a wall function gives the shear)
+void explicit_part_for_u(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  s.corner_tau_u = s.corner_tau;
+  std::vector<double>& t = s.corner_tau_u;
+  if (bc.no_slip && !f.face_z_wall_shear)
+    for (int ii = 1; ii < nx; ++ii) t[ii] = 0.0;
+  for (int kk = 1; kk < nz; ++kk) {
+    const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
+    for (int ii = 1; ii < nx; ++ii)
+      t[ii + sx * kk] -= s.corner_mu[ii + sx * kk] * (f.face_u[ii + sx * kk] - f.face_u[ii + sx * (kk - 1)]) * inv_dzc;
+  }
+}
+
+// backward Euler of the vertical diffusion, column by column, split from the other terms:
+// (I - dt/rho d/dz mu d/dz) v = u^n, u* += v - u^n. Diffusing u^n rather than u* keeps the gravity
+// increment (balanced by the pressure only afterwards) out of the viscous stress, so still water
+// stays still. Closed faces stay 0 and act as u = 0 neighbours, as in the explicit stencil
+void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
+                                 std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  s.tri_a.resize(nz + 1), s.tri_b.resize(nz + 1), s.tri_c.resize(nz + 1), s.tri_d.resize(nz + 1);
+  double *a = s.tri_a.data(), *b = s.tri_b.data(), *c = s.tri_c.data(), *d = s.tri_d.data();
+  const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
+  // u on the interior x-faces: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear
+  for (int i = 1; i < nx; ++i) {
+    for (int k = 0; k < nz; ++k) {
+      const int j = i + sx * k;
+      a[k] = c[k] = 0.0, b[k] = 1.0, d[k] = f.face_u[j];
+      if (f.face_x_porosity[j] <= 0.0) continue;
+      const double r = dt / (f.face_x_rho[j] * g.dz(k));
+      const double lo = k > 0 ? s.corner_mu[i + sx * k] / (g.z_center(k) - g.z_center(k - 1))
+                              : (bed_no_slip ? 2.0 * s.corner_mu[i] / g.dz(0) : 0.0);
+      const double up = k < nz - 1 ? s.corner_mu[i + sx * (k + 1)] / (g.z_center(k + 1) - g.z_center(k)) : 0.0;
+      b[k] = 1.0 + r * (lo + up);
+      // a closed neighbour is a known zero: its coefficient drops out of the system
+      if (k > 0 && f.face_x_porosity[j - sx] > 0.0) a[k] = -r * lo;
+      if (k < nz - 1 && f.face_x_porosity[j + sx] > 0.0) c[k] = -r * up;
+    }
+    solve_tridiagonal(nz, a, b, c, d);
+    for (int k = 0; k < nz; ++k)
+      if (f.face_x_porosity[i + sx * k] > 0.0) u_star[i + sx * k] += d[k] - f.face_u[i + sx * k];
+  }
+  // w on the interior z-faces k = 1..nz-1; bed w = 0 and the top face's w^n are known
+  if (nz < 2) return;
+  const int m = nz - 1;
+  for (int i = 0; i < nx; ++i) {
+    for (int k = 1; k < nz; ++k) {
+      const int j = i + nx * k, r0 = k - 1;
+      a[r0] = c[r0] = 0.0, b[r0] = 1.0, d[r0] = f.face_w[j];
+      if (f.face_z_porosity[j] <= 0.0) continue;
+      const double r = dt / (f.face_z_rho[j] * (g.z_center(k) - g.z_center(k - 1)));
+      const double lo = 2.0 * f.cell_mu[j - nx] / g.dz(k - 1), up = 2.0 * f.cell_mu[j] / g.dz(k);
+      b[r0] = 1.0 + r * (lo + up);
+      if (k > 1 && f.face_z_porosity[j - nx] > 0.0) a[r0] = -r * lo;
+      if (k < nz - 1) {
+        if (f.face_z_porosity[j + nx] > 0.0) c[r0] = -r * up;
+      } else {
+        d[r0] += r * up * f.face_w[j + nx];  // top face: known (0 under a lid)
+      }
+    }
+    solve_tridiagonal(m, a, b, c, d);
+    for (int k = 1; k < nz; ++k)
+      if (f.face_z_porosity[i + nx * k] > 0.0) w_star[i + nx * k] += d[k - 1] - f.face_w[i + nx * k];
+  }
+}
+
 // convective fluxes of both momentum components: cell centres and corners
 void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
@@ -180,7 +248,10 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
     pore_velocities(g, f, s);
     convective_fluxes(g, f, bc, s);
   }
+  const bool implicit = t.viscosity && t.implicit_vertical;
   if (t.viscosity) corner_shear(g, f, bc, s);
+  if (implicit) explicit_part_for_u(g, f, bc, s);
+  const double* tau_u = implicit ? s.corner_tau_u.data() : s.corner_tau.data();
   const double* mu = f.cell_mu;
   // x-faces
   for (int k = 0; k < nz; ++k) {
@@ -195,8 +266,7 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
       if (t.viscosity) {
         const double txx_e = 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
         const double txx_w = 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
-        rhs += ((txx_e - txx_w) * inv_dx + (s.corner_tau[i + sx * (k + 1)] - s.corner_tau[i + sx * k]) * inv_dz) /
-               f.face_x_rho[j];
+        rhs += ((txx_e - txx_w) * inv_dx + (tau_u[i + sx * (k + 1)] - tau_u[i + sx * k]) * inv_dz) / f.face_x_rho[j];
       }
       u_star[j] = f.face_u[j] + dt * rhs;
     }
@@ -224,8 +294,8 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
         rhs -= (s.corner_flux_w[i + 1 + sx * k] - s.corner_flux_w[i + sx * k]) * inv_dx +
                (s.cell_flux_w[j] - s.cell_flux_w[j - nx]) * inv_dzc;
       if (t.viscosity) {
-        const double tzz_n = 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
-        const double tzz_s = 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
+        const double tzz_n = implicit ? 0.0 : 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
+        const double tzz_s = implicit ? 0.0 : 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
         rhs += ((s.corner_tau[i + 1 + sx * k] - s.corner_tau[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
                f.face_z_rho[j];
       }
@@ -245,9 +315,21 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
       w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
+  if (implicit) implicit_vertical_diffusion(g, f, bc, dt, u_star, w_star, s);
 }
 
-double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm) {
+void solve_tridiagonal(int m, const double* a, double* b, const double* c, double* d) {
+  for (int k = 1; k < m; ++k) {
+    const double q = a[k] / b[k - 1];
+    b[k] -= q * c[k - 1];
+    d[k] -= q * d[k - 1];
+  }
+  d[m - 1] /= b[m - 1];
+  for (int k = m - 2; k >= 0; --k) d[k] = (d[k] - c[k] * d[k + 1]) / b[k];
+}
+
+double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical) {
+  const double zf = implicit_vertical ? 0.0 : 1.0;  // the vertical diffusion's share of the explicit operator
   // forward Euler is stable while dt <= 2 / lambda_max; Gershgorin: lambda_max <= max row sum of |A|,
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
@@ -261,7 +343,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       if (f.face_x_porosity[j] <= 0.0) continue;
       const double ml = f.cell_mu[i - 1 + nx * k], mr = f.cell_mu[i + nx * k];
       const double mn = cm[i + sx * (k + 1)], ms = cm[i + sx * k];
-      const double diag = 2.0 * (ml + mr) / (dx * dx) + (mn + ms) / (dz * dz);
+      const double diag = 2.0 * (ml + mr) / (dx * dx) + zf * (mn + ms) / (dz * dz);
       const double cross = 2.0 * (mn + ms) / (dx * dz);
       worst = std::max(worst, (2.0 * diag + cross) / f.face_x_rho[j]);
     }
@@ -274,7 +356,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       if (f.face_z_porosity[j] <= 0.0) continue;
       const double mb = f.cell_mu[i + nx * (k - 1)], mt = f.cell_mu[i + nx * k];
       const double me = cm[i + 1 + sx * k], mw = cm[i + sx * k];
-      const double diag = 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
+      const double diag = zf * 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
       const double cross = 2.0 * (me + mw) / (dx * hz);
       worst = std::max(worst, (2.0 * diag + cross) / f.face_z_rho[j]);
     }

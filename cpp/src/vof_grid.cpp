@@ -347,7 +347,8 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.flags & kFlowViscosity) {
     // the viscosities of the current phases (stable_dt may be called between steps)
     update_phase_properties();
-    s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_);
+    s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
+                                  params_.viscous_scheme == ViscousScheme::kImplicitVertical);
   }
   const double g = std::hypot(params_.gravity_x, params_.gravity_z);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0
@@ -480,6 +481,7 @@ void VOFGrid::stage_momentum(double dt) {
   MomentumTerms terms;
   terms.convection = params_.flags & kFlowConvection;
   terms.viscosity = params_.flags & kFlowViscosity;
+  terms.implicit_vertical = params_.viscous_scheme == ViscousScheme::kImplicitVertical;
   if (params_.flags & kFlowGravity) terms.gravity_x = params_.gravity_x, terms.gravity_z = params_.gravity_z;
   momentum_explicit(grid_, momentum_fields(), terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);
   // projection coefficients without resistance; the porous stage divides them by 1 + dt n R'

@@ -10,7 +10,9 @@
 // u_f / n_f; the value carried across a control-volume side is the upwind one corrected by a van Leer
 // limited slope (MUSCL), so the scheme is second order in smooth flow and bounded at the interface.
 // Diffusion: the full stress tensor, 2 mu du/dx at cell centres and mu (du/dz + dw/dx) at corners,
-// corner viscosity the mean of its cells.
+// corner viscosity the mean of its cells. Forward Euler, or (implicit_vertical) the vertical parts
+// d/dz(mu du/dz) and d/dz(2 mu dw/dz) by backward Euler, one tridiagonal solve per column: the
+// eddy viscosity over dz = 5-10 mm would otherwise bind the step (explicit limit ~ dz^2 / (4 nu_t)).
 //
 // Boundaries (ghost values): walls slip (zero shear) or no-slip (u = 0 at the wall), or the log-law
 // shear of the wall functions when the turbulence model supplies it; the inlet carries no vertical
@@ -53,6 +55,9 @@ struct MomentumFields {
 struct MomentumTerms {
   bool convection = true;
   bool viscosity = true;
+  // vertical diffusion d/dz(mu du/dz) and d/dz(2 mu dw/dz) by backward Euler (one tridiagonal solve per
+  // column for u and for w); x-diffusion and the cross terms stay explicit
+  bool implicit_vertical = false;
   double gravity_x = 0.0;  // [m/s^2], 0 when gravity is off
   double gravity_z = 0.0;  // [m/s^2]
 };
@@ -61,6 +66,8 @@ struct MomentumTerms {
 struct MomentumScratch {
   std::vector<double> pore_u, pore_w;          // u / n on faces (0 on closed faces)
   std::vector<double> corner_mu, corner_tau;   // (nx + 1) x (nz + 1) corners
+  std::vector<double> corner_tau_u;            // corner stress the u-equation takes explicitly
+  std::vector<double> tri_a, tri_b, tri_c, tri_d;  // tridiagonal system of one column (nz + 1)
   std::vector<double> cell_flux_u, cell_flux_w;      // x-flux of u, z-flux of w at cell centres
   std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
 };
@@ -81,7 +88,13 @@ inline double muscl_value(double far, double up, double down) {
 }
 
 // largest stable explicit viscous step [s] (Gershgorin bound of the stress operator, face by face);
-// corner_mu: work array (resized on first use)
-double viscous_stable_dt(const Grid2D& grid, const MomentumFields& fields, std::vector<double>& corner_mu);
+// corner_mu: work array (resized on first use). implicit_vertical: the bound of the explicit part
+// only (x-diffusion and cross terms), the vertical diffusion being backward Euler
+double viscous_stable_dt(const Grid2D& grid, const MomentumFields& fields, std::vector<double>& corner_mu,
+                         bool implicit_vertical = false);
+
+// solves a x = d in place (d becomes x) for a tridiagonal matrix: sub-diagonal a, diagonal b,
+// super-diagonal c, rows [0, m); Thomas algorithm, stable for the diagonally dominant rows used here
+void solve_tridiagonal(int m, const double* a, double* b, const double* c, double* d);
 
 }  // namespace vofdem

@@ -81,6 +81,10 @@ enum class InletBoundary { kWall = 0, kDischarge = 1 };
 enum class OutletBoundary { kWall = 0, kFreeOverfall = 1, kTailwater = 2 };
 enum class TopBoundary { kOpen = 0, kWall = 1 };
 enum class WallCondition { kSlip = 0, kNoSlip = 1 };
+// time stepping of the viscous (molecular + eddy) stresses: forward Euler throughout, or the vertical
+// diffusion by backward Euler (a tridiagonal solve per column for u and w; x-diffusion and cross terms
+// explicit), which lifts the step limit dz^2 / (4 nu_t) of the fine rows
+enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1 };
 
 // parameters of the flow, constant while stepping (SI units)
 struct FlowParams {
@@ -103,6 +107,7 @@ struct FlowParams {
   double tailwater_level = 0.0;                        // water level [m] at the right end for kTailwater
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
+  ViscousScheme viscous_scheme = ViscousScheme::kImplicitVertical;  // kExplicit: the forward-Euler reference
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
   KEpsilonParams turbulence;  // k-epsilon constants, wall roughness, inflow turbulence (kFlowTurbulence)
 
@@ -113,7 +118,8 @@ struct FlowParams {
 // each term's largest stable step [s] (infinity when the term imposes none)
 struct FlowStableDt {
   double advective = 0;   // cfl * min over faces of h / |u / n| (pore velocity)
-  double viscous = 0;     // 1 / (4 nu_max (1/dx^2 + 1/dz^2))
+  double viscous = 0;     // Gershgorin bound of the explicit stresses, ~ 1 / (4 nu_max (1/dx^2 + 1/dz^2));
+                          // with kImplicitVertical of the x-diffusion and cross terms only
   double gravity = 0;     // cfl * sqrt(2 h_min / |g|): a cell crossed by a fall from rest
   double turbulence = 0;  // from the k-epsilon model when on
   double max_dt = 0;      // FlowParams::max_dt

@@ -1,0 +1,185 @@
+// Implicit vertical diffusion of momentum (MomentumTerms::implicit_vertical,
+// FlowParams::viscous_scheme): decay of a sinusoidal shear profile against its analytic answer, the
+// backward-Euler amplification of one step, and stability far above the explicit limit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "vofdem/momentum.h"
+#include "vofdem/vof_grid.h"
+
+using namespace vofdem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// single-phase kernel fields: water density, uniform viscosity mu [Pa s]
+struct Column {
+  Grid2D g;
+  std::vector<double> u, w, nx_, nz_, mu, rx, rz;
+  Column(const Grid2D& grid, double mu0)
+      : g(grid),
+        u(grid.nface_x(), 0.0),
+        w(grid.nface_z(), 0.0),
+        nx_(grid.nface_x(), 1.0),
+        nz_(grid.nface_z(), 1.0),
+        mu(grid.ncell(), mu0),
+        rx(grid.nface_x(), 1000.0),
+        rz(grid.nface_z(), 1000.0) {}
+  MomentumFields fields() const { return {u.data(), w.data(), nx_.data(), nz_.data(), mu.data(), rx.data(), rz.data()}; }
+};
+
+// u = cos(pi z / H) on every x-face (uniform in x: no x-diffusion, no cross term), slip bed, slip lid
+void set_shear_mode(Column& c, double amp) {
+  const double h = c.g.height_z();
+  for (int k = 0; k < c.g.nz(); ++k)
+    for (int i = 0; i <= c.g.nx(); ++i) c.u[c.g.face_x(i, k)] = amp * std::cos(kPi * (c.g.z_center(k) - c.g.z_faces().front()) / h);
+}
+
+// advance the kernel (viscosity only) n steps of dt, the end faces kept on the mode
+double decay(Column& c, bool implicit, double dt, int n) {
+  MomentumTerms t;
+  t.convection = false;
+  t.implicit_vertical = implicit;
+  MomentumBoundary bc;
+  bc.top_open = false;
+  std::vector<double> us, ws;
+  MomentumScratch s;
+  const int j_probe = c.g.face_x(c.g.nx() / 2, 0);
+  const double a0 = c.u[j_probe];
+  for (int step = 0; step < n; ++step) {
+    momentum_explicit(c.g, c.fields(), t, bc, dt, us, ws, s);
+    for (int k = 0; k < c.g.nz(); ++k)
+      for (int i = 1; i < c.g.nx(); ++i) c.u[c.g.face_x(i, k)] = us[c.g.face_x(i, k)];
+    for (int k = 0; k < c.g.nz(); ++k) {  // end faces: same value as their neighbour (uniform in x)
+      c.u[c.g.face_x(0, k)] = c.u[c.g.face_x(1, k)];
+      c.u[c.g.face_x(c.g.nx(), k)] = c.u[c.g.face_x(1, k)];
+    }
+  }
+  return c.u[j_probe] / a0;
+}
+
+double explicit_limit(const Column& c) {
+  std::vector<double> cm;
+  return viscous_stable_dt(c.g, c.fields(), cm, false);
+}
+
+}  // namespace
+
+TEST(ImplicitViscosity, ShearModeDecaysAtTheAnalyticRateWithBothSchemes) {
+  // H = 0.2 m, 40 rows, nu = 1e-3 m^2/s: u = cos(pi z/H) exp(-nu (pi/H)^2 t); to t = 4 s the amplitude
+  // is exp(-0.987) = 0.373. Spatial error of the decay rate (pi dz / H)^2 / 12 = 5e-4, time error
+  // O(dt lambda) at dt = explicit limit / 4: both within 1 % of the exact amplitude, and of each other
+  const Grid2D g = Grid2D::uniform(4, 40, 0.2, 0.2);
+  const double nu = 1e-3, t_end = 4.0;
+  const double exact = std::exp(-nu * (kPi / 0.2) * (kPi / 0.2) * t_end);
+  Column ce(g, nu * 1000.0), ci(g, nu * 1000.0);
+  set_shear_mode(ce, 1.0);
+  set_shear_mode(ci, 1.0);
+  const double dt_lim = explicit_limit(ce);
+  const int n = static_cast<int>(std::ceil(t_end / (0.25 * dt_lim)));
+  const double ae = decay(ce, false, t_end / n, n), ai = decay(ci, true, t_end / n, n);
+  EXPECT_NEAR(ae, exact, 0.01 * exact);
+  EXPECT_NEAR(ai, exact, 0.01 * exact);
+  EXPECT_NEAR(ae, ai, 0.01 * exact);
+}
+
+TEST(ImplicitViscosity, OneStepIsBackwardEulerOfTheDiscreteMode) {
+  // the cell-centred cosine is an eigenvector of the discrete Neumann operator with
+  // lambda = nu (4 / dz^2) sin^2(pi dz / (2 H)): one step multiplies it by 1 / (1 + dt lambda) exactly
+  const Grid2D g = Grid2D::uniform(4, 20, 0.2, 0.1);
+  const double nu = 2e-3, dz = 0.1 / 20, h = 0.1;
+  const double lambda = nu * 4.0 / (dz * dz) * std::pow(std::sin(kPi * dz / (2.0 * h)), 2);
+  Column c(g, nu * 1000.0);
+  set_shear_mode(c, 1.0);
+  const std::vector<double> u0 = c.u;
+  const double dt = 100.0 * explicit_limit(c);
+  decay(c, true, dt, 1);
+  for (int k = 0; k < g.nz(); ++k) {
+    const int j = g.face_x(2, k);
+    EXPECT_NEAR(c.u[j], u0[j] / (1.0 + dt * lambda), 1e-12) << k;
+  }
+}
+
+TEST(ImplicitViscosity, WModeDecaysWithTwiceTheRateOfItsNormalStress) {
+  // w = sin(pi z / H) on z-faces, zero on the bed and the lid: d/dz(2 mu dw/dz) gives
+  // lambda = 2 nu (4 / dz^2) sin^2(pi dz / (2 H)) on the uniform grid; backward Euler divides by 1 + dt lambda
+  const Grid2D g = Grid2D::uniform(4, 20, 0.2, 0.1);
+  const double nu = 2e-3, dz = 0.1 / 20, h = 0.1;
+  const double lambda = 2.0 * nu * 4.0 / (dz * dz) * std::pow(std::sin(kPi * dz / (2.0 * h)), 2);
+  Column c(g, nu * 1000.0);
+  for (int k = 0; k <= g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) c.w[g.face_z(i, k)] = std::sin(kPi * k * dz / h);
+  MomentumTerms t;
+  t.convection = false;
+  MomentumBoundary bc;
+  bc.top_open = false;
+  std::vector<double> us, ws;
+  MomentumScratch s;
+  const double dt_small = 1e-3 * explicit_limit(c), dt_big = 50.0 * explicit_limit(c);
+  // explicit, one small step: (w* - w) / dt = -lambda w
+  momentum_explicit(g, c.fields(), t, bc, dt_small, us, ws, s);
+  for (int k = 1; k < g.nz(); ++k) {
+    const int j = g.face_z(1, k);
+    EXPECT_NEAR((ws[j] - c.w[j]) / dt_small, -lambda * c.w[j], 1e-9 * lambda) << k;
+  }
+  t.implicit_vertical = true;
+  momentum_explicit(g, c.fields(), t, bc, dt_big, us, ws, s);
+  for (int k = 1; k < g.nz(); ++k) {
+    const int j = g.face_z(1, k);
+    EXPECT_NEAR(ws[j], c.w[j] / (1.0 + dt_big * lambda), 1e-12) << k;
+  }
+}
+
+TEST(ImplicitViscosity, StableFarAboveTheExplicitLimitWhereForwardEulerBlowsUp) {
+  // a rough profile (cos mode plus the grid-scale zigzag) with an eddy-viscosity-like nu = 8e-3 m^2/s
+  // over dz = 5 mm: 200 steps of 200 explicit limits stay bounded and decay. The Gershgorin bound is set
+  // by the w-rows (normal stress 2 mu: ~ dz^2 / (8 nu)); the zigzag of u is unstable above
+  // dz^2 / (2 nu): forward Euler at 8 bounds (dt lambda = 3.7) grows by 2.7 per step
+  const Grid2D g = Grid2D::uniform(4, 30, 0.1, 0.15);
+  Column ci(g, 8.0), ce(g, 8.0);
+  for (Column* c : {&ci, &ce}) {
+    set_shear_mode(*c, 1.0);
+    for (int k = 0; k < g.nz(); ++k)
+      for (int i = 0; i <= g.nx(); ++i) c->u[g.face_x(i, k)] += (k % 2 ? 0.5 : -0.5);
+  }
+  const double lim = explicit_limit(ci);
+  decay(ci, true, 200.0 * lim, 200);
+  double mi = 0.0, me = 0.0;
+  for (double v : ci.u) mi = std::max(mi, std::abs(v));
+  EXPECT_LT(mi, 1.5);
+  decay(ce, false, 8.0 * lim, 200);
+  for (double v : ce.u) me = std::max(me, std::abs(v));
+  EXPECT_GT(me, 10.0);
+}
+
+TEST(ImplicitViscosity, StepLimitOfTheImplicitSchemeLeavesOutTheVerticalDiffusion) {
+  // uniform nu on dx = 2.5 cm, dz = 5 mm: the explicit bound is set by dz, the implicit one by dx and
+  // the cross terms; forward Euler's ~ 1 / (nu (8/dx^2 + 4/dz^2 + ...)), here at least 3x smaller
+  const Grid2D g = Grid2D::uniform(8, 20, 0.2, 0.1);
+  Column c(g, 8.0);
+  std::vector<double> cm;
+  const double de = viscous_stable_dt(g, c.fields(), cm, false), di = viscous_stable_dt(g, c.fields(), cm, true);
+  EXPECT_GT(di, 3.0 * de);
+  // the implicit scheme's bound: 2 / (nu (8 / dx^2 + 4 / (dx dz))) on the x-faces (interior row)
+  const double nu = 8e-3, dx = 0.025, dz = 0.005;
+  EXPECT_NEAR(di, 2.0 / (nu * (8.0 / (dx * dx) + 4.0 / (dx * dz))), 1e-12);
+}
+
+TEST(ImplicitViscosity, FlowParamsSelectTheSchemeAndTheStepLimit) {
+  // the same laminar no-slip water column under both schemes: explicit limit ~ dz^2 / (4 nu) is the
+  // smaller; default is the implicit vertical scheme
+  const Grid2D g = Grid2D::uniform(10, 20, 0.25, 0.1);
+  FlowParams p;
+  EXPECT_EQ(p.viscous_scheme, ViscousScheme::kImplicitVertical);
+  p.flags = kFlowViscosity | kFlowGravity;
+  p.walls = WallCondition::kNoSlip;
+  p.nu_water = 1e-3;
+  VOFGrid fi(g, p);
+  p.viscous_scheme = ViscousScheme::kExplicit;
+  VOFGrid fe(g, p);
+  EXPECT_GT(fi.stable_dt_terms().viscous, 3.0 * fe.stable_dt_terms().viscous);
+}
