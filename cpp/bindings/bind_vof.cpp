@@ -65,6 +65,9 @@ void bind_vof(py::module_& m) {
   py::enum_<ViscousScheme>(m, "ViscousScheme")
       .value("EXPLICIT", ViscousScheme::kExplicit)
       .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical);
+  py::enum_<CornerViscosity>(m, "CornerViscosity")
+      .value("ARITHMETIC", CornerViscosity::kArithmetic)
+      .value("HARMONIC", CornerViscosity::kHarmonic);
 
   py::class_<FlowParams>(m, "FlowParams", "Flow parameters, constant while stepping (SI units).")
       .def(py::init<>())
@@ -88,6 +91,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("top", &FlowParams::top)
       .def_readwrite("walls", &FlowParams::walls)
       .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme)
+      .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
       // the k-epsilon settings most runs touch (the rest keep the model's standard values)
       .def_property(

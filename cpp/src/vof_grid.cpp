@@ -283,6 +283,7 @@ MomentumFields VOFGrid::momentum_fields() const {
   MomentumFields f{face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
                    cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
   f.cell_rho = cell_rho_.data();
+  f.harmonic_corner_mu = params_.corner_viscosity == CornerViscosity::kHarmonic;
   if ((params_.flags & kFlowTurbulence) && (params_.turbulence.flags & kKEpsWallFunctions)) {
     f.face_z_wall_shear = turbulence_->face_z_wall_shear.data();
     f.face_x_wall_shear = turbulence_->face_x_wall_shear.data();

@@ -85,6 +85,11 @@ enum class WallCondition { kSlip = 0, kNoSlip = 1 };
 // diffusion by backward Euler (a tridiagonal solve per column for u and w; x-diffusion and cross terms
 // explicit), which lifts the step limit dz^2 / (4 nu_t) of the fine rows
 enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1 };
+// viscosity of a cell corner (where the shear stress mu (du/dz + dw/dx) lives) from its four cells:
+// arithmetic mean, or harmonic mean (Patankar 1980, sec. 4.2-3: the stress across an interface in
+// series is limited by the smaller viscosity, so the eddy viscosity of the water does not act on the
+// air above it, whose faces carry air density)
+enum class CornerViscosity { kArithmetic = 0, kHarmonic = 1 };
 
 // parameters of the flow, constant while stepping (SI units)
 struct FlowParams {
@@ -108,6 +113,7 @@ struct FlowParams {
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
   ViscousScheme viscous_scheme = ViscousScheme::kImplicitVertical;  // kExplicit: the forward-Euler reference
+  CornerViscosity corner_viscosity = CornerViscosity::kHarmonic;    // kArithmetic: the plain mean
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
   KEpsilonParams turbulence;  // k-epsilon constants, wall roughness, inflow turbulence (kFlowTurbulence)
 
