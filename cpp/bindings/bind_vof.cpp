@@ -65,6 +65,9 @@ void bind_vof(py::module_& m) {
   py::enum_<ViscousScheme>(m, "ViscousScheme")
       .value("EXPLICIT", ViscousScheme::kExplicit)
       .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical);
+  py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
+      .value("STRAIN", KEpsilonProduction::kStrain)
+      .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
   py::enum_<CornerViscosity>(m, "CornerViscosity")
       .value("ARITHMETIC", CornerViscosity::kArithmetic)
       .value("HARMONIC", CornerViscosity::kHarmonic);
@@ -94,6 +97,14 @@ void bind_vof(py::module_& m) {
       .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
       // the k-epsilon settings most runs touch (the rest keep the model's standard values)
+      .def_property(
+          "turbulence_production", [](const FlowParams& p) { return p.turbulence.production; },
+          [](FlowParams& p, KEpsilonProduction v) { p.turbulence.production = v; },
+          "production of k: STRAIN (nu_t S^2) or KATO_LAUNDER (nu_t S Omega)")
+      .def_property(
+          "turbulence_production_limit", [](const FlowParams& p) { return p.turbulence.production_limit; },
+          [](FlowParams& p, double v) { p.turbulence.production_limit = v; },
+          "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]")
       .def_property(
           "turbulence_bed_roughness", [](const FlowParams& p) { return p.turbulence.bed_roughness; },
           [](FlowParams& p, double v) { p.turbulence.bed_roughness = v; }, "equivalent sand roughness k_s of the bed [m]")

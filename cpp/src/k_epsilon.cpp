@@ -48,6 +48,7 @@ void check_k_epsilon_params(const KEpsilonParams& p) {
   if (p.sweeps < 0 || p.sweeps > 1000)
     throw std::invalid_argument("sweeps = " + std::to_string(p.sweeps) + " is outside the allowed range [0, 1000]");
   require_in_open_closed("cfl", p.cfl, 0.0, 1.0);
+  require_non_negative("production_limit", p.production_limit);
 }
 
 double wall_shear_velocity(double u_t, double y, double nu, double ks, double kappa, double log_law_e) {
@@ -275,7 +276,12 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
         dwdx = (wc(ia, k) - wc(ib, k)) / (dx * (ia - ib));
       }
       const double shear = dudz + dwdx;
-      cell_prod_[c] = cell_nut[c] * (2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear);
+      const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
+      double prod = params_.production == KEpsilonProduction::kKatoLaunder
+                        ? cell_nut[c] * std::sqrt(s2) * std::abs(dudz - dwdx)
+                        : cell_nut[c] * s2;
+      if (params_.production_limit > 0.0) prod = std::min(prod, params_.production_limit * cell_eps[c]);
+      cell_prod_[c] = prod;
     }
   }
 }

@@ -6,6 +6,11 @@
 //   n deps/dt + u.grad eps = div(n (nu + nu_t/sigma_eps) grad eps) + n eps/k (C1 P - C2 eps)      (E)
 //   nu_t = C_mu k^2 / eps,   P = nu_t S^2,   S^2 = 2 (dU/dx)^2 + 2 (dW/dz)^2 + (dU/dz + dW/dx)^2
 //
+// Production options (KEpsilonParams::production, production_limit), standard remedies of the
+// overproduction of k where the strain is irrotational (stagnation point of a plunging jet):
+//   Kato-Launder:  P = nu_t S Omega,  Omega = |dU/dz - dW/dx|   (Kato & Launder 1993)
+//   limiter:       P <= production_limit * eps                  (Menter 1994: 10)
+//
 // n is the cell porosity [-], u = (u, w) the superficial (mesh-averaged) velocity [m/s] of the flow
 // solver's faces and U = u / n the pore velocity [m/s] whose strain rate S [1/s] produces k. The
 // advection term is written in advective form u.grad k = div(u k) - k div u, equal to the
@@ -82,6 +87,12 @@ struct KEpsilonBoundaries {
   KEpsilonBoundary top = KEpsilonBoundary::kZeroGradient;
 };
 
+// production term of k (and through C1 P of eps)
+enum class KEpsilonProduction {
+  kStrain = 0,       // P = nu_t S^2 (standard)
+  kKatoLaunder = 1,  // P = nu_t S Omega: vanishes in irrotational strain (stagnation points)
+};
+
 // model constants and numerical settings, constant while stepping (Launder & Spalding 1974 values)
 struct KEpsilonParams {
   double c_mu = 0.09;      // [-] eddy viscosity constant, usual 0.09
@@ -105,6 +116,8 @@ struct KEpsilonParams {
   int sweeps = 1;                   // [-] Jacobi sweeps after the predictor, in [0, 1000], usual 0-4
   double cfl = 0.5;                 // [-] safety factor of stable_dt(), in (0, 1], usual 0.5
   unsigned flags = kKEpsAll;        // effect flags (KEpsilonFlag)
+  KEpsilonProduction production = KEpsilonProduction::kStrain;  // kKatoLaunder: Kato & Launder (1993)
+  double production_limit = 0.0;  // [-] P <= production_limit * eps, 0 = off; Menter (1994): 10
 };
 
 // refuses constants outside their physical ranges with std::invalid_argument naming them

@@ -1,0 +1,102 @@
+// Production options of the k-epsilon model (KEpsilonParams::production, production_limit):
+// Kato-Launder production (Kato & Launder 1993) and the production limiter (Menter 1994), on
+// homogeneous strain fields in a box closed to fluxes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "vofdem/grid.h"
+#include "vofdem/k_epsilon.h"
+
+using namespace vofdem;
+
+namespace {
+
+constexpr double kNu = 1e-6;
+
+KEpsilonBoundaries closed_box() {
+  KEpsilonBoundaries b;
+  b.left = b.right = b.bottom = b.top = KEpsilonBoundary::kZeroGradient;
+  return b;
+}
+
+// one step of the model from uniform k0, eps0 under the given faces' velocities; returns k of an
+// interior cell
+double step_k(const Grid2D& g, const KEpsilonParams& p, const std::vector<double>& u, const std::vector<double>& w,
+              double dt, int nsteps = 1) {
+  KEpsilonModel m(g, p, closed_box());
+  m.initialize(1e-3, 1e-4, kNu);
+  std::vector<double> n(g.ncell(), 1.0), F(g.ncell(), 1.0), nu(g.ncell(), kNu);
+  for (int s = 0; s < nsteps; ++s) m.step(dt, u, w, n, F, nu);
+  return m.cell_k[g.cell(g.nx() / 2, g.nz() / 2)];
+}
+
+struct Strain {
+  std::vector<double> u, w;
+};
+
+// irrotational plane strain U = a x, W = -a z (a stagnation-point flow): S^2 = 4 a^2, Omega = 0
+Strain plane_strain(const Grid2D& g, double a) {
+  Strain s{std::vector<double>(g.nface_x()), std::vector<double>(g.nface_z())};
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) s.u[g.face_x(i, k)] = a * (i * g.dx() - 0.5 * g.length_x());
+  for (int k = 0; k <= g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) s.w[g.face_z(i, k)] = -a * (g.z_face(k) - 0.5 * g.height_z());
+  return s;
+}
+
+// simple shear U = G z: S = Omega = G
+Strain simple_shear(const Grid2D& g, double gr) {
+  Strain s{std::vector<double>(g.nface_x(), 0.0), std::vector<double>(g.nface_z(), 0.0)};
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) s.u[g.face_x(i, k)] = gr * g.z_center(k);
+  return s;
+}
+
+}  // namespace
+
+TEST(KEpsilonProduction, KatoLaunderEqualsTheStandardTermInSimpleShear) {
+  const Grid2D g = Grid2D::uniform(8, 8, 0.2, 0.2);
+  const Strain s = simple_shear(g, 5.0);
+  KEpsilonParams std_p, kl_p;
+  kl_p.production = KEpsilonProduction::kKatoLaunder;
+  const double k_std = step_k(g, std_p, s.u, s.w, 1e-3, 20), k_kl = step_k(g, kl_p, s.u, s.w, 1e-3, 20);
+  EXPECT_GT(k_std, 1e-3);  // the shear produces k
+  EXPECT_NEAR(k_kl, k_std, 1e-12 * k_std);
+}
+
+TEST(KEpsilonProduction, KatoLaunderProducesNothingInIrrotationalStrain) {
+  // at a stagnation point the standard term produces nu_t 4 a^2 (k grows), Kato-Launder nothing: k
+  // decays exactly as with production switched off
+  const Grid2D g = Grid2D::uniform(8, 8, 0.2, 0.2);
+  const Strain s = plane_strain(g, 5.0);
+  KEpsilonParams std_p, kl_p, off_p;
+  kl_p.production = KEpsilonProduction::kKatoLaunder;
+  off_p.flags &= ~kKEpsProduction;
+  const double k_std = step_k(g, std_p, s.u, s.w, 1e-3, 20);
+  const double k_kl = step_k(g, kl_p, s.u, s.w, 1e-3, 20), k_off = step_k(g, off_p, s.u, s.w, 1e-3, 20);
+  EXPECT_GT(k_std, 1e-3);
+  EXPECT_LT(k_kl, 1e-3);
+  EXPECT_NEAR(k_kl, k_off, 1e-12 * k_off);
+}
+
+TEST(KEpsilonProduction, LimiterCapsProductionAtTenDissipations) {
+  // k0 = 1e-3, eps0 = 1e-4: nu_t = 9e-4, in plane strain a = 5 /s P = nu_t 4 a^2 = 0.09 = 900 eps.
+  // With the cap, one step grows k by at most dt (10 eps - eps) (the sink is implicit, so less);
+  // without it by about dt (P - eps). A cap far above P changes nothing.
+  const Grid2D g = Grid2D::uniform(8, 8, 0.2, 0.2);
+  const Strain s = plane_strain(g, 5.0);
+  const double dt = 1e-3, k0 = 1e-3, eps0 = 1e-4;
+  KEpsilonParams lim_p, std_p, high_p;
+  lim_p.production_limit = 10.0;
+  high_p.production_limit = 1e9;
+  const double k_lim = step_k(g, lim_p, s.u, s.w, dt), k_std = step_k(g, std_p, s.u, s.w, dt);
+  EXPECT_LE(k_lim - k0, dt * 9.0 * eps0 * (1 + 1e-12));
+  EXPECT_GT(k_lim - k0, 0.5 * dt * 9.0 * eps0);
+  EXPECT_GT(k_std - k0, 0.5 * dt * 0.09);
+  EXPECT_EQ(step_k(g, high_p, s.u, s.w, dt), k_std);
+  KEpsilonParams bad;
+  bad.production_limit = -1.0;
+  EXPECT_THROW(check_k_epsilon_params(bad), std::invalid_argument);
+}
