@@ -34,17 +34,26 @@ void pore_velocities(const Grid2D& g, const MomentumFields& f, MomentumScratch& 
   }
 }
 
-// corner viscosity: arithmetic or harmonic mean of the cells touching the corner
-void corner_viscosity(const Grid2D& g, const double* mu, bool harmonic, std::vector<double>& cm) {
+// corner viscosity: arithmetic mean of the cells touching the corner; with an eddy part, that part by
+// harmonic mean (0 when a cell has none) and the molecular rest by arithmetic mean
+void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, std::vector<double>& cm) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   cm.resize(static_cast<size_t>(sx) * (nz + 1));
   for (int kk = 0; kk <= nz; ++kk) {
     const int k0 = std::max(kk - 1, 0), k1 = std::min(kk, nz - 1);
     for (int ii = 0; ii <= nx; ++ii) {
       const int i0 = std::max(ii - 1, 0), i1 = std::min(ii, nx - 1);
-      const double a = mu[i0 + nx * k0], b = mu[i1 + nx * k0], c = mu[i0 + nx * k1], d = mu[i1 + nx * k1];
-      // mu > 0 in every cell (molecular part), so the harmonic mean is defined
-      cm[ii + sx * kk] = harmonic ? 4.0 / (1.0 / a + 1.0 / b + 1.0 / c + 1.0 / d) : 0.25 * (a + b + c + d);
+      const int c[4] = {i0 + nx * k0, i1 + nx * k0, i0 + nx * k1, i1 + nx * k1};
+      const double mean = 0.25 * (mu[c[0]] + mu[c[1]] + mu[c[2]] + mu[c[3]]);
+      if (!eddy) {
+        cm[ii + sx * kk] = mean;
+        continue;
+      }
+      const double e[4] = {eddy[c[0]], eddy[c[1]], eddy[c[2]], eddy[c[3]]};
+      const double emean = 0.25 * (e[0] + e[1] + e[2] + e[3]);
+      const bool all = e[0] > 0.0 && e[1] > 0.0 && e[2] > 0.0 && e[3] > 0.0;
+      const double eh = all ? 4.0 / (1.0 / e[0] + 1.0 / e[1] + 1.0 / e[2] + 1.0 / e[3]) : 0.0;
+      cm[ii + sx * kk] = mean - emean + eh;
     }
   }
 }
@@ -79,7 +88,7 @@ void wall_function_shear(const Grid2D& g, const MomentumFields& f, const Momentu
 void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  corner_viscosity(g, f.cell_mu, f.harmonic_corner_mu, s.corner_mu);
+  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, s.corner_mu);
   std::vector<double>& tau = s.corner_tau;
   tau.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
   // bed: no-slip ghost -u gives du/dz = 2u/dz; a slip bed carries no shear
@@ -336,7 +345,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  corner_viscosity(g, f.cell_mu, f.harmonic_corner_mu, cm);
+  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm);
   double worst = 0.0;
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);

@@ -70,6 +70,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   if (!(params_.flags & kFlowFreeSurface)) std::fill(cell_F.begin(), cell_F.end(), 1.0);
   cell_rho_.assign(nc, 0.0);
   cell_mu_.assign(nc, 0.0);
+  cell_mu_eddy_.assign(nc, 0.0);
   cell_nu_.assign(nc, 0.0);
   face_x_rho_.assign(nfx, 0.0);
   face_z_rho_.assign(nfz, 0.0);
@@ -236,7 +237,8 @@ void VOFGrid::update_phase_properties() const {
     cell_rho_[c] = f * rw + (1.0 - f) * ra;
     const double mu = f * mw + (1.0 - f) * ma;
     cell_nu_[c] = mu / cell_rho_[c];
-    cell_mu_[c] = mu + (turb ? cell_rho_[c] * cell_nut[c] : 0.0);
+    cell_mu_eddy_[c] = turb ? cell_rho_[c] * cell_nut[c] : 0.0;
+    cell_mu_[c] = mu + cell_mu_eddy_[c];
   }
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   for (int k = 0; k < nz; ++k)
@@ -283,7 +285,7 @@ MomentumFields VOFGrid::momentum_fields() const {
   MomentumFields f{face_u.data(),  face_w.data(),      face_x_porosity.data(), face_z_porosity.data(),
                    cell_mu_.data(), face_x_rho_.data(), face_z_rho_.data()};
   f.cell_rho = cell_rho_.data();
-  f.harmonic_corner_mu = params_.corner_viscosity == CornerViscosity::kHarmonic;
+  if (params_.corner_viscosity == CornerViscosity::kHarmonic) f.cell_mu_eddy = cell_mu_eddy_.data();
   if ((params_.flags & kFlowTurbulence) && (params_.turbulence.flags & kKEpsWallFunctions)) {
     f.face_z_wall_shear = turbulence_->face_z_wall_shear.data();
     f.face_x_wall_shear = turbulence_->face_x_wall_shear.data();

@@ -10,7 +10,7 @@
 // u_f / n_f; the value carried across a control-volume side is the upwind one corrected by a van Leer
 // limited slope (MUSCL), so the scheme is second order in smooth flow and bounded at the interface.
 // Diffusion: the full stress tensor, 2 mu du/dx at cell centres and mu (du/dz + dw/dx) at corners,
-// corner viscosity the arithmetic or harmonic mean of its cells. Forward Euler, or (implicit_vertical) the vertical parts
+// corner viscosity the arithmetic mean of its cells (optionally the eddy part by harmonic mean). Forward Euler, or (implicit_vertical) the vertical parts
 // d/dz(mu du/dz) and d/dz(2 mu dw/dz) by backward Euler, one tridiagonal solve per column: the
 // eddy viscosity over dz = 5-10 mm would otherwise bind the step (explicit limit ~ dz^2 / (4 nu_t)).
 //
@@ -50,7 +50,10 @@ struct MomentumFields {
   // the slip / no-slip condition: x-component on the bed z-faces, z-component on the end-wall x-faces
   const double* face_z_wall_shear = nullptr;
   const double* face_x_wall_shear = nullptr;
-  bool harmonic_corner_mu = false;  // corner viscosity: harmonic (else arithmetic) mean of its cells
+  // eddy part rho nu_t of cell_mu [Pa s], ncell, or null: given, a corner takes the arithmetic mean of the
+  // cells' molecular part plus the harmonic mean of their eddy part (0 if any cell has none); else the
+  // arithmetic mean of cell_mu
+  const double* cell_mu_eddy = nullptr;
 };
 
 struct MomentumTerms {

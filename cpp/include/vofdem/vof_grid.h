@@ -86,9 +86,10 @@ enum class WallCondition { kSlip = 0, kNoSlip = 1 };
 // explicit), which lifts the step limit dz^2 / (4 nu_t) of the fine rows
 enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1 };
 // viscosity of a cell corner (where the shear stress mu (du/dz + dw/dx) lives) from its four cells:
-// arithmetic mean, or harmonic mean (Patankar 1980, sec. 4.2-3: the stress across an interface in
-// series is limited by the smaller viscosity, so the eddy viscosity of the water does not act on the
-// air above it, whose faces carry air density)
+// arithmetic mean, or (kHarmonic) the molecular part by arithmetic and the eddy part rho nu_t by
+// harmonic mean (Patankar 1980, sec. 4.2-3: diffusivities in series across an interface), which is
+// zero when a cell carries none (air, solid): the water's eddy viscosity does not act on the air faces
+// above it, whose density is the air's. Laminar flow is the same under both.
 enum class CornerViscosity { kArithmetic = 0, kHarmonic = 1 };
 
 // parameters of the flow, constant while stepping (SI units)
@@ -252,7 +253,7 @@ class VOFGrid {
 
   // derived per step
   // phase properties from F (caches: refreshed by const queries too)
-  mutable std::vector<double> cell_rho_, cell_mu_;
+  mutable std::vector<double> cell_rho_, cell_mu_, cell_mu_eddy_;
   mutable std::vector<double> face_x_rho_, face_z_rho_;
   std::vector<double> face_x_diameter_, face_z_diameter_;
   std::vector<double> face_x_beta_, face_z_beta_;  // dt n / (rho (1 + dt n R')) of the projection
