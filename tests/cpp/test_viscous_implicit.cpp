@@ -183,3 +183,41 @@ TEST(ImplicitViscosity, FlowParamsSelectTheSchemeAndTheStepLimit) {
   VOFGrid fe(g, p);
   EXPECT_GT(fi.stable_dt_terms().viscous, 3.0 * fe.stable_dt_terms().viscous);
 }
+
+TEST(CornerViscosity, EddyPartByHarmonicMeanKeepsWaterTurbulenceOffTheAirFaces) {
+  // water (rho 1000, nu_t 1e-2 m^2/s) in the lower half, air (rho 1.2, no eddy viscosity) above: with
+  // arithmetic corners an air face next to the water carries half the water's eddy viscosity over air
+  // density; with the eddy part by harmonic mean those corners take molecular viscosity only
+  const Grid2D g = Grid2D::uniform(8, 10, 0.2, 0.1);
+  Column c(g, 0.0);
+  std::vector<double> eddy(g.ncell(), 0.0);
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) {
+      const int cc = g.cell(i, k);
+      const bool water = k < g.nz() / 2;
+      c.mu[cc] = water ? 1e-3 + 1000.0 * 1e-2 : 1.8e-5;
+      eddy[cc] = water ? 1000.0 * 1e-2 : 0.0;
+    }
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) c.rx[g.face_x(i, k)] = k < g.nz() / 2 ? 1000.0 : 1.2;
+  for (int k = 0; k <= g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) c.rz[g.face_z(i, k)] = k < g.nz() / 2 ? 1000.0 : (k == g.nz() / 2 ? 500.6 : 1.2);
+  MomentumFields fa = c.fields(), fh = c.fields();
+  fh.cell_mu_eddy = eddy.data();
+  std::vector<double> cm;
+  const double da = viscous_stable_dt(g, fa, cm, true), dh = viscous_stable_dt(g, fh, cm, true);
+  EXPECT_GT(dh, 100.0 * da);
+  // inside the water the corner takes the full eddy viscosity (harmonic mean of equal values)
+  MomentumScratch s;
+  MomentumTerms t;
+  t.convection = false;
+  std::vector<double> us, ws;
+  momentum_explicit(g, fh, t, MomentumBoundary{}, 1e-6, us, ws, s);
+  EXPECT_NEAR(s.corner_mu[2 + (g.nx() + 1) * 2], 1e-3 + 10.0, 1e-12);
+  // a corner touching an air cell: the molecular mean only ((2 x 1e-3 + 2 x 1.8e-5) / 4)
+  EXPECT_NEAR(s.corner_mu[2 + (g.nx() + 1) * (g.nz() / 2)], 0.5 * (1e-3 + 1.8e-5), 1e-15);
+  // laminar (no eddy part anywhere): the same bound as the arithmetic mean, to the bit
+  std::vector<double> zero(g.ncell(), 0.0);
+  fh.cell_mu_eddy = zero.data();
+  EXPECT_EQ(viscous_stable_dt(g, fh, cm, true), viscous_stable_dt(g, fa, cm, true));
+}
