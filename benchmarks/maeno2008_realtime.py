@@ -28,10 +28,16 @@ def main():
     ap.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--from-run", type=Path, default=None, help="report a finished run directory instead")
+    ap.add_argument("--viscous-scheme", choices=["explicit", "implicit_vertical"], default=None,
+                    help="override FlowParams.viscous_scheme (default: the library's)")
+    ap.add_argument("--corner-viscosity", choices=["arithmetic", "harmonic"], default=None,
+                    help="override FlowParams.corner_viscosity (default: the library's)")
     ap.add_argument("--out", type=Path, default=ROOT / "benchmarks" / "results" / "maeno2008_realtime.md")
     args = ap.parse_args()
     if args.from_run is not None:
         return report_run(args.from_run, args.out)
+    if args.viscous_scheme or args.corner_viscosity:
+        override_flow_params(args.viscous_scheme, args.corner_viscosity)
     scene = Scene.maeno2008()
     if args.quick:
         scene = scene.quick()
@@ -51,6 +57,24 @@ def main():
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text("\n".join(text), encoding="utf-8")
     print("\n".join(text))
+
+
+def override_flow_params(scheme, corner):
+    """Wraps the builder's flow_params so that the run uses the given viscous options."""
+    import vofdem
+    from vofdem import builder
+
+    base = builder.flow_params
+
+    def flow_params(scene):
+        p = base(scene)
+        if scheme:
+            p.viscous_scheme = getattr(vofdem.ViscousScheme, scheme.upper())
+        if corner:
+            p.corner_viscosity = getattr(vofdem.CornerViscosity, corner.upper())
+        return p
+
+    builder.flow_params = flow_params
 
 
 def report_run(run_dir: Path, out: Path):
