@@ -157,3 +157,32 @@ def test_moving_stones_displace_water_without_losing_it():
     # the displaced 0.15 x 0.2 m x 0.1 m spread over the 0.4 m tank raises the level by 7.5 mm
     level = (f.cell_F * np.diff(f.grid.z_faces)[:, None]).sum(axis=0).mean()
     assert level == pytest.approx(0.2075, abs=1e-4)
+
+
+def test_viscous_options_select_the_step_limit_and_keep_still_water_still():
+    # defaults: implicit vertical diffusion, eddy part of the corner viscosity by harmonic mean,
+    # standard k production; the forward-Euler limit ~ dz^2 / (8 nu) is the smaller one
+    p = vofdem.FlowParams()
+    assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL
+    assert p.corner_viscosity == vofdem.CornerViscosity.HARMONIC
+    assert p.turbulence_production == vofdem.KEpsilonProduction.STRAIN
+    assert p.turbulence_production_limit == 0.0
+    p.nu_water = 1e-3
+    p.turbulence_production = vofdem.KEpsilonProduction.KATO_LAUNDER
+    p.turbulence_production_limit = 10.0
+    grid = vofdem.Grid2D.uniform(10, 40, 0.25, 0.2)
+    fi = vofdem.VOFGrid(grid, p)
+    assert fi.params.turbulence_production == vofdem.KEpsilonProduction.KATO_LAUNDER
+    assert fi.params.turbulence_production_limit == 10.0
+    p.viscous_scheme = vofdem.ViscousScheme.EXPLICIT
+    fe = vofdem.VOFGrid(grid, p)
+    for f in (fi, fe):
+        f.fill_water_below(0.12)
+        f.set_hydrostatic_pressure()
+    assert fi.stable_dt_terms().viscous > 3.0 * fe.stable_dt_terms().viscous
+    fi.advance(0.05)
+    assert np.abs(fi.face_w).max() < 1e-6
+    bad = vofdem.FlowParams()
+    bad.turbulence_production_limit = -1.0
+    with pytest.raises(ValueError, match="production_limit"):
+        vofdem.VOFGrid(grid, bad)
