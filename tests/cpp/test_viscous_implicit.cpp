@@ -138,7 +138,7 @@ TEST(ImplicitViscosity, StableFarAboveTheExplicitLimitWhereForwardEulerBlowsUp) 
   // a rough profile (cos mode plus the grid-scale zigzag) with an eddy-viscosity-like nu = 8e-3 m^2/s
   // over dz = 5 mm: 200 steps of 200 explicit limits stay bounded and decay. The Gershgorin bound is set
   // by the w-rows (normal stress 2 mu: ~ dz^2 / (4 nu)); the zigzag of u is unstable above
-  // dz^2 / (2 nu): forward Euler at 8 bounds (dt lambda = 3.7) grows by 2.7 per step
+  // dz^2 / (2 nu): forward Euler at 8 bounds (dt lambda ~ 7 for the zigzag) grows ~6 x per step
   const Grid2D g = Grid2D::uniform(4, 30, 0.1, 0.15);
   Column ci(g, 8.0), ce(g, 8.0);
   for (Column* c : {&ci, &ce}) {
