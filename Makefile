@@ -4,13 +4,17 @@
 PY ?= python3
 OUT ?= out
 
-.PHONY: demo test install test-cpp test-py bench
+.PHONY: demo full test install test-cpp test-py bench
 
 install:
 	bash scripts/install_deps.sh test
 
 demo: install
-	$(PY) examples/porosity_demo.py --out $(OUT)
+	$(PY) -m vofdem run scenes/maeno2008.toml --quick --out $(OUT)/maeno2008_quick
+
+# the whole scenario on the paper's grid and hydrograph (long: see the README for its cost)
+full: install
+	$(PY) -m vofdem run scenes/maeno2008.toml --out $(OUT)/maeno2008
 
 test: install test-cpp test-py
 

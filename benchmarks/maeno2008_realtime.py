@@ -11,13 +11,11 @@ below 1 is faster than the flume), and the stage table of the run.
 import argparse
 import os
 import platform
-import sys
 import tempfile
 from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "python"))
 
 from vofdem.run import run_scene  # noqa: E402
 from vofdem.scene import Scene  # noqa: E402

@@ -17,14 +17,12 @@ import os
 import platform
 import re
 import subprocess
-import sys
 import tempfile
 import time
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "python"))
 
 from vofdem import validation as val  # noqa: E402
 

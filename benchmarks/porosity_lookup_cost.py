@@ -11,18 +11,12 @@ mapping. Writes benchmarks/results/porosity_lookup_cost.md.
 from __future__ import annotations
 
 import argparse
-import glob
 import os
 import platform
-import sys
 import time
 
 import numpy as np
 
-# the source tree when its extension is built in place (development), else the installed package
-_TREE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python")
-if glob.glob(os.path.join(_TREE, "vofdem", "_core*")):
-    sys.path.insert(0, _TREE)
 import vofdem  # noqa: E402
 from vofdem.packing import trapezoid_weir_discs  # noqa: E402
 

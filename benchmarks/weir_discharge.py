@@ -8,13 +8,11 @@ Writes benchmarks/results/weir_discharge.md and .png.
 from __future__ import annotations
 
 import os
-import sys
 import time
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "python"))
 
 from vofdem import validation as val  # noqa: E402
 

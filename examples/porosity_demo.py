@@ -10,16 +10,10 @@ a figure in the manner of the paper's Fig. 4 and the arrays.
 from __future__ import annotations
 
 import argparse
-import glob
 import os
-import sys
 
 import numpy as np
 
-# the source tree when its extension is built in place (development), else the installed package
-_TREE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python")
-if glob.glob(os.path.join(_TREE, "vofdem", "_core*")):
-    sys.path.insert(0, _TREE)
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")

@@ -2,7 +2,6 @@
 loop, the output and the CLI without the C++ solver. Its "physics" is made up: the water level
 follows a weir formula of the inflow, and stones of the downstream face are pushed off one by one
 once the discharge passes a per-stone threshold. It is never shipped as a solver."""
-import math
 from types import SimpleNamespace
 
 import numpy as np

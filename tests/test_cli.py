@@ -7,11 +7,14 @@ from pathlib import Path
 import pytest
 from fake_sim import FakeSimulation
 
+import vofdem
 from vofdem.cli import main
 from vofdem.io import RunData
 
 ROOT = Path(__file__).resolve().parents[1]
-ENV = dict(os.environ, PYTHONPATH=str(ROOT / "python") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+# subprocesses import the same vofdem as this test (installed, or the source tree with its _core)
+ENV = dict(os.environ, PYTHONPATH=str(Path(vofdem.__file__).resolve().parents[1]) + os.pathsep
+           + os.environ.get("PYTHONPATH", ""))
 
 
 def _cli(*args):

@@ -5,13 +5,16 @@ from pathlib import Path
 import nbformat
 from nbclient import NotebookClient
 
+import vofdem
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_notebook_runs_and_shows_the_stage_table_and_figures(tmp_path, monkeypatch):
     monkeypatch.setenv("VOFDEM_NOTEBOOK_END_TIME", "6")
     monkeypatch.setenv("VOFDEM_NOTEBOOK_OUT", str(tmp_path / "out"))
-    monkeypatch.setenv("PYTHONPATH", str(ROOT / "python") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    # the kernel imports the same vofdem as this test (installed, or the source tree with its _core)
+    monkeypatch.setenv("PYTHONPATH", str(Path(vofdem.__file__).resolve().parents[1]) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     nb = nbformat.read(ROOT / "notebooks" / "maeno2008.ipynb", as_version=4)
     NotebookClient(nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}).execute()
     outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]

@@ -12,37 +12,6 @@ namespace py = pybind11;
 
 namespace vofdem::bind {
 
-namespace {
-
-using StateMap = std::map<std::string, std::vector<double>>;
-
-py::dict to_dict(const StateMap& s) {
-  py::dict d;
-  for (const auto& [key, v] : s) {
-    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
-    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(double));
-    d[py::str(key)] = a;
-  }
-  return d;
-}
-
-StateMap from_dict(const py::dict& d) {
-  StateMap s;
-  for (const auto& item : d) {
-    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
-    if (!a) throw py::value_error("state entry '" + py::str(item.first).cast<std::string>() + "' is not numeric");
-    s[py::str(item.first).cast<std::string>()] = std::vector<double>(a.data(), a.data() + a.size());
-  }
-  return s;
-}
-
-// (n, 2) view of an interleaved (x, z) array
-py::array_t<double> pairs(std::vector<double>& v, py::handle owner) {
-  return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 2), 2, owner);
-}
-
-}  // namespace
-
 void bind_coupler(py::module_& m) {
   m.attr("COUPLE_DEM") = static_cast<unsigned>(kCoupleDEM);
   m.attr("COUPLE_FLUID") = static_cast<unsigned>(kCoupleFluid);
@@ -97,13 +66,13 @@ void bind_coupler(py::module_& m) {
       .def("update_fluid_forces", &Coupler::update_fluid_forces)
       .def("water_volume", &Coupler::water_volume)
       .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
-      .def("export_state", [](const Coupler& c) { return to_dict(c.export_state()); })
-      .def("import_state", [](Coupler& c, const py::dict& d) { c.import_state(from_dict(d)); }, py::arg("state"))
+      .def("export_state", [](const Coupler& c) { return state_to_dict(c.export_state()); })
+      .def("import_state", [](Coupler& c, const py::dict& d) { c.import_state(dict_to_state(d)); }, py::arg("state"))
       .def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_force_drag",
-                             [](py::object self) { return pairs(self.cast<Coupler&>().disc_force_drag, self); })
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); })
       .def_property_readonly("disc_force_pressure",
-                             [](py::object self) { return pairs(self.cast<Coupler&>().disc_force_pressure, self); })
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_pressure, self); })
       .def_property_readonly("cell_base_porosity",
                              [](py::object self) { return view(self.cast<Coupler&>().cell_base_porosity, self); })
       .def_property_readonly("cell_base_diameter",

@@ -17,34 +17,6 @@ namespace vofdem::bind {
 
 namespace {
 
-using StateMap = std::map<std::string, std::vector<double>>;
-
-py::dict state_to_dict(const StateMap& s) {
-  py::dict d;
-  for (const auto& [key, v] : s) {
-    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
-    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(double));
-    d[py::str(key)] = a;
-  }
-  return d;
-}
-
-StateMap dict_to_state(const py::dict& d) {
-  StateMap s;
-  for (const auto& item : d) {
-    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
-    if (!a) throw py::value_error("import_state: every value must be an array of numbers");
-    s[item.first.cast<std::string>()] = std::vector<double>(a.data(), a.data() + a.size());
-  }
-  return s;
-}
-
-// (n, 2) view of a flat per-stone vector array
-template <class T>
-py::array_t<T> vec2(std::vector<T>& v, py::handle owner) {
-  return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 2), 2, owner);
-}
-
 std::vector<double> flat_pos(const py::array_t<double, py::array::c_style | py::array::forcecast>& pos) {
   return std::vector<double>(pos.data(), pos.data() + pos.size());
 }
@@ -142,12 +114,12 @@ void bind_system(py::module_& m) {
       .def("export_state", [](const DEMSystem& s) { return state_to_dict(s.export_state()); })
       .def("import_state", [](DEMSystem& s, const py::dict& d) { s.import_state(dict_to_state(d)); }, py::arg("state"))
       .def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
-      .def_property_readonly("disc_pos", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_pos, self); })
-      .def_property_readonly("disc_vel", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_vel, self); })
+      .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); })
+      .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); })
       .def_property_readonly("disc_force_ext",
-                             [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_force_ext, self); })
-      .def_property_readonly("disc_force", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_force, self); })
-      .def_property_readonly("disc_acc", [](py::object self) { return vec2(self.cast<DEMSystem&>().disc_acc, self); })
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force_ext, self); })
+      .def_property_readonly("disc_force", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force, self); })
+      .def_property_readonly("disc_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_acc, self); })
       .def_property_readonly("disc_angle", [](py::object self) { return view(self.cast<DEMSystem&>().disc_angle, self); })
       .def_property_readonly("disc_omega", [](py::object self) { return view(self.cast<DEMSystem&>().disc_omega, self); })
       .def_property_readonly("disc_radius",

@@ -509,7 +509,9 @@ void VOFGrid::stage_porous_resistance(double dt) {
     ustar = (ustar + (rel ? dt * n * r * n * us : 0.0)) / denom;
     beta /= denom;
   };
-  auto mu_face = [&](int a, int b) { return 0.5 * (cell_mu_[a] + cell_mu_[b]); };
+  // eq. (5) uses the molecular viscosity nu, not nu_e = nu + nu_t: the eddy viscosity of the k-epsilon
+  // model (up to 1e4 nu in a weir) would make the Darcy term 1e4 times too large where the flow is turbulent
+  auto mu_face = [&](int a, int b) { return 0.5 * (cell_rho_[a] * cell_nu_[a] + cell_rho_[b] * cell_nu_[b]); };
   for (int k = 0; k < nz; ++k)
     for (int i = 0; i <= nx; ++i) {
       const int j = i + sx * k;

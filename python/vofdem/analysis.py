@@ -29,9 +29,8 @@ from __future__ import annotations
 
 import csv
 import io
-import math
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Optional, Sequence
+from typing import Callable, Dict, List, Optional
 
 import numpy as np
 

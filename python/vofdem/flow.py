@@ -5,8 +5,6 @@ Discharges are in m^3/s unless a name says l/s (``discharge_lps``). The table li
 """
 from __future__ import annotations
 
-from typing import Callable
-
 import numpy as np
 
 from . import _core
