@@ -1,0 +1,1963 @@
+"""
+vofdem C++ core: VOF flow, DEM stones and their coupling
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+class Grid2D:
+    """
+    Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
+    """
+    @staticmethod
+    def graded(nx: typing.SupportsInt | typing.SupportsIndex, length_x: typing.SupportsFloat | typing.SupportsIndex, height_z: typing.SupportsFloat | typing.SupportsIndex, dz: typing.SupportsFloat | typing.SupportsIndex, dz_bed: typing.SupportsFloat | typing.SupportsIndex, z_bed_top: typing.SupportsFloat | typing.SupportsIndex) -> Grid2D:
+        ...
+    @staticmethod
+    def uniform(nx: typing.SupportsInt | typing.SupportsIndex, nz: typing.SupportsInt | typing.SupportsIndex, length_x: typing.SupportsFloat | typing.SupportsIndex, height_z: typing.SupportsFloat | typing.SupportsIndex, x0: typing.SupportsFloat | typing.SupportsIndex = 0.0, z0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Grid2D:
+        ...
+    def __init__(self, nx: typing.SupportsInt | typing.SupportsIndex, dx: typing.SupportsFloat | typing.SupportsIndex, z_faces: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], x0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def dx(self) -> float:
+        ...
+    @property
+    def height_z(self) -> float:
+        ...
+    @property
+    def length_x(self) -> float:
+        ...
+    @property
+    def ncell(self) -> int:
+        ...
+    @property
+    def nx(self) -> int:
+        ...
+    @property
+    def nz(self) -> int:
+        ...
+    @property
+    def x0(self) -> float:
+        ...
+    @property
+    def z_faces(self) -> list[float]:
+        ...
+class StageProfile:
+    """
+    Accumulated wall time [s] and calls of each named solver stage.
+    """
+    def reset(self) -> None:
+        ...
+    @property
+    def calls(self) -> list[int]:
+        ...
+    @property
+    def names(self) -> list[str]:
+        ...
+    @property
+    def seconds(self) -> list[float]:
+        ...
+    @property
+    def total_seconds(self) -> float:
+        ...
+class DragLaw:
+    """
+    Members:
+    
+      PAPER : C_D = 0.4 + 24/Re (seed eq. 18)
+    
+      SCHILLER_NAUMANN : C_D = 24/Re (1 + 0.15 Re^0.687), 0.44 above Re=1000
+    """
+    PAPER: typing.ClassVar[DragLaw]
+    SCHILLER_NAUMANN: typing.ClassVar[DragLaw]
+    __members__: typing.ClassVar[dict[str, DragLaw]]
+    @typing.overload
+    def __eq__(self, other: DragLaw) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: DragLaw) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class PorosityMethod:
+    """
+    Members:
+    
+      EXACT : closed-form disc-rectangle areas
+    
+      LOOKUP : the paper's precomputed sub-area tables
+    """
+    EXACT: typing.ClassVar[PorosityMethod]
+    LOOKUP: typing.ClassVar[PorosityMethod]
+    __members__: typing.ClassVar[dict[str, PorosityMethod]]
+    @typing.overload
+    def __eq__(self, other: PorosityMethod) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: PorosityMethod) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class PorosityParams:
+    """
+    Parameters of the porosity mapping (SI units).
+    """
+    method: PorosityMethod
+    def __init__(self) -> None:
+        ...
+    @property
+    def dr(self) -> float:
+        """
+        radius node spacing of the lookup tables [m]; usual 1e-3
+        """
+    @dr.setter
+    def dr(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def m(self) -> int:
+        """
+        sub-areas per side of the centre cell (lookup) [-]; usual 8
+        """
+    @m.setter
+    def m(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_discs(self) -> int:
+        """
+        largest number of discs of one call [-]
+        """
+    @max_discs.setter
+    def max_discs(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_exp(self) -> float:
+        """
+        packing porosity of the stones [-]; 0.41
+        """
+    @n_exp.setter
+    def n_exp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def r_max(self) -> float:
+        """
+        largest disc radius [m]
+        """
+    @r_max.setter
+    def r_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def r_min(self) -> float:
+        """
+        smallest disc radius [m]
+        """
+    @r_min.setter
+    def r_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class PorosityMapper:
+    """
+    Cell porosity (seed eq. 11) from stone discs, exact or by the paper's lookup table.
+    """
+    def __init__(self, grid: Grid2D, params: PorosityParams) -> None:
+        ...
+    def map(self, disc_x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], disc_z: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], disc_r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], active: typing.Any = None) -> None:
+        """
+        Maps disc centres [m] and radii [m] onto cell_solid_area and cell_porosity (no allocation).
+        """
+    @property
+    def cell_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        porosity n of each cell [-]; (nz, nx) view
+        """
+    @property
+    def cell_solid_area(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        stone area A_s of each cell [m^2], capped at the cell area; (nz, nx) view
+        """
+    @property
+    def disc_cell_area(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        area [m^2] of each (disc, cell) pair, uncapped
+        """
+    @property
+    def disc_cell_index(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        flat cell index i + nx k of each (disc, cell) pair
+        """
+    @property
+    def disc_cell_offsets(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        CSR offsets (ndisc + 1) of the cells each disc covers
+        """
+    @property
+    def grid(self) -> Grid2D:
+        ...
+    @property
+    def ndisc(self) -> int:
+        ...
+    @property
+    def params(self) -> PorosityParams:
+        ...
+    @property
+    def profile(self) -> StageProfile:
+        ...
+    @property
+    def row_class(self) -> list[int]:
+        ...
+    @property
+    def table_bytes(self) -> int:
+        ...
+    @property
+    def table_count(self) -> int:
+        ...
+class DEMWall:
+    """
+    Half-plane wall: the solid lies opposite to `normal` (SI units).
+    """
+    def __init__(self, point: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"], normal: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"], friction: typing.SupportsFloat | typing.SupportsIndex = 0.176) -> None:
+        ...
+    @property
+    def friction(self) -> float:
+        ...
+    @friction.setter
+    def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
+        ...
+    @normal.setter
+    def normal(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+        ...
+    @property
+    def point(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
+        ...
+    @point.setter
+    def point(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+        ...
+class DEMParams:
+    """
+    Constant parameters of the DEM of the stones (SI units; see dem_system.h).
+    """
+    def __init__(self) -> None:
+        ...
+    def add_flume(self, x_min: typing.SupportsFloat | typing.SupportsIndex, x_max: typing.SupportsFloat | typing.SupportsIndex, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, mu: typing.SupportsFloat | typing.SupportsIndex = 0.176) -> None:
+        ...
+    @property
+    def added_mass_coefficient(self) -> float:
+        ...
+    @added_mass_coefficient.setter
+    def added_mass_coefficient(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_steps(self) -> float:
+        ...
+    @contact_steps.setter
+    def contact_steps(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def domain_max(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
+        ...
+    @domain_max.setter
+    def domain_max(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+        ...
+    @property
+    def domain_min(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
+        ...
+    @domain_min.setter
+    def domain_min(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+        ...
+    @property
+    def dt(self) -> float:
+        ...
+    @dt.setter
+    def dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def flags(self) -> int:
+        ...
+    @flags.setter
+    def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def fluid_density(self) -> float:
+        ...
+    @fluid_density.setter
+    def fluid_density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def friction_stone(self) -> float:
+        ...
+    @friction_stone.setter
+    def friction_stone(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gravity(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
+        ...
+    @gravity.setter
+    def gravity(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+        ...
+    @property
+    def inertia_factor(self) -> float:
+        ...
+    @inertia_factor.setter
+    def inertia_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def neighbour_skin(self) -> float:
+        ...
+    @neighbour_skin.setter
+    def neighbour_skin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def restitution(self) -> float:
+        ...
+    @restitution.setter
+    def restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sleep_time(self) -> float:
+        ...
+    @sleep_time.setter
+    def sleep_time(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sleep_velocity(self) -> float:
+        ...
+    @sleep_velocity.setter
+    def sleep_velocity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stiffness_normal(self) -> float:
+        ...
+    @stiffness_normal.setter
+    def stiffness_normal(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stiffness_ratio(self) -> float:
+        ...
+    @stiffness_ratio.setter
+    def stiffness_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tangential_damping_factor(self) -> float:
+        ...
+    @tangential_damping_factor.setter
+    def tangential_damping_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def wake_acceleration(self) -> float:
+        ...
+    @wake_acceleration.setter
+    def wake_acceleration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def walls(self) -> list[DEMWall]:
+        ...
+    @walls.setter
+    def walls(self, arg0: collections.abc.Sequence[DEMWall]) -> None:
+        ...
+class DEMEnergy:
+    """
+    Energy bookkeeping of the DEM [J].
+    """
+    @property
+    def dissipated(self) -> float:
+        ...
+    @property
+    def elastic(self) -> float:
+        ...
+    @property
+    def kinetic(self) -> float:
+        ...
+    @property
+    def potential(self) -> float:
+        ...
+    @property
+    def total(self) -> float:
+        ...
+    @property
+    def work_external(self) -> float:
+        ...
+class DEMSystem:
+    """
+    Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).
+    """
+    params: DEMParams
+    @typing.overload
+    def __init__(self, params: DEMParams, n: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @typing.overload
+    def __init__(self, params: DEMParams, pos: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], radius: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], density: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = ..., fixed: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> None:
+        ...
+    def advance(self, duration: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def energy(self) -> DEMEnergy:
+        ...
+    def export_state(self) -> dict:
+        ...
+    def import_state(self, state: dict) -> None:
+        ...
+    def mass(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
+    def neighbour_pairs(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
+        ...
+    def overlapping_pairs(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
+        ...
+    def overlapping_pairs_reference(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
+        ...
+    def projected_area(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
+    def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def stable_dt(self) -> float:
+        ...
+    def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def volume(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
+    @property
+    def contact_count(self) -> int:
+        ...
+    @property
+    def damping_ratio(self) -> float:
+        ...
+    @property
+    def disc_acc(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_active(self) -> numpy.typing.NDArray[numpy.uint8]:
+        ...
+    @property
+    def disc_alpha(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_angle(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_asleep(self) -> numpy.typing.NDArray[numpy.uint8]:
+        ...
+    @property
+    def disc_density(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_fixed(self) -> numpy.typing.NDArray[numpy.uint8]:
+        ...
+    @property
+    def disc_force(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_force_ext(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_omega(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_pos(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_radius(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_torque(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def n(self) -> int:
+        ...
+    @property
+    def neighbour_builds(self) -> int:
+        ...
+    @property
+    def profile(self) -> StageProfile:
+        ...
+    @property
+    def removed_count(self) -> int:
+        ...
+    @property
+    def steps(self) -> int:
+        ...
+    @property
+    def stiffness_normal(self) -> float:
+        ...
+    @property
+    def stiffness_tangential(self) -> float:
+        ...
+    @property
+    def time(self) -> float:
+        ...
+    @property
+    def wall_contact_count(self) -> int:
+        ...
+class WeirSpec:
+    """
+    Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).
+    """
+    def __init__(self) -> None:
+        ...
+    def area(self) -> float:
+        ...
+    def top(self, x: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def x_end(self) -> float:
+        ...
+    @property
+    def crest(self) -> float:
+        ...
+    @crest.setter
+    def crest(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def d_mean(self) -> float:
+        ...
+    @d_mean.setter
+    def d_mean(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def d_spread(self) -> float:
+        ...
+    @d_spread.setter
+    def d_spread(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def density(self) -> float:
+        ...
+    @density.setter
+    def density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def height(self) -> float:
+        ...
+    @height.setter
+    def height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rest_speed(self) -> float:
+        ...
+    @rest_speed.setter
+    def rest_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def settle_time_max(self) -> float:
+        ...
+    @settle_time_max.setter
+    def settle_time_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def slope_down_deg(self) -> float:
+        ...
+    @slope_down_deg.setter
+    def slope_down_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def slope_up_deg(self) -> float:
+        ...
+    @slope_up_deg.setter
+    def slope_up_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x_toe(self) -> float:
+        ...
+    @x_toe.setter
+    def x_toe(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_bed(self) -> float:
+        ...
+    @z_bed.setter
+    def z_bed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class WeirPackingReport:
+    """
+    What pack_weir produced.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def max_speed(self) -> float:
+        ...
+    @property
+    def n_fixed(self) -> int:
+        ...
+    @property
+    def n_stones(self) -> int:
+        ...
+    @property
+    def outline_error(self) -> float:
+        ...
+    @property
+    def porosity(self) -> float:
+        ...
+    @property
+    def settle_time(self) -> float:
+        ...
+    @property
+    def wall_seconds(self) -> float:
+        ...
+class VofBoundaryInflow:
+    """
+    Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, bottom/top: nx); empty = 0. The arrays are numpy views, writable in place.
+    """
+    @typing.overload
+    def __init__(self) -> None:
+        ...
+    @typing.overload
+    def __init__(self, grid: Grid2D, value: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def resize(self, grid: Grid2D, value: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        """
+        Sizes the four sides for `grid` filled with `value`; invalidates earlier views.
+        """
+    @property
+    def bottom(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        fraction entering through the bottom, per column (nx)
+        """
+    @bottom.setter
+    def bottom(self, arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def left(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        fraction entering at x = x0, per row (nz)
+        """
+    @left.setter
+    def left(self, arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def right(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        fraction entering at the right end, per row (nz)
+        """
+    @right.setter
+    def right(self, arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def top(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        fraction entering through the top, per column (nx)
+        """
+    @top.setter
+    def top(self, arg1: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+class VofNormal:
+    """
+    Interface normal of the PLIC reconstruction.
+    
+    Members:
+    
+      YOUNGS : Youngs (1982): weighted 3x3 gradient of F (default)
+    
+      MIXED_YOUNGS_CENTERED : Aulisa et al. (2007): height-function normal of the 3x3 block, else Youngs
+    """
+    MIXED_YOUNGS_CENTERED: typing.ClassVar[VofNormal]
+    YOUNGS: typing.ClassVar[VofNormal]
+    __members__: typing.ClassVar[dict[str, VofNormal]]
+    @typing.overload
+    def __eq__(self, other: VofNormal) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: VofNormal) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class VofScratch:
+    """
+    Work arrays of advect_vof, its water fluxes and clipping report.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def clip_count(self) -> int:
+        """
+        cell updates clipped by more than VOF_CLIP_TOLERANCE (0 when the CFL limit holds)
+        """
+    @clip_count.setter
+    def clip_count(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def clip_max(self) -> float:
+        """
+        largest such excursion of F outside [0, 1]
+        """
+    @clip_max.setter
+    def clip_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def face_flux_x(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        water volume [m^2 per m of width] through each x-face in the last step, along +x (read-only view; empty before the first step)
+        """
+    @property
+    def face_flux_z(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        water volume [m^2 per m of width] through each z-face in the last step, along +z (read-only view)
+        """
+class PressureSolverKind:
+    """
+    Members:
+    
+      EIGEN_DIRECT : Eigen sparse LDL^T: exact to round-off, the reference
+    
+      MULTIGRID_CG : conjugate gradient preconditioned by a geometric multigrid V-cycle: the default
+    """
+    EIGEN_DIRECT: typing.ClassVar[PressureSolverKind]
+    MULTIGRID_CG: typing.ClassVar[PressureSolverKind]
+    __members__: typing.ClassVar[dict[str, PressureSolverKind]]
+    @typing.overload
+    def __eq__(self, other: PressureSolverKind) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: PressureSolverKind) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class PressureProblem:
+    """
+    Face coefficients a_f, Dirichlet boundary values [Pa] and active cells of the pressure equation sum_f a_f (p_nb - p_c) = b_c. Arrays are zero-copy numpy views.
+    """
+    def __init__(self, grid: Grid2D) -> None:
+        ...
+    @property
+    def cell_active(self) -> numpy.typing.NDArray[numpy.uint8]:
+        ...
+    @property
+    def face_x_bc(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def face_x_coef(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def face_z_bc(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def face_z_coef(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class PressureSolveStats:
+    """
+    Outcome of one pressure solve.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def iterations(self) -> int:
+        """
+        CG iterations (0 for the direct solver)
+        """
+    @property
+    def residual(self) -> float:
+        """
+        final relative residual ||f - M p|| / ||f||
+        """
+    @property
+    def setup_seconds(self) -> float:
+        """
+        last setup wall time [s]
+        """
+    @property
+    def solve_seconds(self) -> float:
+        """
+        solve wall time [s]
+        """
+class PressureSolver:
+    """
+    Solver of the pressure projection equation.
+    """
+    def __init__(self, kind: PressureSolverKind = ..., max_iterations: typing.SupportsInt | typing.SupportsIndex = 200, smoothing_sweeps: typing.SupportsInt | typing.SupportsIndex = 1, coarsest_cells: typing.SupportsInt | typing.SupportsIndex = 64) -> None:
+        ...
+    def setup(self, grid: Grid2D, problem: PressureProblem) -> None:
+        """
+        takes new coefficients (call after any change)
+        """
+    def solve(self, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], p: numpy.typing.NDArray[numpy.float64], tol: typing.SupportsFloat | typing.SupportsIndex = 1e-08) -> PressureSolveStats:
+        """
+        solves for p [Pa] in place (a C-contiguous float64 array of ncell values, also the initial guess); returns PressureSolveStats
+        """
+    @property
+    def kind(self) -> PressureSolverKind:
+        ...
+class FlowEffect:
+    """
+    Bit flags of the flow solver's physical effects.
+    
+    Members:
+    
+      FREE_SURFACE : two phases and VOF advection (off: water everywhere)
+    
+      POROUS_DARCY : linear porous resistance nu/K
+    
+      POROUS_FORCHHEIMER : quadratic porous resistance C/sqrt(K) |u|
+    
+      TURBULENCE : k-epsilon eddy viscosity
+    
+      VISCOSITY : viscous stresses
+    
+      GRAVITY : gravity
+    
+      RELATIVE_VELOCITY : porous resistance on the velocity relative to the stones
+    
+      CONVECTION : momentum convection
+    
+      POROUS_RESISTANCE : Darcy and Forchheimer terms
+    
+      DEFAULT : free surface, porous resistance, viscosity, gravity, convection
+    """
+    CONVECTION: typing.ClassVar[FlowEffect]
+    DEFAULT: typing.ClassVar[FlowEffect]
+    FREE_SURFACE: typing.ClassVar[FlowEffect]
+    GRAVITY: typing.ClassVar[FlowEffect]
+    POROUS_DARCY: typing.ClassVar[FlowEffect]
+    POROUS_FORCHHEIMER: typing.ClassVar[FlowEffect]
+    POROUS_RESISTANCE: typing.ClassVar[FlowEffect]
+    RELATIVE_VELOCITY: typing.ClassVar[FlowEffect]
+    TURBULENCE: typing.ClassVar[FlowEffect]
+    VISCOSITY: typing.ClassVar[FlowEffect]
+    __members__: typing.ClassVar[dict[str, FlowEffect]]
+    @typing.overload
+    def __and__(self, other: FlowEffect) -> int:
+        ...
+    @typing.overload
+    def __and__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+        ...
+    @typing.overload
+    def __eq__(self, other: FlowEffect) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    @typing.overload
+    def __ge__(self, other: FlowEffect) -> bool:
+        ...
+    @typing.overload
+    def __ge__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    @typing.overload
+    def __gt__(self, other: FlowEffect) -> bool:
+        ...
+    @typing.overload
+    def __gt__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    def __invert__(self) -> typing.Any:
+        ...
+    @typing.overload
+    def __le__(self, other: FlowEffect) -> bool:
+        ...
+    @typing.overload
+    def __le__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    @typing.overload
+    def __lt__(self, other: FlowEffect) -> bool:
+        ...
+    @typing.overload
+    def __lt__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: FlowEffect) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    @typing.overload
+    def __or__(self, other: FlowEffect) -> int:
+        ...
+    @typing.overload
+    def __or__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+        ...
+    @typing.overload
+    def __rand__(self, other: FlowEffect) -> int:
+        ...
+    @typing.overload
+    def __rand__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @typing.overload
+    def __ror__(self, other: FlowEffect) -> int:
+        ...
+    @typing.overload
+    def __ror__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+        ...
+    @typing.overload
+    def __rxor__(self, other: FlowEffect) -> int:
+        ...
+    @typing.overload
+    def __rxor__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @typing.overload
+    def __xor__(self, other: FlowEffect) -> int:
+        ...
+    @typing.overload
+    def __xor__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class InletBoundary:
+    """
+    Members:
+    
+      WALL
+    
+      DISCHARGE : prescribed discharge Q(t) over the wetted inlet
+    """
+    DISCHARGE: typing.ClassVar[InletBoundary]
+    WALL: typing.ClassVar[InletBoundary]
+    __members__: typing.ClassVar[dict[str, InletBoundary]]
+    @typing.overload
+    def __eq__(self, other: InletBoundary) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: InletBoundary) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class OutletBoundary:
+    """
+    Members:
+    
+      WALL
+    
+      FREE_OVERFALL : the end face is a brink open to still air (hydrostatic air pressure)
+    
+      TAILWATER : hydrostatic pressure below FlowParams.tailwater_level
+    """
+    FREE_OVERFALL: typing.ClassVar[OutletBoundary]
+    TAILWATER: typing.ClassVar[OutletBoundary]
+    WALL: typing.ClassVar[OutletBoundary]
+    __members__: typing.ClassVar[dict[str, OutletBoundary]]
+    @typing.overload
+    def __eq__(self, other: OutletBoundary) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: OutletBoundary) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class TopBoundary:
+    """
+    Members:
+    
+      OPEN : open to the atmosphere, p = 0
+    
+      WALL : a slip lid
+    """
+    OPEN: typing.ClassVar[TopBoundary]
+    WALL: typing.ClassVar[TopBoundary]
+    __members__: typing.ClassVar[dict[str, TopBoundary]]
+    @typing.overload
+    def __eq__(self, other: TopBoundary) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: TopBoundary) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class WallCondition:
+    """
+    Members:
+    
+      SLIP
+    
+      NO_SLIP
+    """
+    NO_SLIP: typing.ClassVar[WallCondition]
+    SLIP: typing.ClassVar[WallCondition]
+    __members__: typing.ClassVar[dict[str, WallCondition]]
+    @typing.overload
+    def __eq__(self, other: WallCondition) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: WallCondition) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class ViscousScheme:
+    """
+    Members:
+    
+      EXPLICIT
+    
+      IMPLICIT_VERTICAL
+    """
+    EXPLICIT: typing.ClassVar[ViscousScheme]
+    IMPLICIT_VERTICAL: typing.ClassVar[ViscousScheme]
+    __members__: typing.ClassVar[dict[str, ViscousScheme]]
+    @typing.overload
+    def __eq__(self, other: ViscousScheme) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: ViscousScheme) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class KEpsilonProduction:
+    """
+    Members:
+    
+      STRAIN
+    
+      KATO_LAUNDER
+    """
+    KATO_LAUNDER: typing.ClassVar[KEpsilonProduction]
+    STRAIN: typing.ClassVar[KEpsilonProduction]
+    __members__: typing.ClassVar[dict[str, KEpsilonProduction]]
+    @typing.overload
+    def __eq__(self, other: KEpsilonProduction) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: KEpsilonProduction) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class CornerViscosity:
+    """
+    Members:
+    
+      ARITHMETIC
+    
+      HARMONIC
+    """
+    ARITHMETIC: typing.ClassVar[CornerViscosity]
+    HARMONIC: typing.ClassVar[CornerViscosity]
+    __members__: typing.ClassVar[dict[str, CornerViscosity]]
+    @typing.overload
+    def __eq__(self, other: CornerViscosity) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: CornerViscosity) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class FlowParams:
+    """
+    Flow parameters, constant while stepping (SI units).
+    """
+    corner_viscosity: CornerViscosity
+    inlet: InletBoundary
+    outlet: OutletBoundary
+    pressure_solver: PressureSolverKind
+    top: TopBoundary
+    viscous_scheme: ViscousScheme
+    walls: WallCondition
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def cfl(self) -> float:
+        """
+        target Courant number of the pore velocity [-], 0.4
+        """
+    @cfl.setter
+    def cfl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def flags(self) -> int:
+        """
+        FlowEffect bits
+        """
+    @flags.setter
+    def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def flume_width(self) -> float:
+        """
+        flume width B [m], 0.3
+        """
+    @flume_width.setter
+    def flume_width(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gravity_x(self) -> float:
+        """
+        gravity along the flume [m/s^2], 0
+        """
+    @gravity_x.setter
+    def gravity_x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gravity_z(self) -> float:
+        """
+        gravity, upward component [m/s^2], -9.81
+        """
+    @gravity_z.setter
+    def gravity_z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def k1(self) -> float:
+        """
+        linear resistance coefficient of eq. (7) [-], 200
+        """
+    @k1.setter
+    def k1(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def k2(self) -> float:
+        """
+        quadratic resistance coefficient of eq. (7) [-], 2.8
+        """
+    @k2.setter
+    def k2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_dt(self) -> float:
+        """
+        largest time step [s], 0.01
+        """
+    @max_dt.setter
+    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_dt(self) -> float:
+        """
+        a stable step below this is a failure [s], 1e-8
+        """
+    @min_dt.setter
+    def min_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nu_air(self) -> float:
+        """
+        air kinematic viscosity [m^2/s], 1.516e-5
+        """
+    @nu_air.setter
+    def nu_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nu_water(self) -> float:
+        """
+        water kinematic viscosity [m^2/s], 1.004e-6
+        """
+    @nu_water.setter
+    def nu_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pressure_tol(self) -> float:
+        """
+        relative residual of the pressure solve [-]
+        """
+    @pressure_tol.setter
+    def pressure_tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rho_air(self) -> float:
+        """
+        air density [kg/m^3], 1.204
+        """
+    @rho_air.setter
+    def rho_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rho_water(self) -> float:
+        """
+        water density [kg/m^3], 998.2
+        """
+    @rho_water.setter
+    def rho_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tailwater_level(self) -> float:
+        """
+        tailwater level [m] for OutletBoundary.TAILWATER
+        """
+    @tailwater_level.setter
+    def tailwater_level(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_bed_roughness(self) -> float:
+        """
+        equivalent sand roughness k_s of the bed [m]
+        """
+    @turbulence_bed_roughness.setter
+    def turbulence_bed_roughness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_inflow_intensity(self) -> float:
+        """
+        inflow turbulence intensity [-], 0.05
+        """
+    @turbulence_inflow_intensity.setter
+    def turbulence_inflow_intensity(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_inflow_length_scale(self) -> float:
+        """
+        inflow length scale [m], 0.01
+        """
+    @turbulence_inflow_length_scale.setter
+    def turbulence_inflow_length_scale(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_production(self) -> KEpsilonProduction:
+        """
+        production of k: STRAIN (nu_t S^2) or KATO_LAUNDER (nu_t S Omega)
+        """
+    @turbulence_production.setter
+    def turbulence_production(self, arg1: KEpsilonProduction) -> None:
+        ...
+    @property
+    def turbulence_production_limit(self) -> float:
+        """
+        P_k <= limit * eps (Menter 1994: 10), 0 = off [-]
+        """
+    @turbulence_production_limit.setter
+    def turbulence_production_limit(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_wall_roughness(self) -> float:
+        """
+        k_s of end walls and solid cells [m]
+        """
+    @turbulence_wall_roughness.setter
+    def turbulence_wall_roughness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class DischargeTable:
+    """
+    Piecewise-linear discharge Q(t): times [s], discharge [m^3/s].
+    """
+    @staticmethod
+    def constant(q: typing.SupportsFloat | typing.SupportsIndex) -> DischargeTable:
+        ...
+    @staticmethod
+    def ramp(q0: typing.SupportsFloat | typing.SupportsIndex, q1: typing.SupportsFloat | typing.SupportsIndex, t0: typing.SupportsFloat | typing.SupportsIndex, t1: typing.SupportsFloat | typing.SupportsIndex) -> DischargeTable:
+        """
+        linear ramp from q0 to q1 [m^3/s] over [t0, t1] [s]
+        """
+    def __init__(self, times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], discharge: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    def at(self, t: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        Q [m^3/s] at time t [s]
+        """
+    @property
+    def discharge(self) -> list[float]:
+        ...
+    @property
+    def times(self) -> list[float]:
+        ...
+class FlowStableDt:
+    """
+    Largest stable time step [s] of each term (inf: no limit).
+    """
+    def min(self) -> float:
+        ...
+    @property
+    def advective(self) -> float:
+        ...
+    @property
+    def gravity(self) -> float:
+        ...
+    @property
+    def max_dt(self) -> float:
+        ...
+    @property
+    def turbulence(self) -> float:
+        ...
+    @property
+    def viscous(self) -> float:
+        ...
+class VOFGrid:
+    """
+    2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).
+    """
+    def __init__(self, grid: Grid2D, params: FlowParams = ...) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
+        ...
+    def discharge_through(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
+        """
+        water discharge per width [m^2/s]
+        """
+    def fill_water_below(self, level: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def fill_water_box(self, x0: typing.SupportsFloat | typing.SupportsIndex, x1: typing.SupportsFloat | typing.SupportsIndex, z0: typing.SupportsFloat | typing.SupportsIndex, z1: typing.SupportsFloat | typing.SupportsIndex, value: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+    def inlet_discharge_per_width(self) -> float:
+        """
+        q = Q(t) / B now [m^2/s]
+        """
+    def pore_velocity_at_cells(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        ...
+    def pressure_gradient_at_cells(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        ...
+    def set_hydrostatic_pressure(self) -> None:
+        ...
+    def set_porosity(self, porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], displace: bool = False) -> None:
+        """
+        sets the cell porosity (ncell values in [0, 1]) and the face porosities; displace=True: the change is a source of the next step's continuity (dn/dt + div u = 0), so displaced water flows away
+        """
+    def set_porosity_box(self, x0: typing.SupportsFloat | typing.SupportsIndex, x1: typing.SupportsFloat | typing.SupportsIndex, z0: typing.SupportsFloat | typing.SupportsIndex, z1: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsFloat | typing.SupportsIndex, d: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def stable_dt(self) -> float:
+        ...
+    def stable_dt_terms(self) -> FlowStableDt:
+        ...
+    def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def update_face_porosity(self, displace: bool = False) -> None:
+        """
+        recomputes the face porosities after writing cell_porosity / cell_stone_diameter
+        """
+    def water_volume(self) -> float:
+        """
+        sum(n F V) per metre of width [m^2]
+        """
+    @property
+    def cell_F(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        water fraction [-]
+        """
+    @property
+    def cell_eps(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        dissipation rate [m^2/s^3] (k-epsilon)
+        """
+    @property
+    def cell_k(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        turbulent kinetic energy [m^2/s^2] (k-epsilon)
+        """
+    @property
+    def cell_nut(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        eddy viscosity [m^2/s]
+        """
+    @property
+    def cell_p(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        pressure [Pa]
+        """
+    @property
+    def cell_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        porosity [-] (0 = solid); call update_face_porosity() after writing
+        """
+    @property
+    def cell_stone_diameter(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        stone diameter D_sp [m]
+        """
+    @property
+    def discharge(self) -> DischargeTable:
+        """
+        DischargeTable Q(t) [m^3/s]
+        """
+    @discharge.setter
+    def discharge(self, arg1: DischargeTable) -> None:
+        ...
+    @property
+    def face_u(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        superficial x-velocity [m/s]
+        """
+    @property
+    def face_w(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        superficial z-velocity [m/s]
+        """
+    @property
+    def face_x_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def face_x_solid_u(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        stones' x-velocity at x-faces [m/s]
+        """
+    @property
+    def face_z_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def face_z_solid_w(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        stones' z-velocity at z-faces [m/s]
+        """
+    @property
+    def grid(self) -> Grid2D:
+        ...
+    @property
+    def inlet_volume(self) -> float:
+        """
+        water volume per width [m^2] that entered through the inlet
+        """
+    @property
+    def last_pressure_stats(self) -> PressureSolveStats:
+        ...
+    @property
+    def params(self) -> FlowParams:
+        """
+        a copy; assign a modified copy to change it
+        """
+    @params.setter
+    def params(self, arg1: FlowParams) -> None:
+        ...
+    @property
+    def profile(self) -> StageProfile:
+        ...
+    @property
+    def step_count(self) -> int:
+        ...
+    @property
+    def time(self) -> float:
+        """
+        simulated time [s]
+        """
+    @time.setter
+    def time(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class CouplerParams:
+    """
+    Parameters of the VOF-DEM coupling (SI units; see coupler.h).
+    """
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def drag_law(self) -> DragLaw:
+        """
+        DragLaw of the stones
+        """
+    @drag_law.setter
+    def drag_law(self, arg0: DragLaw) -> None:
+        ...
+    @property
+    def drag_relaxation(self) -> float:
+        """
+        step at most this fraction of the drag relaxation time [-], 0.5
+        """
+    @drag_relaxation.setter
+    def drag_relaxation(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def flags(self) -> int:
+        """
+        COUPLE_* bits
+        """
+    @flags.setter
+    def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lookup_dr(self) -> float:
+        """
+        radius spacing of the lookup tables [m], 5e-4
+        """
+    @lookup_dr.setter
+    def lookup_dr(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lookup_m(self) -> int:
+        """
+        sub-areas per side of the lookup table [-], 8
+        """
+    @lookup_m.setter
+    def lookup_m(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_dt(self) -> float:
+        """
+        largest exchange step [s], 0.01
+        """
+    @max_dt.setter
+    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_dt(self) -> float:
+        """
+        a stable step below this is a failure [s], 1e-7
+        """
+    @min_dt.setter
+    def min_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_exp(self) -> float:
+        """
+        packing porosity of eq. (11) [-], 0.41
+        """
+    @n_exp.setter
+    def n_exp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def stone_cfl(self) -> float:
+        """
+        cells a stone crosses per step at most [-], 0.5
+        """
+    @stone_cfl.setter
+    def stone_cfl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class Coupler:
+    """
+    Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.
+    """
+    params: CouplerParams
+    def __init__(self, fluid: typing.Any, stones: typing.Any, params: CouplerParams = ...) -> None:
+        ...
+    def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
+        ...
+    def export_state(self) -> dict:
+        ...
+    def import_state(self, state: dict) -> None:
+        ...
+    def set_inflow_table(self, times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], discharge: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    def stable_dt(self) -> float:
+        ...
+    @typing.overload
+    def step(self) -> None:
+        ...
+    @typing.overload
+    def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def update_fluid_forces(self) -> None:
+        ...
+    def update_porosity(self, keep_water_volume: bool = True) -> None:
+        ...
+    def water_volume(self) -> float:
+        ...
+    @property
+    def cell_base_diameter(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def cell_base_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_force_drag(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_force_pressure(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def fluid(self) -> VOFGrid:
+        ...
+    @property
+    def n(self) -> int:
+        ...
+    @property
+    def profile(self) -> StageProfile:
+        ...
+    @property
+    def redistributed_volume(self) -> float:
+        ...
+    @property
+    def step_count(self) -> int:
+        ...
+    @property
+    def stones(self) -> DEMSystem:
+        ...
+    @property
+    def time(self) -> float:
+        ...
+def _drag_force_x(arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg7: DragLaw) -> typing.Any:
+    ...
+def _drag_force_z(arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg7: DragLaw) -> typing.Any:
+    ...
+def _porous_resistance_x(arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    ...
+def _porous_resistance_z(arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    ...
+def advect_vof(grid: Grid2D, cell_porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_u: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_w: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], inflow: VofBoundaryInflow, dt: typing.SupportsFloat | typing.SupportsIndex, x_first: bool, cell_F: numpy.typing.NDArray[numpy.float64], scratch: VofScratch, normal: VofNormal = ...) -> None:
+    """
+    Advances the water fraction cell_F (float64, C-contiguous, size ncell; updated in place) by dt [s] with the superficial face velocities face_u, face_w [m/s] (seed eq. 4, PLIC, split with the Weymouth-Yue correction). Raises RuntimeError above CFL 1 (F untouched).
+    """
+def contact_duration(k: typing.SupportsFloat | typing.SupportsIndex, m_reduced: typing.SupportsFloat | typing.SupportsIndex, zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    ...
+def damping_ratio_from_restitution(e: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    ...
+def disc_cell_area(cx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Exact area [m^2] of the disc of centre (cx, cz) [m] and radius r [m] inside [x0, x1] x [z0, z1] [m].
+    """
+def drag_coefficient(re: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], law: DragLaw = ...) -> typing.Any:
+    """
+    Drag coefficient C_D [-] at Reynolds number re > 0.
+    """
+def forchheimer_coefficient(n: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 200.0, k2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 2.8) -> typing.Any:
+    """
+    Forchheimer coefficient C = k2 / sqrt(k1 n^3) [-] (seed eq. 7).
+    """
+def pack_weir(height: typing.SupportsFloat | typing.SupportsIndex = 0.25, crest: typing.SupportsFloat | typing.SupportsIndex = 0.2, slope_up_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, slope_down_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, x_toe: typing.SupportsFloat | typing.SupportsIndex = 1.0, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, d_mean: typing.SupportsFloat | typing.SupportsIndex = 0.048, d_spread: typing.SupportsFloat | typing.SupportsIndex = 0.1, density: typing.SupportsFloat | typing.SupportsIndex = 2650.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, settle_time_max: typing.SupportsFloat | typing.SupportsIndex = 6.0, rest_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, params: DEMParams = ...) -> tuple[typing.Any, WeirPackingReport, WeirSpec]:
+    """
+    Packs a trapezoidal rubble mound weir; returns (DEMSystem, WeirPackingReport, WeirSpec).
+    """
+def permeability(n: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], d: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 200.0) -> typing.Any:
+    """
+    Intrinsic permeability K = n^3 d^2 / (k1 (1-n)^2) [m^2] (seed eq. 7); n porosity, d stone diameter [m].
+    """
+def plic_area_below(mx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], mz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], alpha: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Area [m^2] of {m.x <= alpha} inside the rectangle [0,dx]x[0,dz].
+    """
+def plic_line_constant(mx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], mz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], dz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], f: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Line constant alpha with area{m.x <= alpha} in [0,dx]x[0,dz] = f dx dz (normal m out of the water).
+    """
+def porosity_eq11(a_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], a_c: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n_exp: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 0.41) -> typing.Any:
+    """
+    Porosity of seed eq. (11) from stone area a_s [m^2] (capped at a_c) and cell area a_c [m^2].
+    """
+def pressure_residual(grid: Grid2D, problem: PressureProblem, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], p: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    b - A p on active cells (0 elsewhere)
+    """
+def restitution_from_damping_ratio(zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    ...
+def vof_stable_dt(grid: Grid2D, cell_porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_u: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_w: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cfl: typing.SupportsFloat | typing.SupportsIndex = 0.45) -> float:
+    """
+    Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers |v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.
+    """
+def weir_outline_error(system: DEMSystem, spec: WeirSpec) -> float:
+    ...
+def weir_porosity(system: DEMSystem, spec: WeirSpec, h: typing.SupportsFloat | typing.SupportsIndex = 0.002) -> float:
+    ...
+COUPLE_CHECKS: int = 128
+COUPLE_DEFAULT: int = 255
+COUPLE_DEM: int = 1
+COUPLE_DISPLACE_FLOW: int = 512
+COUPLE_DRAG: int = 8
+COUPLE_FLUID: int = 2
+COUPLE_FORCES: int = 24
+COUPLE_LOOKUP_POROSITY: int = 256
+COUPLE_ONE_WAY: int = 219
+COUPLE_POROSITY: int = 4
+COUPLE_PRESSURE_GRADIENT: int = 16
+COUPLE_RELATIVE_VELOCITY: int = 32
+COUPLE_TWO_WAY: int = 255
+COUPLE_WET_FRACTION: int = 64
+DEM_ADDED_MASS: int = 8
+DEM_ALL_EFFECTS: int = 479
+DEM_BUOYANCY: int = 16
+DEM_DAMPING: int = 64
+DEM_EXTERNAL_FORCE: int = 128
+DEM_FRICTION: int = 4
+DEM_GRAVITY: int = 1
+DEM_REMOVAL: int = 256
+DEM_ROTATION: int = 2
+DEM_SLEEPING: int = 32
+ERGUN_K1: float = 150.0
+ERGUN_K2: float = 1.75
+PAPER_K1: float = 200.0
+PAPER_K2: float = 2.8
+VOF_CLIP_TOLERANCE: float = 1e-12
+__version__: str = '0.1.0'
