@@ -49,7 +49,8 @@ N_PAPER = 0.41
 VARIANTS = ("ext", "no_drag", "no_pressure", "k_half+ext", "k_matched+ext", "light1.25+ext", "light1.5+ext",
             "light2+ext", "light4+ext", "fine+ext", "fine+no_drag+ext", "fine+no_pressure", "fine+k_half+ext", "fine+k_matched+ext",
             "ext+seed1", "ext+seed2", "k_half+ext+seed1", "fine+ext+seed1", "fine+k_half+ext+seed1",
-            "fine+ext+seed2", "fine+k_half+ext+seed2", "fine+k_half+slow")
+            "fine+ext+seed2", "fine+k_half+ext+seed2", "fine+k_half+slow",
+            "fine+k_half+slow+seed1", "fine+slow")
 Q_PROBES = (10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0)
 
 
