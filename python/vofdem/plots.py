@@ -110,6 +110,14 @@ def fig_stones_velocity(data, scene, k: int, stride: int = 1) -> Figure:
     return fig
 
 
+def _force_arrows(ax, data, k: int, F, color: str) -> None:
+    """A force [N] on each loose stone of snapshot k, with a 1 N key."""
+    act = data.active[k] & ~data.fixed
+    q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
+                  scale=20.0, color=color, width=0.003, zorder=6)
+    ax.quiverkey(q, 0.9, 1.03, 1.0, "1 N", labelpos="E", fontproperties={"size": 8})
+
+
 def fig_pressure_gradient(data, scene, k: int) -> Figure:
     """Pressure field and the pressure-gradient force on each stone (the paper's Fig. 8)."""
     f = data.fields(k)
@@ -119,10 +127,7 @@ def fig_pressure_gradient(data, scene, k: int) -> Figure:
     fig.colorbar(m, ax=ax, label="pressure p [Pa]", shrink=0.8)
     _stones(ax, data, k, "none")
     F = data.force_pressure[k]
-    act = data.active[k] & ~data.fixed
-    q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
-                  scale=20.0, color="tab:red", width=0.003, zorder=6)
-    ax.quiverkey(q, 0.9, 1.03, 1.0, "1 N", labelpos="E", fontproperties={"size": 8})
+    _force_arrows(ax, data, k, F, "tab:red")
     _surface(ax, data, f)
     _outline(ax, scene)
     _title(ax, data, k, "Pressure-gradient force on stones")
@@ -138,10 +143,7 @@ def fig_drag(data, scene, k: int) -> Figure:
     fig.colorbar(m, ax=ax, label="pore speed |U| [m/s]", shrink=0.8)
     _stones(ax, data, k, "none")
     F = data.force_drag[k]
-    act = data.active[k] & ~data.fixed
-    q = ax.quiver(data.pos[k, act, 0], data.pos[k, act, 1], F[act, 0], F[act, 1], angles="xy", scale_units="xy",
-                  scale=20.0, color="tab:green", width=0.003, zorder=6)
-    ax.quiverkey(q, 0.9, 1.03, 1.0, "1 N", labelpos="E", fontproperties={"size": 8})
+    _force_arrows(ax, data, k, F, "tab:green")
     _surface(ax, data, f)
     _outline(ax, scene)
     _title(ax, data, k, "Drag force on stones")
