@@ -84,16 +84,16 @@ def test_sigterm_closes_the_output_as_interrupted(tmp_path):
         "from fake_sim import FakeSimulation\n"
         "class Slow(FakeSimulation):\n"
         "    def advance(self, t):\n"
-        "        time.sleep(0.05); super().advance(t)\n"
+        "        if self.time > 0: open(%r, 'w').close(); time.sleep(120)\n"
+        "        super().advance(t)\n"
         "from vofdem.cli import main\n"
         "sys.exit(main(['run', 'maeno2008', '--quick', '--out', %r, '--no-progress'], build=Slow))\n"
-    ) % (str(ROOT / "tests"), str(tmp_path / "out"))
+    ) % (str(ROOT / "tests"), str(tmp_path / "stepping"), str(tmp_path / "out"))
     p = subprocess.Popen([sys.executable, "-c", script], env=ENV, stderr=subprocess.PIPE, text=True)
-    for _ in range(200):
+    # the second advance marks that one snapshot is written, then blocks until the signal comes
+    deadline = time.monotonic() + 120
+    while not (tmp_path / "stepping").exists() and time.monotonic() < deadline:
         time.sleep(0.05)
-        if (tmp_path / "out" / "run.h5").exists():
-            break
-    time.sleep(0.5)
     p.send_signal(signal.SIGTERM)
     _, err = p.communicate(timeout=60)
     assert p.returncode == 130 and "interrupted" in err

@@ -63,3 +63,25 @@ def test_solver_failure_keeps_the_output(tmp_path):
     assert d.times.tolist() == [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]
     assert d.attrs["status"].startswith("failed: fake stage 'pressure'")
     assert check_xdmf(tmp_path / "run.xmf") > 0
+
+
+def test_a_stop_request_survives_a_swallowed_interrupt(tmp_path):
+    """A SIGTERM's KeyboardInterrupt raised inside a finaliser is dropped by Python; the stop flag set
+    by the same handler still ends the run at the next snapshot, with the output closed as interrupted."""
+    from vofdem.run import request_stop
+
+    s = _scene()
+
+    class StopsAtThree(FakeSimulation):
+        def advance(self, t_end):
+            super().advance(t_end)
+            if t_end == 3.0:
+                request_stop()
+
+    with pytest.raises(KeyboardInterrupt):
+        run_scene(s, tmp_path, sim=StopsAtThree(s), progress=False)
+    d = RunData(tmp_path / "run.h5")
+    assert d.times.tolist() == [0.0, 1.0, 2.0, 3.0]
+    assert d.attrs["status"] == "interrupted"
+    run_scene(s, tmp_path / "again", sim=FakeSimulation(s), progress=False, figures=False, animation=False)
+    assert RunData(tmp_path / "again" / "run.h5").attrs["status"] == "completed"

@@ -58,6 +58,9 @@ def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, en
 
 
 def _terminate(signum, frame):
+    from .run import request_stop
+
+    request_stop()
     raise KeyboardInterrupt
 
 

@@ -28,6 +28,17 @@ class SolverError(RuntimeError):
     """The solver failed while stepping; the output written so far is kept."""
 
 
+_stop_requested = False
+
+
+def request_stop() -> None:
+    """Asks the running loop to stop at its next snapshot and close its output as 'interrupted'.
+    A flag as well as the signal's KeyboardInterrupt: Python drops an exception raised inside a
+    finaliser (h5py closes files from __del__), and the stop must not be lost with it."""
+    global _stop_requested
+    _stop_requested = True
+
+
 @dataclass
 class RunResult:
     out_dir: Path
@@ -120,6 +131,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     failure (after closing the output)."""
     from . import __version__
 
+    global _stop_requested
+    _stop_requested = False
     scene.validate()
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -145,6 +158,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     try:
         rec.record()
         for t_next in _targets(t0, duration, dt_snap, ramp if hold else None):
+            if _stop_requested:
+                raise KeyboardInterrupt
             sim.advance(t_next)
             if hold and float(sim.time) >= ramp - 1e-9:
                 st.disc_fixed[:] = fixed0
