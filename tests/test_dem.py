@@ -161,7 +161,7 @@ def test_stepping_releases_the_gil():
     t = threading.Thread(target=count)
     t.start()
     t0 = time.perf_counter()
-    s.advance(0.5)
+    s.advance(2.0)  # ~0.15 s of C++ here: room for many ticks
     t1 = time.perf_counter()
     done.set()
     t.join()
