@@ -29,10 +29,15 @@ def test_run_writes_output_and_finds_the_stages(tmp_path):
     a = res.analysis
     assert [st.n_stones for st in a.stages] == [2, 3]
     assert all(st.location in ("downstream slope", "shoulder") for st in a.stages)
+    from vofdem.plots import stage_of_stones
+
+    lab = stage_of_stones(a)  # the destruction figure's colours
+    assert ((lab == 1).sum(), (lab == 2).sum(), (lab == -1).sum(), (lab == 0).sum()) == (2, 3, 0, lab.size - 5)
     assert 15.0 <= a.stages[0].discharge_lps <= 15.2 + 0.5 + 1e-9  # snapshot every 1 s = 0.5 l/s
     assert 18.0 <= a.stages[1].discharge_lps <= 18.5 + 1e-9
     for name in ("stage_table.md", "stage_table.csv", "crest_lowering.csv", "profile.md", "scene.toml",
-                 "figures/timeline.png", "figures/porosity_initial.png", "figures/stones_velocity_stage1.png",
+                 "figures/timeline.png", "figures/destruction.png", "figures/porosity_initial.png",
+                 "figures/stones_velocity_stage1.png",
                  "figures/pressure_gradient_stage2.png", "figures/drag_stage1.png", "figures/rating_curve.png",
                  "figures/velocity_distribution.png"):
         assert (tmp_path / name).stat().st_size > 0, name

@@ -11,6 +11,8 @@ notebooks. Figures:
 * `fig_velocity_distribution` Fig. 10: velocity vectors at several discharges, weir outline in orange
 * `fig_rating_curve`        upstream water level against discharge
 * `fig_timeline`            discharge, stones removed and crest lowering against time, stages shaded
+* `fig_destruction`         the weir before and after: each stone where it ended, coloured by the
+                            stage that removed it, the stones' initial places and surface outlined
 """
 from __future__ import annotations
 
@@ -21,6 +23,9 @@ import matplotlib
 import numpy as np
 from matplotlib.collections import EllipseCollection
 from matplotlib.figure import Figure
+from matplotlib.patches import Patch
+
+from .analysis import surface_profile
 
 WEIR_COLOR = "tab:orange"
 # matplotlib 3.6 renamed transOffset to offset_transform
@@ -211,6 +216,50 @@ def fig_timeline(analysis, data, scene) -> Figure:
     return fig
 
 
+STAGE_COLORS = ("tab:red", "tab:purple", "tab:blue", "tab:green", "tab:brown")
+
+
+def stage_of_stones(analysis) -> np.ndarray:
+    """(n,) stage number that removed each stone; -1 isolated removal, 0 never removed."""
+    label = np.zeros(analysis.removal_time.size, int)
+    label[np.isfinite(analysis.removal_time)] = -1
+    for s in analysis.stages:
+        label[s.stones] = s.number
+    return label
+
+
+def fig_destruction(analysis, data, scene, k: Optional[int] = None) -> Figure:
+    """The weir at snapshot k (default: the last) over its initial state: stones where they are, coloured
+    by the stage that removed them, their initial places and the initial and present stone surface."""
+    k = data.times.size - 1 if k is None else k
+    fig, ax = _axes(scene, data, height=3.8)
+    label = stage_of_stones(analysis)
+    colors = np.where(data.fixed, "0.45", "tan").astype(object)
+    handles = []
+    for s in analysis.stages:
+        c = STAGE_COLORS[(s.number - 1) % len(STAGE_COLORS)]
+        colors[label == s.number] = c
+        handles.append(Patch(color=c, label=f"stage {s.number}: {s.discharge_lps:.1f} l/s, "
+                                                                 f"{s.n_stones} stones"))
+    colors[label == -1] = "gold"
+    if (label == -1).any():
+        handles.append(Patch(color="gold", label="removed alone"))
+    moved = label != 0
+    ax.scatter(data.pos[0, moved, 0], data.pos[0, moved, 1], s=6, marker="x", color="0.3", zorder=2,
+               label="initial places of removed stones")
+    _stones(ax, data, k, colors)
+    xs = np.linspace(scene.weir.toe_x, scene.weir.x_toe_down, 120)
+    prof = surface_profile(data.pos[[0, k]], 0.5 * data.diameter, xs, data.active[[0, k]])
+    ax.plot(xs, prof[0], color="0.3", ls="--", lw=1.0, zorder=5, label="stone surface at the start")
+    ax.plot(xs, prof[1], color="k", lw=1.2, zorder=5, label="stone surface now")
+    if data.has_fields:
+        _surface(ax, data, data.fields(k))
+    n_rem = int(np.isfinite(analysis.removal_time).sum())
+    ax.legend(handles=handles + ax.get_legend_handles_labels()[0], fontsize=7, loc="upper left", ncol=2)
+    _title(ax, data, k, f"Destruction ({n_rem} of {label.size} stones removed)")
+    return fig
+
+
 def make_figures(data, analysis, scene, out_dir) -> List[Path]:
     """Writes every figure as PNG to out_dir; returns their paths."""
     out = Path(out_dir)
@@ -223,6 +272,7 @@ def make_figures(data, analysis, scene, out_dir) -> List[Path]:
         files.append(p)
 
     save(fig_timeline(analysis, data, scene), "timeline.png")
+    save(fig_destruction(analysis, data, scene), "destruction.png")
     save(fig_rating_curve(data, scene), "rating_curve.png")
     if not data.has_fields:
         return files
