@@ -17,8 +17,8 @@
 // cell's stone diameter D. This is the unresolved CFD-DEM drag F_i = V_i beta / (1 - eps) (U - v) of
 // Zhu et al. (2007) and Kloss et al. (2012) with eps = n and the exchange coefficient fixed by the flow's
 // own closure law, beta = rho n^2 (a + b |u_r|) (so beta (U - v) = rho n (a + b |u_r|) u_r): the
-// stones receive exactly what the resistance takes from the water. With (k1, k2) = (150, 1.75) it is
-// the Ergun branch of those drag laws.
+// stones receive exactly what the resistance takes from the water. With (k1, k2) = (150, 1.75) beta is
+// the Ergun branch of the Gidaspow drag, 150 (1 - n)^2 mu / (n D^2) + 1.75 rho (1 - n) |U - v| / D.
 //
 // Check: in steady uniform flow through a fixed bed, -dp/dx = rho u (a + b |u|), so F_bed = V n/(1 - n)
 // (-dp/dx) and F_bed + F_S = V (-dp/dx) / (1 - n): the stones carry the whole pressure drop of the
@@ -32,8 +32,8 @@
 //
 // References: S. Maeno and A. Tomita (2008), ICHE 2008, Nagoya (eqs. 5-7); H. P. Zhu, Z. Y. Zhou,
 // R. Y. Yang and A. B. Yu (2007), Discrete particle simulation of particulate systems: theoretical
-// developments, Chem. Eng. Sci. 62, 3378-3396 (eqs. 22-24, the Ergun branch of the Di Felice /
-// Gidaspow drag); C. Kloss, C. Goniva, A. Hager, S. Amberger and S. Pirker (2012), Models, algorithms
+// developments, Chem. Eng. Sci. 62, 3378-3396 (the drag of unresolved coupling, Gidaspow's and
+// Di Felice's correlations); C. Kloss, C. Goniva, A. Hager, S. Amberger and S. Pirker (2012), Models, algorithms
 // and validation for opensource DEM and CFD-DEM, Prog. Comput. Fluid Dyn. 12, 140-152.
 #pragma once
 
