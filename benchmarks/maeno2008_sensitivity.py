@@ -16,6 +16,10 @@ stones held, then 10 -> 25 l/s over 30 s) built through the Python API, one vari
                   the overflow sheet better)
   seedN           another packing (seed N instead of 0)
   slow            the paper's ramp rate (10 -> 25 l/s over 120 s) instead of the quick scene's 30 s
+  bed             the bed drag (stones.drag_model = "bed": the reaction of the porous resistance on the
+                  stones, docs/coupler.md) in place of the sphere drag of eqs. (16)-(18)
+  bulk            the bulk-consistent porosity mapping (stones.porosity_mapping = "bulk": the porosity
+                  inside each disc chosen so that the weir's mean mapped porosity is n_exp = 0.41)
 Variants combine with '+', e.g. fine+k_matched+ext.
 
 For each: first removal and stage discharges (vofdem.analysis, a stone is removed once it moved more
@@ -50,7 +54,10 @@ VARIANTS = ("ext", "no_drag", "no_pressure", "k_half+ext", "k_matched+ext", "lig
             "light2+ext", "light4+ext", "fine+ext", "fine+no_drag+ext", "fine+no_pressure", "fine+k_half+ext", "fine+k_matched+ext",
             "ext+seed1", "ext+seed2", "k_half+ext+seed1", "fine+ext+seed1", "fine+k_half+ext+seed1",
             "fine+ext+seed2", "fine+k_half+ext+seed2", "fine+k_half+slow",
-            "fine+k_half+slow+seed1", "fine+slow")
+            "fine+k_half+slow+seed1", "fine+slow", "fine+slow+seed1", "fine+slow+seed2",
+            "fine+slow+bed", "fine+slow+bed+seed1", "fine+slow+bed+seed2",
+            "fine+slow+bulk", "fine+slow+bulk+seed1", "fine+slow+bulk+seed2",
+            "fine+slow+bed+bulk", "fine+slow+bed+bulk+seed1", "fine+slow+bed+bulk+seed2")
 Q_PROBES = (10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0)
 
 
@@ -97,6 +104,8 @@ def variant_scene(name: str):
         s.stones.k2 *= f2
         info.update(n_mean=n_mean, n_min=n_min, n_max=n_max, cells=cells, f1=f1, f2=f2,
                     k1=s.stones.k1, k2=s.stones.k2)
+    if "bed" in tokens:
+        s.stones.drag_model = "bed"
     if "no_drag" in tokens:
         s.effects.drag = False
     if "no_pressure" in tokens:
@@ -104,6 +113,8 @@ def variant_scene(name: str):
     for tok in tokens:  # 'seedN': another packing of the weir
         if tok.startswith("seed"):
             s.seed = int(tok[4:])
+    if "bulk" in tokens:  # n_s, phi and the mean mapped porosity (after the seed is set)
+        s.stones.porosity_mapping = "bulk"
     if "slow" in tokens:  # the paper's rate, 10 -> 25 l/s over 120 s
         s.hydrograph.ramp_duration = 120.0
     if "ext" in tokens:  # the ramp continued at the same rate (0.5 l/s per s) to 50 l/s
@@ -111,6 +122,12 @@ def variant_scene(name: str):
         s.hydrograph.discharge_end_lps = 50.0
         s.hydrograph.ramp_duration = (50.0 - s.hydrograph.discharge_start_lps) / rate
     s.validate()
+    if "bulk" in tokens:
+        from vofdem.builder import build_stones, disc_porosity
+
+        n_s, phi = disc_porosity(s, build_stones(s)[0])
+        n_mean, n_min, n_max, cells = mapped_weir_porosity(s)
+        info.update(n_s=n_s, phi=phi, bulk_n_mean=n_mean, bulk_cells=cells)
     return s, info
 
 
@@ -184,10 +201,17 @@ def table() -> str:
              "3 s (vofdem.analysis). The isolated removal at 10.25 l/s (10.5 with F_S off) is the unfixed toe stone.",
              "F/W' = |F_S + F_D| / ((rho_s - rho_w) V g), the largest over the loose stones at the snapshot nearest",
              "the discharge (after a stage it is the moved stones'); F_D max in N; wall s on one core of a loaded",
-             "2-core machine. Stage regions are in the JSON files of benchmarks/results/maeno2008_sensitivity/.", ""]
+             "2-core machine. Stage regions are in the JSON files of benchmarks/results/maeno2008_sensitivity/.",
+             "`bed`: the drag is the bed drag (reaction of the porous resistance; F_D is then that force);",
+             "`bulk`: the porosity inside each disc makes the weir's mean mapped porosity n_exp (docs/scenario.md).", ""]
     seen = set()
     for r in runs:
-        if r["info"] and ("fine" in r["variant"], "k_half" in r["variant"]) not in seen:
+        if "n_s" in r["info"]:
+            i = r["info"]
+            lines.append(f"- `{r['variant']}`: packing's solid fraction phi = {i['phi']:.4f}, inner porosity "
+                         f"n_s = 1 - 0.59 / phi = {i['n_s']:.4f}; mean mapped porosity in the weir's cells "
+                         f"{i['bulk_n_mean']:.3f} ({i['bulk_cells']} cells; the paper's mapping: ~0.53).")
+        if "f1" in r["info"] and ("fine" in r["variant"], "k_half" in r["variant"]) not in seen:
             seen.add(("fine" in r["variant"], "k_half" in r["variant"]))
             i = r["info"]
             lines.append(f"- `{r['variant']}`: mean mapped porosity in the weir's cells {i['n_mean']:.3f} "

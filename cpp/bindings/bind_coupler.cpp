@@ -28,13 +28,18 @@ void bind_coupler(py::module_& m) {
   m.attr("COUPLE_TWO_WAY") = static_cast<unsigned>(kCoupleTwoWay);
   m.attr("COUPLE_DEFAULT") = static_cast<unsigned>(kCoupleDefault);
 
+  py::enum_<StoneDragModel>(m, "StoneDragModel", "Drag on the stones (one of the two, never both).")
+      .value("SPHERE", StoneDragModel::kSphere, "single sphere in the pore velocity, eqs. (16)-(18) (the paper's)")
+      .value("BED", StoneDragModel::kBed, "reaction of the flow's porous resistance, rho n R per bulk volume");
+
   py::class_<CouplerParams>(m, "CouplerParams", "Parameters of the VOF-DEM coupling (SI units; see coupler.h).")
       .def(py::init<>())
       .def_readwrite("flags", &CouplerParams::flags, "COUPLE_* bits")
       .def_readwrite("n_exp", &CouplerParams::n_exp, "packing porosity of eq. (11) [-], 0.41")
       .def_readwrite("lookup_m", &CouplerParams::lookup_m, "sub-areas per side of the lookup table [-], 8")
       .def_readwrite("lookup_dr", &CouplerParams::lookup_dr, "radius spacing of the lookup tables [m], 5e-4")
-      .def_readwrite("drag_law", &CouplerParams::drag_law, "DragLaw of the stones")
+      .def_readwrite("drag_law", &CouplerParams::drag_law, "DragLaw of the sphere drag")
+      .def_readwrite("stone_drag", &CouplerParams::stone_drag, "StoneDragModel of the drag on the stones, SPHERE")
       .def_readwrite("max_dt", &CouplerParams::max_dt, "largest exchange step [s], 0.01")
       .def_readwrite("stone_cfl", &CouplerParams::stone_cfl, "cells a stone crosses per step at most [-], 0.5")
       .def_readwrite("drag_relaxation", &CouplerParams::drag_relaxation,

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
 #include "vofdem/fluid_forces.h"
 
@@ -25,6 +26,10 @@ void CouplerParams::validate() const {
   require_in_open_closed("stone_cfl", stone_cfl, 0.0, 1.0);
   require_positive("drag_relaxation", drag_relaxation);
   require_positive("min_dt", min_dt);
+  const int model = static_cast<int>(stone_drag);
+  if (model < 0 || model > 1)
+    throw std::invalid_argument("stone_drag = " + std::to_string(model) +
+                                " is outside the allowed values {0 (kSphere), 1 (kBed)}");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -38,6 +43,7 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
   disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
   disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
   disc_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
+  disc_drag_slope_.assign(static_cast<std::size_t>(n_), 0.0);
   disc_x_.assign(static_cast<std::size_t>(n_), 0.0);
   disc_z_.assign(static_cast<std::size_t>(n_), 0.0);
   if (fluid_) {
@@ -245,19 +251,34 @@ void Coupler::stage_fluid_forces() {
   const std::vector<int>& idx = mapper_->disc_cell_index();
   const std::vector<double>& area = mapper_->disc_cell_area();
   const double rho = fp.rho_water, nu = fp.nu_water;
+  const bool bed = params_.stone_drag == StoneDragModel::kBed;
+  BedDragParams bp;
+  if (bed) {
+    // the flow's own closure law, terms and relative velocity: the reaction of what it removes
+    bp.rho_w = rho, bp.nu_w = nu, bp.k1 = fp.k1, bp.k2 = fp.k2;
+    bp.linear = fp.flags & kFlowPorousDarcy;
+    bp.quadratic = fp.flags & kFlowPorousForchheimer;
+    bp.relative = fp.flags & kFlowRelativeVelocity;
+  }
   for (int j = 0; j < n_; ++j) {
     double* fd = &disc_force_drag[2 * j];
     double* fs = &disc_force_pressure[2 * j];
     fd[0] = fd[1] = fs[0] = fs[1] = 0.0;
     disc_vrel_[j] = 0.0;
+    disc_drag_slope_[j] = 0.0;
     if (!stones_->disc_active[j]) continue;
     const StoneFlowSample s = sample_flow_at_stone(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j],
                                                    fluid_->cell_F.data(), cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
                                                    cell_dpdz_.data(), rho, fp.gravity_x, fp.gravity_z);
     const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
-    if (fl & kCoupleDrag) {
+    if ((fl & kCoupleDrag) && !bed) {
       const DragForce f = stone_drag(s, up, wp, 2.0 * stones_->disc_radius[j], rho, nu, params_.drag_law);
+      fd[0] = f.fx, fd[1] = f.fz;
+    } else if (fl & kCoupleDrag) {
+      const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
+                                   fluid_->cell_porosity.data(), fluid_->cell_stone_diameter.data(), cell_U_.data(),
+                                   cell_W_.data(), up, wp, stones_->volume(j), bp, &disc_drag_slope_[j]);
       fd[0] = f.fx, fd[1] = f.fz;
     }
     if (fl & kCouplePressureGradient) {
@@ -326,7 +347,15 @@ double Coupler::stable_dt() {
       const double v = std::hypot(stones_->disc_vel[2 * j], stones_->disc_vel[2 * j + 1]);
       if (v * dt > params_.stone_cfl * h) dt = params_.stone_cfl * h / v;
       // explicit drag held over the step: stay below its relaxation time (estimated with eq. 18)
-      if ((fl & kCoupleDrag) && stones_->disc_wet[j] > 0.0) {
+      if ((fl & kCoupleDrag) && params_.stone_drag == StoneDragModel::kBed) {
+        // bed drag: its slope in the stone's velocity from the last exchange
+        const double slope = disc_drag_slope_[j];
+        if (slope > 0.0) {
+          const double w = stones_->disc_wet[j], vol = stones_->volume(j);
+          const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
+          dt = std::min(dt, params_.drag_relaxation * mass / slope);
+        }
+      } else if ((fl & kCoupleDrag) && stones_->disc_wet[j] > 0.0) {
         const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
         const double w = stones_->disc_wet[j];
         const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
@@ -415,6 +444,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
   s["coupler/disc_force_drag"] = disc_force_drag;
   s["coupler/disc_force_pressure"] = disc_force_pressure;
   s["coupler/disc_relative_speed"] = disc_vrel_;
+  if (params_.stone_drag == StoneDragModel::kBed) s["coupler/disc_drag_slope"] = disc_drag_slope_;
   if (fluid_) {
     s["coupler/cell_base_porosity"] = cell_base_porosity;
     s["coupler/cell_base_diameter"] = cell_base_diameter;
@@ -458,6 +488,8 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
   need(s, "coupler/disc_force_drag", 2 * n);
   need(s, "coupler/disc_force_pressure", 2 * n);
   need(s, "coupler/disc_relative_speed", n);
+  const bool has_slope = s.count("coupler/disc_drag_slope") > 0;
+  if (has_slope) need(s, "coupler/disc_drag_slope", n);
   std::map<std::string, std::vector<double>> dem;
   if (stones_) {
     for (const auto& kv : s)
@@ -505,6 +537,9 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
   disc_force_drag = s.at("coupler/disc_force_drag");
   disc_force_pressure = s.at("coupler/disc_force_pressure");
   disc_vrel_ = s.at("coupler/disc_relative_speed");
+  // written with the bed drag only (older states and the sphere drag: none)
+  if (has_slope) disc_drag_slope_ = s.at("coupler/disc_drag_slope");
+  else std::fill(disc_drag_slope_.begin(), disc_drag_slope_.end(), 0.0);
 }
 
 }  // namespace vofdem

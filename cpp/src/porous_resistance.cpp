@@ -28,6 +28,11 @@ PorousCoefficients porous_coefficients_unchecked(double n, double d, double nu, 
   return {k1 * nu * m * m / (n3 * d * d), k2 * m / (n3 * d)};
 }
 
+PorousCoefficients bed_coefficients_unchecked(double n, double d, double nu, double k1, double k2) {
+  const double n2 = n * n;
+  return {k1 * nu * (1.0 - n) / (n2 * d * d), k2 / (n2 * d)};
+}
+
 PorousCoefficients porous_coefficients(double n, double d, double nu, double k1, double k2) {
   require_in_open_closed("n", n, 0.0, 1.0);
   require_positive("d", d);

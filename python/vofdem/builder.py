@@ -135,11 +135,53 @@ def build_fluid(scene: Scene):
     return fluid
 
 
-def coupler_params(scene: Scene):
-    """CouplerParams of a scene: which couplings run, n_exp, porosity method."""
+def weir_spec(scene: Scene):
+    """WeirSpec of the scene's weir outline (the trapezoid on the bed z = 0)."""
+    w = scene.weir
+    spec = _core.WeirSpec()
+    spec.height, spec.crest = w.height, w.crest_length
+    spec.slope_up_deg, spec.slope_down_deg = w.upstream_slope_deg, w.downstream_slope_deg
+    spec.x_toe, spec.z_bed = w.toe_x, 0.0
+    return spec
+
+
+def solid_fraction(scene: Scene, stones) -> float:
+    """phi [-]: the 2D area fraction of the weir's outline covered by the stones' discs, 1 minus the
+    packing porosity that pack_weir reports (weir_porosity, sampled every 2 mm)."""
+    return 1.0 - float(_core.weir_porosity(stones, weir_spec(scene)))
+
+
+def disc_porosity(scene: Scene, stones):
+    """(n_s, phi): the porosity inside each disc used in eq. (11), and the packing's solid fraction phi
+    (None for the paper's mapping, which does not need it).
+
+    'paper': n_s = n_exp. Eq. (11) then maps a mean porosity 1 - phi (1 - n_exp) over the weir: the
+    voids between the discs (1 - phi, ~0.2 for 2D discs) and n_exp again inside them.
+    'bulk': n_s = 1 - (1 - n_exp) / phi, so that the weir's mean mapped porosity is the measured n_exp;
+    phi from the packed stones, computed once at build."""
+    st = scene.stones
+    if st.porosity_mapping == "paper":
+        return st.n_exp, None
+    phi = solid_fraction(scene, stones)
+    if not phi >= 1.0 - st.n_exp or phi <= 0.0:
+        n_s = 1.0 - (1.0 - st.n_exp) / phi if phi > 0.0 else float("-inf")
+        raise ValueError(f"stones.porosity_mapping = 'bulk': the stones cover phi = {phi:.4f} of the weir's outline, "
+                         f"below 1 - stones.n_exp = {1.0 - st.n_exp:.4f}, so the discs' inner porosity "
+                         f"n_s = 1 - (1 - n_exp) / phi = {n_s:.4f} would be negative (allowed: phi >= 1 - n_exp); "
+                         f"use porosity_mapping = 'paper' or a larger n_exp")
+    return 1.0 - (1.0 - st.n_exp) / phi, phi
+
+
+_STONE_DRAG = {"sphere": "SPHERE", "bed": "BED"}
+
+
+def coupler_params(scene: Scene, n_exp: float | None = None):
+    """CouplerParams of a scene: which couplings run, the drag model, n_exp, porosity method. n_exp:
+    the porosity inside each disc of eq. (11) (disc_porosity; default the scene's n_exp)."""
     fx = scene.effects
     p = _core.CouplerParams()
-    p.n_exp = scene.stones.n_exp
+    p.n_exp = scene.stones.n_exp if n_exp is None else float(n_exp)
+    p.stone_drag = getattr(_core.StoneDragModel, _STONE_DRAG[scene.stones.drag_model])
     p.max_dt = scene.numerics.max_dt
     flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
     if fx.dem:
@@ -168,7 +210,8 @@ def build_simulation(scene: Scene):
     params = stones.params
     params.fluid_density = fluid.params.rho_water
     stones.params = params
-    sim = _core.Coupler(fluid, stones, coupler_params(scene))
+    n_s, _ = disc_porosity(scene, stones)
+    sim = _core.Coupler(fluid, stones, coupler_params(scene, n_s))
     t, q = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table([float(v) for v in t], [float(v) for v in q])
     sim.update_porosity()

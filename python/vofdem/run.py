@@ -173,12 +173,12 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     except RuntimeError as e:
         if bar is not None:
             bar.close()
-        writer.close(f"failed: {e}", profile=_profile_tuple(sim))
+        writer.close(f"failed: {e}", profile=_profile_tuple(sim), extra_attrs=_model_attrs(sim, scene))
         raise SolverError(f"solver failed at t = {float(sim.time):.4g} s: {e} (output so far kept in {out})") from e
     except BaseException:
         if bar is not None:
             bar.close()
-        writer.close("interrupted", profile=_profile_tuple(sim))
+        writer.close("interrupted", profile=_profile_tuple(sim), extra_attrs=_model_attrs(sim, scene))
         raise
     if bar is not None:
         bar.close()
@@ -186,7 +186,7 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     simulated = float(sim.time) - t0
     table = profile_table(sim.profile, wall, simulated)
     writer.close("completed", profile=_profile_tuple(sim),
-                 extra_attrs={"wall_seconds": wall, "simulated_seconds": simulated})
+                 extra_attrs={"wall_seconds": wall, "simulated_seconds": simulated, **_model_attrs(sim, scene)})
     (out / "profile.md").write_text(table, encoding="utf-8")
     result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
                        [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"])
@@ -194,6 +194,16 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
                                   animation=scene.output.animation if animation is None else animation,
                                   files=result.files)
     return result
+
+
+def _model_attrs(sim, scene: Scene) -> dict:
+    """The model options of the run: the drag model, the porosity mapping and the porosity n_s inside
+    each disc that eq. (11) used (n_exp, or the bulk-consistent value computed at build)."""
+    out = {"drag_model": scene.stones.drag_model, "porosity_mapping": scene.stones.porosity_mapping}
+    params = getattr(sim, "params", None)
+    if params is not None and hasattr(params, "n_exp"):
+        out["disc_porosity"] = float(params.n_exp)
+    return out
 
 
 def analyse_run(data: RunData, scene: Scene) -> FailureAnalysis:

@@ -212,6 +212,13 @@ class Stones(_Section):
     k1: float = _p(200.0, None, 0.0, 1e4, "porous resistance coefficient k1, eq. (7) [-]; paper 200", "(]")
     k2: float = _p(2.8, None, 0.0, 100.0, "porous resistance coefficient k2, eq. (7) [-]; paper 2.8", "(]")
     added_mass_coefficient: float = _p(1.0, None, 0.0, 5.0, "C_M of M' = rho C_M V [-]; the paper's run 1.0")
+    drag_model: str = _choice("sphere", ("sphere", "bed"),
+                              "drag on the stones: 'sphere' (eqs. 16-18, the paper's) or 'bed' (the reaction of the "
+                              "porous resistance of eqs. 5-7 on the stones, rho n R per bulk volume)")
+    porosity_mapping: str = _choice("paper", ("paper", "bulk"),
+                                    "eq. (11) with n_exp inside each disc ('paper') or with the inner porosity "
+                                    "1 - (1 - n_exp) / phi that makes the weir's mean porosity n_exp ('bulk'; phi: the "
+                                    "packing's 2D solid fraction)")
     fix_bottom_layer: bool = _flag(True, "stones touching the bed are fixed to it (as in the paper)")
     positions: List[List[float]] = field(default_factory=list, metadata=dict(
         doc="explicit stone centres [[x m, z m], ...] instead of packing the weir; empty = pack"))

@@ -3,7 +3,9 @@
 //
 //   stones -> flow:  n = (A_f + A_s n_exp) / (A_f + A_s)                                     (11)
 //                    porous resistance R on u - n u_s (u_s: the stones' velocity, optional)    (5)-(7)
-//   flow -> stones:  F_x, F_z of eqs. (8)-(9) = drag (16)-(18) + pressure-gradient force F_S
+//   flow -> stones:  F_x, F_z of eqs. (8)-(9) = drag + pressure-gradient force F_S, the drag either
+//                    the single-sphere drag (16)-(18) (the paper's, default) or the bed drag, the
+//                    reaction of the porous resistance (5)-(7) on the stones (bed_drag.h)
 //                    buoyancy and added mass through the DEM's wet fraction w (eq. 9)
 //
 // One coupling step of dt [s] runs these stages in this order, each timed into profile() and each
@@ -67,13 +69,21 @@ enum CouplerEffect : unsigned {
   kCoupleDefault = kCoupleTwoWay,
 };
 
+// the drag on the stones (CouplerParams::stone_drag); one of the two, never both (that would count
+// the drag twice)
+enum class StoneDragModel {
+  kSphere = 0,  // single sphere in the pore velocity, eqs. (16)-(18) (the paper's)
+  kBed = 1,     // reaction of the flow's porous resistance, rho n R per bulk volume (bed_drag.h)
+};
+
 // parameters of the coupling, constant while stepping (SI units)
 struct CouplerParams {
   unsigned flags = kCoupleDefault;        // CouplerEffect bits
   double n_exp = 0.41;                    // packing porosity of the stones, eq. (11) [-]; 0.41 in the paper
   int lookup_m = 8;                       // sub-areas per side of the lookup table [-]; 8 (2 .. 64)
   double lookup_dr = 5e-4;                // radius spacing of the lookup tables [m]; 5e-4
-  DragLaw drag_law = DragLaw::kPaper;     // C_D = 0.4 + 24/Re (paper) or Schiller-Naumann
+  DragLaw drag_law = DragLaw::kPaper;     // C_D = 0.4 + 24/Re (paper) or Schiller-Naumann (sphere drag)
+  StoneDragModel stone_drag = StoneDragModel::kSphere;  // drag model of kCoupleDrag; kSphere (paper)
   double max_dt = 0.01;                   // largest exchange step [s]; 0.01 (sets the step without water)
   double stone_cfl = 0.5;                 // a stone moves at most this fraction of the smallest cell per step [-]; 0.5
   double drag_relaxation = 0.5;           // step at most this fraction of the drag relaxation time [-]; 0.5
@@ -130,7 +140,7 @@ class Coupler {
   StageProfile& profile() { return profile_; }
 
   // ---- state arrays ----
-  std::vector<double> disc_force_drag;      // drag on each stone [N], 2n (x, z)
+  std::vector<double> disc_force_drag;      // drag on each stone (sphere or bed drag) [N], 2n (x, z)
   std::vector<double> disc_force_pressure;  // pressure-gradient force on each stone [N], 2n
   std::vector<double> cell_base_porosity;   // porosity without the stones [-], ncell (from the fluid at construction)
   std::vector<double> cell_base_diameter;   // stone diameter of the base porosity [m], ncell
@@ -171,6 +181,7 @@ class Coupler {
   std::vector<double> n_old_, n_new_;
   std::vector<double> cell_U_, cell_W_, cell_dpdx_, cell_dpdz_;
   std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
+  std::vector<double> disc_drag_slope_;  // |dF_bed / du_p| of each stone at the last exchange [N s/m] (bed drag)
   std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
 
   StageProfile profile_;

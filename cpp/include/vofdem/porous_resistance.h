@@ -45,6 +45,11 @@ PorousCoefficients porous_coefficients(double n, double d, double nu, double k1 
 // the same without argument checks, for inner loops whose inputs were checked once; n in (0, 1]
 PorousCoefficients porous_coefficients_unchecked(double n, double d, double nu, double k1, double k2);
 
+// the same per unit volume of solid: n / (1 - n) (a, b) in the expanded form
+//   (k1 nu (1 - n) / (n^2 D^2), k2 / (n^2 D)),
+// finite as n -> 1; the reaction of the resistance on the stones (bed_drag.h). n in (0, 1), unchecked
+PorousCoefficients bed_coefficients_unchecked(double n, double d, double nu, double k1, double k2);
+
 // resistance per unit mass [m/s^2] of eqs. (5)-(6) for superficial velocity (u, w) [m/s]
 struct Resistance {
   double rx, rz;
