@@ -50,6 +50,11 @@ def test_callable_and_table_hydrographs():
 
 def test_toml_file_equals_python_scene_and_round_trips():
     assert load_scene(ROOT / "scenes" / "maeno2008.toml") == Scene.maeno2008()
+    # the consistent variant differs from the paper's scene in its name and the two coupling options only
+    c = load_scene(ROOT / "scenes" / "maeno2008_consistent.toml")
+    assert (c.stones.drag_model, c.stones.porosity_mapping) == ("bed", "bulk")
+    c.name, c.stones.drag_model, c.stones.porosity_mapping = "maeno2008", "sphere", "paper"
+    assert c == Scene.maeno2008()
     s = Scene.maeno2008().quick().replace(seed=7)
     assert Scene.from_toml(s.to_toml()) == s
 
