@@ -347,9 +347,9 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
   s.viscous = kInf;
+  // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
+  if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
-    // the viscosities of the current phases (stable_dt may be called between steps)
-    update_phase_properties();
     s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
                                   params_.viscous_scheme == ViscousScheme::kImplicitVertical);
   }
@@ -359,7 +359,6 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
                   : kInf;
   s.turbulence = kInf;
   if (params_.flags & kFlowTurbulence) {
-    update_phase_properties();
     s.turbulence = turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
   }
   s.max_dt = params_.max_dt;
