@@ -36,9 +36,12 @@ void pore_velocities(const Grid2D& g, const MomentumFields& f, MomentumScratch& 
 
 // corner viscosity: arithmetic mean of the cells touching the corner; with an eddy part, that part by
 // harmonic mean (0 when a cell has none) and the molecular rest by arithmetic mean
-void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, std::vector<double>& cm) {
+// cm: (nx + 1) (nz + 1) corners; inv_eddy: ncell work values
+void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, double* cm, double* inv_eddy) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  cm.resize(static_cast<size_t>(sx) * (nz + 1));
+  // 1 / eddy once per cell rather than at each of its four corners (the same values; unused where 0)
+  if (eddy)
+    for (int c = 0; c < g.ncell(); ++c) inv_eddy[c] = eddy[c] > 0.0 ? 1.0 / eddy[c] : 0.0;
   for (int kk = 0; kk <= nz; ++kk) {
     const int k0 = std::max(kk - 1, 0), k1 = std::min(kk, nz - 1);
     for (int ii = 0; ii <= nx; ++ii) {
@@ -52,7 +55,7 @@ void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, std
       const double e[4] = {eddy[c[0]], eddy[c[1]], eddy[c[2]], eddy[c[3]]};
       const double emean = 0.25 * (e[0] + e[1] + e[2] + e[3]);
       const bool all = e[0] > 0.0 && e[1] > 0.0 && e[2] > 0.0 && e[3] > 0.0;
-      const double eh = all ? 4.0 / (1.0 / e[0] + 1.0 / e[1] + 1.0 / e[2] + 1.0 / e[3]) : 0.0;
+      const double eh = all ? 4.0 / (inv_eddy[c[0]] + inv_eddy[c[1]] + inv_eddy[c[2]] + inv_eddy[c[3]]) : 0.0;
       cm[ii + sx * kk] = mean - emean + eh;
     }
   }
@@ -88,7 +91,9 @@ void wall_function_shear(const Grid2D& g, const MomentumFields& f, const Momentu
 void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, s.corner_mu);
+  s.corner_mu.resize(static_cast<size_t>(sx) * (nz + 1));
+  s.cell_inv_eddy.resize(g.ncell());
+  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, s.corner_mu.data(), s.cell_inv_eddy.data());
   std::vector<double>& tau = s.corner_tau;
   tau.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
   // bed: no-slip ghost -u gives du/dz = 2u/dz; a slip bed carries no shear
@@ -372,7 +377,10 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm);
+  // corners first, then the per-cell work values of the corner viscosity
+  const std::size_t ncorner = static_cast<std::size_t>(sx) * (nz + 1);
+  cm.resize(ncorner + g.ncell());
+  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm.data(), cm.data() + ncorner);
   double worst = 0.0;
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);

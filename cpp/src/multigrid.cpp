@@ -333,21 +333,25 @@ double Multigrid::multiply(const double* x, double* q) const {
   const MultigridLevel& f = levels_[0];
   const int w = f.w, nx = f.nx;
   const double *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
-  for (int k = 0; k < f.nz; ++k) {
-    const int row = w * (k + 1) + 1;
-    for (int i = 0; i < nx; ++i) {
-      const int j = row + i;
-      q[j] = d[j] * x[j] - we[j] * x[j - 1] - we[j + 1] * x[j + 1] - so[j] * x[j - w] - so[j + w] * x[j + w];
-    }
-  }
+  auto row_of = [&](int j) {
+    return d[j] * x[j] - we[j] * x[j - 1] - we[j + 1] * x[j + 1] - so[j] * x[j - w] - so[j + w] * x[j + w];
+  };
   // x . q with four partial sums (a single chain of adds waits on their latency), in a fixed order
   double s[4] = {0.0, 0.0, 0.0, 0.0};
   for (int k = 0; k < f.nz; ++k) {
     const int row = w * (k + 1) + 1;
     int i = 0;
     for (; i + 4 <= nx; i += 4)
-      for (int l = 0; l < 4; ++l) s[l] += x[row + i + l] * q[row + i + l];
-    for (; i < nx; ++i) s[0] += x[row + i] * q[row + i];
+      for (int l = 0; l < 4; ++l) {
+        const int j = row + i + l;
+        q[j] = row_of(j);
+        s[l] += x[j] * q[j];
+      }
+    for (; i < nx; ++i) {
+      const int j = row + i;
+      q[j] = row_of(j);
+      s[0] += x[j] * q[j];
+    }
   }
   return (s[0] + s[1]) + (s[2] + s[3]);
 }

@@ -71,6 +71,7 @@ struct MomentumScratch {
   std::vector<double> pore_u, pore_w;          // u / n on faces (0 on closed faces)
   std::vector<double> corner_mu, corner_tau;   // (nx + 1) x (nz + 1) corners
   std::vector<double> corner_tau_u;            // corner stress the u-equation takes explicitly
+  std::vector<double> cell_inv_eddy;           // 1 / eddy viscosity of each cell (harmonic corner mean)
   std::vector<double> tri_a, tri_b, tri_c, tri_d;  // tridiagonal systems of all columns, (nx + 1) x (nz + 1)
   std::vector<double> cell_flux_u, cell_flux_w;      // x-flux of u, z-flux of w at cell centres
   std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
