@@ -156,7 +156,7 @@ void KEpsilonModel::check_sizes(const std::vector<double>& face_u, const std::ve
   require_size("cell_nu", cell_nu.size(), grid_.ncell());
 }
 
-void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity,
+void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                                           const std::vector<double>& cell_nu) const {
   if (!has(params_.flags, kKEpsDiffusion)) return;
   const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
@@ -165,8 +165,8 @@ void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosi
     const double half_z = 0.5 * grid_.dz(k);
     for (int i = 0; i < grid_.nx(); ++i) {
       const int c = grid_.cell(i, k);
+      if (!is_active(c, cell_porosity, cell_F)) continue;  // neither a solved cell nor a neighbour
       const double n = cell_porosity[c];
-      if (!(n > 0.0)) continue;  // never a neighbour (closed)
       for (int e = 0; e < 2; ++e) {
         const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
         half_res_x_[e][c] = half_x / cond;
@@ -382,7 +382,7 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
   // balance alone (the uniform decay still exact). Passes 1..sweeps are Jacobi sweeps of the
   // backward-Euler system. Every pass is a convex combination of positive values plus a
   // non-negative source. Passes alternate between target and scratch; the last writes target.
-  half_cell_resistances(cell_porosity, cell_nu);
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
   rows_k_.clear();  // capacity ncell reserved at construction: no allocation here
   rows_eps_.clear();
   std::vector<JacobiRow>* rows[2] = {&rows_k_, &rows_eps_};
@@ -518,7 +518,7 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
                                 const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                                 const std::vector<double>& cell_nu) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
-  half_cell_resistances(cell_porosity, cell_nu);
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
   double rate_max = 0.0;
   FaceCoef fc[4];
   for (int k = 0; k < grid_.nz(); ++k) {

@@ -197,8 +197,9 @@ class KEpsilonModel {
   bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const {
     return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
   }
-  // half-cell diffusion resistances of every open cell for face_coefficients (0.5 dx / cond, 0.5 dz / cond)
-  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_nu) const;
+  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond)
+  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                             const std::vector<double>& cell_nu) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
   // coefficients (per unit volume) of the 4 faces of cell (i, k), for k and for eps
   void face_coefficients(int i, int k, const std::vector<double>& face_u,
