@@ -81,6 +81,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   u_star_.assign(nfx, 0.0);
   w_star_.assign(nfz, 0.0);
   rhs_.assign(nc, 0.0);
+  cfl_row_.assign(nfx, 0.0);
   inlet_u_.assign(grid_.nz(), 0.0);
   for (int k = 0; k < grid_.nz(); ++k) inlet_dz_.push_back(grid_.dz(k));
   problem_.resize(grid_);
@@ -307,25 +308,24 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
   double worst = 0.0;
   kind = 0;
   index = -1;
+  // each row's Courant numbers first (a division per face, vectorised; closed faces give inf or nan,
+  // skipped below), then the largest of the open faces
+  double* row = cfl_row_.data();
   for (int k = 0; k < nz; ++k) {
     const double inv_h = dt / grid_.dx();
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const double n = face_x_porosity[j];
-      if (n <= 0.0) continue;
-      const double c = std::abs(face_u[j]) / n * inv_h;
-      if (c > worst) worst = c, kind = 1, index = j;
-    }
+    const double* u = face_u.data() + sx * k;
+    const double* n = face_x_porosity.data() + sx * k;
+    for (int i = 0; i <= nx; ++i) row[i] = std::abs(u[i]) / n[i] * inv_h;
+    for (int i = 0; i <= nx; ++i)
+      if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 1, index = i + sx * k;
   }
   for (int k = 0; k <= nz; ++k) {
     const double h = std::min(grid_.dz(std::max(k - 1, 0)), grid_.dz(std::min(k, nz - 1)));
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const double n = face_z_porosity[j];
-      if (n <= 0.0) continue;
-      const double c = std::abs(face_w[j]) / n * dt / h;
-      if (c > worst) worst = c, kind = 2, index = j;
-    }
+    const double* w = face_w.data() + nx * k;
+    const double* n = face_z_porosity.data() + nx * k;
+    for (int i = 0; i < nx; ++i) row[i] = std::abs(w[i]) / n[i] * dt / h;
+    for (int i = 0; i < nx; ++i)
+      if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 2, index = i + nx * k;
   }
   return worst;
 }
