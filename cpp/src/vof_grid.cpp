@@ -156,9 +156,13 @@ void VOFGrid::update_face_porosity(bool displace) {
   check_sizes();
   if (!displace) cell_porosity_prev_ = cell_porosity;
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  // the checks' calls (which build the message) only for a value that fails
   for (int c = 0; c < grid_.ncell(); ++c) {
-    require_in_closed("cell_porosity", cell_porosity[c], 0.0, 1.0);
-    if (cell_porosity[c] > 0.0 && cell_porosity[c] < 1.0) require_positive("cell_stone_diameter", cell_stone_diameter[c]);
+    const double n = cell_porosity[c];
+    if (!(n >= 0.0 && n <= 1.0)) require_in_closed("cell_porosity", n, 0.0, 1.0);
+    const double d = cell_stone_diameter[c];
+    if (n > 0.0 && n < 1.0 && !(d > 0.0 && d <= std::numeric_limits<double>::max()))
+      require_positive("cell_stone_diameter", d);
   }
   // a face is as open as its tighter neighbour and takes that neighbour's stone diameter
   auto pick = [&](int a, int b, double& n, double& d) {
