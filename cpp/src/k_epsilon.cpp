@@ -108,6 +108,7 @@ KEpsilonModel::KEpsilonModel(const Grid2D& grid, const KEpsilonParams& params, c
   scratch_eps_.assign(n, 0.0);
   rows_k_.reserve(n);
   rows_eps_.reserve(n);
+  for (int e = 0; e < 2; ++e) half_res_x_[e].assign(n, 0.0), half_res_z_[e].assign(n, 0.0);
   stage_setup_ = profile_.add_stage("k-eps setup");
   stage_wall_ = profile_.add_stage("k-eps wall functions");
   stage_production_ = profile_.add_stage("k-eps production");
@@ -155,9 +156,24 @@ void KEpsilonModel::check_sizes(const std::vector<double>& face_u, const std::ve
   require_size("cell_nu", cell_nu.size(), grid_.ncell());
 }
 
-bool KEpsilonModel::is_active(int c, const std::vector<double>& cell_porosity,
-                              const std::vector<double>& cell_F) const {
-  return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
+void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                                          const std::vector<double>& cell_nu) const {
+  if (!has(params_.flags, kKEpsDiffusion)) return;
+  const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
+  const double half_x = 0.5 * grid_.dx();
+  for (int k = 0; k < grid_.nz(); ++k) {
+    const double half_z = 0.5 * grid_.dz(k);
+    for (int i = 0; i < grid_.nx(); ++i) {
+      const int c = grid_.cell(i, k);
+      if (!is_active(c, cell_porosity, cell_F)) continue;  // neither a solved cell nor a neighbour
+      const double n = cell_porosity[c];
+      for (int e = 0; e < 2; ++e) {
+        const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
+        half_res_x_[e][c] = half_x / cond;
+        half_res_z_[e][c] = half_z / cond;
+      }
+    }
+  }
 }
 
 void KEpsilonModel::classify_cells(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) {
@@ -319,11 +335,9 @@ void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& f
       if (dif) {
         // series resistance of the two half cells (Patankar's harmonic mean): exact for the flux
         // of the log layer's eps ~ 1/z with n (nu + nu_t/sigma) ~ z, on any z spacing
-        const double half_p = 0.5 * len[f], half_n = 0.5 * (f < 2 ? dx : grid_.dz(kn));
         for (int e = 0; e < 2; ++e) {
-          const double cond_p = n_p * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
-          const double cond_n = cell_porosity[cn] * (cell_nu[cn] + cell_nut[cn] * inv_sigma[e]);
-          o.a[e] += 1.0 / (len[f] * (half_p / cond_p + half_n / cond_n));
+          const double* res = f < 2 ? half_res_x_[e].data() : half_res_z_[e].data();
+          o.a[e] += 1.0 / (len[f] * (res[c] + res[cn]));
         }
       }
       continue;
@@ -368,6 +382,7 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
   // balance alone (the uniform decay still exact). Passes 1..sweeps are Jacobi sweeps of the
   // backward-Euler system. Every pass is a convex combination of positive values plus a
   // non-negative source. Passes alternate between target and scratch; the last writes target.
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
   rows_k_.clear();  // capacity ncell reserved at construction: no allocation here
   rows_eps_.clear();
   std::vector<JacobiRow>* rows[2] = {&rows_k_, &rows_eps_};
@@ -503,6 +518,7 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
                                 const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                                 const std::vector<double>& cell_nu) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
   double rate_max = 0.0;
   FaceCoef fc[4];
   for (int k = 0; k < grid_.nz(); ++k) {

@@ -36,9 +36,12 @@ void pore_velocities(const Grid2D& g, const MomentumFields& f, MomentumScratch& 
 
 // corner viscosity: arithmetic mean of the cells touching the corner; with an eddy part, that part by
 // harmonic mean (0 when a cell has none) and the molecular rest by arithmetic mean
-void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, std::vector<double>& cm) {
+// cm: (nx + 1) (nz + 1) corners; inv_eddy: ncell work values
+void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, double* cm, double* inv_eddy) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  cm.resize(static_cast<size_t>(sx) * (nz + 1));
+  // 1 / eddy once per cell rather than at each of its four corners (the same values; unused where 0)
+  if (eddy)
+    for (int c = 0; c < g.ncell(); ++c) inv_eddy[c] = eddy[c] > 0.0 ? 1.0 / eddy[c] : 0.0;
   for (int kk = 0; kk <= nz; ++kk) {
     const int k0 = std::max(kk - 1, 0), k1 = std::min(kk, nz - 1);
     for (int ii = 0; ii <= nx; ++ii) {
@@ -52,7 +55,7 @@ void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, std
       const double e[4] = {eddy[c[0]], eddy[c[1]], eddy[c[2]], eddy[c[3]]};
       const double emean = 0.25 * (e[0] + e[1] + e[2] + e[3]);
       const bool all = e[0] > 0.0 && e[1] > 0.0 && e[2] > 0.0 && e[3] > 0.0;
-      const double eh = all ? 4.0 / (1.0 / e[0] + 1.0 / e[1] + 1.0 / e[2] + 1.0 / e[3]) : 0.0;
+      const double eh = all ? 4.0 / (inv_eddy[c[0]] + inv_eddy[c[1]] + inv_eddy[c[2]] + inv_eddy[c[3]]) : 0.0;
       cm[ii + sx * kk] = mean - emean + eh;
     }
   }
@@ -88,7 +91,9 @@ void wall_function_shear(const Grid2D& g, const MomentumFields& f, const Momentu
 void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, s.corner_mu);
+  s.corner_mu.resize(static_cast<size_t>(sx) * (nz + 1));
+  s.cell_inv_eddy.resize(g.ncell());
+  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, s.corner_mu.data(), s.cell_inv_eddy.data());
   std::vector<double>& tau = s.corner_tau;
   tau.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
   // bed: no-slip ghost -u gives du/dz = 2u/dz; a slip bed carries no shear
@@ -133,37 +138,45 @@ void explicit_part_for_u(const Grid2D& g, const MomentumFields& f, const Momentu
 void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
                                  std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  s.tri_a.resize(nz + 1), s.tri_b.resize(nz + 1), s.tri_c.resize(nz + 1), s.tri_d.resize(nz + 1);
+  // the systems of all columns, row-major (row k of column i at i + sx k), solved together row by row:
+  // the same operations per column as solve_tridiagonal, in an order the compiler can vectorise
+  const std::size_t size = static_cast<std::size_t>(sx) * (nz + 1);
+  s.tri_a.resize(size), s.tri_b.resize(size), s.tri_c.resize(size), s.tri_d.resize(size);
   double *a = s.tri_a.data(), *b = s.tri_b.data(), *c = s.tri_c.data(), *d = s.tri_d.data();
   const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
-  // u on the interior x-faces: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear
-  for (int i = 1; i < nx; ++i) {
-    for (int k = 0; k < nz; ++k) {
+  // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear
+  for (int k = 0; k < nz; ++k) {
+    const double dz_lo = k > 0 ? g.z_center(k) - g.z_center(k - 1) : 0.0;
+    const double dz_up = k < nz - 1 ? g.z_center(k + 1) - g.z_center(k) : 0.0;
+    for (int i = 1; i < nx; ++i) {
       const int j = i + sx * k;
-      a[k] = c[k] = 0.0, b[k] = 1.0, d[k] = f.face_u[j];
+      a[j] = c[j] = 0.0, b[j] = 1.0, d[j] = f.face_u[j];
       if (f.face_x_porosity[j] <= 0.0) continue;
       const double r = dt / (f.face_x_rho[j] * g.dz(k));
-      const double lo = k > 0 ? s.corner_mu[i + sx * k] / (g.z_center(k) - g.z_center(k - 1))
-                              : (bed_no_slip ? 2.0 * s.corner_mu[i] / g.dz(0) : 0.0);
-      const double up = k < nz - 1 ? s.corner_mu[i + sx * (k + 1)] / (g.z_center(k + 1) - g.z_center(k)) : 0.0;
-      b[k] = 1.0 + r * (lo + up);
+      const double lo = k > 0 ? s.corner_mu[i + sx * k] / dz_lo : (bed_no_slip ? 2.0 * s.corner_mu[i] / g.dz(0) : 0.0);
+      const double up = k < nz - 1 ? s.corner_mu[i + sx * (k + 1)] / dz_up : 0.0;
+      b[j] = 1.0 + r * (lo + up);
       // a closed neighbour is a known zero: its coefficient drops out of the system
-      if (k > 0 && f.face_x_porosity[j - sx] > 0.0) a[k] = -r * lo;
-      if (k < nz - 1 && f.face_x_porosity[j + sx] > 0.0) c[k] = -r * up;
+      if (k > 0 && f.face_x_porosity[j - sx] > 0.0) a[j] = -r * lo;
+      if (k < nz - 1 && f.face_x_porosity[j + sx] > 0.0) c[j] = -r * up;
     }
-    solve_tridiagonal(nz, a, b, c, d);
-    for (int k = 0; k < nz; ++k)
-      if (f.face_x_porosity[i + sx * k] > 0.0) u_star[i + sx * k] += d[k] - f.face_u[i + sx * k];
   }
-  // w on the interior z-faces k = 1..nz-1; bed w = 0 and the top face's w^n are known
+  solve_tridiagonal_rows(nz, 1, nx, sx, a, b, c, d);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 1; i < nx; ++i) {
+      const int j = i + sx * k;
+      if (f.face_x_porosity[j] > 0.0) u_star[j] += d[j] - f.face_u[j];
+    }
+  // w on the interior z-faces k = 1..nz-1 (system row k - 1); bed w = 0 and the top face's w^n are known
   if (nz < 2) return;
   const int m = nz - 1;
-  for (int i = 0; i < nx; ++i) {
-    for (int k = 1; k < nz; ++k) {
-      const int j = i + nx * k, r0 = k - 1;
+  for (int k = 1; k < nz; ++k) {
+    const double dzc = g.z_center(k) - g.z_center(k - 1);
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k, r0 = i + sx * (k - 1);
       a[r0] = c[r0] = 0.0, b[r0] = 1.0, d[r0] = f.face_w[j];
       if (f.face_z_porosity[j] <= 0.0) continue;
-      const double r = dt / (f.face_z_rho[j] * (g.z_center(k) - g.z_center(k - 1)));
+      const double r = dt / (f.face_z_rho[j] * dzc);
       const double lo = 2.0 * f.cell_mu[j - nx] / g.dz(k - 1), up = 2.0 * f.cell_mu[j] / g.dz(k);
       b[r0] = 1.0 + r * (lo + up);
       if (k > 1 && f.face_z_porosity[j - nx] > 0.0) a[r0] = -r * lo;
@@ -173,10 +186,11 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
         d[r0] += r * up * f.face_w[j + nx];  // top face: known (0 under a lid)
       }
     }
-    solve_tridiagonal(m, a, b, c, d);
-    for (int k = 1; k < nz; ++k)
-      if (f.face_z_porosity[i + nx * k] > 0.0) w_star[i + nx * k] += d[k - 1] - f.face_w[i + nx * k];
   }
+  solve_tridiagonal_rows(m, 0, nx, sx, a, b, c, d);
+  for (int k = 1; k < nz; ++k)
+    for (int i = 0; i < nx; ++i)
+      if (f.face_z_porosity[i + nx * k] > 0.0) w_star[i + nx * k] += d[i + sx * (k - 1)] - f.face_w[i + nx * k];
 }
 
 // convective fluxes of both momentum components: cell centres and corners
@@ -329,6 +343,24 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
   if (implicit) implicit_vertical_diffusion(g, f, bc, dt, u_star, w_star, s);
 }
 
+void solve_tridiagonal_rows(int m, int i0, int i1, int stride, const double* a, double* b, const double* c,
+                            double* d) {
+  for (int k = 1; k < m; ++k) {
+    const int r = stride * k, p = r - stride;
+    for (int i = i0; i < i1; ++i) {
+      const double q = a[r + i] / b[p + i];
+      b[r + i] -= q * c[p + i];
+      d[r + i] -= q * d[p + i];
+    }
+  }
+  const int last = stride * (m - 1);
+  for (int i = i0; i < i1; ++i) d[last + i] /= b[last + i];
+  for (int k = m - 2; k >= 0; --k) {
+    const int r = stride * k, n = r + stride;
+    for (int i = i0; i < i1; ++i) d[r + i] = (d[r + i] - c[r + i] * d[n + i]) / b[r + i];
+  }
+}
+
 void solve_tridiagonal(int m, const double* a, double* b, const double* c, double* d) {
   for (int k = 1; k < m; ++k) {
     const double q = a[k] / b[k - 1];
@@ -345,7 +377,10 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm);
+  // corners first, then the per-cell work values of the corner viscosity
+  const std::size_t ncorner = static_cast<std::size_t>(sx) * (nz + 1);
+  cm.resize(ncorner + g.ncell());
+  corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm.data(), cm.data() + ncorner);
   double worst = 0.0;
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);

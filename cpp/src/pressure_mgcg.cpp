@@ -15,6 +15,43 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// dot products and updates of the CG vectors with four partial sums: one serial chain of adds would
+// wait on the add latency; the fixed order keeps the result deterministic
+double dot(const double* a, const double* b, std::size_t n) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    s0 += a[j] * b[j];
+    s1 += a[j + 1] * b[j + 1];
+    s2 += a[j + 2] * b[j + 2];
+    s3 += a[j + 3] * b[j + 3];
+  }
+  for (; j < n; ++j) s0 += a[j] * b[j];
+  return (s0 + s1) + (s2 + s3);
+}
+
+// x += alpha d, r -= alpha q; returns r . r
+double update_and_norm(double alpha, const double* d, const double* q, double* x, double* r, std::size_t n) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    for (std::size_t l = 0; l < 4; ++l) {
+      x[j + l] += alpha * d[j + l];
+      r[j + l] -= alpha * q[j + l];
+    }
+    s0 += r[j] * r[j];
+    s1 += r[j + 1] * r[j + 1];
+    s2 += r[j + 2] * r[j + 2];
+    s3 += r[j + 3] * r[j + 3];
+  }
+  for (; j < n; ++j) {
+    x[j] += alpha * d[j];
+    r[j] -= alpha * q[j];
+    s0 += r[j] * r[j];
+  }
+  return (s0 + s1) + (s2 + s3);
+}
 }  // namespace
 
 MultigridCGPressureSolver::MultigridCGPressureSolver(const PressureSolverParams& params) : params_(params) {
@@ -139,8 +176,7 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
     if (it >= params_.max_iterations || restart >= 3 || !std::isfinite(rel)) fail(it, rel, tol, fnorm);
     mg_.apply(r_.data(), z_.data());
     project(z_.data());
-    double rz = 0.0;
-    for (std::size_t j = 0; j < n; ++j) rz += r_[j] * z_[j];
+    double rz = dot(r_.data(), z_.data(), n);
     d_ = z_;
     while (it < params_.max_iterations) {
       ++it;
@@ -151,17 +187,11 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
         break;
       }
       const double alpha = rz / dq;
-      rr = 0.0;
-      for (std::size_t j = 0; j < n; ++j) {
-        x_[j] += alpha * d_[j];
-        r_[j] -= alpha * q_[j];
-        rr += r_[j] * r_[j];
-      }
+      rr = update_and_norm(alpha, d_.data(), q_.data(), x_.data(), r_.data(), n);
       if (std::sqrt(rr) <= tol * fnorm) break;
       mg_.apply(r_.data(), z_.data());
       project(z_.data());
-      double rz_new = 0.0;
-      for (std::size_t j = 0; j < n; ++j) rz_new += r_[j] * z_[j];
+      const double rz_new = dot(r_.data(), z_.data(), n);
       const double beta = rz_new / rz;
       rz = rz_new;
       for (std::size_t j = 0; j < n; ++j) d_[j] = z_[j] + beta * d_[j];

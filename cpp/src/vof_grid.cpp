@@ -81,6 +81,7 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   u_star_.assign(nfx, 0.0);
   w_star_.assign(nfz, 0.0);
   rhs_.assign(nc, 0.0);
+  cfl_row_.assign(nfx, 0.0);
   inlet_u_.assign(grid_.nz(), 0.0);
   for (int k = 0; k < grid_.nz(); ++k) inlet_dz_.push_back(grid_.dz(k));
   problem_.resize(grid_);
@@ -155,9 +156,13 @@ void VOFGrid::update_face_porosity(bool displace) {
   check_sizes();
   if (!displace) cell_porosity_prev_ = cell_porosity;
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  // the checks' calls (which build the message) only for a value that fails
   for (int c = 0; c < grid_.ncell(); ++c) {
-    require_in_closed("cell_porosity", cell_porosity[c], 0.0, 1.0);
-    if (cell_porosity[c] > 0.0 && cell_porosity[c] < 1.0) require_positive("cell_stone_diameter", cell_stone_diameter[c]);
+    const double n = cell_porosity[c];
+    if (!(n >= 0.0 && n <= 1.0)) require_in_closed("cell_porosity", n, 0.0, 1.0);
+    const double d = cell_stone_diameter[c];
+    if (n > 0.0 && n < 1.0 && !(d > 0.0 && d <= std::numeric_limits<double>::max()))
+      require_positive("cell_stone_diameter", d);
   }
   // a face is as open as its tighter neighbour and takes that neighbour's stone diameter
   auto pick = [&](int a, int b, double& n, double& d) {
@@ -307,25 +312,24 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
   double worst = 0.0;
   kind = 0;
   index = -1;
+  // each row's Courant numbers first (a division per face, vectorised; closed faces give inf or nan,
+  // skipped below), then the largest of the open faces
+  double* row = cfl_row_.data();
   for (int k = 0; k < nz; ++k) {
     const double inv_h = dt / grid_.dx();
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const double n = face_x_porosity[j];
-      if (n <= 0.0) continue;
-      const double c = std::abs(face_u[j]) / n * inv_h;
-      if (c > worst) worst = c, kind = 1, index = j;
-    }
+    const double* u = face_u.data() + sx * k;
+    const double* n = face_x_porosity.data() + sx * k;
+    for (int i = 0; i <= nx; ++i) row[i] = std::abs(u[i]) / n[i] * inv_h;
+    for (int i = 0; i <= nx; ++i)
+      if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 1, index = i + sx * k;
   }
   for (int k = 0; k <= nz; ++k) {
     const double h = std::min(grid_.dz(std::max(k - 1, 0)), grid_.dz(std::min(k, nz - 1)));
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const double n = face_z_porosity[j];
-      if (n <= 0.0) continue;
-      const double c = std::abs(face_w[j]) / n * dt / h;
-      if (c > worst) worst = c, kind = 2, index = j;
-    }
+    const double* w = face_w.data() + nx * k;
+    const double* n = face_z_porosity.data() + nx * k;
+    for (int i = 0; i < nx; ++i) row[i] = std::abs(w[i]) / n[i] * dt / h;
+    for (int i = 0; i < nx; ++i)
+      if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 2, index = i + nx * k;
   }
   return worst;
 }
@@ -347,9 +351,9 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
   s.viscous = kInf;
+  // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
+  if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
-    // the viscosities of the current phases (stable_dt may be called between steps)
-    update_phase_properties();
     s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
                                   params_.viscous_scheme == ViscousScheme::kImplicitVertical);
   }
@@ -359,7 +363,6 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
                   : kInf;
   s.turbulence = kInf;
   if (params_.flags & kFlowTurbulence) {
-    update_phase_properties();
     s.turbulence = turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
   }
   s.max_dt = params_.max_dt;
@@ -426,9 +429,18 @@ void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, 
 
 void VOFGrid::check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind) {
   // a sum propagates any non-finite value: one pass of adds, searched only on failure
-  double s = 0.0;
-  for (double v : a) s += v * 0.0;
-  if (s == 0.0) return;
+  // four partial sums: a single chain of adds would wait on their latency
+  const std::size_t n = a.size();
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    s0 += a[j] * 0.0;
+    s1 += a[j + 1] * 0.0;
+    s2 += a[j + 2] * 0.0;
+    s3 += a[j + 3] * 0.0;
+  }
+  for (; j < n; ++j) s0 += a[j] * 0.0;
+  if ((s0 + s1) + (s2 + s3) == 0.0) return;
   for (size_t j = 0; j < a.size(); ++j)
     if (!std::isfinite(a[j])) fail(stage, std::string("non-finite ") + name + " (" + format_value(a[j]) + ")", kind,
                                    static_cast<int>(j));

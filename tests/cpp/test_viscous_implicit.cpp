@@ -221,3 +221,30 @@ TEST(CornerViscosity, EddyPartByHarmonicMeanKeepsWaterTurbulenceOffTheAirFaces) 
   fh.cell_mu_eddy = zero.data();
   EXPECT_EQ(viscous_stable_dt(g, fh, cm, true), viscous_stable_dt(g, fa, cm, true));
 }
+
+TEST(ImplicitViscosity, RowWiseTridiagonalSolveMatchesTheSingleColumnSolveBitForBit) {
+  // columns [1, 6) of a row-major block with stride 7 (columns 0 and 6 untouched), diagonally dominant
+  // random-like rows, some decoupled (a = c = 0) as closed faces make them
+  const int m = 9, stride = 7, i0 = 1, i1 = 6;
+  std::vector<double> a(m * stride), b(m * stride), c(m * stride), d(m * stride);
+  for (int k = 0; k < m; ++k)
+    for (int i = 0; i < stride; ++i) {
+      const int j = i + stride * k;
+      const double s = std::sin(1.3 * j + 0.7), t = std::cos(2.1 * j);
+      a[j] = k > 0 && (i + k) % 4 ? -0.4 - 0.3 * s * s : 0.0;
+      c[j] = k + 1 < m && (i + 2 * k) % 5 ? -0.5 - 0.2 * t * t : 0.0;
+      b[j] = 1.0 - a[j] - c[j] + 0.1 * std::abs(s);
+      d[j] = 3.0 * s - t;
+    }
+  const std::vector<double> b0 = b, d0 = d;
+  solve_tridiagonal_rows(m, i0, i1, stride, a.data(), b.data(), c.data(), d.data());
+  for (int i = 0; i < stride; ++i) {
+    std::vector<double> ac(m), bc(m), cc(m), dc(m);
+    for (int k = 0; k < m; ++k) {
+      const int j = i + stride * k;
+      ac[k] = a[j], bc[k] = b0[j], cc[k] = c[j], dc[k] = d0[j];
+    }
+    if (i >= i0 && i < i1) solve_tridiagonal(m, ac.data(), bc.data(), cc.data(), dc.data());
+    for (int k = 0; k < m; ++k) EXPECT_EQ(d[i + stride * k], dc[k]) << "column " << i << " row " << k;
+  }
+}

@@ -194,7 +194,12 @@ class KEpsilonModel {
                           const std::vector<double>& cell_porosity);
   void apply_wall_functions(const std::vector<double>& face_u, const std::vector<double>& face_w,
                             const std::vector<double>& cell_porosity, const std::vector<double>& cell_nu);
-  bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const;
+  bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const {
+    return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
+  }
+  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond)
+  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                             const std::vector<double>& cell_nu) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
   // coefficients (per unit volume) of the 4 faces of cell (i, k), for k and for eps
   void face_coefficients(int i, int k, const std::vector<double>& face_u,
@@ -222,6 +227,8 @@ class KEpsilonModel {
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
   std::vector<JacobiRow> rows_k_, rows_eps_;   // the systems of the solved cells, reused by the sweeps
+  // half a cell over its conductance n (nu + nu_t / sigma) [s/m], along x and along z, for k and for eps
+  mutable std::vector<double> half_res_x_[2], half_res_z_[2];
 };
 
 }  // namespace vofdem

@@ -71,7 +71,8 @@ struct MomentumScratch {
   std::vector<double> pore_u, pore_w;          // u / n on faces (0 on closed faces)
   std::vector<double> corner_mu, corner_tau;   // (nx + 1) x (nz + 1) corners
   std::vector<double> corner_tau_u;            // corner stress the u-equation takes explicitly
-  std::vector<double> tri_a, tri_b, tri_c, tri_d;  // tridiagonal system of one column (nz + 1)
+  std::vector<double> cell_inv_eddy;           // 1 / eddy viscosity of each cell (harmonic corner mean)
+  std::vector<double> tri_a, tri_b, tri_c, tri_d;  // tridiagonal systems of all columns, (nx + 1) x (nz + 1)
   std::vector<double> cell_flux_u, cell_flux_w;      // x-flux of u, z-flux of w at cell centres
   std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
 };
@@ -100,5 +101,11 @@ double viscous_stable_dt(const Grid2D& grid, const MomentumFields& fields, std::
 // solves a x = d in place (d becomes x) for a tridiagonal matrix: sub-diagonal a, diagonal b,
 // super-diagonal c, rows [0, m); Thomas algorithm, stable for the diagonally dominant rows used here
 void solve_tridiagonal(int m, const double* a, double* b, const double* c, double* d);
+
+// the same for the independent systems of columns i in [i0, i1) stored row-major (row k of column i at
+// i + stride k): every column gets exactly the operations of solve_tridiagonal, row by row across the
+// columns so that the loops vectorise
+void solve_tridiagonal_rows(int m, int i0, int i1, int stride, const double* a, double* b, const double* c,
+                            double* d);
 
 }  // namespace vofdem

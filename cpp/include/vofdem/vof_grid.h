@@ -271,6 +271,7 @@ class VOFGrid {
   std::unique_ptr<KEpsilonModel> turbulence_;
   mutable std::vector<double> cell_nu_;     // molecular kinematic viscosity of the cell mixture [m^2/s]
   mutable std::vector<double> dt_scratch_;  // work array of stable_dt_terms()
+  mutable std::vector<double> cfl_row_;     // Courant numbers of one row of faces (max_cfl)
   std::vector<double> cell_porosity_prev_;   // porosity of the last step (the reference of dn)
   void make_turbulence_model();
   const std::vector<double>& turbulence_cells_F() const;
