@@ -1,14 +1,18 @@
 #!/usr/bin/env bash
 # Remakes the README's scenario figures and tables: the whole Maeno 2008 scenario on the paper's grid
-# and hydrograph (scenes/maeno2008.toml, a few minutes on one core), then copies the run's figures and
-# stage table to docs/figures/maeno2008/ and writes its cost report to benchmarks/results/.
-# The benchmark figures of the README come from the scripts named beside them in benchmarks/.
+# and hydrograph, once with the paper's coupling (scenes/maeno2008.toml) and once with the consistent
+# coupling options (scenes/maeno2008_consistent.toml), a few minutes each on one core; copies each
+# run's figures and stage table to docs/figures/<scene>/ and writes the paper scene's cost report to
+# benchmarks/results/. The benchmark figures of the README come from the scripts named beside them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PY:-python3}
-OUT=${OUT:-out/maeno2008}
-"$PY" -m vofdem run scenes/maeno2008.toml --out "$OUT" --no-animation --no-progress
-rm -rf docs/figures/maeno2008
-mkdir -p docs/figures/maeno2008
-cp "$OUT"/figures/*.png "$OUT/stage_table.md" docs/figures/maeno2008/
-"$PY" benchmarks/maeno2008_realtime.py --from-run "$OUT" --out benchmarks/results/maeno2008_full_realtime.md
+OUT=${OUT:-out}
+export OMP_NUM_THREADS=1
+for scene in maeno2008 maeno2008_consistent; do
+  "$PY" -m vofdem run "scenes/$scene.toml" --out "$OUT/$scene" --no-animation --no-progress
+  rm -rf "docs/figures/$scene"
+  mkdir -p "docs/figures/$scene"
+  cp "$OUT/$scene"/figures/*.png "$OUT/$scene/stage_table.md" "docs/figures/$scene/"
+done
+"$PY" benchmarks/maeno2008_realtime.py --from-run "$OUT/maeno2008" --out benchmarks/results/maeno2008_full_realtime.md
