@@ -16,6 +16,9 @@ stones held, then 10 -> 25 l/s over 30 s) built through the Python API, one vari
                   the overflow sheet better)
   seedN           another packing (seed N instead of 0)
   slow            the paper's ramp rate (10 -> 25 l/s over 120 s) instead of the quick scene's 30 s
+  fromQ           the spin-up (stones held) and the release at Q l/s instead of 10, the ramp's rate kept
+                  (e.g. from5: 5 -> 25 l/s over 160 s at the paper's rate): is a failure at the release a
+                  failure of the start discharge or of releasing the loaded stones at once?
   bed             the bed drag (stones.drag_model = "bed": the reaction of the porous resistance on the
                   stones, docs/coupler.md) in place of the sphere drag of eqs. (16)-(18)
   bulk            the bulk-consistent porosity mapping (stones.porosity_mapping = "bulk": the porosity
@@ -57,7 +60,7 @@ VARIANTS = ("ext", "no_drag", "no_pressure", "k_half+ext", "k_matched+ext", "lig
             "fine+k_half+slow+seed1", "fine+slow", "fine+slow+seed1", "fine+slow+seed2",
             "fine+slow+bed", "fine+slow+bed+seed1", "fine+slow+bed+seed2",
             "fine+slow+bulk", "fine+slow+bulk+seed1", "fine+slow+bulk+seed2",
-            "fine+slow+bed+bulk", "fine+slow+bed+bulk+seed1", "fine+slow+bed+bulk+seed2")
+            "fine+slow+bed+bulk", "fine+slow+bed+bulk+seed1", "fine+slow+bed+bulk+seed2", "fine+slow+bed+bulk+from5", "fine+slow+bulk+from5")
 Q_PROBES = (10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0)
 
 
@@ -121,6 +124,12 @@ def variant_scene(name: str):
         rate = (s.hydrograph.discharge_end_lps - s.hydrograph.discharge_start_lps) / s.hydrograph.ramp_duration
         s.hydrograph.discharge_end_lps = 50.0
         s.hydrograph.ramp_duration = (50.0 - s.hydrograph.discharge_start_lps) / rate
+    for tok in tokens:  # 'fromQ': the stones released at Q l/s instead of 10, the ramp's rate kept
+        if tok.startswith("from"):
+            h = s.hydrograph
+            rate = (h.discharge_end_lps - h.discharge_start_lps) / h.ramp_duration
+            h.discharge_start_lps = float(tok[4:])
+            h.ramp_duration = (h.discharge_end_lps - h.discharge_start_lps) / rate
     s.validate()
     if "bulk" in tokens:
         from vofdem.builder import build_stones, disc_porosity

@@ -1,4 +1,4 @@
-"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N]`` and helpers.
+"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N | --seeds 0-4]`` and helpers.
 
 SCENE is a TOML scene file or the name of a ready scene (``maeno2008``). Exit codes: 0 success,
 2 a bad scene or bad arguments (one line on stderr), 1 a solver failure (the output written so far
@@ -22,7 +22,11 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
     r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes")
     r.add_argument("--out", type=Path, default=None, help="output directory (default: out/<scene name>)")
-    r.add_argument("--seed", type=int, default=None, help="random seed of the packing (overrides the scene)")
+    seed = r.add_mutually_exclusive_group()
+    seed.add_argument("--seed", type=int, default=None, help="random seed of the packing (overrides the scene)")
+    seed.add_argument("--seeds", default=None,
+                      help="an ensemble over packings, e.g. '0-4' or '0,3,7': one run per seed in DIR/seed<N>/, "
+                           "summary in DIR/ensemble.md")
     r.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     r.add_argument("--no-figures", action="store_true", help="skip the figures")
     r.add_argument("--no-animation", action="store_true", help="skip the animation")
@@ -80,20 +84,31 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             print(a.stage_table_markdown())
             return 0
         scene = resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
+        from .ensemble import parse_seeds
+
+        seeds = parse_seeds(args.seeds) if getattr(args, "seeds", None) else None
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
     if args.command == "check":
         print(scene.to_toml(), end="")
         return 0
+    from .ensemble import ensemble_markdown, run_ensemble
     from .run import SolverError, run_scene
 
     out = args.out or Path("out") / scene.name
     # a terminated run closes its output as 'interrupted' (with the profile) once the solver returns
     signal.signal(signal.SIGTERM, _terminate)
+    opts = dict(progress=not args.no_progress, figures=not args.no_figures, animation=not args.no_animation,
+                build=build)
     try:
-        res = run_scene(scene, out, progress=not args.no_progress, figures=not args.no_figures,
-                        animation=not args.no_animation, build=build)
+        if seeds is not None:
+            outcomes = run_ensemble(scene, seeds, out, **opts)
+            print()
+            print(ensemble_markdown(outcomes))
+            print(f"output: {out}/ (ensemble.md/.csv, one run directory per seed)")
+            return 0
+        res = run_scene(scene, out, **opts)
     except SolverError as e:
         print(f"vofdem: {e}", file=sys.stderr)
         return 1
