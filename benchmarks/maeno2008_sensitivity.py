@@ -19,6 +19,7 @@ stones held, then 10 -> 25 l/s over 30 s) built through the Python API, one vari
   fromQ           the spin-up (stones held) and the release at Q l/s instead of 10, the ramp's rate kept
                   (e.g. from5: 5 -> 25 l/s over 160 s at the paper's rate): is a failure at the release a
                   failure of the start discharge or of releasing the loaded stones at once?
+  endT            stop at T s of simulated time
   bed             the bed drag (stones.drag_model = "bed": the reaction of the porous resistance on the
                   stones, docs/coupler.md) in place of the sphere drag of eqs. (16)-(18)
   bulk            the bulk-consistent porosity mapping (stones.porosity_mapping = "bulk": the porosity
@@ -60,7 +61,8 @@ VARIANTS = ("ext", "no_drag", "no_pressure", "k_half+ext", "k_matched+ext", "lig
             "fine+k_half+slow+seed1", "fine+slow", "fine+slow+seed1", "fine+slow+seed2",
             "fine+slow+bed", "fine+slow+bed+seed1", "fine+slow+bed+seed2",
             "fine+slow+bulk", "fine+slow+bulk+seed1", "fine+slow+bulk+seed2",
-            "fine+slow+bed+bulk", "fine+slow+bed+bulk+seed1", "fine+slow+bed+bulk+seed2", "fine+slow+bed+bulk+from5", "fine+slow+bulk+from5")
+            "fine+slow+bed+bulk", "fine+slow+bed+bulk+seed1", "fine+slow+bed+bulk+seed2", "fine+slow+bed+bulk+from5", "fine+slow+bulk+from5",
+            "fine+slow+from1+end20", "fine+slow+bed+from1+end20", "fine+slow+bulk+from1+end20", "fine+slow+bed+bulk+from1+end20")
 Q_PROBES = (10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0)
 
 
@@ -130,6 +132,9 @@ def variant_scene(name: str):
             rate = (h.discharge_end_lps - h.discharge_start_lps) / h.ramp_duration
             h.discharge_start_lps = float(tok[4:])
             h.ramp_duration = (h.discharge_end_lps - h.discharge_start_lps) / rate
+    for tok in tokens:  # 'endT': stop at T s of simulated time
+        if tok.startswith("end"):
+            s.end_time = float(tok[3:])
     s.validate()
     if "bulk" in tokens:
         from vofdem.builder import build_stones, disc_porosity
@@ -235,7 +240,7 @@ def table() -> str:
         st = ", ".join(f"{s['q']:.2f}: {s['stones']}" for s in r["stages"]) or "none"
         first = f"{r['first_removal_lps']:.2f}" if r["first_removal_lps"] is not None else "none"
         fd25 = f"{pr['25']['f_d_max_N']:.3f}" if "25" in pr else "-"
-        lines.append(f"| {r['variant']} | 10-{r['q_end']:.0f} | {r['removed']} ({r['isolated']} isolated) | {first} | "
+        lines.append(f"| {r['variant']} | {r['rows'][0]['q']:.0f}-{r['q_end']:.0f} | {r['removed']} ({r['isolated']} isolated) | {first} | "
                      f"{st} | {f('10')} / {f('15')} / {f('20')} / {f('25')} | {f('30')} / {f('40')} / {f('50')} | "
                      f"{fd25} | {r['wall_s']:.0f} |")
     lines.append("")
