@@ -186,3 +186,28 @@ def test_viscous_options_select_the_step_limit_and_keep_still_water_still():
     bad.turbulence_production_limit = -1.0
     with pytest.raises(ValueError, match="production_limit"):
         vofdem.VOFGrid(grid, bad)
+
+
+def test_step_from_rest_starts_at_initial_dt_and_grows_gradually():
+    from vofdem.builder import flow_params
+    from vofdem.scene import Scene
+
+    g = vofdem.Grid2D.uniform(20, 10, 0.2, 0.1)
+    p = vofdem.FlowParams()
+    assert (p.initial_dt, p.max_dt_growth) == (1e-3, 1.2)
+    p.initial_dt = 2e-3
+    f = vofdem.VOFGrid(g, p)
+    f.fill_water_box(0.0, 0.1, 0.0, 0.08)
+    assert f.last_dt == 0.0 and f.stable_dt() == 2e-3
+    f.step(f.stable_dt())
+    assert f.last_dt == 2e-3 and f.stable_dt_terms().growth == pytest.approx(2.4e-3)
+    p.max_dt_growth = 0.5
+    with pytest.raises(ValueError, match="max_dt_growth"):
+        vofdem.VOFGrid(g, p)
+    sc = Scene.maeno2008()
+    sc.numerics.initial_dt, sc.numerics.max_dt_growth = 5e-4, 1.1
+    fp = flow_params(sc)
+    assert (fp.initial_dt, fp.max_dt_growth) == (5e-4, 1.1)
+    sc.numerics.max_dt_growth = 0.9
+    with pytest.raises(ValueError, match="max_dt_growth"):
+        sc.validate()

@@ -44,7 +44,9 @@ def dam_break_runs():
 
 def test_dam_break_conserves_water_and_front_starts_at_a(dam_break_runs):
     for run in dam_break_runs.values():
-        assert run.volume_drift < 1e-12
+        # round-off only, accumulated over the steps: measured 4.3e-13 / 4.8e-13 (N = 8 / 16, 162 / 314
+        # steps, first step max_dt) and 8.8e-13 / 1.2e-12 (169 / 319 steps, first step initial_dt)
+        assert run.volume_drift < 1e-14 * run.steps
         assert run.Z[0] == pytest.approx(1.0)
         assert np.all(np.diff(run.Z) >= -0.05)  # the surge front does not retreat
 

@@ -82,6 +82,8 @@ void bind_vof(py::module_& m) {
       .def_readwrite("gravity_z", &FlowParams::gravity_z, "gravity, upward component [m/s^2], -9.81")
       .def_readwrite("cfl", &FlowParams::cfl, "target Courant number of the pore velocity [-], 0.4")
       .def_readwrite("max_dt", &FlowParams::max_dt, "largest time step [s], 0.01")
+      .def_readwrite("initial_dt", &FlowParams::initial_dt, "first time step [s], 1e-3")
+      .def_readwrite("max_dt_growth", &FlowParams::max_dt_growth, "dt <= max_dt_growth * the last step [-], 1.2")
       .def_readwrite("min_dt", &FlowParams::min_dt, "a stable step below this is a failure [s], 1e-8")
       .def_readwrite("k1", &FlowParams::k1, "linear resistance coefficient of eq. (7) [-], 200")
       .def_readwrite("k2", &FlowParams::k2, "quadratic resistance coefficient of eq. (7) [-], 2.8")
@@ -139,6 +141,7 @@ void bind_vof(py::module_& m) {
       .def_readonly("gravity", &FlowStableDt::gravity)
       .def_readonly("turbulence", &FlowStableDt::turbulence)
       .def_readonly("max_dt", &FlowStableDt::max_dt)
+      .def_readonly("growth", &FlowStableDt::growth)
       .def("min", &FlowStableDt::min);
 
   py::class_<VOFGrid>(m, "VOFGrid",
@@ -192,6 +195,8 @@ void bind_vof(py::module_& m) {
       .def("set_hydrostatic_pressure", &VOFGrid::set_hydrostatic_pressure)
       .def_property("time", &VOFGrid::time, &VOFGrid::set_time, "simulated time [s]")
       .def_property_readonly("step_count", &VOFGrid::step_count)
+      .def_property("last_dt", &VOFGrid::last_dt, &VOFGrid::set_last_dt,
+                    "the last step [s] the growth limit starts from (0: none yet, initial_dt applies)")
       .def("stable_dt", &VOFGrid::stable_dt)
       .def("stable_dt_terms", &VOFGrid::stable_dt_terms)
       .def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())

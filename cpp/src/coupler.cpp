@@ -287,6 +287,7 @@ void Coupler::stage_fluid_forces() {
     }
     if (fl & kCoupleWetFraction) stones_->disc_wet[j] = s.wet;
     if (fl & kCoupleForces) {
+      forces_applied_ = true;
       stones_->disc_force_ext[2 * j] = fd[0] + fs[0];
       stones_->disc_force_ext[2 * j + 1] = fd[1] + fs[1];
     }
@@ -296,6 +297,13 @@ void Coupler::stage_fluid_forces() {
                                format_value(fs[1]) + " N) at x = " + format_value(stones_->disc_pos[2 * j]) +
                                " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m");
   }
+}
+
+void Coupler::clear_fluid_forces() {
+  std::fill(disc_force_drag.begin(), disc_force_drag.end(), 0.0);
+  std::fill(disc_force_pressure.begin(), disc_force_pressure.end(), 0.0);
+  std::fill(stones_->disc_force_ext.begin(), stones_->disc_force_ext.end(), 0.0);
+  forces_applied_ = false;
 }
 
 void Coupler::stage_dem(double dt) {
@@ -400,6 +408,8 @@ void Coupler::step(double dt) {
   const bool stones_move = has_stones() && (fl & kCoupleDEM);
   save();
   csr_current_ = false;
+  // the force stage skipped: the stones must not keep the last fluid force it wrote
+  if (forces_applied_ && !(fl & kCoupleForces) && stones_) clear_fluid_forces();
   if (fluid_ && mapper_ && (fl & kCouplePorosity) && (stones_move || !mapped_)) stage_porosity();
   if (fluid_ && mapper_ && (fl & (kCoupleForces | kCoupleWetFraction)) && stones_move) stage_fluid_forces();
   if (stones_move) stage_dem(dt);
@@ -422,10 +432,12 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
                        format_value(params_.min_dt) + " s)");
     }
     // the last steps split the remainder evenly rather than leaving a sliver
-    const double left = t_end - time_;
+    const double left = t_end - time_, stable = dt;
     if (dt >= left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
     step(dt);
+    // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
+    if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable) fluid_->set_last_dt(stable);
     ++n;
     if (progress) progress(time_);
   }
@@ -460,6 +472,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/face_z_solid_w"] = f.face_z_solid_w;
     s["fluid/time"] = {f.time()};
     s["fluid/step_count"] = {static_cast<double>(f.step_count())};
+    s["fluid/last_dt"] = {f.last_dt()};
     s["fluid/inlet_volume"] = {f.inlet_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
@@ -509,6 +522,7 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     need(s, "fluid/face_x_solid_u", nfx);
     need(s, "fluid/face_w", nfz);
     need(s, "fluid/face_z_solid_w", nfz);
+    if (s.count("fluid/last_dt")) require_non_negative("fluid/last_dt", need(s, "fluid/last_dt", 1)[0]);
     DischargeTable t;
     t.times = need(s, "fluid/discharge_times", any);
     t.discharge = need(s, "fluid/discharge_q", any);
@@ -524,6 +538,8 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     fluid_->face_z_solid_w = need(s, "fluid/face_z_solid_w", nfz);
     fluid_->set_time(need(s, "fluid/time", 1)[0]);
     fluid_->set_step_count(static_cast<long long>(need(s, "fluid/step_count", 1)[0]));
+    // older states have no last step: the next one starts from FlowParams::initial_dt
+    fluid_->set_last_dt(s.count("fluid/last_dt") ? need(s, "fluid/last_dt", 1)[0] : 0.0);
     fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
@@ -537,6 +553,9 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
   disc_force_drag = s.at("coupler/disc_force_drag");
   disc_force_pressure = s.at("coupler/disc_force_pressure");
   disc_vrel_ = s.at("coupler/disc_relative_speed");
+  forces_applied_ = false;
+  for (std::size_t i = 0; i < disc_force_drag.size(); ++i)
+    if (disc_force_drag[i] != 0.0 || disc_force_pressure[i] != 0.0) forces_applied_ = true;
   // written with the bed drag only (older states and the sphere drag: none)
   if (has_slope) disc_drag_slope_ = s.at("coupler/disc_drag_slope");
   else std::fill(disc_drag_slope_.begin(), disc_drag_slope_.end(), 0.0);

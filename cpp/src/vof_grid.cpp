@@ -31,6 +31,8 @@ void FlowParams::validate() const {
   require_in_open_closed("cfl", cfl, 0.0, 1.0);
   require_positive("max_dt", max_dt);
   require_positive("min_dt", min_dt);
+  require_positive("initial_dt", initial_dt);
+  require_in_closed("max_dt_growth", max_dt_growth, 1.0, 10.0);
   require_positive("k1", k1);
   require_non_negative("k2", k2);
   require_positive("flume_width", flume_width);
@@ -41,7 +43,7 @@ void FlowParams::validate() const {
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
 }
 
-double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt}); }
+double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt, growth}); }
 
 struct VOFGrid::Snapshot {
   std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps, cell_porosity_prev;
@@ -366,6 +368,9 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
     s.turbulence = turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
   }
   s.max_dt = params_.max_dt;
+  // from rest the velocity terms see no flow yet: the step starts small and grows gradually
+  // (the velocities gravity and pressure create within one step would breach the CFL otherwise)
+  s.growth = last_dt_ > 0.0 ? params_.max_dt_growth * last_dt_ : params_.initial_dt;
   return s;
 }
 
@@ -710,6 +715,13 @@ void VOFGrid::step(double dt) {
   cell_porosity_prev_ = cell_porosity;
   time_ += dt;
   ++step_count_;
+  last_dt_ = dt;
+}
+
+void VOFGrid::set_last_dt(double dt) {
+  require_non_negative("last_dt", dt);
+  require_finite("last_dt", dt);
+  last_dt_ = dt;
 }
 
 long long VOFGrid::advance(double t_end) {
@@ -730,9 +742,12 @@ long long VOFGrid::advance(double t_end) {
     }
     // the last steps split the remainder evenly rather than leaving a sliver
     const double left = t_end - time_;
+    const double stable = dt;
     if (dt >= left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
     step(dt);
+    // a step cut to reach t_end is no stability decision: the growth goes on from the stable step
+    last_dt_ = std::max(dt, stable);
     ++n;
   }
   return n;

@@ -1421,6 +1421,22 @@ class FlowParams:
     def k2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def initial_dt(self) -> float:
+        """
+        first time step [s], 1e-3
+        """
+    @initial_dt.setter
+    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_dt_growth(self) -> float:
+        """
+        dt <= max_dt_growth * the last step [-], 1.2
+        """
+    @max_dt_growth.setter
+    def max_dt_growth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def max_dt(self) -> float:
         """
         largest time step [s], 0.01
@@ -1567,6 +1583,9 @@ class FlowStableDt:
         ...
     @property
     def gravity(self) -> float:
+        ...
+    @property
+    def growth(self) -> float:
         ...
     @property
     def max_dt(self) -> float:
@@ -1718,6 +1737,14 @@ class VOFGrid:
         ...
     @property
     def step_count(self) -> int:
+        ...
+    @property
+    def last_dt(self) -> float:
+        """
+        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
+        """
+    @last_dt.setter
+    def last_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def time(self) -> float:

@@ -84,6 +84,8 @@ def flow_params(scene: Scene):
     p.gravity_x, p.gravity_z = gravity(scene)
     p.cfl = n.cfl
     p.max_dt = n.max_dt
+    p.initial_dt = n.initial_dt
+    p.max_dt_growth = n.max_dt_growth
     p.k1, p.k2 = st.k1, st.k2
     p.flume_width = f.width
     p.pressure_solver = {"multigrid_cg": _core.PressureSolverKind.MULTIGRID_CG,

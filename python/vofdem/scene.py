@@ -360,6 +360,9 @@ class Numerics(_Section):
     cfl: float = _p(0.3, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.3", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
     max_dt: float = _p(0.01, "time", 0.0, 1.0, "largest fluid time step [s]", "(]")
+    initial_dt: float = _p(1e-3, "time", 0.0, 1.0, "first fluid time step from rest [s]; usual 1e-3", "(]")
+    max_dt_growth: float = _p(1.2, None, 1.0, 10.0, "growth limit of the fluid step, dt <= factor x last dt [-]; "
+                              "usual 1.2", "[]")
     porosity_method: str = _choice("exact", ("exact", "lookup"),
                                    "disc-cell overlap: exact areas or the paper's lookup table")
     pressure_solver: str = _choice("multigrid_cg", ("multigrid_cg", "direct"),

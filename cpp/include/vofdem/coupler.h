@@ -151,6 +151,8 @@ class Coupler {
   void make_mapper();
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
+  // with both force effects off: zeroes the fluid forces the stones still hold (once, on the switch)
+  void clear_fluid_forces();
   void stage_dem(double dt);
   void stage_fluid(double dt);
   void stage_checks();
@@ -169,6 +171,7 @@ class Coupler {
   double time_ = 0.0;
   long long steps_ = 0;
   bool mapped_ = false;  // the porosity reflects the stones (needed again only if they move)
+  bool forces_applied_ = false;  // disc_force_ext holds fluid forces (cleared when the effects go off)
   double redistributed_ = 0.0;
 
   std::unique_ptr<PorosityMapper> mapper_;
