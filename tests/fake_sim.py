@@ -72,3 +72,13 @@ class FakeSimulation:
         self.profile.seconds = [s + 1e-3 for s in self.profile.seconds]
         self.profile.calls = [c + 1 for c in self.profile.calls]
         self.time = float(t_end)
+
+
+def short_scene():
+    """The quick Maeno 2008 scene with a 2 s spin-up, a 30 s ramp 10 -> 25 l/s and 1 s snapshots."""
+    from vofdem.scene import Hydrograph, Scene
+
+    s = Scene.maeno2008().quick()
+    s.hydrograph = Hydrograph(discharge_start_lps=10, discharge_end_lps=25, ramp_duration=30, spin_up_duration=2)
+    s.output.snapshot_interval = 1.0
+    return s.validate()

@@ -1,11 +1,10 @@
 """An ensemble over packings: seed parsing, one run per seed, the summary table (with the test double)."""
 import pytest
-from fake_sim import FakeSimulation
+from fake_sim import FakeSimulation, short_scene
 
 from vofdem.cli import main
 from vofdem.ensemble import parse_seeds, run_ensemble
 from vofdem.io import RunData
-from vofdem.scene import Hydrograph, Scene
 
 
 def test_parse_seeds():
@@ -25,15 +24,9 @@ def _build(scene):
     return FakeSimulation(scene, thresholds_lps=THRESHOLDS[scene.seed])
 
 
-def _scene():
-    s = Scene.maeno2008().quick()
-    s.hydrograph = Hydrograph(discharge_start_lps=10, discharge_end_lps=25, ramp_duration=30, spin_up_duration=2)
-    s.output.snapshot_interval = 1.0
-    return s.validate()
-
 
 def test_ensemble_runs_each_seed_and_summarises(tmp_path):
-    out = run_ensemble(_scene(), [0, 1, 2], tmp_path, build=_build, progress=False, figures=False,
+    out = run_ensemble(short_scene(), [0, 1, 2], tmp_path, build=_build, progress=False, figures=False,
                        animation=False, log=lambda *a: None)
     assert [o.seed for o in out] == [0, 1, 2]
     for seed in (0, 1, 2):

@@ -1,22 +1,15 @@
 """The run loop against a pure-Python test double of the coupled simulation (tests/fake_sim.py)."""
 import numpy as np
 import pytest
-from fake_sim import FakeSimulation
+from fake_sim import FakeSimulation, short_scene
 
 from vofdem.io import RunData, check_xdmf
 from vofdem.run import SolverError, run_scene
-from vofdem.scene import Hydrograph, Scene
 
-
-def _scene():
-    s = Scene.maeno2008().quick()
-    s.hydrograph = Hydrograph(discharge_start_lps=10, discharge_end_lps=25, ramp_duration=30, spin_up_duration=2)
-    s.output.snapshot_interval = 1.0
-    return s.validate()
 
 
 def test_run_writes_output_and_finds_the_stages(tmp_path):
-    s = _scene()
+    s = short_scene()
     sim = FakeSimulation(s)
     res = run_scene(s, tmp_path, sim=sim, progress=False, figures=True, animation=True)
     d = RunData(tmp_path / "run.h5")
@@ -50,7 +43,7 @@ def test_run_writes_output_and_finds_the_stages(tmp_path):
 
 
 def test_stones_are_held_during_the_spin_up(tmp_path):
-    s = _scene()
+    s = short_scene()
     s.hydrograph.spin_up_duration = 12.0  # the double would push stones off at 15 l/s only, but
     sim = FakeSimulation(s, thresholds_lps=[9.0, 9.0])  # these two go at once unless held
     run_scene(s, tmp_path, sim=sim, progress=False, figures=False, animation=False)
@@ -61,7 +54,7 @@ def test_stones_are_held_during_the_spin_up(tmp_path):
 
 
 def test_solver_failure_keeps_the_output(tmp_path):
-    s = _scene()
+    s = short_scene()
     with pytest.raises(SolverError, match=r"solver failed at t = 7.5 s: fake stage 'pressure': no convergence"):
         run_scene(s, tmp_path, sim=FakeSimulation(s, fail_at=7.5), progress=False)
     d = RunData(tmp_path / "run.h5")
@@ -75,7 +68,7 @@ def test_a_stop_request_survives_a_swallowed_interrupt(tmp_path):
     by the same handler still ends the run at the next snapshot, with the output closed as interrupted."""
     from vofdem.run import request_stop
 
-    s = _scene()
+    s = short_scene()
 
     class StopsAtThree(FakeSimulation):
         def advance(self, t_end):
