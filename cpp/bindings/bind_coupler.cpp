@@ -42,8 +42,11 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("stone_drag", &CouplerParams::stone_drag, "StoneDragModel of the drag on the stones, SPHERE")
       .def_readwrite("max_dt", &CouplerParams::max_dt, "largest exchange step [s], 0.01")
       .def_readwrite("stone_cfl", &CouplerParams::stone_cfl, "cells a stone crosses per step at most [-], 0.5")
+      .def_readwrite("implicit_drag", &CouplerParams::implicit_drag,
+                     "drag linearised in the stone's velocity and integrated implicitly by the DEM, True; "
+                     "False: held over the step (bounded by drag_relaxation)")
       .def_readwrite("drag_relaxation", &CouplerParams::drag_relaxation,
-                     "step at most this fraction of the drag relaxation time [-], 0.5")
+                     "held drag: step at most this fraction of its relaxation time [-], 0.5")
       .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
       .def("validate", &CouplerParams::validate);
 

@@ -7,6 +7,7 @@
 
 #include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
+#include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
 
 namespace vofdem {
@@ -273,8 +274,10 @@ void Coupler::stage_fluid_forces() {
     const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
     if ((fl & kCoupleDrag) && !bed) {
-      const DragForce f = stone_drag(s, up, wp, 2.0 * stones_->disc_radius[j], rho, nu, params_.drag_law);
+      const double d = 2.0 * stones_->disc_radius[j];
+      const DragForce f = stone_drag(s, up, wp, d, rho, nu, params_.drag_law);
       fd[0] = f.fx, fd[1] = f.fz;
+      if (params_.implicit_drag) disc_drag_slope_[j] = sphere_drag_slope(s, up, wp, d, rho, nu, params_.drag_law);
     } else if (fl & kCoupleDrag) {
       const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
                                    fluid_->cell_porosity.data(), fluid_->cell_stone_diameter.data(), cell_U_.data(),
@@ -288,8 +291,15 @@ void Coupler::stage_fluid_forces() {
     if (fl & kCoupleWetFraction) stones_->disc_wet[j] = s.wet;
     if (fl & kCoupleForces) {
       forces_applied_ = true;
-      stones_->disc_force_ext[2 * j] = fd[0] + fs[0];
-      stones_->disc_force_ext[2 * j + 1] = fd[1] + fs[1];
+      // the drag linearised in the stone's velocity (implicit in the DEM), or held over the step
+      const LinearDrag ld = params_.implicit_drag ? linearise_drag({fd[0], fd[1]}, disc_drag_slope_[j], up, wp)
+                                                  : LinearDrag();
+      const bool held = ld.coef == 0.0;
+      stones_->disc_force_ext[2 * j] = (held ? fd[0] : 0.0) + fs[0];
+      stones_->disc_force_ext[2 * j + 1] = (held ? fd[1] : 0.0) + fs[1];
+      stones_->disc_drag_coef[j] = ld.coef;
+      stones_->disc_drag_vel[2 * j] = ld.vel_x;
+      stones_->disc_drag_vel[2 * j + 1] = ld.vel_z;
     }
     if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1]))
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
@@ -303,6 +313,8 @@ void Coupler::clear_fluid_forces() {
   std::fill(disc_force_drag.begin(), disc_force_drag.end(), 0.0);
   std::fill(disc_force_pressure.begin(), disc_force_pressure.end(), 0.0);
   std::fill(stones_->disc_force_ext.begin(), stones_->disc_force_ext.end(), 0.0);
+  std::fill(stones_->disc_drag_coef.begin(), stones_->disc_drag_coef.end(), 0.0);
+  std::fill(stones_->disc_drag_vel.begin(), stones_->disc_drag_vel.end(), 0.0);
   forces_applied_ = false;
 }
 
@@ -354,8 +366,10 @@ double Coupler::stable_dt() {
       // a stone crosses at most stone_cfl of a cell per exchange (smooth porosity changes)
       const double v = std::hypot(stones_->disc_vel[2 * j], stones_->disc_vel[2 * j + 1]);
       if (v * dt > params_.stone_cfl * h) dt = params_.stone_cfl * h / v;
-      // explicit drag held over the step: stay below its relaxation time (estimated with eq. 18)
-      if ((fl & kCoupleDrag) && params_.stone_drag == StoneDragModel::kBed) {
+      // a drag held over the step (explicit exchange): stay below its relaxation time (estimated with
+      // eq. 18); the implicit exchange needs no such bound (drag_exchange.h)
+      if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
+      if (params_.stone_drag == StoneDragModel::kBed) {
         // bed drag: its slope in the stone's velocity from the last exchange
         const double slope = disc_drag_slope_[j];
         if (slope > 0.0) {
@@ -363,7 +377,7 @@ double Coupler::stable_dt() {
           const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
           dt = std::min(dt, params_.drag_relaxation * mass / slope);
         }
-      } else if ((fl & kCoupleDrag) && stones_->disc_wet[j] > 0.0) {
+      } else if (stones_->disc_wet[j] > 0.0) {
         const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
         const double w = stones_->disc_wet[j];
         const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);

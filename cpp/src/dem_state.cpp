@@ -42,6 +42,8 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
   s["disc_fixed"] = to_double(disc_fixed);
   s["disc_active"] = to_double(disc_active);
   s["disc_force_ext"] = disc_force_ext;
+  s["disc_drag_coef"] = disc_drag_coef;
+  s["disc_drag_vel"] = disc_drag_vel;
   s["disc_wet"] = disc_wet;
   s["disc_force"] = disc_force;
   s["disc_torque"] = disc_torque;
@@ -85,6 +87,14 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
   set(disc_fixed, get(s, "disc_fixed", n));
   set(disc_active, get(s, "disc_active", n));
   set(disc_force_ext, get(s, "disc_force_ext", 2 * n));
+  // older states hold no linear drag
+  if (s.count("disc_drag_coef")) {
+    set(disc_drag_coef, get(s, "disc_drag_coef", n));
+    set(disc_drag_vel, get(s, "disc_drag_vel", 2 * n));
+  } else {
+    disc_drag_coef.assign(n, 0.0);
+    disc_drag_vel.assign(2 * n, 0.0);
+  }
   set(disc_wet, get(s, "disc_wet", n));
   set(disc_force, get(s, "disc_force", 2 * n));
   set(disc_torque, get(s, "disc_torque", n));

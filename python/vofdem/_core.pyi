@@ -494,6 +494,12 @@ class DEMSystem:
     def disc_density(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def disc_drag_coef(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_drag_vel(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
     def disc_fixed(self) -> numpy.typing.NDArray[numpy.uint8]:
         ...
     @property
@@ -1405,6 +1411,14 @@ class FlowParams:
     def gravity_z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def initial_dt(self) -> float:
+        """
+        first time step [s], 1e-3
+        """
+    @initial_dt.setter
+    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def k1(self) -> float:
         """
         linear resistance coefficient of eq. (7) [-], 200
@@ -1421,12 +1435,12 @@ class FlowParams:
     def k2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def initial_dt(self) -> float:
+    def max_dt(self) -> float:
         """
-        first time step [s], 1e-3
+        largest time step [s], 0.01
         """
-    @initial_dt.setter
-    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @max_dt.setter
+    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def max_dt_growth(self) -> float:
@@ -1435,14 +1449,6 @@ class FlowParams:
         """
     @max_dt_growth.setter
     def max_dt_growth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_dt(self) -> float:
-        """
-        largest time step [s], 0.01
-        """
-    @max_dt.setter
-    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_dt(self) -> float:
@@ -1722,6 +1728,14 @@ class VOFGrid:
         water volume per width [m^2] that entered through the inlet
         """
     @property
+    def last_dt(self) -> float:
+        """
+        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
+        """
+    @last_dt.setter
+    def last_dt(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def last_pressure_stats(self) -> PressureSolveStats:
         ...
     @property
@@ -1737,14 +1751,6 @@ class VOFGrid:
         ...
     @property
     def step_count(self) -> int:
-        ...
-    @property
-    def last_dt(self) -> float:
-        """
-        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
-        """
-    @last_dt.setter
-    def last_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def time(self) -> float:
@@ -1820,7 +1826,7 @@ class CouplerParams:
     @property
     def drag_relaxation(self) -> float:
         """
-        step at most this fraction of the drag relaxation time [-], 0.5
+        held drag: step at most this fraction of its relaxation time [-], 0.5
         """
     @drag_relaxation.setter
     def drag_relaxation(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1832,6 +1838,14 @@ class CouplerParams:
         """
     @flags.setter
     def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def implicit_drag(self) -> bool:
+        """
+        drag linearised in the stone's velocity and integrated implicitly by the DEM, True; False: held over the step (bounded by drag_relaxation)
+        """
+    @implicit_drag.setter
+    def implicit_drag(self, arg0: bool) -> None:
         ...
     @property
     def lookup_dr(self) -> float:

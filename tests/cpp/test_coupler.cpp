@@ -436,9 +436,11 @@ TEST(Coupler, SwitchingBothFluidForcesOffMidRunLeavesNoStaleForce) {
   for (double f : s.sim->disc_force_drag) EXPECT_EQ(f, 0.0);
   for (double f : s.sim->disc_force_pressure) EXPECT_EQ(f, 0.0);
   for (double f : s.stones->disc_force_ext) EXPECT_EQ(f, 0.0);
+  for (double c : s.stones->disc_drag_coef) EXPECT_EQ(c, 0.0);  // nor the implicit drag
   // reference: the same stone stepped by the DEM alone with no external force
   r.stones->disc_wet = s.stones->disc_wet;
   std::fill(r.stones->disc_force_ext.begin(), r.stones->disc_force_ext.end(), 0.0);
+  std::fill(r.stones->disc_drag_coef.begin(), r.stones->disc_drag_coef.end(), 0.0);
   r.stones->advance(dt);
   EXPECT_NEAR(s.stones->disc_vel[1], r.stones->disc_vel[1], 1e-12);
   EXPECT_LT(s.stones->disc_vel[1], v0);  // it still sinks under its submerged weight

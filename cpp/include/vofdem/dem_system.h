@@ -8,10 +8,15 @@
 // projected area A_pi = pi d_i^2 / 4), added mass M'_i = rho_w C_M V_i, and I_i = inertia_factor M_i
 // (d_i/2)^2 (0.4: a sphere, the default; 0.5: a disc). The wet fraction w_i in [0, 1] of each stone
 // scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h.
-// F_x, F_z: disc_force_ext, set by the coupler (the fluid's drag and pressure-gradient forces).
+// F_x, F_z: disc_force_ext, set by the coupler (the fluid's pressure-gradient force, and the drag when it
+// is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (disc_drag_coef c_i, disc_drag_vel
+// U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
 //
 // Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
-// evaluation per step. Walls are half-planes (the flume bed, its end walls); fixed stones are discs
+// evaluation per step. The linear drag is integrated exactly in each half kick (exponential integrator):
+// a half kick of h with the total acceleration a (drag included) adds h a phi(h k), k = c / (M + M'),
+// phi(x) = (1 - e^-x) / x, which is the exact solution of dv/dt = a_other + k (U - v) over h for a_other
+// held; so the drag never overshoots U, at any step and any c (phi = 1 without drag: plain Verlet). Walls are half-planes (the flume bed, its end walls); fixed stones are discs
 // that never move. Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept
 // sorted by (i, j) so that contact histories and force sums are evaluated in one fixed order: runs are
 // bit-for-bit reproducible, and export_state()/import_state() restart them bit-for-bit.
@@ -162,6 +167,8 @@ class DEMSystem {
   std::vector<std::uint8_t> disc_fixed;     // 1: never moves (bed layer), n
   std::vector<std::uint8_t> disc_active;    // 0: left the domain (kept, not integrated), n
   std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
+  std::vector<double> disc_drag_coef;       // linear drag coefficient c >= 0 [N s/m], n; 0 (with kDEMExternalForce)
+  std::vector<double> disc_drag_vel;        // velocity U the linear drag c (U - v) pulls towards [m/s], 2n
   std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
                                             // when fluid_density > 0, else 0 (set_params keeps it)
   std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
@@ -193,6 +200,7 @@ class DEMSystem {
   };
   FirstHalf integrate_first_half(double dt);
   void integrate_second_half(double dt);
+  void update_kick_scale(double dt);
   void remove_escaped();
   void body_forces(double dt);
   void contact_forces(double dt);
@@ -216,6 +224,7 @@ class DEMSystem {
   std::vector<double> inv_mass_;     // 1 / (M + M'), 0 if fixed or inactive [1/kg]
   std::vector<double> inv_inertia_;  // 1 / I [1/(kg m^2)]
   std::vector<double> weight_;       // (M - rho_w V w) [kg]: multiplies g
+  std::vector<double> kick_scale_;   // phi(h c / (M + M')) of the linear drag for the substep in use [-]
 
   // neighbour list and contact histories
   std::vector<Pair> pairs_;
