@@ -68,6 +68,11 @@ void bind_vof(py::module_& m) {
   py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
       .value("STRAIN", KEpsilonProduction::kStrain)
       .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
+  py::enum_<KEpsilonTimeScheme>(m, "KEpsilonTimeScheme")
+      .value("POINT_IMPLICIT", KEpsilonTimeScheme::kPointImplicit,
+             "predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces")
+      .value("VERTICAL_LINES", KEpsilonTimeScheme::kVerticalLines,
+             "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only");
   py::enum_<CornerViscosity>(m, "CornerViscosity")
       .value("ARITHMETIC", CornerViscosity::kArithmetic)
       .value("HARMONIC", CornerViscosity::kHarmonic);
@@ -107,6 +112,10 @@ void bind_vof(py::module_& m) {
           "turbulence_production_limit", [](const FlowParams& p) { return p.turbulence.production_limit; },
           [](FlowParams& p, double v) { p.turbulence.production_limit = v; },
           "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]")
+      .def_property(
+          "turbulence_time_scheme", [](const FlowParams& p) { return p.turbulence.time_scheme; },
+          [](FlowParams& p, KEpsilonTimeScheme v) { p.turbulence.time_scheme = v; },
+          "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES")
       .def_property(
           "turbulence_bed_roughness", [](const FlowParams& p) { return p.turbulence.bed_roughness; },
           [](FlowParams& p, double v) { p.turbulence.bed_roughness = v; }, "equivalent sand roughness k_s of the bed [m]")

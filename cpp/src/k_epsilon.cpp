@@ -49,6 +49,10 @@ void check_k_epsilon_params(const KEpsilonParams& p) {
     throw std::invalid_argument("sweeps = " + std::to_string(p.sweeps) + " is outside the allowed range [0, 1000]");
   require_in_open_closed("cfl", p.cfl, 0.0, 1.0);
   require_non_negative("production_limit", p.production_limit);
+  const int scheme = static_cast<int>(p.time_scheme);
+  if (scheme < 0 || scheme > 1)
+    throw std::invalid_argument("time_scheme = " + std::to_string(scheme) +
+                                " is outside the allowed values {0 (kPointImplicit), 1 (kVerticalLines)}");
 }
 
 double wall_shear_velocity(double u_t, double y, double nu, double ks, double kappa, double log_law_e) {
@@ -80,12 +84,6 @@ double wall_shear_velocity(double u_t, double y, double nu, double ks, double ka
 // one face of a cell: coefficients a [1/s] per unit volume of advection-in plus diffusion for k
 // (a[0], sigma_k) and eps (a[1], sigma_eps), the neighbour cell, or -1 for a boundary face whose
 // value comes from the inflow pore speed inflow_u [m/s]
-struct KEpsilonModel::FaceCoef {
-  int nb;
-  double a[2];
-  double inflow_u;
-};
-
 KEpsilonModel::KEpsilonModel(const Grid2D& grid, const KEpsilonParams& params, const KEpsilonBoundaries& boundaries)
     : grid_(grid), params_(params), boundaries_(boundaries) {
   check_k_epsilon_params(params_);
@@ -501,7 +499,10 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
   }
   {
     ScopedStage timer(profile_, stage_transport_);
-    solve_transport(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
+    if (params_.time_scheme == KEpsilonTimeScheme::kVerticalLines)
+      solve_transport_lines(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
+    else
+      solve_transport(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
   }
   {
     ScopedStage timer(profile_, stage_viscosity_);
@@ -516,24 +517,31 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
 
 double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::vector<double>& face_w,
                                 const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                                const std::vector<double>& cell_nu) const {
+                                const std::vector<double>& cell_nu, int* cell) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
   half_cell_resistances(cell_porosity, cell_F, cell_nu);
   double rate_max = 0.0;
+  int worst = -1;
   FaceCoef fc[4];
+  // the column solves take the vertical faces (and the boundary inflow) implicitly
+  const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines;
+  const int nfaces = lines ? 2 : 4;
   for (int k = 0; k < grid_.nz(); ++k) {
     for (int i = 0; i < grid_.nx(); ++i) {
       const int c = grid_.cell(i, k);
       if (!is_active(c, cell_porosity, cell_F)) continue;
       face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
       double sum_k = 0.0, sum_eps = 0.0;
-      for (const FaceCoef& f : fc) {
-        sum_k += f.a[0];
-        sum_eps += f.a[1];
+      for (int f = 0; f < nfaces; ++f) {
+        if (lines && fc[f].nb < 0) continue;
+        sum_k += fc[f].a[0];
+        sum_eps += fc[f].a[1];
       }
-      rate_max = std::max(rate_max, std::max(sum_k, sum_eps) / cell_porosity[c]);
+      const double rate = std::max(sum_k, sum_eps) / cell_porosity[c];
+      if (rate > rate_max) rate_max = rate, worst = c;
     }
   }
+  if (cell) *cell = worst;
   return rate_max > 0.0 ? params_.cfl / rate_max : std::numeric_limits<double>::infinity();
 }
 
