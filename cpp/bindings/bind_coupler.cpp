@@ -65,6 +65,18 @@ void bind_coupler(py::module_& m) {
       .def_property_readonly("time", &Coupler::time)
       .def_property_readonly("step_count", &Coupler::step_count)
       .def("stable_dt", &Coupler::stable_dt, py::call_guard<py::gil_scoped_release>())
+      .def("step_limits", &Coupler::step_limits,
+           "steps of advance() bound by each limit, {term: steps} (a diagnostic, not checkpointed)")
+      .def(
+          "step_limit_cells",
+          [](const Coupler& c) {
+            py::dict d;
+            for (const auto& kv : c.step_limit_cells())
+              d[py::str(kv.first)] = py::array_t<long long>(kv.second.size(), kv.second.data());
+            return d;
+          },
+          "{term: steps bound in each cell (ncell counts, a copy)}")
+      .def("clear_step_limits", &Coupler::clear_step_limits)
       .def("step", py::overload_cast<>(&Coupler::step), py::call_guard<py::gil_scoped_release>())
       .def("step", py::overload_cast<double>(&Coupler::step), py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", [](Coupler& c, double t_end) { return c.advance(t_end); }, py::arg("t_end"),

@@ -351,21 +351,28 @@ void Coupler::stage_checks() {
 // ---------------------------------------------------------------------------------------------
 // stepping
 
-double Coupler::stable_dt() {
+double Coupler::stable_dt() { return stable_dt_limits(nullptr, nullptr); }
+
+double Coupler::stable_dt_limits(const char** term, int* cell) {
   double dt = params_.max_dt;
+  const char* why = "coupler_max_dt";
+  int where = -1;
   const unsigned fl = params_.flags;
-  if (fluid_ && (fl & kCoupleFluid)) dt = std::min(dt, fluid_->stable_dt());
+  if (fluid_ && (fl & kCoupleFluid)) {
+    const FlowStableDt s = fluid_->stable_dt_terms();
+    if (s.min() < dt) dt = s.min(), why = s.binding(&where);
+  }
   if (fluid_ && has_stones() && (fl & kCoupleDEM)) {
     const Grid2D& g = fluid_->grid();
-    const double h = std::min(g.dx(), g.min_dz());
+    const double inv_hx = 1.0 / g.dx(), inv_hz = 1.0 / g.min_dz();
     const DEMParams& dp = stones_->params();
     const bool added = (dp.flags & kDEMAddedMass) && dp.fluid_density > 0.0;
     const double rho = fluid_->params().rho_water, nu = fluid_->params().nu_water;
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
-      // a stone crosses at most stone_cfl of a cell per exchange (smooth porosity changes)
-      const double v = std::hypot(stones_->disc_vel[2 * j], stones_->disc_vel[2 * j + 1]);
-      if (v * dt > params_.stone_cfl * h) dt = params_.stone_cfl * h / v;
+      // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
+      const double rate = std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
+      if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
       // a drag held over the step (explicit exchange): stay below its relaxation time (estimated with
       // eq. 18); the implicit exchange needs no such bound (drag_exchange.h)
       if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
@@ -375,7 +382,8 @@ double Coupler::stable_dt() {
         if (slope > 0.0) {
           const double w = stones_->disc_wet[j], vol = stones_->volume(j);
           const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-          dt = std::min(dt, params_.drag_relaxation * mass / slope);
+          if (params_.drag_relaxation * mass / slope < dt)
+            dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
         }
       } else if (stones_->disc_wet[j] > 0.0) {
         const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
@@ -383,11 +391,33 @@ double Coupler::stable_dt() {
         const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
         const double slope = w * 0.5 * rho * kPi * r * r * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
         const double tau = mass / slope;
-        dt = std::min(dt, params_.drag_relaxation * tau);
+        if (params_.drag_relaxation * tau < dt)
+          dt = params_.drag_relaxation * tau, why = "drag_relaxation", where = stone_cell(j);
       }
     }
   }
+  if (term) *term = why;
+  if (cell) *cell = where;
   return dt;
+}
+
+int Coupler::stone_cell(int j) const {
+  const Grid2D& g = fluid_->grid();
+  const int i = g.locate_x(stones_->disc_pos[2 * j]), k = g.locate_z(stones_->disc_pos[2 * j + 1]);
+  return i >= 0 && k >= 0 ? g.cell(i, k) : -1;
+}
+
+void Coupler::count_limit(const char* term, int cell) {
+  ++limit_steps_[term];
+  if (!fluid_ || cell < 0) return;
+  std::vector<long long>& c = limit_cells_[term];
+  c.resize(static_cast<std::size_t>(fluid_->grid().ncell()), 0);
+  ++c[static_cast<std::size_t>(cell)];
+}
+
+void Coupler::clear_step_limits() {
+  limit_steps_.clear();
+  limit_cells_.clear();
 }
 
 void Coupler::step() { step(stable_dt()); }
@@ -439,7 +469,9 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
   long long n = 0;
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
   while (time_ < t_end - eps) {
-    double dt = stable_dt();
+    const char* term = nullptr;
+    int cell = -1;
+    double dt = stable_dt_limits(&term, &cell);
     if (dt < params_.min_dt) {
       snapshot_valid_ = false;
       fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " +
@@ -450,6 +482,7 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
     if (dt >= left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
     step(dt);
+    count_limit(dt < stable ? "t_end" : term, cell);
     // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
     if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable) fluid_->set_last_dt(stable);
     ++n;
@@ -487,6 +520,9 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/time"] = {f.time()};
     s["fluid/step_count"] = {static_cast<double>(f.step_count())};
     s["fluid/last_dt"] = {f.last_dt()};
+    s["fluid/prev_dt"] = {f.prev_dt()};
+    s["fluid/face_u_prev"] = f.face_u_prev;
+    s["fluid/face_w_prev"] = f.face_w_prev;
     s["fluid/inlet_volume"] = {f.inlet_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
@@ -537,6 +573,9 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     need(s, "fluid/face_w", nfz);
     need(s, "fluid/face_z_solid_w", nfz);
     if (s.count("fluid/last_dt")) require_non_negative("fluid/last_dt", need(s, "fluid/last_dt", 1)[0]);
+    // the step history of AB2 (older states: none, the next step is forward Euler)
+    const bool history = s.count("fluid/prev_dt") && need(s, "fluid/prev_dt", 1)[0] > 0.0;
+    if (history) need(s, "fluid/face_u_prev", nfx), need(s, "fluid/face_w_prev", nfz);
     DischargeTable t;
     t.times = need(s, "fluid/discharge_times", any);
     t.discharge = need(s, "fluid/discharge_q", any);
@@ -554,6 +593,13 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     fluid_->set_step_count(static_cast<long long>(need(s, "fluid/step_count", 1)[0]));
     // older states have no last step: the next one starts from FlowParams::initial_dt
     fluid_->set_last_dt(s.count("fluid/last_dt") ? need(s, "fluid/last_dt", 1)[0] : 0.0);
+    if (history) {
+      fluid_->face_u_prev = s.at("fluid/face_u_prev");
+      fluid_->face_w_prev = s.at("fluid/face_w_prev");
+      fluid_->set_prev_dt(s.at("fluid/prev_dt")[0]);
+    } else {
+      fluid_->clear_step_history();
+    }
     fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);

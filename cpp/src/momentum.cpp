@@ -269,9 +269,13 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
   const double dx = g.dx(), inv_dx = 1.0 / dx;
   u_star.assign(g.nface_x(), 0.0);
   w_star.assign(g.nface_z(), 0.0);
+  // the convective term's velocities (the extrapolated ones of AB2, else the step's start)
+  MomentumFields fc = f;
+  if (f.conv_face_u) fc.face_u = f.conv_face_u;
+  if (f.conv_face_w) fc.face_w = f.conv_face_w;
   if (t.convection) {
-    pore_velocities(g, f, s);
-    convective_fluxes(g, f, bc, s);
+    pore_velocities(g, fc, s);
+    convective_fluxes(g, fc, bc, s);
   }
   const bool implicit = t.viscosity && t.implicit_vertical;
   if (t.viscosity) corner_shear(g, f, bc, s);
@@ -302,7 +306,7 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
     if (bc.right_open && f.face_x_porosity[je] > 0.0) {
       double rhs = f.face_x_porosity[je] * t.gravity_x;
       if (t.convection)
-        rhs -= (f.face_u[je] * s.pore_u[je] - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
+        rhs -= (fc.face_u[je] * s.pore_u[je] - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
                (s.corner_flux_u[nx + sx * (k + 1)] - s.corner_flux_u[nx + sx * k]) * inv_dz;
       u_star[je] = f.face_u[je] + dt * rhs;
     }
@@ -336,7 +340,7 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
       double rhs = f.face_z_porosity[j] * t.gravity_z;
       if (t.convection)
         rhs -= (s.corner_flux_w[i + 1 + sx * nz] - s.corner_flux_w[i + sx * nz]) * inv_dx +
-               (f.face_w[j] * s.pore_w[j] - s.cell_flux_w[j - nx]) * inv_dz;
+               (fc.face_w[j] * s.pore_w[j] - s.cell_flux_w[j - nx]) * inv_dz;
       w_star[j] = f.face_w[j] + dt * rhs;
     }
   }

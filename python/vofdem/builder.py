@@ -91,6 +91,10 @@ def flow_params(scene: Scene):
     p.pressure_solver = {"multigrid_cg": _core.PressureSolverKind.MULTIGRID_CG,
                          "direct": _core.PressureSolverKind.EIGEN_DIRECT}[n.pressure_solver]
     p.pressure_tol = n.pressure_tolerance
+    p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
+                     "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
+    p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
+                                "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
     p.inlet = _core.InletBoundary.DISCHARGE
     if f.outflow == "tailwater":
         p.outlet = _core.OutletBoundary.TAILWATER
@@ -185,6 +189,7 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.n_exp = scene.stones.n_exp if n_exp is None else float(n_exp)
     p.stone_drag = getattr(_core.StoneDragModel, _STONE_DRAG[scene.stones.drag_model])
     p.max_dt = scene.numerics.max_dt
+    p.implicit_drag = scene.numerics.drag_exchange == "implicit"
     flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
     if fx.dem:
         flags |= _core.COUPLE_DEM

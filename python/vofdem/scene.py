@@ -368,6 +368,14 @@ class Numerics(_Section):
     pressure_solver: str = _choice("multigrid_cg", ("multigrid_cg", "direct"),
                                    "multigrid-preconditioned CG (fast) or Eigen's direct solver (reference)")
     pressure_tolerance: float = _p(1e-8, None, 0.0, 1e-2, "relative residual of the pressure solve [-]", "(]")
+    time_scheme: str = _choice("adams_bashforth2", ("adams_bashforth2", "euler"),
+                               "explicit momentum terms: Adams-Bashforth 2 (second order) or forward Euler")
+    turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
+                                     "k-epsilon transport: columns implicit (step bounded by the horizontal "
+                                     "faces) or point-implicit (bounded by all faces)")
+    drag_exchange: str = _choice("implicit", ("implicit", "held"),
+                                 "stone drag: linearised in the stone's velocity, implicit in the DEM, or held "
+                                 "over the step (bounded by its relaxation time)")
 
     def validate(self, prefix: str = "numerics") -> None:
         self._validate_fields(prefix)

@@ -23,8 +23,9 @@
 // the drag is linearised in the stone's velocity at the exchange and integrated implicitly by the DEM
 // (drag_exchange.h), or held too (CouplerParams::implicit_drag = false).
 //
-// Time step: stable_dt() = min(fluid's stable step, max_dt, a stone crossing at most stone_cfl of the
-// smallest cell; a held drag also drag_relaxation x the drag relaxation time of the lightest stone).
+// Time step: stable_dt() = min(fluid's stable step, max_dt, a stone crossing at most stone_cfl of a cell
+// in each direction (dx along x, the smallest row height along z); a held drag also drag_relaxation x
+// the drag relaxation time of the lightest stone).
 // The DEM's own stable step bounds its substeps, not the exchange step.
 //
 // Guards: a failure in any stage (non-finite value, CFL breach, ...) restores the state of the start of
@@ -87,7 +88,7 @@ struct CouplerParams {
   DragLaw drag_law = DragLaw::kPaper;     // C_D = 0.4 + 24/Re (paper) or Schiller-Naumann (sphere drag)
   StoneDragModel stone_drag = StoneDragModel::kSphere;  // drag model of kCoupleDrag; kSphere (paper)
   double max_dt = 0.01;                   // largest exchange step [s]; 0.01 (sets the step without water)
-  double stone_cfl = 0.5;                 // a stone moves at most this fraction of the smallest cell per step [-]; 0.5
+  double stone_cfl = 0.5;                 // a stone moves at most this fraction of a cell per step, in x of dx, in z of the smallest dz [-]; 0.5
   // the drag linearised in each stone's velocity and integrated implicitly by the DEM (drag_exchange.h):
   // stable for any exchange step; false: held over the step, bounded by drag_relaxation
   bool implicit_drag = true;
@@ -118,6 +119,15 @@ class Coupler {
   double time() const { return time_; }
   long long step_count() const { return steps_; }
   double stable_dt();
+  // steps of advance() bound by each limit: the fluid's terms ("advective", "viscous", "gravity",
+  // "turbulence", "max_dt", "growth"), "stone_cfl", "drag_relaxation", "coupler_max_dt", "t_end" (a step
+  // cut to reach the end time); and per term
+  // the steps bound in each cell (ncell counts; the cell of the binding face, k-epsilon cell or stone
+  // centre; empty without a fluid). A diagnostic: not part of the checkpoint, cleared by
+  // clear_step_limits()
+  const std::map<std::string, long long>& step_limits() const { return limit_steps_; }
+  const std::map<std::string, std::vector<long long>>& step_limit_cells() const { return limit_cells_; }
+  void clear_step_limits();
   // one coupling step of stable_dt() / of dt [s]
   void step();
   void step(double dt);
@@ -152,6 +162,10 @@ class Coupler {
 
  private:
   void check_scene() const;
+  // stable_dt() and which limit binds (term, cell: -1 where it has no place)
+  double stable_dt_limits(const char** term, int* cell);
+  void count_limit(const char* term, int cell);
+  int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
   void apply_flow_flags();
   void make_mapper();
   void stage_porosity(bool keep_water_volume = true);
@@ -191,6 +205,9 @@ class Coupler {
   std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
   std::vector<double> disc_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]
   std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
+
+  std::map<std::string, long long> limit_steps_;
+  std::map<std::string, std::vector<long long>> limit_cells_;
 
   StageProfile profile_;
   int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_;

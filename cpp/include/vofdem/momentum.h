@@ -54,6 +54,10 @@ struct MomentumFields {
   // cells' molecular part plus the harmonic mean of their eddy part (0 if any cell has none); else the
   // arithmetic mean of cell_mu
   const double* cell_mu_eddy = nullptr;
+  // velocities of the convective term (carrying and carried, [m/s]), or null for face_u, face_w: the
+  // Adams-Bashforth 2 step evaluates convection at the extrapolated velocity, the rest at face_u, face_w
+  const double* conv_face_u = nullptr;
+  const double* conv_face_w = nullptr;
 };
 
 struct MomentumTerms {
