@@ -55,7 +55,7 @@ def test_fluid_of_the_scene():
     assert (g.nx, g.nz) == (147, 45 + 1)  # 3.681 m / 0.025 m; one 0.5 cm row then 1 cm rows to 0.45 m
     assert g.z_faces[1] == pytest.approx(0.005) and g.z_faces[2] == pytest.approx(0.015)
     p = f.params
-    assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.3, 200.0, 2.8, 0.5)
+    assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.5, 200.0, 2.8, 0.5)
     assert p.outlet == vofdem.OutletBoundary.TAILWATER and p.tailwater_level == 0.1
     assert p.inlet == vofdem.InletBoundary.DISCHARGE
     assert p.pressure_solver == vofdem.PressureSolverKind.EIGEN_DIRECT
