@@ -371,7 +371,7 @@ class Numerics(_Section):
     pressure_tolerance: float = _p(1e-6, None, 0.0, 1e-2, "relative residual of the pressure solve [-]; 1e-6 "
                                    "(water volume drift about 1e-12 per step)", "(]")
     time_scheme: str = _choice("adams_bashforth2", ("adams_bashforth2", "euler"),
-                               "explicit momentum terms: Adams-Bashforth 2 (second order) or forward Euler")
+                               "momentum convection: Adams-Bashforth 2 (second order) or forward Euler")
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
                                      "faces) or point-implicit (bounded by all faces)")
