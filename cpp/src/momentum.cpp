@@ -375,7 +375,8 @@ void solve_tridiagonal(int m, const double* a, double* b, const double* c, doubl
   for (int k = m - 2; k >= 0; --k) d[k] = (d[k] - c[k] * d[k + 1]) / b[k];
 }
 
-double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical) {
+double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical,
+                         int* cell) {
   const double zf = implicit_vertical ? 0.0 : 1.0;  // the vertical diffusion's share of the explicit operator
   // forward Euler is stable while dt <= 2 / lambda_max; Gershgorin: lambda_max <= max row sum of |A|,
   // whose row of a face is twice its diagonal plus the u-w cross terms
@@ -386,6 +387,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   cm.resize(ncorner + g.ncell());
   corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm.data(), cm.data() + ncorner);
   double worst = 0.0;
+  int where = -1;
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);
     for (int i = 1; i < nx; ++i) {
@@ -395,7 +397,8 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       const double mn = cm[i + sx * (k + 1)], ms = cm[i + sx * k];
       const double diag = 2.0 * (ml + mr) / (dx * dx) + zf * (mn + ms) / (dz * dz);
       const double cross = 2.0 * (mn + ms) / (dx * dz);
-      worst = std::max(worst, (2.0 * diag + cross) / f.face_x_rho[j]);
+      const double rate = (2.0 * diag + cross) / f.face_x_rho[j];
+      if (rate > worst) worst = rate, where = i + nx * k;
     }
   }
   for (int k = 1; k < nz; ++k) {
@@ -408,9 +411,11 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       const double me = cm[i + 1 + sx * k], mw = cm[i + sx * k];
       const double diag = zf * 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
       const double cross = 2.0 * (me + mw) / (dx * hz);
-      worst = std::max(worst, (2.0 * diag + cross) / f.face_z_rho[j]);
+      const double rate = (2.0 * diag + cross) / f.face_z_rho[j];
+      if (rate > worst) worst = rate, where = i + nx * k;
     }
   }
+  if (cell) *cell = where;
   return worst > 0.0 ? 2.0 / worst : std::numeric_limits<double>::infinity();
 }
 

@@ -59,7 +59,10 @@ const char* FlowStableDt::binding(int* cell) const {
     if (cell) *cell = turbulence_cell;
     return "turbulence";
   }
-  if (viscous == m) return "viscous";
+  if (viscous == m) {
+    if (cell) *cell = viscous_cell;
+    return "viscous";
+  }
   if (gravity == m) return "gravity";
   if (growth == m) return "growth";
   return "max_dt";
@@ -382,7 +385,7 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
     s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                  params_.viscous_scheme == ViscousScheme::kImplicitVertical);
+                                  params_.viscous_scheme == ViscousScheme::kImplicitVertical, &s.viscous_cell);
   }
   const double g = std::hypot(params_.gravity_x, params_.gravity_z);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0

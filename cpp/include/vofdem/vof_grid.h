@@ -147,6 +147,7 @@ struct FlowStableDt {
   double growth = 0;      // initial_dt before the first step, then max_dt_growth * the last step
   int advective_cell = -1;   // the cell beside the face that binds the advective limit (-1: none)
   int turbulence_cell = -1;  // the cell that binds the k-epsilon limit (-1: none)
+  int viscous_cell = -1;     // the cell beside the face that binds the viscous limit (-1: none)
   double min() const;
   // the name of the binding term ("advective", "viscous", "gravity", "turbulence", "max_dt", "growth")
   // and its cell (-1 where the term has no place)
