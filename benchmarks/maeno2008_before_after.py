@@ -8,7 +8,7 @@ bulk porosity mapping) it runs the scenario twice, one after the other in this p
   the exchange step ("held"), CFL 0.3, pressure tolerance 1e-8. (One change is not switchable: the
   stones' step limit per direction; the former one bound both directions by the smallest cell.)
 - after: the scene as it is (Adams-Bashforth 2, column-implicit k-epsilon, implicit drag exchange,
-  CFL 0.5, pressure tolerance 1e-6).
+  CFL 0.5, pressure tolerance 1e-5).
 
 Writes benchmarks/results/maeno2008_before_after.md: wall and CPU time (time.process_time: the machine
 is shared, CPU time is the steadier figure), steps, which limit bound the steps, the per-stage

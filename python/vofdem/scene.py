@@ -368,8 +368,8 @@ class Numerics(_Section):
                                    "disc-cell overlap: exact areas or the paper's lookup table")
     pressure_solver: str = _choice("multigrid_cg", ("multigrid_cg", "direct"),
                                    "multigrid-preconditioned CG (fast) or Eigen's direct solver (reference)")
-    pressure_tolerance: float = _p(1e-6, None, 0.0, 1e-2, "relative residual of the pressure solve [-]; 1e-6 "
-                                   "(water volume drift about 1e-12 per step)", "(]")
+    pressure_tolerance: float = _p(1e-5, None, 0.0, 1e-2, "relative residual of the pressure solve [-]; 1e-5 "
+                                   "(water volume drift about 1e-11 per step)", "(]")
     time_scheme: str = _choice("adams_bashforth2", ("adams_bashforth2", "euler"),
                                "momentum convection: Adams-Bashforth 2 (second order) or forward Euler")
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
