@@ -155,7 +155,7 @@ void KEpsilonModel::check_sizes(const std::vector<double>& face_u, const std::ve
 }
 
 void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                                          const std::vector<double>& cell_nu) const {
+                                          const std::vector<double>& cell_nu, bool x_only) const {
   if (!has(params_.flags, kKEpsDiffusion)) return;
   const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
   const double half_x = 0.5 * grid_.dx();
@@ -168,7 +168,7 @@ void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosi
       for (int e = 0; e < 2; ++e) {
         const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
         half_res_x_[e][c] = half_x / cond;
-        half_res_z_[e][c] = half_z / cond;
+        if (!x_only) half_res_z_[e][c] = half_z / cond;
       }
     }
   }
@@ -303,7 +303,7 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
 void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& face_u,
                                       const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
                                       const std::vector<double>& cell_F, const std::vector<double>& cell_nu,
-                                      FaceCoef* out) const {
+                                      FaceCoef* out, bool x_only) const {
   const unsigned flags = params_.flags;
   const bool adv = has(flags, kKEpsAdvection), dif = has(flags, kKEpsDiffusion);
   const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
@@ -317,7 +317,8 @@ void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& f
   const int nbk[4] = {k, k, k - 1, k + 1};
   const double vin[4] = {u_w, -u_e, w_s, -w_n};
   const double len[4] = {dx, dx, dz, dz};
-  for (int f = 0; f < 4; ++f) {
+  const int nfaces = x_only ? 2 : 4;
+  for (int f = 0; f < nfaces; ++f) {
     FaceCoef& o = out[f];
     o.nb = -1;
     o.a[0] = o.a[1] = 0.0;
@@ -519,18 +520,18 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
                                 const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                                 const std::vector<double>& cell_nu, int* cell) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
-  half_cell_resistances(cell_porosity, cell_F, cell_nu);
-  double rate_max = 0.0;
-  int worst = -1;
-  FaceCoef fc[4];
   // the column solves take the vertical faces (and the boundary inflow) implicitly
   const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines;
   const int nfaces = lines ? 2 : 4;
+  half_cell_resistances(cell_porosity, cell_F, cell_nu, lines);
+  double rate_max = 0.0;
+  int worst = -1;
+  FaceCoef fc[4];
   for (int k = 0; k < grid_.nz(); ++k) {
     for (int i = 0; i < grid_.nx(); ++i) {
       const int c = grid_.cell(i, k);
       if (!is_active(c, cell_porosity, cell_F)) continue;
-      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc, lines);
       double sum_k = 0.0, sum_eps = 0.0;
       for (int f = 0; f < nfaces; ++f) {
         if (lines && fc[f].nb < 0) continue;

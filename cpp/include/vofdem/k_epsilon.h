@@ -216,14 +216,17 @@ class KEpsilonModel {
   bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const {
     return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
   }
-  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond)
+  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond;
+  // x_only: the first alone)
   void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                             const std::vector<double>& cell_nu) const;
+                             const std::vector<double>& cell_nu, bool x_only = false) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
-  // coefficients (per unit volume) of the 4 faces of cell (i, k), for k and for eps
+  // coefficients (per unit volume) of the 4 faces of cell (i, k) (west, east, south, north), for k and
+  // for eps; x_only: the first two alone
   void face_coefficients(int i, int k, const std::vector<double>& face_u,
                          const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
-                         const std::vector<double>& cell_F, const std::vector<double>& cell_nu, FaceCoef* out) const;
+                         const std::vector<double>& cell_F, const std::vector<double>& cell_nu, FaceCoef* out,
+                         bool x_only = false) const;
   void solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                        const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                        const std::vector<double>& cell_nu);
