@@ -371,7 +371,8 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
       // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
-      const double rate = std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
+      const double rate =
+          std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
       if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
       // a drag held over the step (explicit exchange): stay below its relaxation time (estimated with
       // eq. 18); the implicit exchange needs no such bound (drag_exchange.h)

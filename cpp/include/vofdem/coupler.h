@@ -88,7 +88,8 @@ struct CouplerParams {
   DragLaw drag_law = DragLaw::kPaper;     // C_D = 0.4 + 24/Re (paper) or Schiller-Naumann (sphere drag)
   StoneDragModel stone_drag = StoneDragModel::kSphere;  // drag model of kCoupleDrag; kSphere (paper)
   double max_dt = 0.01;                   // largest exchange step [s]; 0.01 (sets the step without water)
-  double stone_cfl = 0.5;                 // a stone moves at most this fraction of a cell per step, in x of dx, in z of the smallest dz [-]; 0.5
+  // a stone moves at most this fraction of a cell per step, along x of dx, along z of the smallest dz [-]; 0.5
+  double stone_cfl = 0.5;
   // the drag linearised in each stone's velocity and integrated implicitly by the DEM (drag_exchange.h):
   // stable for any exchange step; false: held over the step, bounded by drag_relaxation
   bool implicit_drag = true;
