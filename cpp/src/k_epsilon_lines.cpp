@@ -11,7 +11,7 @@
 // horizontal limit (dt sum_x a > n) those faces are lagged-implicit instead: a x_nb_old on the right,
 // a on the diagonal. The matrix is an M-matrix (diagonally dominant, positive diagonal, non-positive
 // off-diagonals) and the right-hand side is non-negative in both cases, so k and eps stay positive
-// for any dt; the vertical diffusion of the eddy viscosity over the fine bed rows, which bounds the
+// for any dt; the vertical diffusion of the eddy viscosity over the thin rows, which bounds the
 // point-implicit scheme's step, bounds nothing here. A uniform decaying field and a steady state are
 // kept exactly (below the horizontal limit). Thomas algorithm on all columns together
 // (solve_tridiagonal_rows, momentum.h), O(ncell).
