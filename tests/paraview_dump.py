@@ -1,11 +1,11 @@
 """Run by ParaView's pvbatch (tests/test_paraview.py): reads a run's XDMF file with one of ParaView's
 XDMF readers and saves every time step's arrays to an .npz for the test to compare with the HDF5 file.
 
-    pvbatch paraview_dump.py RUN.xmf READER OUT.npz
+    pvbatch paraview_dump.py RUN.xmf OUT_PREFIX READER [READER ...]
 
-READER: XDMFReader (XDMF 2 library), Xdmf3ReaderS or Xdmf3ReaderT. Keys of OUT.npz: 'times', and
-'<block>/<step>/<cell|point>/<array>' and '<block>/<step>/points' for each block of each step (block:
-'fields' or 'stones')."""
+READER: XDMFReader (XDMF 2 library), Xdmf3ReaderS or Xdmf3ReaderT; each writes OUT_PREFIX<READER>.npz
+with the keys 'times', '<block>/<step>/<cell|point>/<array>' and '<block>/<step>/points' for each block
+of each step (block: 'fields' or 'stones')."""
 import sys
 
 import numpy as np
@@ -53,4 +53,5 @@ def main(xmf, reader, out):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    for name in sys.argv[3:]:
+        main(sys.argv[1], name, f"{sys.argv[2]}{name}.npz")

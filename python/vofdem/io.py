@@ -275,6 +275,8 @@ class RunWriter:
             with _open(tmp, "r+") as f:
                 f.attrs["status"] = status or "completed"
                 if profile is not None:
+                    if "profile" in f:  # a resumed run's file, closed once before (interrupted)
+                        del f["profile"]
                     names, seconds, calls = profile
                     f["profile/names"] = np.array([str(s) for s in names], dtype=h5py.string_dtype())
                     f["profile/seconds"] = np.asarray(seconds, float)

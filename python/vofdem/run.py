@@ -147,6 +147,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     ck = load_checkpoint(out / CHECKPOINT_NAME) if resume else None
     if ck is not None and ck.scene_toml != scene.to_toml():
         raise ValueError(f"the scene differs from the one of the run in '{out}' (resume with its own scene.toml)")
+    if ck is not None and RunData(out / "run.h5").attrs.get("status") == "completed":
+        raise ValueError(f"the run in '{out}' has completed: nothing to resume")
     try:
         check_writable(out)
     except OutputError as e:
