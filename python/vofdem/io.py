@@ -40,7 +40,9 @@ stones alone, for meshio, whose time-series reader takes one collection per file
 from __future__ import annotations
 
 import datetime as _dt
+import errno
 import os
+import re
 import shutil
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -136,13 +138,17 @@ class RunWriter:
         self._geometry(np.asarray(x_faces, float), np.asarray(z_faces, float), len(diameters), write_fields,
                        int(capacity))
         self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.file = None
         try:
             f = self.file = _open(self.path, "w")
             self._make(f, np.asarray(diameters, float), np.asarray(fixed, bool), scene_toml, seed, version)
             f.flush()
-        except OSError as e:
-            self.file = None
-            raise OutputError(e.errno, f"cannot make '{self.path}' ({self.capacity} snapshots): {e}") from e
+        except (OSError, ValueError, RuntimeError) as e:
+            failed = _system_errno(e)
+            if failed is None:
+                raise
+            self._abandon()
+            raise OutputError(failed, f"cannot make '{self.path}' ({self.capacity} snapshots): {e}") from e
         self.write_xdmf()
 
     @classmethod
@@ -164,6 +170,15 @@ class RunWriter:
         self._times = [float(t) for t in f["time"][:count]]
         self.write_xdmf()
         return self
+
+    def _abandon(self) -> None:
+        """Drops the file after a failed system call (its close may fail too: the disk is full)."""
+        f, self.file = self.file, None
+        try:
+            if f is not None:
+                f.close()
+        except (OSError, ValueError, RuntimeError):
+            pass
 
     def _geometry(self, x_faces, z_faces, n, write_fields, capacity):
         self.xmf_path = self.path.with_suffix(".xmf")
@@ -241,8 +256,11 @@ class RunWriter:
             f.flush()
             f["time"][k] = t
             f.flush()
-        except OSError as e:
-            raise OutputError(e.errno, f"writing snapshot {k} (t = {t:.6g} s) to '{self.path}' failed: {e}") from e
+        except (OSError, ValueError, RuntimeError) as e:
+            failed = _system_errno(e)
+            if failed is None:
+                raise
+            raise OutputError(failed, f"writing snapshot {k} (t = {t:.6g} s) to '{self.path}' failed: {e}") from e
         self.count += 1
         self._times.append(float(t))
         self.write_xdmf()
@@ -287,6 +305,15 @@ class RunWriter:
         except OSError as e:
             tmp.unlink(missing_ok=True)
             raise OutputError(e.errno, f"closing '{self.path}' failed (its snapshots are kept): {e}") from e
+
+
+def _system_errno(e: BaseException) -> Optional[int]:
+    """The errno of a failed system call behind an exception (h5py reports HDF5's as ValueError or
+    RuntimeError with 'errno = N' in the message); None for other errors (a wrong argument)."""
+    if isinstance(e, OSError) and e.errno is not None:
+        return e.errno
+    m = re.search(r"errno = (\d+)", str(e))
+    return int(m.group(1)) if m else (errno.EIO if isinstance(e, OSError) else None)
 
 
 def _replace_text(path: Path, text: str) -> None:
