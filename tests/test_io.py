@@ -160,7 +160,7 @@ def test_cell_velocities_average_the_faces():
 WRITER = """
 import sys, numpy as np
 from vofdem.io import RunWriter
-nx, nz, n, T = 30, 20, 40, 200
+nx, nz, n, T = 30, 20, 40, 120
 w = RunWriter(sys.argv[1], np.linspace(0, 1, nx + 1), np.linspace(0, 1, nz + 1), np.full(n, 0.05), np.zeros(n, bool),
               capacity=T)
 print("ready", flush=True)

@@ -123,3 +123,14 @@ def test_paraview_and_meshio_read_a_run_killed_with_sigkill(killed_run, tmp_path
     assert 20 <= T < 71
     assert _check_meshio(killed_run) == T
 
+
+
+@pytest.mark.slow
+@needs_pvbatch
+def test_the_paraview_example_builds_its_view(quick_run):
+    # the pipeline of examples/paraview_view.py without rendering (rendering needs a display)
+    r = subprocess.run([PVBATCH, str(ROOT / "examples" / "paraview_view.py"), str(quick_run), "--check"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "t = 35 s: cells 1196, water cells" in r.stdout and "stones 80" in r.stdout
+    assert "porosity" in r.stdout and "velocity" in r.stdout

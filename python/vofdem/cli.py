@@ -145,7 +145,7 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
     print()
     print(res.profile_table)
     print(res.analysis.stage_table_markdown())
-    print(f"output: {out}/ (run.h5 + run.xmf for ParaView, stage_table.md/.csv, figures/, animation)")
+    print(f"output: {out}/ (run.h5 + run.xmf for ParaView, stones.xmf, stage_table.md/.csv, figures/, animation)")
     return 0
 
 
