@@ -96,3 +96,15 @@ def test_a_real_full_disk(tmp_path):
             assert 1 <= T < 33 and np.isfinite(f["stones/pos"][:T]).all()
     finally:
         subprocess.run(["umount", "-l", str(medium)], check=True)
+
+
+@pytest.mark.skipif(shutil.which("mount") is None or os.geteuid() != 0, reason="mounting a tmpfs needs root")
+def test_a_read_only_file_system_is_an_error_before_the_run(tmp_path):
+    ro = tmp_path / "ro"
+    _mount_tmpfs(ro, "100k")
+    try:
+        subprocess.run(["mount", "-o", "remount,ro", str(ro)], check=True)
+        with pytest.raises(ValueError, match=r"output directory '.*ro/out' is not writable: Read-only file system"):
+            run_scene(short_scene(), ro / "out", build=_never_built, progress=False)
+    finally:
+        subprocess.run(["umount", "-l", str(ro)], check=True)
