@@ -295,9 +295,11 @@ TEST(RollingResistance, EnergyBalanceClosesWithDampingAndSlipToFirstOrder) {
     for (int k = 0; k < nstep; ++k) s.step(dt);
     return (s.energy().total() - e0) / s.energy().dissipated;
   };
+  // measured: 3.0 % and 1.5 % of the dissipated energy (without the rolling resistance 4.7 % and -0.2 %:
+  // that trajectory is chaotic enough for the halving not to show)
   const double e1 = closure(0.5), e2 = closure(0.25);
-  EXPECT_LT(std::fabs(e1), 0.06);
-  EXPECT_LT(std::fabs(e2), 0.5 * std::fabs(e1) + 0.01);
+  EXPECT_LT(std::fabs(e1), 0.05);
+  EXPECT_NEAR(e1 / e2, 2.0, 0.3);
 }
 
 TEST(RollingResistance, StaticHeapDoesNotCreep) {
