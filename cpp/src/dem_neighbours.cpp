@@ -127,6 +127,7 @@ void DEMSystem::build_neighbours() {
     }
   }
   pairs_.swap(new_pairs_);
+  update_pair_rolling();
 }
 
 std::vector<std::array<int, 2>> DEMSystem::neighbour_pairs() const {

@@ -36,14 +36,27 @@ double DEMSystem::rolling_spin_stiffness(double m_min) const {
   return 2.0 * kt_ / (params_.inertia_factor * m_min);
 }
 
-// 1 / (I + (M + M') r^2): a stone's inertia about its contact point, for the damper's I_r
+// 1 / (I + (M + M') r^2): a stone's inertia about its contact point, for the damper's I_r; the damper's
+// constant factors, so that the contact loops take no square root
 void DEMSystem::update_rolling_inertia() {
   inv_roll_inertia_.assign(static_cast<std::size_t>(n_), 0.0);
+  wall_roll_c_.assign(static_cast<std::size_t>(n_), 0.0);
+  roll_eta_sqrt_kt_ = (params_.flags & kDEMDamping) ? params_.rolling_damping * std::sqrt(kt_) : 0.0;
   if (!(rolling_stones() || rolling_walls())) return;
   for (int i = 0; i < n_; ++i) {
     if (inv_inertia_[i] == 0.0) continue;  // fixed, inactive, or rotation off
     const double r = disc_radius[i];
     inv_roll_inertia_[i] = 1.0 / (1.0 / inv_inertia_[i] + mass_eff_[i] * r * r);
+    wall_roll_c_[i] = 2.0 * r / std::sqrt(inv_roll_inertia_[i]);
+  }
+}
+
+// C_r = 2 eta_r sqrt(I_r k_r) = eta_r sqrt(k_t) 2 R* sqrt(I_r): the pair's part, 2 R* sqrt(I_r)
+void DEMSystem::update_pair_rolling() {
+  if (!rolling_stones()) return;
+  for (Pair& c : pairs_) {
+    const double inv = inv_roll_inertia_[c.i] + inv_roll_inertia_[c.j];
+    c.roll_c = inv > 0.0 ? 2.0 * rolling_radius(disc_radius[c.i], disc_radius[c.j]) / std::sqrt(inv) : 0.0;
   }
 }
 
@@ -51,9 +64,7 @@ DEMSystem::RollingEnergy DEMSystem::rolling_contact(Pair& c, double fn, double d
   const int i = c.i, j = c.j;
   const double reff = rolling_radius(disc_radius[i], disc_radius[j]);
   const double kr = rolling_stiffness(kt_, reff);
-  const double inv = inv_roll_inertia_[i] + inv_roll_inertia_[j];
-  const double eta = (params_.flags & kDEMDamping) ? params_.rolling_damping : 0.0;
-  const double cr = eta > 0.0 && inv > 0.0 ? rolling_damping_coefficient(eta, 1.0 / inv, kr) : 0.0;
+  const double cr = roll_eta_sqrt_kt_ * c.roll_c;
   const double cap = params_.rolling_friction_stone * reff * std::max(fn, 0.0);
   const RollingMoment m = rolling_resistance(disc_omega[i] - disc_omega[j], c.mr, dt, kr, cr, cap);
   disc_torque[i] += m.moment;
@@ -64,10 +75,7 @@ DEMSystem::RollingEnergy DEMSystem::rolling_contact(Pair& c, double fn, double d
 DEMSystem::RollingEnergy DEMSystem::rolling_wall(int i, double& mr, double fn, double dt) {
   const double r = disc_radius[i];
   const double kr = rolling_stiffness(kt_, r);
-  const double eta = (params_.flags & kDEMDamping) ? params_.rolling_damping : 0.0;
-  const double cr = eta > 0.0 && inv_roll_inertia_[i] > 0.0
-                        ? rolling_damping_coefficient(eta, 1.0 / inv_roll_inertia_[i], kr)
-                        : 0.0;
+  const double cr = roll_eta_sqrt_kt_ * wall_roll_c_[i];
   const double cap = params_.rolling_friction_wall * r * std::max(fn, 0.0);
   const RollingMoment m = rolling_resistance(disc_omega[i], mr, dt, kr, cr, cap);
   disc_torque[i] += m.moment;

@@ -219,6 +219,7 @@ void DEMSystem::prepare() {
   }
   if (!rebuild_) {
     for (Pair& c : pairs_) c.sqrt_m = std::sqrt(1.0 / (inv_mass_[c.i] + inv_mass_[c.j]));
+    update_pair_rolling();
   }
   prepared_ = true;
 }

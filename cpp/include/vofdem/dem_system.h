@@ -183,6 +183,7 @@ class DEMSystem {
     double xi;         // tangential spring [m]
     double sqrt_m;     // sqrt of the pair's reduced mass [kg^0.5], set at each build
     double mr = 0.0;   // rolling spring moment M_r^k on i [N m] (rolling resistance only)
+    double roll_c = 0.0;  // 2 R* sqrt(I_r) [kg^0.5 m^2]: C_r = eta_r sqrt(k_t) roll_c (rolling resistance only)
   };
   void prepare();
   void check_params() const;
@@ -212,6 +213,7 @@ class DEMSystem {
   void check_rolling_params() const;
   double rolling_spin_stiffness(double m_min) const;
   void update_rolling_inertia();
+  void update_pair_rolling();  // Pair::roll_c of every listed pair
   struct RollingEnergy {
     double elastic = 0.0, dissipated = 0.0;
   };
@@ -237,6 +239,8 @@ class DEMSystem {
   std::vector<double> inv_inertia_;  // 1 / I [1/(kg m^2)]
   std::vector<double> weight_;       // (M - rho_w V w) [kg]: multiplies g
   std::vector<double> inv_roll_inertia_;  // 1 / (I + (M + M') r^2), 0 if it does not turn [1/(kg m^2)]
+  std::vector<double> wall_roll_c_;       // 2 r sqrt(I + (M + M') r^2) per stone: roll_c of its wall contacts
+  double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off
 
   // neighbour list and contact histories
   std::vector<Pair> pairs_;
