@@ -142,3 +142,18 @@ def test_params_command_lists_the_rolling_keys(capsys):
     for key in ("stones.rolling_friction ", "stones.rolling_friction_wall", "stones.rolling_damping",
                 "effects.rolling_resistance"):
         assert key in out
+
+
+def test_rolling_scenes_are_the_base_scenes_with_the_calibrated_stones():
+    from pathlib import Path
+
+    from vofdem.scene import load_scene
+
+    root = Path(__file__).resolve().parents[1] / "scenes"
+    for name, base in (("maeno2008_rolling", "maeno2008"), ("maeno2008_rolling_consistent", "maeno2008_consistent")):
+        s, b = load_scene(root / f"{name}.toml"), load_scene(root / f"{base}.toml")
+        assert s.name == name and s.effects.rolling_resistance
+        assert (s.stones.rolling_friction, s.stones.rolling_friction_wall, s.stones.rolling_damping) == (0.4, 0.4, 0.3)
+        s.name = b.name
+        s.stones.rolling_friction = s.stones.rolling_friction_wall = 0.0
+        assert s == b
