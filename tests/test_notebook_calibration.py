@@ -12,7 +12,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def test_calibration_notebook_runs_and_shows_heaps_and_pulls(tmp_path, monkeypatch):
     monkeypatch.setenv("VOFDEM_NOTEBOOK_STONES", "60")
-    monkeypatch.setenv("PYTHONPATH", str(Path(vofdem.__file__).resolve().parents[1]) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    # the kernel imports the same vofdem as this test (installed, or the source tree with its _core)
+    package_root = str(Path(vofdem.__file__).resolve().parents[1])
+    monkeypatch.setenv("PYTHONPATH", package_root + os.pathsep + os.environ.get("PYTHONPATH", ""))
     nb = nbformat.read(ROOT / "notebooks" / "calibration.ipynb", as_version=4)
     NotebookClient(nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}).execute()
     outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]

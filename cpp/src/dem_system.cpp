@@ -405,7 +405,10 @@ void DEMSystem::remove_escaped() {
     disc_acc[2 * i] = disc_acc[2 * i + 1] = 0.0;
     disc_alpha[i] = 0.0;
     disc_force[2 * i] = disc_force[2 * i + 1] = 0.0;
-    for (std::size_t w = 0; w < p.walls.size(); ++w) wall_xi_[i * p.walls.size() + w] = wall_mr_[i * p.walls.size() + w] = 0.0;
+    for (std::size_t w = 0; w < p.walls.size(); ++w) {
+      wall_xi_[i * p.walls.size() + w] = 0.0;
+      wall_mr_[i * p.walls.size() + w] = 0.0;
+    }
     ++removed_;
     rebuild_ = true;
   }
