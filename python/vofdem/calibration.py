@@ -273,8 +273,7 @@ class PullSetup:
     spring: float = 50.0     # spring stiffness [N/m] (a spring balance reading 5 N at 10 cm)
     speed: float = 0.02      # anchor speed [m/s]
     max_travel: float = 0.3  # the pull stops after the anchor has travelled this far [m]
-    pulled_out: float = 1.0  # ... or once the stone has moved this many of its diameters and the force
-    #                          has fallen below half its peak
+    pulled_out: float = 1.5  # ... or once the stone has moved this many of its diameters (out of its pocket)
     update: float = 1e-3     # the spring force is updated every `update` seconds [s]
     z_low: float = 0.2       # stones pulled: centres between z_low and z_high of the weir's height
     z_high: float = 0.8
@@ -367,7 +366,7 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
     weight = float(system.mass(stone)) * builder.GRAVITY
     steps = int(round(setup.max_travel / setup.speed / setup.update))
     travel, force = np.zeros(steps), np.zeros(steps)
-    peak, k_end = 0.0, steps
+    k_end = steps
     h = setup.update
     for k in range(steps):
         # the force held over the next `update` is the spring's at its middle (anchor and stone moved on
@@ -376,9 +375,7 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
         f = setup.spring * (x0 + e * setup.speed * h * (k + 0.5) - (x + 0.5 * h * v))
         system.disc_force_ext[stone] = f
         travel[k], force[k] = setup.speed * h * k, float(np.hypot(*(setup.spring * (x0 + e * setup.speed * h * k - x))))
-        peak = max(peak, force[k])
-        moved = float(np.hypot(*(np.asarray(system.disc_pos[stone]) - x0)))
-        if moved > setup.pulled_out * d and force[k] < 0.5 * peak:
+        if float(np.hypot(*(x - x0))) > setup.pulled_out * d:
             k_end = k + 1
             break
         system.advance(setup.update)
