@@ -51,6 +51,15 @@ def pull_job(args):
     return mu_r, cal.pull_test(stones(mu_r), [seed], per_seed, setup=setup)
 
 
+def pack_job(args):
+    """(mu_r, seed, stones, fixed, 2D porosity, outline error [m]) of the scene's weir packed with mu_r."""
+    from vofdem.builder import build_stones
+
+    mu_r, seed = args
+    _, rep = build_stones(stones(mu_r).replace(seed=seed))
+    return mu_r, seed, rep.n_stones, rep.n_fixed, rep.porosity, rep.outline_error
+
+
 def run_all(pool, fn, jobs):
     return list(pool.map(fn, jobs))
 
@@ -151,6 +160,7 @@ def main():
                     ("speed 1 cm/s", cal.PullSetup(speed=0.01)), ("speed 4 cm/s", cal.PullSetup(speed=0.04))]
         sens = {label: run_all(pool, pull_job, [(mu_cal, s, per_seed, st) for s in pull_seeds[:2]])
                 for label, st in variants}
+        packs = run_all(pool, pack_job, [(mu, s) for _, mu in models for s in pull_seeds])
         rates = [0.1, 0.25]
         rate_heaps = {r: run_all(pool, heap_job, [(mu_cal, s, False, cal.ReposeSetup(
             n_stones=rsetup.n_stones, release_interval=r)) for s in seeds]) for r in rates}
@@ -195,6 +205,10 @@ def main():
                  for n in cal.PAPER_PULL_N]
         lines.append(f"| {mu} | {fmt([r.angle for m, r in heaps if m == mu and not r.submerged])} | "
                      + " | ".join(cells) + " |")
+    lines += ["", "### The weirs the pulls were made on (pack_weir with each model's stones)", "",
+              "| mu_r | seed | stones (fixed) | 2D porosity | outline error [cm] |", "|---|---|---|---|---|"]
+    for mu, seed, n, nf, por, err in packs:
+        lines.append(f"| {mu} | {seed} | {n} ({nf}) | {por:.3f} | {100 * err:.2f} |")
     lines += ["", "## 3. Sensitivity", "",
               f"Pull of the calibrated stones (weirs {pull_seeds[0]}-{pull_seeds[min(1, len(pull_seeds) - 1)]}, "
               f"{per_seed} stone(s) each), mean peak force [N] per direction:", "",
