@@ -123,6 +123,12 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
 
         print(describe_parameters())
         return 0
+    if args.command == "calibrate":
+        try:
+            return _calibrate(args, resolve_scene(args.scene))
+        except ValueError as e:
+            print(f"vofdem: error: {e}", file=sys.stderr)
+            return 2
     try:
         if args.command == "analyse":
             from .run import postprocess
@@ -130,23 +136,16 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             a = postprocess(args.out, animation=not args.no_animation)
             print(a.stage_table_markdown())
             return 0
-        scene = resolve_scene(args.scene, getattr(args, "quick", False), getattr(args, "seed", None),
-                              getattr(args, "end_time", None))
+        scene = resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
         from .ensemble import parse_seeds
 
-        seeds = parse_seeds(args.seeds) if args.command == "run" and args.seeds else None
+        seeds = parse_seeds(args.seeds) if getattr(args, "seeds", None) else None
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
     if args.command == "check":
         print(scene.to_toml(), end="")
         return 0
-    if args.command == "calibrate":
-        try:
-            return _calibrate(args, scene)
-        except ValueError as e:
-            print(f"vofdem: error: {e}", file=sys.stderr)
-            return 2
     from .ensemble import ensemble_markdown, run_ensemble
     from .run import SolverError, run_scene
 
