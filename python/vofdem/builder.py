@@ -31,6 +31,9 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
     p.friction_stone = st.friction_stone
+    p.rolling_friction_stone = st.rolling_friction
+    p.rolling_friction_wall = st.rolling_friction_wall
+    p.rolling_damping = st.rolling_damping
     # the bed and the upstream end wall; downstream the stones leave over the outflow end
     p.walls = [_core.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=st.friction_wall),
                _core.DEMWall(point=[0.0, 0.0], normal=[1.0, 0.0], friction=st.friction_wall)]
@@ -42,6 +45,8 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
         flags |= _core.DEM_ROTATION
     if fx.friction:
         flags |= _core.DEM_FRICTION
+    if fx.rolling_resistance:
+        flags |= _core.DEM_ROLLING_RESISTANCE
     if fx.added_mass:
         flags |= _core.DEM_ADDED_MASS
     if fx.buoyancy:
@@ -52,6 +57,15 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     return p
 
 
+def stone_system(scene: Scene, params, pos, diameters, fixed):
+    """A DEMSystem of the scene's stone model at centres pos (n, 2) [m] with diameters [m] and fixed flags;
+    the one place that turns positions and sizes into stones (discs today), so that every experiment on
+    the stones (calibration.py) builds them the way the weir is built."""
+    pos = np.asarray(pos, float).reshape(-1, 2)
+    d = np.asarray(diameters, float)
+    return _core.DEMSystem(params, pos, 0.5 * d, np.full(len(d), scene.stones.density), [int(f) for f in fixed])
+
+
 def build_stones(scene: Scene):
     """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
     scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
@@ -60,9 +74,7 @@ def build_stones(scene: Scene):
         pos = np.asarray(st.positions, float)
         d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
         fixed = (pos[:, 1] - 0.5 * d <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
-        sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density),
-                               [int(f) for f in fixed])
-        return sys_, None
+        return stone_system(scene, dem_params(scene), pos, d, fixed), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
     pack = dem_params(scene, fluid_density=0.0)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)

@@ -1,4 +1,5 @@
-"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N | --seeds 0-4]`` and helpers.
+"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N | --seeds 0-4]`` and helpers, among them
+``vofdem calibrate repose|pull SCENE`` (the laboratory experiments on the stones, calibration.py).
 
 SCENE is a TOML scene file or the name of a ready scene (``maeno2008``); ``vofdem run --resume DIR``
 continues a killed run from its last checkpoint. Exit codes: 0 success, 2 a bad scene or bad
@@ -41,7 +42,53 @@ def _parser() -> argparse.ArgumentParser:
     a.add_argument("out", type=Path)
     a.add_argument("--no-animation", action="store_true")
     sub.add_parser("params", help="print every scene parameter with its default and allowed range")
+    _calibrate_parser(sub)
     return p
+
+
+def _calibrate_parser(sub) -> None:
+    k = sub.add_parser("calibrate", help="laboratory experiments on the scene's stones: angle of repose, pull-out test")
+    ks = k.add_subparsers(dest="experiment", required=True)
+    r = ks.add_parser("repose", help="pour heaps from a funnel onto a rough base and fit their flanks")
+    r.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    r.add_argument("--seeds", default="0-2", help="one heap per seed, e.g. '0-2' (default)")
+    r.add_argument("--stones", type=int, default=300, help="stones poured per heap (default 300)")
+    r.add_argument("--submerged", action="store_true", help="also pour the heaps under still water")
+    r.add_argument("--out", type=Path, default=None, help="output directory (default: out/calibration/<scene name>)")
+    q = ks.add_parser("pull", help="the paper's pull-out test of slope stones of the packed weir (Fig. 5, Table 1)")
+    q.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    q.add_argument("--seeds", default="0-4", help="one packed weir per seed (default '0-4')")
+    q.add_argument("--per-seed", type=int, default=2, help="slope stones pulled per weir (default 2)")
+    q.add_argument("--spring", type=float, default=50.0, help="spring stiffness [N/m] (default 50)")
+    q.add_argument("--speed", type=float, default=0.02, help="anchor speed [m/s] (default 0.02)")
+    q.add_argument("--out", type=Path, default=None, help="output directory (default: out/calibration/<scene name>)")
+
+
+def _calibrate(args, scene) -> int:
+    """Runs a calibration experiment, prints its table and writes it with a figure to the output directory."""
+    from . import calibration as cal
+    from .ensemble import parse_seeds
+
+    seeds = parse_seeds(args.seeds)
+    out = args.out or Path("out") / "calibration" / scene.name
+    out.mkdir(parents=True, exist_ok=True)
+    log = lambda msg: print(msg, file=sys.stderr)  # noqa: E731
+    if args.experiment == "repose":
+        setup = cal.ReposeSetup(n_stones=args.stones)
+        res = cal.repose_test(scene, seeds, False, setup, log)
+        if args.submerged:
+            res += cal.repose_test(scene, seeds, True, setup, log)
+        table, name = cal.repose_markdown(res), "repose"
+        cal.fig_heap(res[0]).savefig(out / "heap.png", dpi=110)
+    else:
+        setup = cal.PullSetup(spring=args.spring, speed=args.speed)
+        res = cal.pull_test(scene, seeds, args.per_seed, setup=setup, log=log)
+        table, name = cal.pull_markdown(res), "pull"
+        cal.fig_pull(res).savefig(out / "pull.png", dpi=110)
+    (out / f"{name}.md").write_text(f"# {name} test of scene '{scene.name}'\n\n{table}\n", encoding="utf-8")
+    print(table)
+    print(f"output: {out}/ ({name}.md, {'heap' if name == 'repose' else 'pull'}.png)")
+    return 0
 
 
 def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, end_time: Optional[float] = None):
@@ -96,6 +143,12 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
 
         print(describe_parameters())
         return 0
+    if args.command == "calibrate":
+        try:
+            return _calibrate(args, resolve_scene(args.scene))
+        except ValueError as e:
+            print(f"vofdem: error: {e}", file=sys.stderr)
+            return 2
     try:
         if args.command == "analyse":
             from .run import postprocess
