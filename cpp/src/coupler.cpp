@@ -474,6 +474,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/step_count"] = {static_cast<double>(f.step_count())};
     s["fluid/last_dt"] = {f.last_dt()};
     s["fluid/inlet_volume"] = {f.inlet_volume()};
+    s["fluid/net_inflow_volume"] = {f.net_inflow_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
   }
@@ -541,6 +542,8 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     // older states have no last step: the next one starts from FlowParams::initial_dt
     fluid_->set_last_dt(s.count("fluid/last_dt") ? need(s, "fluid/last_dt", 1)[0] : 0.0);
     fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
+    // older states have no boundary budget: it restarts from 0
+    fluid_->set_net_inflow_volume(s.count("fluid/net_inflow_volume") ? need(s, "fluid/net_inflow_volume", 1)[0] : 0.0);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
     fluid_->update_face_porosity();
