@@ -612,6 +612,13 @@ void VOFGrid::stage_pressure(double dt) {
       }
       problem_.face_x_coef[j] = a;
       problem_.face_x_bc[j] = i == nx ? outlet_pressure(k) : 0.0;
+      // water drawn in from the still tailwater starts from rest: its static pressure at the end face is
+      // the outside pressure less 1/2 rho U^2 (a total-pressure inlet); a fixed static pressure lets the
+      // inflow run away (-25 m/s below a weir's jet)
+      if (i == nx && params_.outlet == OutletBoundary::kTailwater && face_u[j] < 0.0 && face_x_porosity[j] > 0.0) {
+        const double U = face_u[j] / face_x_porosity[j];
+        problem_.face_x_bc[j] -= 0.5 * face_x_rho_[j] * U * U;
+      }
     }
   }
   for (int k = 0; k <= nz; ++k) {
