@@ -237,6 +237,21 @@ void Coupler::update_fluid_forces() {
   stage_fluid_forces();
 }
 
+// names the first of a stone's cells whose flow is not finite (the cause of a non-finite force), or ""
+std::string Coupler::non_finite_cell(int count, const int* cells) const {
+  const int nx = fluid_->grid().nx();
+  for (int m = 0; m < count; ++m) {
+    const int c = cells[m];
+    const double v[] = {fluid_->cell_F[c], cell_U_[c], cell_W_[c], cell_dpdx_[c], cell_dpdz_[c]};
+    const char* names[] = {"water fraction", "pore velocity U", "pore velocity W", "dp/dx", "dp/dz"};
+    for (int q = 0; q < 5; ++q)
+      if (!std::isfinite(v[q]))
+        return "; the flow is not finite in its cell (i=" + std::to_string(c % nx) + ", k=" + std::to_string(c / nx) +
+               "): " + names[q] + " = " + format_value(v[q]);
+  }
+  return "";
+}
+
 void Coupler::stage_fluid_forces() {
   ScopedStage timer(profile_, st_forces_);
   // one-way coupling: the stones' cell lists without touching the flow's porosity
@@ -295,7 +310,8 @@ void Coupler::stage_fluid_forces() {
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
                                ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
                                format_value(fs[1]) + " N) at x = " + format_value(stones_->disc_pos[2 * j]) +
-                               " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m");
+                               " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m" +
+                               non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
   }
 }
 

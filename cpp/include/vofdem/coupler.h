@@ -151,6 +151,7 @@ class Coupler {
   void make_mapper();
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
+  std::string non_finite_cell(int count, const int* cells) const;
   // with both force effects off: zeroes the fluid forces the stones still hold (once, on the switch)
   void clear_fluid_forces();
   void stage_dem(double dt);
