@@ -8,6 +8,7 @@
 #include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
 #include "vofdem/fluid_forces.h"
+#include "vofdem/wet_fraction.h"
 
 namespace vofdem {
 
@@ -300,18 +301,25 @@ void Coupler::stage_fluid_forces() {
       const auto f = stone_pressure_force(s, stones_->volume(j));
       fs[0] = f[0], fs[1] = f[1];
     }
-    if (fl & kCoupleWetFraction) stones_->disc_wet[j] = s.wet;
     if (fl & kCoupleForces) {
       forces_applied_ = true;
       stones_->disc_force_ext[2 * j] = fd[0] + fs[0];
       stones_->disc_force_ext[2 * j + 1] = fd[1] + fs[1];
     }
-    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1]))
+    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1] + s.wet))
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
                                ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
-                               format_value(fs[1]) + " N) at x = " + format_value(stones_->disc_pos[2 * j]) +
-                               " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m" +
+                               format_value(fs[1]) + " N; wet fraction " + format_value(s.wet) + ") at x = " +
+                               format_value(stones_->disc_pos[2 * j]) + " m, z = " +
+                               format_value(stones_->disc_pos[2 * j + 1]) + " m" +
                                non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
+    if (fl & kCoupleWetFraction) {
+      // w now, and the level that gives it, so that w follows the stone over the DEM's substeps
+      const double w = std::clamp(s.wet, 0.0, 1.0);
+      stones_->set_wet_fraction(j, w);
+      stones_->disc_water_level[j] =
+          water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);
+    }
   }
 }
 

@@ -463,6 +463,10 @@ class DEMSystem:
         ...
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    def set_wet_fraction(self, i: typing.SupportsInt | typing.SupportsIndex, w: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        wet fraction of stone i; when it grows, (M + M') v is kept
+        """
     def stable_dt(self) -> float:
         ...
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -517,6 +521,11 @@ class DEMSystem:
     @property
     def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+    @property
+    def disc_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        free-surface level at each stone [m]; NaN: disc_wet held as set
+        """
     @property
     def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
         ...

@@ -48,29 +48,46 @@ def wet_tank_with_stone(z0, density, level=0.3, flags=None, x0=0.2):
     return sim
 
 
-@case("floating_stone_comes_to_rest_at_the_surface", "coupled",
-      "a stone lighter than water (500 kg/m3, 4.8 cm) released 0.2 m deep: it rises at 0.7 m/s, overshoots "
-      "the surface, and buoyancy and added mass change with the wet fraction as it bobs",
-      "after 8 s it floats at the surface (centre within 1 cm of the level, speed < 2 cm/s, never more "
-      "than 0.6 d above the surface after the first bounce), water volume to 1e-9",
-      xfail="it bobs without settling (7 cm peak to peak at 8-12 s, rising 5 cm above the surface): energy "
-            "enters through the wet fraction, held over each exchange step while the stone moves (buoyancy lags "
-            "the motion), and through the added mass rho C_M V w growing at constant velocity as it re-enters")
-def floating_stone():
+def released_float(t_end=8.0):
+    """A 500 kg/m3 stone released 0.2 m deep in a tank 0.3 m deep, run to t_end: (sim, largest and
+    smallest height of its centre above the level and mean wet fraction from 3 s on, volume error)."""
     sim = wet_tank_with_stone(0.1, 500.0)
     v0 = sim.water_volume()
     sim.advance(3.0)
-    highest = 0.0
-    while sim.time < 8.0 - 1e-9:
+    dz, wets = [], []
+    while sim.time < t_end - 1e-9:
         sim.advance(sim.time + 0.05)
-        highest = max(highest, float(sim.stones.disc_pos[0, 1]) - 0.3)
-    z, vz = float(sim.stones.disc_pos[0, 1]), float(np.hypot(*sim.stones.disc_vel[0]))
-    err = abs(sim.water_volume() - v0) / v0
+        dz.append(float(sim.stones.disc_pos[0, 1]) - 0.3)
+        wets.append(float(sim.stones.disc_wet[0]))
+    return sim, max(dz), min(dz), float(np.mean(wets)), abs(sim.water_volume() - v0) / v0
+
+
+@case("floating_stone_floats_at_the_surface", "coupled",
+      "a stone lighter than water (500 kg/m3, 4.8 cm) released 0.2 m deep: it rises at 0.7 m/s, overshoots "
+      "the surface, and its buoyancy and added mass change with its wet fraction as it bobs (it used to hang "
+      "5 cm above the surface and bob 7 cm peak to peak)",
+      "from 3 s to 8 s its centre stays within 1 cm of the level (never more than 0.6 d above it), its mean "
+      "wet fraction is the density ratio 0.5 within 0.1, water volume to 1e-9")
+def floating_stone():
+    sim, hi, lo, wet, err = released_float()
     assert err < 1e-9, f"water volume changed by {err:.2e}"
-    assert highest < 0.6 * D, f"the stone rose to {highest:.3f} m above the surface"
-    assert abs(z - 0.3) < 0.01 and vz < 0.02, f"not at rest at the surface: z = {z:.4f} m, speed {vz:.3f} m/s"
-    return {"centre - level": f"{fmt(z - 0.3, 2)} m", "speed": f"{fmt(vz, 2)} m/s",
-            "wet fraction": fmt(float(sim.stones.disc_wet[0]), 3), "volume error": fmt(err, 2)}
+    assert hi < min(0.01, 0.6 * D) and lo > -0.01, f"centre between {lo:.4f} and {hi:.4f} m of the level"
+    assert abs(wet - 0.5) < 0.1, f"mean wet fraction {wet}"
+    return {"centre - level": f"{fmt(lo, 2)} to {fmt(hi, 2)} m", "mean wet fraction": fmt(wet, 3),
+            "volume error": fmt(err, 2)}
+
+
+@case("floating_stone_comes_to_rest", "coupled",
+      "the same stone after 8 s: at rest only if the water it disturbed comes to rest too",
+      "speed below 2 cm/s at 8 s",
+      xfail="it keeps moving at 2-9 cm/s with the water, which still moves at 0.11-0.27 m/s at 8-12 s under a "
+            "+-4 mm seiche whose own orbital speed is ~0.04 m/s: the surface the stone broke keeps "
+            "films of water in nearly empty cells (flow case `film_on_a_surface_at_a_cell_face`)")
+def floating_at_rest():
+    sim, *_ = released_float()
+    speed = float(np.hypot(*sim.stones.disc_vel[0]))
+    assert speed < 0.02, f"speed {speed:.3f} m/s at 8 s"
+    return {"speed": f"{fmt(speed, 2)} m/s"}
 
 
 @case("stone_resting_across_the_free_surface", "coupled",
@@ -78,10 +95,11 @@ def floating_stone():
       "0 and 1, the free surface crossing its porous disc",
       "it stays where it is (moves < 0.5 mm in 3 s), its wet fraction is the disc's area below the "
       "level within 0.1, no spurious currents (< 5 cm/s), water volume to 1e-9",
-      xfail="spurious currents grow to 0.3 m/s (5 cm/s in the water, a +-1 mm seiche) within 3 s: the stone "
-            "settles 6 um into the bed's spring at the start, each re-mapping of its porosity moves water by "
-            "volume at the surface (1.7e-7 m^2 in all), and the currents' forces keep it jittering; with the "
-            "stone fixed, or one-way coupled, the tank stays still (< 1e-10 m/s)")
+      xfail="spurious currents of 0.3 m/s (5 cm/s in the water, a +-1 mm seiche) within 1 s. The stone settles "
+            "6 um into the bed's spring at the start; the 1.7e-7 m^2 of water it displaces goes to the cell above "
+            "the surface (F = 0.004), and a film that thin on a surface lying on a cell face is what drives the "
+            "currents: the same film without any stone does the same (flow case "
+            "`film_on_a_surface_at_a_cell_face`); with the stone pre-settled they stay below 1e-5 m/s")
 def stone_across_surface():
     level = 0.03
     sim = wet_tank_with_stone(0.5 * D, 2650.0, level=level)
