@@ -262,7 +262,15 @@ double DEMSystem::stable_dt() {
   const double rot = (params_.flags & kDEMRotation) ? 1.0 / params_.inertia_factor : 0.0;
   const double w2_t = 2.0 * kt_ * (1.0 + rot) / m_min;
   const double w = std::sqrt(std::max(w2_n, w2_t));
-  return kPi / (10.0 * w);
+  // explicit dashpots: a mode of frequency a w and damping ratio a zeta (dashpots proportional to the
+  // springs) is stable for dt <= 2 / (a w (a zeta + sqrt(1 + a^2 zeta^2))); a stone packed among
+  // kPackedContacts neighbours has modes up to a = sqrt(kPackedContacts) times the pair's. Measured on
+  // six packed weirs (critical damping): the energy grew at 0.7-0.8 of the undamped bound alone, never
+  // at 0.65; this bound is 0.61 of it there, and the undamped one where the damping is weak
+  const double zeta = (params_.flags & kDEMDamping) ? zeta_ : 0.0;
+  const double a = std::sqrt(kPackedContacts), az = a * zeta;
+  const double damped = 2.0 / (a * w * (az + std::sqrt(1.0 + az * az)));
+  return std::min(kPi / (10.0 * w), damped);
 }
 
 void DEMSystem::step(double dt) { advance_checked(dt, 1); }

@@ -195,9 +195,9 @@ def energy_growth(s, dt, duration=1.0):
 
 @case("dem_step_at_the_scenes_step", "stones",
       "the packed weir at rest (critical damping, up to 4-5 contacts per stone) stepped at the scene's DEM "
-      "step, 1e-4 s = 0.59 stable_dt(), and one step above stable_dt()",
-      "energy never grows (total within 1e-9 of its start over 1 s); above stable_dt(): a ValueError naming "
-      "stable_dt, the state untouched")
+      "step, 1e-4 s, and one step above stable_dt()",
+      "energy never grows (total within 1e-9 of its start over 1 s); above stable_dt(): a ValueError "
+      "naming stable_dt, the state untouched")
 def dem_scene_step():
     s = dry_weir(seed=1)
     frac = s.params.dt / s.stable_dt()
@@ -214,15 +214,15 @@ def dem_scene_step():
 
 
 @case("dem_step_at_stable_dt", "stones",
-      "the packed weir at rest stepped at exactly stable_dt(), the step the DEM reports as stable",
-      "energy never grows (total within 1e-9 of its start over 1 s)",
-      xfail="stable_dt() (1/10 of the pair's undamped contact period) is not stable for a critically damped "
-            "packing: the energy grows by 13 % (seed 0) and 8.5 % (seed 1) in 1 s at stable_dt(), 4 % at 0.8 of "
-            "it, nothing at 0.7; the explicit dashpot limits the step to 2 / (w (zeta_w + sqrt(1 + zeta_w^2))) "
-            "and a stone with z contacts has modes up to sqrt(z/2) times the pair's w (damped in proportion), "
-            "about 0.75 of stable_dt() here. The scenes step at 0.59 of it (case above)")
+      "six packed weirs at rest (critical damping) stepped at exactly stable_dt(), the step the DEM reports "
+      "as stable (it used to be 1/10 of the pair's undamped contact period, at which the energy grew by "
+      "up to 13 % in 1 s)",
+      "energy never grows (total within 1e-9 of its start over 1 s), for packings of seeds 0-5")
 def dem_stable_dt():
-    s = dry_weir(seed=1)
-    growth = energy_growth(s, s.stable_dt())
-    assert growth < 1e-9, f"energy grew by {growth:.2e} in 1 s"
-    return {"energy change over 1 s": fmt(growth, 2)}
+    worst = -1.0
+    for seed in range(6):
+        s = dry_weir(seed=seed)
+        growth = energy_growth(s, s.stable_dt())
+        assert growth < 1e-9, f"seed {seed}: energy grew by {growth:.2e} in 1 s"
+        worst = max(worst, growth)
+    return {"largest energy change over 1 s": fmt(worst, 2)}

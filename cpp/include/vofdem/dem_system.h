@@ -115,8 +115,11 @@ class DEMSystem {
   void set_params(const DEMParams& p);
 
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
-  // (normal and tangential-rotational modes of the lightest stone)
+  // (normal and tangential-rotational modes of the lightest stone), and no more than the explicit
+  // dashpots allow in a packing (kPackedContacts contacts per stone; binds for restitution below ~0.12)
   double stable_dt();
+  // contacts per stone assumed by stable_dt() for the highest mode of a packing [-]
+  static constexpr double kPackedContacts = 5.0;
   // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
   // state (export_state) so that a failure can restore it: call advance() with long durations.
   void step(double dt);
