@@ -491,30 +491,24 @@ TEST(VOFGrid, PorousResistanceUsesTheMolecularViscosityNotTheEddyViscosity) {
   }
 }
 
-TEST(VOFGrid, AStalledMultigridSolveIsRedoneByTheDirectSolver) {
-  // 35 % of the cells, scattered, nearly closed: the multigrid-CG stalls on some solves (the islands);
-  // each such solve is redone directly and counted, and the flow is the direct solver's
+TEST(VOFGrid, AMultigridSolveThatCannotConvergeIsRedoneByTheDirectSolver) {
+  // a tolerance below the round-off floor of the residual: every multigrid-CG solve fails, each is
+  // redone by the direct solver and counted, and the flow is the direct solver's
   auto make = [](PressureSolverKind kind) {
     FlowParams p;
     p.pressure_solver = kind;
-    auto flow = std::make_unique<VOFGrid>(Grid2D::uniform(64, 32, 0.64, 0.32), p);
-    std::uint64_t state = 7;
-    for (double& n : flow->cell_porosity) {
-      state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // a fixed pseudo-random pattern
-      if ((state >> 33) % 100 < 35) n = 1e-6;
-    }
-    flow->update_face_porosity();
-    flow->fill_water_below(0.2);
-    flow->fill_water_box(0.0, 0.2, 0.2, 0.3);
+    p.pressure_tol = 1e-16;
+    auto flow = std::make_unique<VOFGrid>(Grid2D::uniform(32, 16, 0.64, 0.32), p);
+    flow->fill_water_box(0.0, 0.2, 0.0, 0.25);
     flow->set_hydrostatic_pressure();
     for (int s = 0; s < 20; ++s) flow->step(flow->stable_dt());
     return flow;
   };
   const auto mg = make(PressureSolverKind::kMultigridCG);
   const auto direct = make(PressureSolverKind::kEigenDirect);
-  EXPECT_GT(mg->pressure_fallbacks(), 0);
+  EXPECT_EQ(mg->pressure_fallbacks(), 20);
   EXPECT_EQ(direct->pressure_fallbacks(), 0);
   double du = 0.0;
   for (std::size_t j = 0; j < mg->face_u.size(); ++j) du = std::max(du, std::abs(mg->face_u[j] - direct->face_u[j]));
-  EXPECT_LT(du, 1e-6);
+  EXPECT_LT(du, 1e-12);
 }
