@@ -40,3 +40,15 @@ def test_catalogue_is_large_and_named():
     for c in CASES:
         assert c.name.replace("_", "").replace("-", "").replace(".", "").isalnum(), c.name
         assert c.hard and c.must_hold and c.group in ("flow", "stones", "coupled", "errors")
+
+
+def test_the_readme_quotes_the_counts():
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    total = re.search(r"runs (\d+) small scenes", text)
+    counts = re.search(r"\*\*(\d+) pass, (\d+) are expected to fail\*\*", text)
+    assert total and counts, "the README's reliability paragraph is missing its counts"
+    xfail = sum(1 for c in CASES if c.xfail)
+    assert (int(total.group(1)), int(counts.group(1)), int(counts.group(2))) == (len(CASES), len(CASES) - xfail, xfail)
