@@ -194,7 +194,8 @@ void DEMSystem::set_wet_fraction(int i, double w) {
 
 // the wet fraction of a stone given a water level follows its height (wet_fraction.h)
 void DEMSystem::follow_water_level(int i) {
-  set_wet_fraction(i, disc_wet_fraction((disc_water_level[i] - disc_pos[2 * i + 1]) / disc_radius[i]));
+  const double w = disc_wet_fraction((disc_water_level[i] - disc_pos[2 * i + 1]) / disc_radius[i]);
+  if (w != disc_wet[i]) set_wet_fraction(i, w);
 }
 
 // reduced mass of two mean mobile stones [kg], for the automatic stiffness

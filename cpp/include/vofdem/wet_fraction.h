@@ -28,16 +28,26 @@ inline double disc_wet_fraction(double s) {
 }
 
 // the level [m] at which a disc of radius r [m] centred at z [m] has wet fraction w [-]: z + r s with
-// disc_wet_fraction(s) = w (bisection to 1e-13 in s); +inf for w >= 1, -inf for w <= 0
+// disc_wet_fraction(s) = w (Newton on dw/ds = 2 sqrt(1 - s^2) / pi inside a shrinking bracket, bisection
+// where a step leaves it; to 1e-13 in s); +inf for w >= 1, -inf for w <= 0
 inline double water_level_of_wet_fraction(double z, double r, double w) {
   if (!(w > 0.0)) return -std::numeric_limits<double>::infinity();
   if (w >= 1.0) return std::numeric_limits<double>::infinity();
-  double lo = -1.0, hi = 1.0;
-  while (hi - lo > 1e-13) {
-    const double mid = 0.5 * (lo + hi);
-    (disc_wet_fraction(mid) < w ? lo : hi) = mid;
+  double lo = -1.0, hi = 1.0, s = 2.0 * w - 1.0;
+  for (int it = 0; it < 200 && hi - lo > 1e-13; ++it) {
+    const double f = disc_wet_fraction(s) - w;
+    if (f == 0.0) break;
+    (f < 0.0 ? lo : hi) = s;
+    const double slope = 2.0 * std::sqrt(1.0 - s * s) / M_PI;
+    double next = slope > 0.0 ? s - f / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - s) < 1e-14) {
+      s = next;
+      break;
+    }
+    s = next;
   }
-  return z + r * 0.5 * (lo + hi);
+  return z + r * s;
 }
 
 }  // namespace vofdem
