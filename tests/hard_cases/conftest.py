@@ -1,6 +1,5 @@
 """Collects the catalogue's outcomes and writes docs/hard_cases.md once every case has run."""
 import platform
-import time
 from pathlib import Path
 
 import pytest
@@ -67,8 +66,7 @@ def _table(cases) -> str:
         "",
         f"**{len(cases)} cases: {n['pass']} pass, {n['xfail']} expected to fail"
         + (f", {n['FAIL']} FAIL" if n["FAIL"] else "") + (f", {n['xpass']} unexpected pass" if n["xpass"] else "")
-        + f".** Cost: {total:.1f} s of wall time in all ({time.strftime('%Y-%m-%d')}, "
-        f"{platform.machine()}, one core of a shared machine).",
+        + f".** Cost: {total:.1f} s of wall time in all ({platform.machine()}, one core of a shared machine).",
         "",
         "| # | case | group | what is hard | what must hold | result | cost s |",
         "|---|---|---|---|---|---|---|",

@@ -6,7 +6,7 @@ import numpy as np
 from vofdem import _core
 from vofdem.scene import Scene
 
-from hc_harness import (D, G, RHO_W, assert_budget, build, case, couple, dem_params, fields_bounded, fmt,
+from hc_harness import (D, RHO_W, assert_budget, build, case, couple, dem_params, fields_bounded, fmt,
                         release_after, stones, stones_accounted, tank)
 
 

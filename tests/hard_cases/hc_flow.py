@@ -1,7 +1,6 @@
 """Hard cases of the flow alone (VOFGrid): extreme porosity, films, jets, trapped air, open ends."""
 import numpy as np
 
-import vofdem
 from vofdem import _core
 
 from hc_harness import assert_budget, case, fields_bounded, fmt, tank

@@ -95,7 +95,7 @@ def couple(fluid, dem, flags=None, **kw):
 
 def weir_scene(**changes):
     """The quick variant of the Maeno 2008 scene (5 cm x 2 cm cells, 80 stones), with section fields
-    changed as 'section.field' = value."""
+    changed as section__field=value (e.g. flume__height=1.0)."""
     from vofdem.scene import Scene
 
     s = Scene.maeno2008().quick()

@@ -87,8 +87,8 @@ def restitution_005_at_400():
 
 @case("restitution_0.2_dropped_under_gravity", "stones",
       "a stone dropped on the bed at 1 m/s with e = 0.2: gravity acts through the 4 ms contact and the "
-      "rebound is 7 % below e v0 (the 'e = 0.2 rebounds 6 % low' of a user's test), which is physics, not a "
-      "bug: e(zeta) holds for a contact without body force",
+      "rebound is 7 % below e v0, which is physics, not a bug (e(zeta) holds for a contact without body "
+      "force); it explains a 6 % shortfall seen at e = 0.2 with gravity on, 0.2 % at e = 0.9",
       "rebound within 0.5 % of the closed-form spring-dashpot solution with gravity (d'' + 2 zeta w d' + "
       "w^2 d = g), for e = 0.2 and 0.9")
 def restitution_under_gravity():
