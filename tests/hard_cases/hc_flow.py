@@ -63,8 +63,9 @@ def thin_film():
       xfail="speeds reach 0.24 m/s in 0.5 s and a +-1 mm seiche follows: the one-fluid density smears the "
             "film's weight over its cell, so the cells of that row differ in hydrostatic pressure by "
             "rho_w g F dz / 2 = 0.2 Pa, which drives their air (density ~3 kg/m3 at the faces) sideways at "
-            "~6 m/s^2; the same film with the surface in mid-cell gives 1e-4 m/s. A stratified density at the "
-            "horizontal faces (a cell's water at its bottom where the column holds more below) brings it to "
+            "~6 m/s^2; the same film with the surface in mid-cell gives 1e-4 m/s. A stratified density on the "
+            "faces between cells one above the other (a cell's water at its bottom where the column holds more "
+            "below) brings it to "
             "2.8e-4 m/s, but moves the validated dam-break front (x/a at T = 3, 8 cells per a: 3.769 -> 3.715) "
             "and weir coefficient (0.862 -> 0.856) and slows thin films: a change of its own, with those "
             "benchmarks rerun")
