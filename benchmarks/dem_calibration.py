@@ -36,9 +36,7 @@ ROUND = 0.05
 
 def stones(mu_r):
     """The paper's scene with rolling friction mu_r at stone-stone and stone-wall contacts."""
-    s = Scene.maeno2008()
-    s.stones.rolling_friction = s.stones.rolling_friction_wall = mu_r
-    return s
+    return cal.with_rolling(Scene.maeno2008(), mu_r)
 
 
 def heap_job(args):

@@ -481,6 +481,10 @@ class DEMSystem:
         ...
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    def set_wet_fraction(self, i: typing.SupportsInt | typing.SupportsIndex, w: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        wet fraction of stone i; when it grows, (M + M') v is kept
+        """
     def stable_dt(self) -> float:
         ...
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -535,6 +539,11 @@ class DEMSystem:
     @property
     def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+    @property
+    def disc_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        free-surface level at each stone [m]; NaN: disc_wet held as set
+        """
     @property
     def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
@@ -1423,6 +1432,14 @@ class FlowParams:
     def gravity_z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def initial_dt(self) -> float:
+        """
+        first time step [s], 1e-3
+        """
+    @initial_dt.setter
+    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def k1(self) -> float:
         """
         linear resistance coefficient of eq. (7) [-], 200
@@ -1439,12 +1456,12 @@ class FlowParams:
     def k2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def initial_dt(self) -> float:
+    def max_dt(self) -> float:
         """
-        first time step [s], 1e-3
+        largest time step [s], 0.01
         """
-    @initial_dt.setter
-    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @max_dt.setter
+    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def max_dt_growth(self) -> float:
@@ -1453,14 +1470,6 @@ class FlowParams:
         """
     @max_dt_growth.setter
     def max_dt_growth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_dt(self) -> float:
-        """
-        largest time step [s], 0.01
-        """
-    @max_dt.setter
-    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_dt(self) -> float:
@@ -1740,8 +1749,21 @@ class VOFGrid:
         water volume per width [m^2] that entered through the inlet
         """
     @property
+    def last_dt(self) -> float:
+        """
+        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
+        """
+    @last_dt.setter
+    def last_dt(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def last_pressure_stats(self) -> PressureSolveStats:
         ...
+    @property
+    def net_inflow_volume(self) -> float:
+        """
+        water volume per width [m^2] in through the boundary faces minus out, since construction (the VOF advection's fluxes)
+        """
     @property
     def params(self) -> FlowParams:
         """
@@ -1751,18 +1773,15 @@ class VOFGrid:
     def params(self, arg1: FlowParams) -> None:
         ...
     @property
+    def pressure_fallbacks(self) -> int:
+        """
+        multigrid-CG solves redone by the direct solver (no convergence)
+        """
+    @property
     def profile(self) -> StageProfile:
         ...
     @property
     def step_count(self) -> int:
-        ...
-    @property
-    def last_dt(self) -> float:
-        """
-        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
-        """
-    @last_dt.setter
-    def last_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def time(self) -> float:

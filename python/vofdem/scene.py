@@ -83,6 +83,19 @@ def _check_number(name: str, value, md) -> float:
     return v
 
 
+def _check_list(name: str, value, md: Optional[dict] = None) -> None:
+    """A list field: a list (a TOML array) whose entries are numbers, in md's range if given. Checked
+    whatever the section's kind, so a key the kind ignores is still refused when it is malformed."""
+    if not isinstance(value, (list, tuple)):
+        raise ValueError(f"{name} = {value!r} must be a list of numbers")
+    for j, v in enumerate(value):
+        if md is None:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise ValueError(f"{name}[{j}] = {v!r} must be a finite number")
+        else:
+            _check_number(f"{name}[{j}]", v, md)
+
+
 def _parse_quantity(name: str, value, kind: Optional[str]):
     """Converts '4.8 cm' to the field's unit; numbers pass unchanged."""
     if not isinstance(value, str):
@@ -233,6 +246,9 @@ class Stones(_Section):
     def validate(self, prefix: str = "stones") -> None:
         self._validate_fields(prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
+        if not isinstance(self.positions, (list, tuple)):
+            raise ValueError(f"{prefix}.positions = {self.positions!r} must be a list of pairs [x m, z m]")
+        _check_list(f"{prefix}.diameters", self.diameters, size)
         for j, row in enumerate(self.positions):
             if not isinstance(row, (list, tuple)) or len(row) != 2 or not all(
                     isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in row):
@@ -283,6 +299,11 @@ class Hydrograph(_Section):
 
     def validate(self, prefix: str = "hydrograph") -> None:
         self._validate_fields(prefix)
+        # the table's lists are checked under any kind: a malformed key is an error even where it is ignored
+        q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
+        t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
+        _check_list(f"{prefix}.times", self.times, t_md)
+        _check_list(f"{prefix}.discharge_lps", self.discharge_lps, q_md)
         if self.function is not None:
             if not callable(self.function):
                 raise ValueError(f"{prefix}.function must be a callable t [s] -> Q [m3/s]")
@@ -291,11 +312,6 @@ class Hydrograph(_Section):
             if len(self.times) < 2 or len(self.times) != len(self.discharge_lps):
                 raise ValueError(f"{prefix}.times and {prefix}.discharge_lps must be lists of the same "
                                  f"length >= 2 (got {len(self.times)} and {len(self.discharge_lps)})")
-            q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
-            t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
-            for j, (t, q) in enumerate(zip(self.times, self.discharge_lps)):
-                _check_number(f"{prefix}.times[{j}]", t, t_md)
-                _check_number(f"{prefix}.discharge_lps[{j}]", q, q_md)
             if any(b <= a for a, b in zip(self.times, self.times[1:])):
                 raise ValueError(f"{prefix}.times must be strictly increasing")
 
@@ -364,6 +380,9 @@ class GridSpec(_Section):
 class Numerics(_Section):
     cfl: float = _p(0.3, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.3", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
+    dem_contact_steps: float = _p(20.0, None, 5.0, 1e6, "automatic contact stiffness: DEM steps of dem_dt per "
+                                  "contact of two mean stones [-]; 20 (polygons: 50 at dem_dt 4e-5 s, the same "
+                                  "stiffness)")
     max_dt: float = _p(0.01, "time", 0.0, 1.0, "largest fluid time step [s]", "(]")
     initial_dt: float = _p(1e-3, "time", 0.0, 1.0, "first fluid time step from rest [s]; usual 1e-3", "(]")
     max_dt_growth: float = _p(1.2, None, 1.0, 10.0, "growth limit of the fluid step, dt <= factor x last dt [-]; "
@@ -501,6 +520,8 @@ class Scene:
             if not isinstance(sec, cls):
                 raise ValueError(f"{key} must be a {cls.__name__}, got {type(sec).__name__}")
             sec.validate(key)
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise ValueError(f"name = {self.name!r} must be a non-empty string")
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or not 0 <= self.seed < 2**63:
             raise ValueError(f"seed = {self.seed!r} must be an integer in [0, 2^63)")
         if self.end_time is not None:
@@ -614,6 +635,9 @@ class Scene:
             data = _toml.loads(text)
         except _toml.TOMLDecodeError as e:
             raise ValueError(f"{source}: not valid TOML: {e}") from None
+        if not data:
+            raise ValueError(f"{source}: the scene is empty (no keys, no sections); write at least the sections "
+                             f"that differ from the defaults, e.g. [flume], or run the ready scene 'maeno2008'")
         return cls.from_dict(data, source)
 
     def replace(self, **changes) -> "Scene":
