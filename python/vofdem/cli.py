@@ -26,7 +26,15 @@ def _parser() -> argparse.ArgumentParser:
     seed.add_argument("--seed", type=int, default=None, help="random seed of the packing (overrides the scene)")
     seed.add_argument("--seeds", default=None,
                       help="an ensemble over packings, e.g. '0-4' or '0,3,7': one run per seed in DIR/seed<N>/, "
-                           "summary in DIR/ensemble.md")
+                           "summary in DIR/ensemble.md, fragility curves in DIR/fragility.png")
+    r.add_argument("--vary", action="append", default=None, metavar="KEY=V1,V2,...",
+                   help="an ensemble over parameter values, e.g. 'stones.friction_stone=0.5,0.577,0.65' (any scene "
+                        "key; several --vary make a product), each combination over the seeds")
+    r.add_argument("--workers", type=int, default=None,
+                   help="ensemble: worker processes of the local Dask cluster (default: one per core; 0: no Dask, "
+                        "one member after the other in this process)")
+    r.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="ensemble: run on an existing Dask cluster (e.g. tcp://host:8786, or a scheduler file .json)")
     r.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     r.add_argument("--no-figures", action="store_true", help="skip the figures")
     r.add_argument("--no-animation", action="store_true", help="skip the animation")
@@ -77,6 +85,11 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
         print(describe_parameters())
         return 0
     try:
+        if args.command == "analyse" and not (args.out / "run.h5").exists() and (args.out / "ensemble.csv").exists():
+            from .ensemble import summarise
+
+            print(summarise(args.out))
+            return 0
         if args.command == "analyse":
             from .run import postprocess
 
@@ -87,13 +100,17 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
         from .ensemble import parse_seeds
 
         seeds = parse_seeds(args.seeds) if getattr(args, "seeds", None) else None
+        if seeds is None and getattr(args, "vary", None):
+            seeds = [scene.seed]
+        if seeds is None and (getattr(args, "workers", None) is not None or getattr(args, "scheduler", None)):
+            raise ValueError("--workers and --scheduler are for ensembles (--seeds or --vary)")
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
     if args.command == "check":
         print(scene.to_toml(), end="")
         return 0
-    from .ensemble import ensemble_markdown, run_ensemble
+    from .ensemble import run_ensemble
     from .run import SolverError, run_scene
 
     out = args.out or Path("out") / scene.name
@@ -103,10 +120,10 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
                 build=build)
     try:
         if seeds is not None:
-            outcomes = run_ensemble(scene, seeds, out, **opts)
+            run_ensemble(scene, seeds, out, vary=args.vary, workers=args.workers, scheduler=args.scheduler, **opts)
             print()
-            print(ensemble_markdown(outcomes))
-            print(f"output: {out}/ (ensemble.md/.csv, one run directory per seed)")
+            print((out / "ensemble.md").read_text(encoding="utf-8").split("\n| member |")[0])
+            print(f"output: {out}/ (ensemble.md/.csv, fragility.csv/.png, one run directory per member)")
             return 0
         res = run_scene(scene, out, **opts)
     except SolverError as e:
