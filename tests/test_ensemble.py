@@ -101,13 +101,13 @@ def test_serial_ensemble_summary_and_fragility(tmp_path):
     assert df["stage1_lps"].tolist()[:2] == [15.0, 12.0]
     assert df["stage2_lps"].tolist()[:2] == [pytest.approx(18.0, abs=1e-12), 21.5]
     assert np.isnan(df.loc[2, "first_removal_lps"]) and df.loc[2, "removed"] == 0
-    assert (df["last_discharge_lps"] == 25.0).all() and df["stones_hash"].str.len().eq(16).all()
+    assert (df["last_discharge_lps"] == 25.0).all() and (df["first_discharge_lps"] == 10.5).all() and df["stones_hash"].str.len().eq(16).all()
     csv = pd.read_csv(tmp_path / "ensemble.csv")
     assert csv["member"].tolist() == df["member"].tolist()
     md = (tmp_path / "ensemble.md").read_text()
     assert "# Ensemble: 4 of 4 members finished (4 completed, 0 failed, 0 lost)" in md
     # stage 1 at 15, 12, 13 l/s and once never (censored at 25): Kaplan-Meier median 13
-    assert "| stage 1 | 3 of 4 | 13.00 |" in md and "| stage 3 | 0 of 4 | not reached | - |" in md
+    assert "| stage 1 | 3 of 4 (0) | 13.00 |" in md and "| stage 3 | 0 of 4 (0) | not reached | no fit |" in md
     frag = pd.read_csv(tmp_path / "fragility.csv")
     assert frag["event"].tolist() == ["first_removal", "stage1", "stage2", "stage3"]
     assert frag.loc[1, "happened"] == 3 and frag.loc[1, "censored_at_lps"] == 25.0
@@ -123,7 +123,7 @@ def test_cli_sweep_and_analyse(tmp_path, capsys):
     for v in ("0.5", "0.6"):
         for seed in (0, 1):
             assert (tmp_path / f"stones.friction_stone={v}" / f"seed{seed}" / "run.h5").exists()
-    assert main(["analyse", str(tmp_path)]) == 0 and "| first removal of any stone | 0 of 2 |" in capsys.readouterr().out
+    assert main(["analyse", str(tmp_path)]) == 0 and "| first removal of any stone | 0 of 2 (0) |" in capsys.readouterr().out
     assert main(["run", "maeno2008", "--seeds", "2-1"]) == 2
     assert "seeds: '2-1'" in capsys.readouterr().err
     assert main(["run", "maeno2008", "--vary", "stones.friction_stone=9", "--out", str(tmp_path / "x")]) == 2

@@ -9,9 +9,11 @@ from vofdem.fragility import (censored_loglik, empirical_median, event_fragility
                               log_sf, mills_ratio)
 
 
-def _loglik_slow(mu, sigma, q_obs, q_cens):
+def _loglik_slow(mu, sigma, q_obs, q_cens, q_left=()):
     """ln L written term by term with the standard library only."""
     total = 0.0
+    for b in q_left:
+        total += math.log(0.5 * math.erfc(-(math.log(b) - mu) / sigma / math.sqrt(2)))
     for q in q_obs:
         z = (math.log(q) - mu) / sigma
         total += -math.log(sigma) - 0.5 * z * z - math.log(q) - 0.5 * math.log(2 * math.pi)
@@ -20,14 +22,14 @@ def _loglik_slow(mu, sigma, q_obs, q_cens):
     return total
 
 
-def _argmax_slow(q_obs, q_cens, mu0, sigma0):
+def _argmax_slow(q_obs, q_cens, mu0, sigma0, q_left=()):
     """Zooming grid search of ln L over (mu, sigma): 21 x 21 points, the box shrunk 4x around the
     best point, 14 times (a final resolution below 1e-8 of the starting box)."""
     mu, sig, w_mu, w_sig = mu0, sigma0, 1.0, 0.9 * sigma0
     for _ in range(14):
         cands = [(m, s) for m in np.linspace(mu - w_mu, mu + w_mu, 21)
                  for s in np.linspace(max(sig - w_sig, 1e-6), sig + w_sig, 21)]
-        mu, sig = max(cands, key=lambda p: _loglik_slow(p[0], p[1], q_obs, q_cens))
+        mu, sig = max(cands, key=lambda p: _loglik_slow(p[0], p[1], q_obs, q_cens, q_left))
         w_mu, w_sig = w_mu / 4, w_sig / 4
     return mu, sig
 
@@ -91,6 +93,35 @@ def test_censored_fit_against_a_slow_grid_search():
     assert censored_loglik(fit.mu, fit.sigma, q_obs, q_cens) == pytest.approx(fit.loglik, rel=1e-14)
 
 
+def test_left_censored_members_against_the_known_sample_and_the_slow_reference():
+    """Members that failed as soon as they were loaded (at the first discharge a run sees) are
+    left-censored there: the quantile sample of LN(ln 16, 0.2) cut below its 25 % and above its
+    80 % quantiles still gives its mu and sigma."""
+    from statistics import NormalDist
+
+    n, mu, sigma = 400, math.log(16.0), 0.2
+    q = np.array([math.exp(mu + sigma * NormalDist().inv_cdf((i + 0.5) / n)) for i in range(n)])
+    lo, hi = float(np.quantile(q, 0.25)), float(np.quantile(q, 0.8))
+    left, observed = q <= lo, q <= hi
+    fit = fit_lognormal(np.clip(q, lo, hi), observed, left)
+    assert fit.mu == pytest.approx(mu, abs=0.003) and fit.sigma == pytest.approx(sigma, rel=0.02)
+    assert fit.n_observed == observed.sum()
+    # a small case against the slow grid search: two at the first discharge 10.5, four exact, two never
+    q_left, q_obs, q_cens = [10.5, 10.5], [11.2, 12.5, 14.1, 17.6], [25.0, 25.0]
+    q = np.array(q_left + q_obs + q_cens)
+    fit = fit_lognormal(q, np.arange(8) < 6, np.arange(8) < 2)
+    m, s = _argmax_slow(q_obs, q_cens, math.log(14.0), 0.5, q_left)
+    assert fit.mu == pytest.approx(m, abs=1e-7) and fit.sigma == pytest.approx(s, abs=1e-7)
+    assert fit.loglik == pytest.approx(_loglik_slow(m, s, q_obs, q_cens, q_left), rel=1e-12)
+    # failed at the first discharge or never: no maximum, no fit
+    assert fit_lognormal(np.array([10.5, 25.0]), np.array([True, False]), np.array([True, False])) is None
+    with pytest.raises(ValueError, match="left: a left-censored member must be one in which the event happened"):
+        fit_lognormal(np.array([10.5, 25.0]), np.array([True, False]), np.array([False, True]))
+    ev = event_fragility("first_removal", [10.5, 10.5, 12.0, None], [25.0] * 4, [10.5] * 4, n_boot=200, seed=1)
+    assert ev.left.tolist() == [True, True, False, False] and ev.row()["at_first_discharge"] == 2
+    assert 0 < ev.boot_left_out < 1  # resamples with only 10.5 and 25 have no fit
+
+
 def test_one_event_among_censored_members_and_the_degenerate_cases():
     # one event at 12 l/s, three members without it by 25 l/s: a finite fit, median beyond 12
     q, obs = np.array([12.0, 25.0, 25.0, 25.0]), np.array([True, False, False, False])
@@ -126,7 +157,7 @@ def test_event_fragility_and_its_seeded_bootstrap():
     q_end = [25.0] * len(q_event)
     a = event_fragility("stage1", q_event, q_end, n_boot=300, seed=7)
     b = event_fragility("stage1", q_event, q_end, n_boot=300, seed=7)
-    assert a.median_band == b.median_band and a.boot_never == 0.0
+    assert a.median_band == b.median_band and a.boot_left_out == 0.0
     assert a.observed.tolist() == [v is not None for v in q_event] and a.censored_at == 25.0
     lo, hi = a.median_band
     assert lo < a.fit.median < hi
@@ -134,4 +165,4 @@ def test_event_fragility_and_its_seeded_bootstrap():
     assert (row["members"], row["happened"], row["empirical_median_lps"]) == (8, 6, 14.2)
     assert row["fit_q16_lps"] < row["fit_median_lps"] < row["fit_q84_lps"]
     never = event_fragility("stage3", [None, None], [25.0, 25.0], n_boot=50)
-    assert never.fit is None and never.median_band == (math.inf, math.inf) and never.boot_never == 1.0
+    assert never.fit is None and never.median_band == (math.inf, math.inf) and never.boot_left_out == 0.0

@@ -36,7 +36,8 @@ OUTCOME_FILE = "outcome.json"
 # the columns of an outcome, after the member's name, seed and parameters
 OUTCOME_COLUMNS = ["status", "error", "first_removal_lps", "stage1_lps", "stage1_stones", "stage2_lps",
                    "stage2_stones", "stage3_lps", "stage3_stones", "stages", "removed", "stones",
-                   "crest_lowering_mm", "last_discharge_lps", "simulated_seconds", "wall_seconds", "stones_hash"]
+                   "crest_lowering_mm", "first_discharge_lps", "last_discharge_lps", "simulated_seconds",
+                   "wall_seconds", "stones_hash"]
 
 
 def parse_seeds(spec: str) -> List[int]:
@@ -158,8 +159,13 @@ def _write_atomic(path: Path, text: str) -> None:
     os.replace(tmp, path)
 
 
-def _event_columns(analysis) -> Dict[str, Any]:
+def _event_columns(analysis, scene: Scene) -> Dict[str, Any]:
+    """Event discharges of a run, the first discharge at which it could see an event (the first
+    snapshot after the stones' release) and the last (its end)."""
     a = analysis
+    h = scene.hydrograph
+    release = h.ramp_start if h.hold_stones_during_spin_up and h.ramp_start > a.times[0] else float(a.times[0])
+    after = a.times[a.times > release + 1e-9]
     fr = a.first_removal
     row: Dict[str, Any] = {"first_removal_lps": None if fr is None else float(a.discharge_lps_at(fr))}
     for k in (1, 2, 3):
@@ -168,6 +174,7 @@ def _event_columns(analysis) -> Dict[str, Any]:
         row[f"stage{k}_stones"] = None if st is None else int(st.n_stones)
     row.update(stages=len(a.stages), removed=int(np.isfinite(a.removal_time).sum()),
                stones=int(a.removal_time.size), crest_lowering_mm=1e3 * float(a.crest_lowering[-1]),
+               first_discharge_lps=float(a.discharge_lps_at(float(after[0]))) if after.size else None,
                last_discharge_lps=float(a.discharge_lps_at(float(a.times[-1]))),
                simulated_seconds=float(a.times[-1]))
     return row
@@ -203,7 +210,7 @@ def run_member(base: Scene, member: Member, out_dir, figures: bool = False, anim
     try:
         res = run_scene(scene, mdir, progress=False, figures=figures, animation=animation, build=build,
                         log=lambda *a, **k: None)
-        row.update(_event_columns(res.analysis))
+        row.update(_event_columns(res.analysis, scene))
         row["stones_hash"] = _stones_hash(res.h5_path)
     except Exception as e:  # noqa: BLE001 - a failing member is an outcome; the others go on
         row.update(status="failed", error=f"{type(e).__name__}: {e}")
@@ -425,6 +432,7 @@ class _Progress:
 
     def __init__(self, total: int, already: int, enabled: bool):
         self.counts = {"running": 0, "failed": 0, "lost": 0}
+        self.text = ""
         self.bar = None
         if enabled:
             from tqdm.auto import tqdm
@@ -442,9 +450,11 @@ class _Progress:
     def update(self, running: Optional[int] = None) -> None:
         if running is not None:
             self.counts["running"] = running
-        if self.bar is not None:
-            c = self.counts
-            self.bar.set_postfix_str(f"running {c['running']}, failed {c['failed'] + c['lost']}", refresh=True)
+        c = self.counts
+        text = f"running {c['running']}, failed {c['failed'] + c['lost']}"
+        if self.bar is not None and text != self.text:  # redraw on a change only (logs stay short)
+            self.text = text
+            self.bar.set_postfix_str(text, refresh=True)
 
     def close(self) -> None:
         if self.bar is not None:

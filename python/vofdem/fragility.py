@@ -4,7 +4,9 @@ For one event (the first removal of any stone, stage 1, 2 or 3; see `analysis`) 
 combination, each member gives either the discharge Q_i at which the event happened (an observation)
 or, when it never happened before the run ended, only that Q_i > c_i, the discharge at the run's end
 (a right-censored observation). Dropping the censored members would move the curve to lower
-discharges; they are kept, as censored values.
+discharges; they are kept, as censored values. An event seen at the first snapshot after the stones
+were released (a weir that fails as soon as it is loaded) happened at that discharge or below it: it
+is left-censored there (q_first), since the run cannot say at which lower discharge it would have.
 
 **Empirical distribution.** The Kaplan-Meier estimator F(q) = 1 - prod_{q_j <= q} (1 - d_j / r_j)
 (d_j events at q_j, r_j members not yet failed nor censored just before q_j). When every member is
@@ -13,19 +15,23 @@ censored at the same discharge above all events (one hydrograph), it is the plai
 
 **Lognormal fit.** ln Q ~ N(mu, sigma^2), by maximum likelihood with the censoring:
 
-    ln L(mu, sigma) = sum_obs [-ln sigma - z_i^2 / 2 - ln Q_i - ln sqrt(2 pi)] + sum_cens ln S(z_j),
+    ln L(mu, sigma) = sum_exact [-ln sigma - z_i^2 / 2 - ln Q_i - ln sqrt(2 pi)]
+                      + sum_right ln S(z_j) + sum_left ln S(-z_k),
     z = (ln Q - mu) / sigma,   S(z) = 1 - Phi(z) = erfc(z / sqrt 2) / 2,
 
 maximised by Newton's method on (mu, ln sigma) with the analytic gradient and Hessian (a censored
 term has d ln S / dz = -lambda(z), lambda = phi / S the inverse Mills ratio, and
 d lambda / dz = lambda (lambda - z)). The median is exp(mu) and the band exp(mu -+ sigma) holds
-the 15.9-84.1 % of the fitted distribution ("16-84 %"). With no event the fit does not exist (the
-median lies beyond the censoring discharge); with every observation equal and none censored, the
-maximum is at sigma = 0 (a step).
+the 15.9-84.1 % of the fitted distribution ("16-84 %"). The fit needs one exact observation at
+least: with none, the likelihood has no maximum (no event: the median lies beyond the censoring
+discharge; only left- and right-censored members: any median between them fits, with sigma -> 0).
+With every exact observation equal and none censored, the maximum is at sigma = 0 (a step).
+A fitted median or band beyond the censoring discharge is an extrapolation and is marked so.
 
 **Uncertainty of the median.** A bootstrap over members: `n_boot` resamples of the n members with
 replacement (numpy's default generator, seeded), each refitted; the 16-84 % interval of their
-medians. A resample without any event has its median beyond the censoring discharge (+inf).
+medians. A resample without any event has its median beyond the censoring discharge (+inf); one with
+events but no exact observation has no fit and is left out of the interval (its share is reported).
 
 The experiment's and the paper's model's discharges marked on the figure come from
 `analysis.PAPER_EXPERIMENT` and `analysis.PAPER_MODEL`.
@@ -72,11 +78,13 @@ def mills_ratio(z) -> np.ndarray:
     return np.exp(-0.5 * z * z - _LN_SQRT_2PI - log_sf(z))
 
 
-def censored_loglik(mu: float, sigma: float, q_obs, q_cens) -> float:
-    """ln L of the lognormal (mu, sigma) for observed discharges q_obs and right-censored q_cens."""
-    y, c = np.log(np.asarray(q_obs, float)), np.log(np.asarray(q_cens, float))
+def censored_loglik(mu: float, sigma: float, q_obs, q_cens, q_left=()) -> float:
+    """ln L of the lognormal (mu, sigma) for exact discharges q_obs, right-censored q_cens (the
+    event had not happened by then) and left-censored q_left (it had happened by then)."""
+    y, c, b = (np.log(np.asarray(v, float)) for v in (q_obs, q_cens, q_left))
     z = (y - mu) / sigma
-    return float(np.sum(-math.log(sigma) - 0.5 * z * z - y - _LN_SQRT_2PI) + np.sum(log_sf((c - mu) / sigma)))
+    return float(np.sum(-math.log(sigma) - 0.5 * z * z - y - _LN_SQRT_2PI) + np.sum(log_sf((c - mu) / sigma))
+                 + np.sum(log_sf((mu - b) / sigma)))
 
 
 @dataclass
@@ -86,7 +94,7 @@ class LognormalFit:
     mu: float
     sigma: float
     n: int  # members
-    n_observed: int  # members in which the event happened
+    n_observed: int  # members in which the event happened (exactly or by the first discharge)
     loglik: float
     iterations: int
 
@@ -119,51 +127,63 @@ def _norm_ppf(p: float) -> float:
     return 0.5 * (lo + hi)
 
 
-def _gradient_hessian(mu: float, s: float, y: np.ndarray, c: np.ndarray):
-    """Gradient and Hessian of ln L in (mu, s = ln sigma)."""
-    sig = math.exp(s)
-    z = (y - mu) / sig
-    g_mu, g_sig = z.sum() / sig, (z * z - 1.0).sum() / sig
-    h_mm = -y.size / sig ** 2
-    h_ms = -2.0 * z.sum() / sig ** 2
-    h_ss = (1.0 - 3.0 * z * z).sum() / sig ** 2
-    if c.size:
-        zc = (c - mu) / sig
-        lam = mills_ratio(zc)
-        dl = lam * (lam - zc)
-        g_mu += lam.sum() / sig
-        g_sig += (lam * zc).sum() / sig
-        h_mm -= dl.sum() / sig ** 2
-        h_ms -= (dl * zc + lam).sum() / sig ** 2
-        h_ss -= (dl * zc * zc + 2.0 * lam * zc).sum() / sig ** 2
-    g = np.array([g_mu, sig * g_sig])
-    h = np.array([[h_mm, sig * h_ms], [sig * h_ms, sig * sig * h_ss + sig * g_sig]])
+def _censored_terms(sig: float, zc: np.ndarray, sign: float):
+    """Gradient (mu, sigma) and Hessian terms of sum ln S(w), w = sign (ln c - mu) / sigma:
+    sign +1 for right-censored members, -1 for left-censored ones (ln Phi(z) = ln S(-z))."""
+    w = sign * zc
+    lam = mills_ratio(w)
+    dl = lam * (lam - w)
+    g = np.array([sign * lam.sum() / sig, (lam * w).sum() / sig])
+    h = -np.array([[dl.sum(), sign * (dl * w + lam).sum()],
+                   [sign * (dl * w + lam).sum(), (dl * w * w + 2.0 * lam * w).sum()]]) / sig ** 2
     return g, h
 
 
-def fit_lognormal(q, observed, max_iter: int = 100, tol: float = 1e-10) -> Optional[LognormalFit]:
-    """Maximum-likelihood lognormal of discharges q [l/s], observed[i] False where q[i] is a
-    right-censoring discharge. None when no event was observed."""
+def _gradient_hessian(mu: float, s: float, y: np.ndarray, c: np.ndarray, b: np.ndarray):
+    """Gradient and Hessian of ln L in (mu, s = ln sigma); y exact, c right-, b left-censored logs."""
+    sig = math.exp(s)
+    z = (y - mu) / sig
+    g = np.array([z.sum() / sig, (z * z - 1.0).sum() / sig])
+    h = np.array([[-y.size, -2.0 * z.sum()], [-2.0 * z.sum(), (1.0 - 3.0 * z * z).sum()]]) / sig ** 2
+    for vals, sign in ((c, 1.0), (b, -1.0)):
+        if vals.size:
+            gc, hc = _censored_terms(sig, (vals - mu) / sig, sign)
+            g, h = g + gc, h + hc
+    # to (mu, s): d/ds = sigma d/dsigma
+    g_s = np.array([g[0], sig * g[1]])
+    h_s = np.array([[h[0, 0], sig * h[0, 1]], [sig * h[0, 1], sig * sig * h[1, 1] + sig * g[1]]])
+    return g_s, h_s
+
+
+def fit_lognormal(q, observed, left=None, max_iter: int = 100, tol: float = 1e-10) -> Optional[LognormalFit]:
+    """Maximum-likelihood lognormal of discharges q [l/s]: observed[i] False where q[i] is a
+    right-censoring discharge, left[i] True where the event happened at q[i] or below (see the
+    module's docstring). None when there is no exact observation (no maximum)."""
     q, observed = np.asarray(q, float), np.asarray(observed, bool)
-    if q.shape != observed.shape or q.ndim != 1:
-        raise ValueError(f"q and observed must be 1D of one length, got {q.shape} and {observed.shape}")
+    left = np.zeros(q.shape, bool) if left is None else np.asarray(left, bool)
+    if q.shape != observed.shape or q.shape != left.shape or q.ndim != 1:
+        raise ValueError(f"q, observed and left must be 1D of one length, got {q.shape}, {observed.shape}, "
+                         f"{left.shape}")
     if not np.all(np.isfinite(q) & (q > 0)):
         raise ValueError("q: every discharge must be finite and positive [l/s]")
-    y, c = np.log(q[observed]), np.log(q[~observed])
+    if np.any(left & ~observed):
+        raise ValueError("left: a left-censored member must be one in which the event happened (observed)")
+    exact = observed & ~left
+    y, c, b = np.log(q[exact]), np.log(q[~observed]), np.log(q[left])
     if y.size == 0:
         return None
-    if c.size == 0 and np.ptp(y) == 0.0:  # a step: sigma = 0 maximises ln L
-        return LognormalFit(float(y[0]), 0.0, q.size, y.size, math.inf, 0)
+    if c.size == 0 and b.size == 0 and np.ptp(y) == 0.0:  # a step: sigma = 0 maximises ln L
+        return LognormalFit(float(y[0]), 0.0, q.size, int(observed.sum()), math.inf, 0)
     allv = np.log(q)
     mu, s = float(allv.mean()), math.log(max(float(allv.std()), 0.05))
-    ll = _loglik_s(mu, s, y, c)
+    ll = _loglik_s(mu, s, y, c, b)
     for it in range(1, max_iter + 1):
-        g, h = _gradient_hessian(mu, s, y, c)
+        g, h = _gradient_hessian(mu, s, y, c, b)
         step = _ascent_step(g, h)
         t = 1.0
         while True:  # backtracking: ln L must not decrease
             mu_n, s_n = float(mu + t * step[0]), float(s + t * step[1])
-            ll_n = _loglik_s(mu_n, s_n, y, c)
+            ll_n = _loglik_s(mu_n, s_n, y, c, b)
             if ll_n >= ll or t < 1e-12:
                 break
             t *= 0.5
@@ -171,15 +191,21 @@ def fit_lognormal(q, observed, max_iter: int = 100, tol: float = 1e-10) -> Optio
         mu, s, ll = mu_n, s_n, max(ll, ll_n)
         if done or np.max(np.abs(g)) < tol:
             sig = math.exp(s)
-            return LognormalFit(mu, sig, q.size, y.size, censored_loglik(mu, sig, q[observed], q[~observed]), it)
+            return LognormalFit(mu, sig, q.size, int(observed.sum()),
+                                censored_loglik(mu, sig, q[exact], q[~observed], q[left]), it)
     raise RuntimeError(f"lognormal fit: no convergence in {max_iter} Newton steps (mu {mu:.6g}, sigma "
-                       f"{math.exp(s):.6g}, {y.size} observed, {c.size} censored)")
+                       f"{math.exp(s):.6g}, {y.size} exact, {c.size} right-, {b.size} left-censored)")
 
 
-def _loglik_s(mu: float, s: float, y: np.ndarray, c: np.ndarray) -> float:
+def _loglik_s(mu: float, s: float, y: np.ndarray, c: np.ndarray, b: np.ndarray) -> float:
     sig = math.exp(s)
     z = (y - mu) / sig
-    return float(np.sum(-s - 0.5 * z * z) + (np.sum(log_sf((c - mu) / sig)) if c.size else 0.0))
+    out = float(np.sum(-s - 0.5 * z * z))
+    if c.size:
+        out += float(np.sum(log_sf((c - mu) / sig)))
+    if b.size:
+        out += float(np.sum(log_sf((mu - b) / sig)))
+    return out
 
 
 def _ascent_step(g: np.ndarray, h: np.ndarray) -> np.ndarray:
@@ -190,7 +216,8 @@ def _ascent_step(g: np.ndarray, h: np.ndarray) -> np.ndarray:
 
 
 def kaplan_meier(q, observed) -> Tuple[np.ndarray, np.ndarray]:
-    """(discharges of the events [l/s], F just after each): the censored empirical distribution."""
+    """(discharges of the events [l/s], F just after each): the censored empirical distribution. A
+    left-censored member counts as an event at its discharge: F is right from there on."""
     q, observed = np.asarray(q, float), np.asarray(observed, bool)
     qs = np.unique(q[observed])
     surv, F = 1.0, []
@@ -208,18 +235,27 @@ def empirical_median(q, observed) -> Optional[float]:
     return float(qs[hit[0]]) if hit.size else None
 
 
-def bootstrap_median(q, observed, n_boot: int = 1000, seed: int = 0, band=BAND) -> Tuple[float, float, float]:
-    """(low, high, share of resamples without any event): the `band` quantiles of the fitted median
-    over `n_boot` resamples of the members; +inf where a resample's median lies beyond the censoring."""
+def bootstrap_median(q, observed, left=None, n_boot: int = 1000, seed: int = 0,
+                     band=BAND) -> Tuple[float, float, float]:
+    """(low, high, share of resamples left out): the `band` quantiles of the fitted median over
+    `n_boot` resamples of the members (see the module's docstring); nan if every resample is left out."""
     q, observed = np.asarray(q, float), np.asarray(observed, bool)
+    left = np.zeros(q.shape, bool) if left is None else np.asarray(left, bool)
     rng = np.random.default_rng(seed)
-    med = np.empty(n_boot)
+    med = np.full(n_boot, np.nan)
     for b in range(n_boot):
         idx = rng.integers(0, q.size, q.size)
-        fit = fit_lognormal(q[idx], observed[idx])
-        med[b] = math.inf if fit is None else fit.median
-    lo, hi = np.quantile(med, band, method="inverted_cdf")
-    return float(lo), float(hi), float(np.mean(np.isinf(med)))
+        if not observed[idx].any():
+            med[b] = math.inf
+            continue
+        fit = fit_lognormal(q[idx], observed[idx], left[idx])
+        if fit is not None:
+            med[b] = fit.median
+    kept = med[~np.isnan(med)]
+    if kept.size == 0:
+        return math.nan, math.nan, 1.0
+    lo, hi = np.quantile(kept, band, method="inverted_cdf")
+    return float(lo), float(hi), float(1.0 - kept.size / n_boot)
 
 
 @dataclass
@@ -228,10 +264,11 @@ class EventFragility:
 
     event: str
     q: np.ndarray  # [l/s] event discharge, or the censoring discharge where observed is False
-    observed: np.ndarray
+    observed: np.ndarray  # the event happened
+    left: np.ndarray  # it happened at the first discharge a run could see it: at q or below
     fit: Optional[LognormalFit]
     median_band: Tuple[float, float]  # bootstrap 16-84 % of the median [l/s]
-    boot_never: float  # share of bootstrap resamples without any event
+    boot_left_out: float  # share of bootstrap resamples without a fit
 
     @property
     def censored_at(self) -> Optional[float]:
@@ -241,36 +278,40 @@ class EventFragility:
     def row(self) -> dict:
         f = self.fit
         return {"event": self.event, "members": int(self.q.size), "happened": int(self.observed.sum()),
-                "censored_at_lps": self.censored_at,
+                "at_first_discharge": int(self.left.sum()), "censored_at_lps": self.censored_at,
                 "empirical_median_lps": empirical_median(self.q, self.observed),
                 "fit_median_lps": None if f is None else f.median,
                 "fit_q16_lps": None if f is None else f.quantile(BAND[0]),
                 "fit_q84_lps": None if f is None else f.quantile(BAND[1]),
                 "fit_sigma_ln": None if f is None else f.sigma,
                 "median_boot_lo_lps": self.median_band[0], "median_boot_hi_lps": self.median_band[1],
-                "boot_without_event": self.boot_never}
+                "boot_left_out": self.boot_left_out}
 
 
-def event_fragility(event: str, q_event: Sequence[Optional[float]], q_end: Sequence[float], n_boot: int = 1000,
-                    seed: int = 0) -> EventFragility:
+def event_fragility(event: str, q_event: Sequence[Optional[float]], q_end: Sequence[float],
+                    q_first: Optional[Sequence[float]] = None, n_boot: int = 1000, seed: int = 0) -> EventFragility:
     """Fragility of one event: q_event[i] the member's event discharge (None or nan: never), q_end[i]
-    the discharge at its run's end (the censoring discharge)."""
-    qe = np.array([np.nan if v is None else float(v) for v in q_event])
+    the discharge at its run's end (right-censoring), q_first[i] the first discharge at which its run
+    could see the event (an event there is left-censored)."""
+    qe = np.array([np.nan if v is None else float(v) for v in q_event], dtype=float)
     observed = np.isfinite(qe)
     q = np.where(observed, qe, np.asarray(q_end, float))
+    left = np.zeros(q.shape, bool)
+    if q_first is not None:
+        left = observed & (qe <= np.asarray(q_first, float) * (1 + 1e-12))
     if q.size == 0:
-        return EventFragility(event, q, observed, None, (math.nan, math.nan), math.nan)
-    fit = fit_lognormal(q, observed)
-    lo, hi, never = bootstrap_median(q, observed, n_boot, seed) if n_boot > 0 else (math.nan, math.nan, math.nan)
-    return EventFragility(event, q, observed, fit, (lo, hi), never)
+        return EventFragility(event, q, observed, left, None, (math.nan, math.nan), math.nan)
+    fit = fit_lognormal(q, observed, left)
+    lo, hi, out = bootstrap_median(q, observed, left, n_boot, seed) if n_boot > 0 else (math.nan,) * 3
+    return EventFragility(event, q, observed, left, fit, (lo, hi), out)
 
 
 def fragility_of(members, n_boot: int = 1000, seed: int = 0) -> List[EventFragility]:
     """Every event's fragility over a table of completed members (pandas DataFrame with the
-    columns of `EVENTS` and `last_discharge_lps`)."""
-    return [event_fragility(ev, [None if not np.isfinite(v) else v for v in members[col].astype(float)],
-                            members["last_discharge_lps"].astype(float), n_boot, seed)
-            for ev, (col, _) in EVENTS.items()]
+    columns of `EVENTS`, `last_discharge_lps` and `first_discharge_lps`)."""
+    first = members["first_discharge_lps"].astype(float) if "first_discharge_lps" in members else None
+    return [event_fragility(ev, members[col].astype(float), members["last_discharge_lps"].astype(float), first,
+                            n_boot, seed) for ev, (col, _) in EVENTS.items()]
 
 
 # ---------------------------------------------------------------------------- tables and figure
@@ -304,6 +345,12 @@ def _num(v, fmt: str = "{:.2f}") -> str:
     return "beyond the end" if math.isinf(v) else fmt.format(v)
 
 
+def _q(v: Optional[float], end: Optional[float]) -> str:
+    """A discharge, marked with * where it lies beyond the censoring discharge (an extrapolation)."""
+    text = _num(v)
+    return text + "*" if v is not None and end is not None and math.isfinite(v) and v > end else text
+
+
 def fragility_markdown(by_combo, n_members: Optional[dict] = None) -> str:
     """Per combination, each event's empirical median, lognormal fit and the paper's discharges."""
     out = []
@@ -311,24 +358,26 @@ def fragility_markdown(by_combo, n_members: Optional[dict] = None) -> str:
         n_all = (n_members or {}).get(combo)
         n_done = evs[0].q.size if evs else 0
         cens = next((e.censored_at for e in evs if e.censored_at is not None), None)
-        title = combo or "all members"
         extra = f" ({n_all - n_done} failed or lost members left out)" if n_all is not None and n_all > n_done else ""
-        out += [f"**{title}**: {n_done} completed members{extra}; where an event never happened the member is "
-                f"censored at the discharge at its run's end ({_num(cens)} l/s).", "",
-                "| event | happened in | empirical median [l/s] | lognormal median [16-84 %] [l/s] | "
-                "median's bootstrap 16-84 % [l/s] | experiment [l/s] | paper's model [l/s] |",
+        out += [f"**{combo or 'all members'}**: {n_done} completed members{extra}; where an event never happened "
+                f"the member is censored at the discharge at its run's end ({_num(cens)} l/s).", "",
+                "| event | happened in (at the first discharge) | empirical median [l/s] | lognormal median "
+                "[16-84 %] [l/s] | median's bootstrap 16-84 % [l/s] | experiment [l/s] | paper's model [l/s] |",
                 "|---|---|---|---|---|---|---|"]
         for e in evs:
-            r = e.row()
-            fit = "-" if e.fit is None else (f"{r['fit_median_lps']:.2f} [{r['fit_q16_lps']:.2f}-"
-                                             f"{r['fit_q84_lps']:.2f}]")
+            r, end = e.row(), e.censored_at
+            fit = "no fit" if e.fit is None else (f"{_q(r['fit_median_lps'], end)} [{_q(r['fit_q16_lps'], end)}-"
+                                                  f"{_q(r['fit_q84_lps'], end)}]")
+            emp = r["empirical_median_lps"]
             exp_q, mod_q = REFERENCE_LPS[e.event]
-            out.append(f"| {EVENTS[e.event][1]} | {r['happened']} of {r['members']} | "
-                       f"{_num(r['empirical_median_lps']) if r['empirical_median_lps'] is not None else 'not reached'} | "
-                       f"{fit} | {_num(e.median_band[0])}-{_num(e.median_band[1])} | "
+            out.append(f"| {EVENTS[e.event][1]} | {r['happened']} of {r['members']} ({r['at_first_discharge']}) | "
+                       f"{'not reached' if emp is None else _num(emp)} | {fit} | "
+                       f"{_q(e.median_band[0], end)}-{_q(e.median_band[1], end)} | "
                        f"{'~' if e.event in ('first_removal', 'stage1') else ''}{exp_q} | "
                        f"{'none' if mod_q is None else mod_q} |")
-        out.append("")
+        out += ["", "(n): members in which it happened at the first discharge at which the run could see it, "
+                "left-censored there. *: beyond the run's end, an extrapolation of the fit. No fit: no member "
+                "in which it happened after the first discharge.", ""]
     return "\n".join(out)
 
 
@@ -379,8 +428,11 @@ def _draw_event(ax, e: EventFragility, color: str, label: str, lo: float) -> Non
     x = np.concatenate([[lo], qk, [end]])
     y = np.concatenate([[0.0], F, [F[-1] if F.size else 0.0]])
     ax.step(x, y, where="post", color=color, lw=1.6, label=f"{label}: empirical (n = {e.q.size})")
-    if e.censored_at is not None:
+    if e.censored_at is not None:  # never happened by the run's end
         ax.plot([e.censored_at], [y[-1]], marker=">", color=color, ls="none")
+    if e.left.any():  # happened at the first discharge the runs could see, or below it
+        b = float(np.max(e.q[e.left]))
+        ax.plot([b], [float(F[np.searchsorted(qk, b)])], marker="<", color=color, ls="none")
     if e.fit is not None:
         grid = np.linspace(lo, end, 200)
         ax.plot(grid, e.fit.cdf(grid), color=color, ls="--", lw=1.2, label=f"{label}: lognormal fit")
