@@ -286,6 +286,8 @@ def run_ensemble(scene: Scene, seeds: Sequence[int], out_dir, client=None, vary=
     from .cluster import dashboard_link, ensemble_client
     from .fragility import write_fragility
 
+    if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 0):
+        raise ValueError(f"workers = {workers!r} is outside the allowed range [0, ...] (0: no Dask)")
     members = plan_members(scene, seeds, vary)
     keys = [k for k, _ in members[0].params]
     out = Path(out_dir).resolve()
@@ -297,19 +299,18 @@ def run_ensemble(scene: Scene, seeds: Sequence[int], out_dir, client=None, vary=
     log(f"vofdem: ensemble of {len(members)} members ({len(done)} already finished in {out})")
     opts = dict(figures=figures, animation=animation, build=build, retry_failed=retry_failed)
     bar = _Progress(len(members), len(done), progress)
+    local = client is None and scheduler is None
     try:
-        if not todo:
-            pass
-        elif client is None and scheduler is None and workers == 0:
+        if todo and local and workers == 0:
             for m in todo:
                 bar.update(running=1)
                 summary.add(run_member(scene, m, out, **opts), bar)
-        else:
+        elif todo:
             with ensemble_client(client, scheduler, workers, dashboard) as c:
-                link = dashboard_link(c, local=client is None and scheduler is None)
+                link = dashboard_link(c, local=local)
                 if link:
                     log(f"vofdem: Dask dashboard at {link}")
-                elif dashboard and client is None and scheduler is None:
+                elif dashboard and local:
                     log("vofdem: no Dask dashboard (it needs bokeh: pip install bokeh)")
                 _run_on_dask(c, scene, todo, out, opts, summary, bar)
     finally:

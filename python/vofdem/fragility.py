@@ -399,9 +399,12 @@ def fig_fragility(by_combo):
             e = next(x for x in evs if x.event == event)
             _draw_event(ax, e, color, combo or "members", lo)
         exp_q, mod_q = REFERENCE_LPS[event]
-        ax.axvline(exp_q, color="k", ls=":", lw=1.2, label=f"experiment ~{exp_q} l/s")
+        ax.axvline(exp_q, color="k", ls=":", lw=1.2, label="experiment (Maeno et al. 2002)")
+        ax.annotate(f"{exp_q:g}", (exp_q, 1.0), textcoords="offset points", xytext=(2, -10), fontsize=8)
         if mod_q is not None:
-            ax.axvline(mod_q, color="0.4", ls="-.", lw=1.2, label=f"paper's model {mod_q} l/s")
+            ax.axvline(mod_q, color="0.4", ls="-.", lw=1.2, label="the paper's model")
+            ax.annotate(f"{mod_q:g}", (mod_q, 1.0), textcoords="offset points", xytext=(2, -20), fontsize=8,
+                        color="0.4")
         ax.set_title(EVENTS[event][1])
         ax.set_xlim(lo, hi)
         ax.set_ylim(-0.02, 1.02)
@@ -437,7 +440,7 @@ def _draw_event(ax, e: EventFragility, color: str, label: str, lo: float) -> Non
         grid = np.linspace(lo, end, 200)
         ax.plot(grid, e.fit.cdf(grid), color=color, ls="--", lw=1.2, label=f"{label}: lognormal fit")
         b0, b1 = e.median_band
-        if np.isfinite(b0):
+        if np.isfinite(b0) and b0 < end:  # the median's bootstrap interval, cut at the run's end
             ax.plot([b0, min(b1, end)], [0.5, 0.5], color=color, lw=4, alpha=0.35, solid_capstyle="butt")
         ax.plot([e.fit.median], [0.5], marker="o", color=color, ms=4)
 
