@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from statistics import NormalDist
 from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -104,27 +105,13 @@ class LognormalFit:
 
     def quantile(self, p: float) -> float:
         """Discharge [l/s] by which the event has happened with probability p (0 < p < 1)."""
-        return math.exp(self.mu + self.sigma * _norm_ppf(p))
+        return math.exp(self.mu + self.sigma * NormalDist().inv_cdf(p))
 
     def cdf(self, q) -> np.ndarray:
         q = np.asarray(q, float)
         if self.sigma == 0.0:
             return (q >= self.median).astype(float)
         return 1.0 - np.exp(log_sf((np.log(q) - self.mu) / self.sigma))
-
-
-def _norm_ppf(p: float) -> float:
-    """Inverse of Phi by bisection on erfc (only a few calls per table)."""
-    if not 0.0 < p < 1.0:
-        raise ValueError(f"p = {p!r} is outside the allowed range (0, 1)")
-    lo, hi = -40.0, 40.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if 0.5 * math.erfc(-mid / math.sqrt(2.0)) < p:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
 
 
 def _censored_terms(sig: float, zc: np.ndarray, sign: float):
