@@ -8,6 +8,7 @@ members' table, the wall time, workers and cores) and the figure docs/figures/<n
     PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py                  # 30 seeds, one worker per core
     PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py --scene scenes/maeno2008_consistent.toml
     PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py --scheduler tcp://host:8786  # a cluster
+    PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py --quick --seeds 0-19   # the quick variant
 """
 import argparse
 import os
@@ -28,17 +29,21 @@ def main(argv=None) -> Path:
     p.add_argument("--seeds", default="0-29")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: one per core)")
     p.add_argument("--scheduler", default=None, help="an existing Dask cluster's address instead")
+    p.add_argument("--quick", action="store_true", help="the scene's quick variant (coarser, ramp 4x faster)")
     p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s] (for tests)")
     p.add_argument("--out", type=Path, default=None, help="ensemble directory (default out/<name>_fragility)")
     p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
     p.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
     args = p.parse_args(argv)
     scene = load_scene(args.scene)
+    if args.quick:
+        scene = scene.quick()
     if args.end_time is not None:
         scene = scene.replace(end_time=args.end_time)
     seeds = parse_seeds(args.seeds)
     out = args.out or ROOT / "out" / f"{scene.name}_fragility"
     workers = args.workers if args.workers is not None else default_workers()
+    before = len(list(out.glob("**/outcome.json"))) if out.exists() else 0
     t0 = time.perf_counter()
     df = run_ensemble(scene, seeds, out, workers=workers, scheduler=args.scheduler, figures=False,
                       animation=False)
@@ -51,12 +56,13 @@ def main(argv=None) -> Path:
     done = df[df["status"] == "completed"]
     member_wall = done["wall_seconds"].sum()
     text = [f"# Fragility of {scene.name} over {len(seeds)} packings (seeds {args.seeds})", "",
-            f"Scene `{args.scene.name}`, {scene.duration:g} s simulated per member. This call took {wall / 60:.1f} "
-            f"min {where} ({os.cpu_count()} cores on this machine); the members it ran or found cost "
-            f"{member_wall / 3600:.2f} core-hours in all ({member_wall / max(len(done), 1):.0f} s each on average). "
-            f"Members finished before this call were not run again, and their time is in the core-hours only.",
-            f"Rerun: `PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py --scene {args.scene.name} "
-            f"--seeds {args.seeds}`. Figure: `docs/figures/{figure.name}`.", "",
+            f"Scene `{args.scene.name}`{' (quick variant)' if args.quick else ''}, {scene.duration:g} s simulated per "
+            f"member. The last call ran {len(seeds) - before} members (found {before} finished) in {wall / 60:.1f} min "
+            f"{where} ({os.cpu_count()} cores on this machine, load average {os.getloadavg()[0]:.1f} at the end). "
+            f"The {len(done)} completed members cost {member_wall / 3600:.2f} core-hours in all "
+            f"({member_wall / max(len(done), 1):.0f} s each on average).",
+            f"Rerun: `PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py --scene scenes/{args.scene.name}"
+            f"{' --quick' if args.quick else ''} --seeds {args.seeds}`. Figure: `docs/figures/{figure.name}`.", "",
             (out / "ensemble.md").read_text(encoding="utf-8").split("\n", 2)[2]]
     args.results.mkdir(parents=True, exist_ok=True)
     md = args.results / f"{scene.name}_fragility.md"

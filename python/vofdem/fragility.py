@@ -357,9 +357,10 @@ def fragility_markdown(by_combo, n_members: Optional[dict] = None) -> str:
                                                   f"{_q(r['fit_q84_lps'], end)}]")
             emp = r["empirical_median_lps"]
             exp_q, mod_q = REFERENCE_LPS[e.event]
+            lo, hi = e.median_band
+            boot = "-" if math.isnan(lo) else f"{_q(lo, end)}-{_q(hi, end)}"
             out.append(f"| {EVENTS[e.event][1]} | {r['happened']} of {r['members']} ({r['at_first_discharge']}) | "
-                       f"{'not reached' if emp is None else _num(emp)} | {fit} | "
-                       f"{_q(e.median_band[0], end)}-{_q(e.median_band[1], end)} | "
+                       f"{'not reached' if emp is None else _num(emp)} | {fit} | {boot} | "
                        f"{'~' if e.event in ('first_removal', 'stage1') else ''}{exp_q} | "
                        f"{'none' if mod_q is None else mod_q} |")
         out += ["", "(n): members in which it happened at the first discharge at which the run could see it, "
