@@ -114,6 +114,28 @@ def test_serial_ensemble_summary_and_fragility(tmp_path):
     assert frag["event"].tolist() == ["first_removal", "stage1", "stage2", "stage3"]
     assert frag.loc[1, "happened"] == 3 and frag.loc[1, "censored_at_lps"] == 25.0
     assert (tmp_path / "fragility.png").stat().st_size > 0
+    # a member without its outcome file (interrupted) runs again, alone
+    (tmp_path / "seed2" / "outcome.json").unlink()
+    stamps = {s: os.stat(tmp_path / f"seed{s}" / "run.h5").st_mtime_ns for s in range(4)}
+    again = run_ensemble(short_scene(), [0, 1, 2, 3], tmp_path, build=_build, workers=0, n_boot=100, **QUIET)
+    changed = [s for s in range(4) if os.stat(tmp_path / f"seed{s}" / "run.h5").st_mtime_ns != stamps[s]]
+    assert changed == [2] and (tmp_path / "seed2" / "outcome.json").exists()
+    same = [c for c in df.columns if c != "wall_seconds"]
+    pd.testing.assert_frame_equal(again[same], df[same], check_exact=True)
+
+
+@pytest.mark.usefixtures("no_process_left")
+def test_an_existing_cluster_by_its_scheduler_address(tmp_path):
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
+        logs = []
+        df = run_ensemble(short_scene(), [0, 3], tmp_path, build=_build, scheduler=cluster.scheduler_address,
+                          n_boot=0, **{**QUIET, "log": logs.append})
+        with Client(cluster) as client:  # the cluster is left running for its owner
+            assert client.submit(sum, [1, 2]).result() == 3
+    assert df["stage1_lps"].tolist() == [15.0, pytest.approx(13.0, abs=1e-12)]
+    assert not any("no Dask dashboard" in m for m in logs)
 
 
 def test_cli_sweep_and_analyse(tmp_path, capsys):

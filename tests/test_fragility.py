@@ -120,7 +120,14 @@ def test_left_censored_members_against_the_known_sample_and_the_slow_reference()
         fit_lognormal(np.array([10.5, 25.0]), np.array([True, False]), np.array([False, True]))
     ev = event_fragility("first_removal", [10.5, 10.5, 12.0, None], [25.0] * 4, [10.5] * 4, n_boot=200, seed=1)
     assert ev.left.tolist() == [True, True, False, False] and ev.row()["at_first_discharge"] == 2
-    assert 0 < ev.boot_left_out < 1  # resamples with only 10.5 and 25 have no fit
+    assert 0 < ev.boot_left_out < 1  # resamples of one 10.5 and three 25 have no fit, nor a side
+    # three of four fail when first loaded, one never: no fit; the median is at 10.5 or below in the
+    # resamples where at least half fail there (most), beyond 25 where none does
+    ev = event_fragility("first_removal", [10.5, 10.5, 10.5, None], [25.0] * 4, [10.5] * 4, n_boot=400, seed=2)
+    assert ev.fit is None and ev.median_band[0] == -math.inf
+    from vofdem.fragility import fragility_markdown
+
+    assert "| first removal of any stone | 3 of 4 (3) | 10.50 | no fit | <= 10.50 |" in fragility_markdown({"": [ev]})
 
 
 def test_one_event_among_censored_members_and_the_degenerate_cases():

@@ -30,8 +30,10 @@ A fitted median or band beyond the censoring discharge is an extrapolation and i
 
 **Uncertainty of the median.** A bootstrap over members: `n_boot` resamples of the n members with
 replacement (numpy's default generator, seeded), each refitted; the 16-84 % interval of their
-medians. A resample without any event has its median beyond the censoring discharge (+inf); one with
-events but no exact observation has no fit and is left out of the interval (its share is reported).
+medians. A resample without any event has its median beyond the censoring discharge (+inf); one
+without an exact observation in which at least half the members failed at the first discharge has
+its median there or below (-inf); any other resample without a fit is left out of the interval (its
+share is reported).
 
 The experiment's and the paper's model's discharges marked on the figure come from
 `analysis.PAPER_EXPERIMENT` and `analysis.PAPER_MODEL`.
@@ -238,6 +240,8 @@ def bootstrap_median(q, observed, left=None, n_boot: int = 1000, seed: int = 0,
         fit = fit_lognormal(q[idx], observed[idx], left[idx])
         if fit is not None:
             med[b] = fit.median
+        elif np.mean(left[idx]) >= 0.5:
+            med[b] = -math.inf
     kept = med[~np.isnan(med)]
     if kept.size == 0:
         return math.nan, math.nan, 1.0
@@ -332,8 +336,10 @@ def _num(v, fmt: str = "{:.2f}") -> str:
     return "beyond the end" if math.isinf(v) else fmt.format(v)
 
 
-def _q(v: Optional[float], end: Optional[float]) -> str:
+def _q(v: Optional[float], end: Optional[float], first: Optional[float] = None) -> str:
     """A discharge, marked with * where it lies beyond the censoring discharge (an extrapolation)."""
+    if v is not None and v == -math.inf:
+        return f"<= {_num(first)}"
     text = _num(v)
     return text + "*" if v is not None and end is not None and math.isfinite(v) and v > end else text
 
@@ -358,7 +364,9 @@ def fragility_markdown(by_combo, n_members: Optional[dict] = None) -> str:
             emp = r["empirical_median_lps"]
             exp_q, mod_q = REFERENCE_LPS[e.event]
             lo, hi = e.median_band
-            boot = "-" if math.isnan(lo) else f"{_q(lo, end)}-{_q(hi, end)}"
+            first = float(np.max(e.q[e.left])) if e.left.any() else None
+            boot = "-" if math.isnan(lo) else (_q(lo, end, first) if lo == hi
+                                               else f"{_q(lo, end, first)} to {_q(hi, end, first)}")
             out.append(f"| {EVENTS[e.event][1]} | {r['happened']} of {r['members']} ({r['at_first_discharge']}) | "
                        f"{'not reached' if emp is None else _num(emp)} | {fit} | {boot} | "
                        f"{'~' if e.event in ('first_removal', 'stage1') else ''}{exp_q} | "
