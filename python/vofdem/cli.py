@@ -35,6 +35,8 @@ def _parser() -> argparse.ArgumentParser:
                         "one member after the other in this process)")
     r.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="ensemble: run on an existing Dask cluster (e.g. tcp://host:8786, or a scheduler file .json)")
+    r.add_argument("--retry-failed", action="store_true",
+                   help="ensemble: run again the members whose solver failed (finished members are kept)")
     r.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     r.add_argument("--no-figures", action="store_true", help="skip the figures")
     r.add_argument("--no-animation", action="store_true", help="skip the animation")
@@ -120,7 +122,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
                 build=build)
     try:
         if seeds is not None:
-            run_ensemble(scene, seeds, out, vary=args.vary, workers=args.workers, scheduler=args.scheduler, **opts)
+            run_ensemble(scene, seeds, out, vary=args.vary, workers=args.workers, scheduler=args.scheduler,
+                         retry_failed=args.retry_failed, **opts)
             print()
             print((out / "ensemble.md").read_text(encoding="utf-8").split("\n| member |")[0])
             print(f"output: {out}/ (ensemble.md/.csv, fragility.csv/.png, one run directory per member)")
