@@ -236,3 +236,20 @@ def test_the_maeno_fragility_script_at_a_tiny_size(tmp_path):
     assert "in this process, one member after the other" in text
     assert "| first removal of any stone | 0 of 1 (0) |" in text
     assert (tmp_path / "maeno2008_quick_fragility.png").stat().st_size > 0
+
+
+def test_the_dashboard_link_is_printed_only_where_a_dashboard_is_served(monkeypatch):
+    from types import SimpleNamespace
+
+    import vofdem.cluster as cluster
+
+    served = SimpleNamespace(scheduler_info=lambda: {"services": {"dashboard": 8787}},
+                             dashboard_link="http://127.0.0.1:8787/status")
+    bare = SimpleNamespace(scheduler_info=lambda: {"services": {}}, dashboard_link="http://127.0.0.1:8787/status")
+    monkeypatch.setattr(cluster, "has_bokeh", lambda: True)
+    assert cluster.dashboard_link(served, local=True) == "http://127.0.0.1:8787/status"
+    assert cluster.dashboard_link(bare, local=True) is None
+    # without bokeh a local scheduler serves only a page saying so; a remote one may have bokeh
+    monkeypatch.setattr(cluster, "has_bokeh", lambda: False)
+    assert cluster.dashboard_link(served, local=True) is None
+    assert cluster.dashboard_link(served, local=False) == "http://127.0.0.1:8787/status"
