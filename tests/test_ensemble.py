@@ -14,6 +14,11 @@ from vofdem.cli import main
 from vofdem.ensemble import parse_seeds, parse_vary, plan_members, run_ensemble
 from vofdem.io import RunData
 
+# distributed times the creation of its scratch directories and warns past 1 s; on a loaded machine
+# that is the disk's speed, not this code's: the one warning of Dask's ignored here
+pytestmark = pytest.mark.filterwarnings(
+    "ignore:Creating scratch directories is taking a surprisingly long time:UserWarning")
+
 QUIET = dict(progress=False, figures=False, animation=False, dashboard=False, log=lambda *a: None)
 
 # per seed, the discharges [l/s] at which the double's five downstream stones go
