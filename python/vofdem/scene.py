@@ -649,6 +649,30 @@ class Scene:
             setattr(s, k, v)
         return s.validate()
 
+    def with_value(self, key: str, value) -> "Scene":
+        """A validated copy with one parameter set by its dotted name ('stones.friction_stone', or a
+        top-level 'end_time'), the value read as in a scene file (numbers may carry a unit, '4.8 cm')."""
+        s = copy.deepcopy(self)
+        section, _, name = key.rpartition(".")
+        if not section:
+            if key not in ("end_time", "name"):
+                raise ValueError(_unknown(key, [*_SECTIONS, "end_time", "name"], "top level"))
+            setattr(s, key, _parse_quantity(key, value, "time") if key == "end_time" else value)
+            return s.validate()
+        if section not in _SECTIONS:
+            raise ValueError(_unknown(section, list(_SECTIONS), "top level"))
+        fields = {f.name: f for f in dataclasses.fields(_SECTIONS[section]) if not f.metadata.get("python_only")}
+        if name not in fields:
+            raise ValueError(_unknown(name, fields, f"[{section}]", prefix=section))
+        md = fields[name].metadata
+        setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
+        return s.validate()
+
+    def value_of(self, key: str):
+        """The value of a parameter by its dotted name (see `with_value`)."""
+        section, _, name = key.rpartition(".")
+        return getattr(getattr(self, section), name) if section else getattr(self, key)
+
 
 def load_scene(path) -> Scene:
     """Reads and validates a TOML scene file; ValueError names the file and the problem."""
