@@ -44,6 +44,9 @@ void bind_params(py::module_& m) {
       .def_readwrite("tangential_damping_factor", &DEMParams::tangential_damping_factor)
       .def_readwrite("friction_stone", &DEMParams::friction_stone)
       .def_readwrite("inertia_factor", &DEMParams::inertia_factor)
+      .def_readwrite("rolling_friction_stone", &DEMParams::rolling_friction_stone)
+      .def_readwrite("rolling_friction_wall", &DEMParams::rolling_friction_wall)
+      .def_readwrite("rolling_damping", &DEMParams::rolling_damping)
       .def_readwrite("domain_min", &DEMParams::domain_min)
       .def_readwrite("domain_max", &DEMParams::domain_max)
       .def_readwrite("neighbour_skin", &DEMParams::neighbour_skin)
@@ -64,6 +67,7 @@ void bind_params(py::module_& m) {
   m.attr("DEM_DAMPING") = static_cast<unsigned>(kDEMDamping);
   m.attr("DEM_EXTERNAL_FORCE") = static_cast<unsigned>(kDEMExternalForce);
   m.attr("DEM_REMOVAL") = static_cast<unsigned>(kDEMRemoval);
+  m.attr("DEM_ROLLING_RESISTANCE") = static_cast<unsigned>(kDEMRollingResistance);
   m.attr("DEM_ALL_EFFECTS") = static_cast<unsigned>(kDEMAllEffects);
 
   py::class_<DEMEnergy>(m, "DEMEnergy", "Energy bookkeeping of the DEM [J].")
@@ -106,6 +110,8 @@ void bind_system(py::module_& m) {
       .def_property_readonly("neighbour_builds", &DEMSystem::neighbour_builds)
       .def("energy", &DEMSystem::energy)
       .def("mass", &DEMSystem::mass, py::arg("i"))
+      .def("set_wet_fraction", &DEMSystem::set_wet_fraction, py::arg("i"), py::arg("w"),
+           "wet fraction of stone i; when it grows, (M + M') v is kept")
       .def("volume", &DEMSystem::volume, py::arg("i"))
       .def("projected_area", &DEMSystem::projected_area, py::arg("i"))
       .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
@@ -134,6 +140,9 @@ void bind_system(py::module_& m) {
       .def_property_readonly("disc_active",
                              [](py::object self) { return view(self.cast<DEMSystem&>().disc_active, self); })
       .def_property_readonly("disc_wet", [](py::object self) { return view(self.cast<DEMSystem&>().disc_wet, self); })
+      .def_property_readonly("disc_water_level",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_water_level, self); },
+                             "free-surface level at each stone [m]; NaN: disc_wet held as set")
       .def_property_readonly("disc_torque",
                              [](py::object self) { return view(self.cast<DEMSystem&>().disc_torque, self); })
       .def_property_readonly("disc_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().disc_alpha, self); })

@@ -9,6 +9,7 @@
 #include "vofdem/check.h"
 #include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
+#include "vofdem/wet_fraction.h"
 
 namespace vofdem {
 
@@ -238,6 +239,21 @@ void Coupler::update_fluid_forces() {
   stage_fluid_forces();
 }
 
+// names the first of a stone's cells whose flow is not finite (the cause of a non-finite force), or ""
+std::string Coupler::non_finite_cell(int count, const int* cells) const {
+  const int nx = fluid_->grid().nx();
+  for (int m = 0; m < count; ++m) {
+    const int c = cells[m];
+    const double v[] = {fluid_->cell_F[c], cell_U_[c], cell_W_[c], cell_dpdx_[c], cell_dpdz_[c]};
+    const char* names[] = {"water fraction", "pore velocity U", "pore velocity W", "dp/dx", "dp/dz"};
+    for (int q = 0; q < 5; ++q)
+      if (!std::isfinite(v[q]))
+        return "; the flow is not finite in its cell (i=" + std::to_string(c % nx) + ", k=" + std::to_string(c / nx) +
+               "): " + names[q] + " = " + format_value(v[q]);
+  }
+  return "";
+}
+
 void Coupler::stage_fluid_forces() {
   ScopedStage timer(profile_, st_forces_);
   // one-way coupling: the stones' cell lists without touching the flow's porosity
@@ -288,7 +304,6 @@ void Coupler::stage_fluid_forces() {
       const auto f = stone_pressure_force(s, stones_->volume(j));
       fs[0] = f[0], fs[1] = f[1];
     }
-    if (fl & kCoupleWetFraction) stones_->disc_wet[j] = s.wet;
     if (fl & kCoupleForces) {
       forces_applied_ = true;
       // the drag linearised in the stone's velocity (implicit in the DEM), or held over the step
@@ -301,11 +316,20 @@ void Coupler::stage_fluid_forces() {
       stones_->disc_drag_vel[2 * j] = ld.vel_x;
       stones_->disc_drag_vel[2 * j + 1] = ld.vel_z;
     }
-    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1]))
+    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1] + s.wet))
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
                                ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
-                               format_value(fs[1]) + " N) at x = " + format_value(stones_->disc_pos[2 * j]) +
-                               " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m");
+                               format_value(fs[1]) + " N; wet fraction " + format_value(s.wet) + ") at x = " +
+                               format_value(stones_->disc_pos[2 * j]) + " m, z = " +
+                               format_value(stones_->disc_pos[2 * j + 1]) + " m" +
+                               non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
+    if (fl & kCoupleWetFraction) {
+      // w now, and the level that gives it, so that w follows the stone over the DEM's substeps
+      const double w = std::clamp(s.wet, 0.0, 1.0);
+      stones_->set_wet_fraction(j, w);
+      stones_->disc_water_level[j] =
+          water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);
+    }
   }
 }
 
@@ -525,8 +549,18 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/face_u_prev"] = f.face_u_prev;
     s["fluid/face_w_prev"] = f.face_w_prev;
     s["fluid/inlet_volume"] = {f.inlet_volume()};
+    s["fluid/net_inflow_volume"] = {f.net_inflow_volume()};
+    s["fluid/dilatation_volume"] = {f.dilatation_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
+    // the k-epsilon model's own state: the next step reads its k, eps, nu_t and wall shear
+    const KEpsilonModel& t = f.turbulence();
+    s["turbulence/cell_k"] = t.cell_k;
+    s["turbulence/cell_eps"] = t.cell_eps;
+    s["turbulence/cell_nut"] = t.cell_nut;
+    s["turbulence/cell_u_tau"] = t.cell_u_tau;
+    s["turbulence/face_x_wall_shear"] = t.face_x_wall_shear;
+    s["turbulence/face_z_wall_shear"] = t.face_z_wall_shear;
   }
   if (stones_)
     for (auto& kv : stones_->export_state()) s["dem/" + kv.first] = std::move(kv.second);
@@ -544,6 +578,19 @@ const std::vector<double>& need(const std::map<std::string, std::vector<double>>
   return it->second;
 }
 }  // namespace
+
+// the k-epsilon model's state (sizes checked by import_state); states written before it was part
+// of the checkpoint keep the model as it is
+void Coupler::import_turbulence(const std::map<std::string, std::vector<double>>& s) {
+  if (!s.count("turbulence/cell_k")) return;
+  KEpsilonModel& t = fluid_->turbulence();
+  t.cell_k = s.at("turbulence/cell_k");
+  t.cell_eps = s.at("turbulence/cell_eps");
+  t.cell_nut = s.at("turbulence/cell_nut");
+  t.cell_u_tau = s.at("turbulence/cell_u_tau");
+  t.face_x_wall_shear = s.at("turbulence/face_x_wall_shear");
+  t.face_z_wall_shear = s.at("turbulence/face_z_wall_shear");
+}
 
 void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
   const std::size_t any = static_cast<std::size_t>(-1), n = static_cast<std::size_t>(n_);
@@ -577,6 +624,12 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     // the step history of AB2 (older states: none, the next step is forward Euler)
     const bool history = s.count("fluid/prev_dt") && need(s, "fluid/prev_dt", 1)[0] > 0.0;
     if (history) need(s, "fluid/face_u_prev", nfx), need(s, "fluid/face_w_prev", nfz);
+    if (s.count("turbulence/cell_k")) {
+      for (const char* k : {"turbulence/cell_k", "turbulence/cell_eps", "turbulence/cell_nut", "turbulence/cell_u_tau"})
+        need(s, k, nc);
+      need(s, "turbulence/face_x_wall_shear", nfx);
+      need(s, "turbulence/face_z_wall_shear", nfz);
+    }
     DischargeTable t;
     t.times = need(s, "fluid/discharge_times", any);
     t.discharge = need(s, "fluid/discharge_q", any);
@@ -602,9 +655,13 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
       fluid_->clear_step_history();
     }
     fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
+    // older states have no boundary budget: it restarts from 0
+    fluid_->set_net_inflow_volume(s.count("fluid/net_inflow_volume") ? need(s, "fluid/net_inflow_volume", 1)[0] : 0.0);
+    fluid_->set_dilatation_volume(s.count("fluid/dilatation_volume") ? need(s, "fluid/dilatation_volume", 1)[0] : 0.0);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
     fluid_->update_face_porosity();
+    import_turbulence(s);
   }
   if (stones_) stones_->import_state(dem);
   time_ = s.at("coupler/time")[0];

@@ -1,6 +1,9 @@
 // Checkpoint of DEMSystem: every piece of its state as named flat arrays of doubles, so that a run
 // restarted from export_state() continues bit-for-bit (stone arrays, accelerations of the velocity
-// Verlet scheme, contact histories, sleep timers, counters, time, energy accumulators).
+// Verlet scheme, contact histories, sleep timers, counters, time, energy accumulators). The rolling
+// springs (contact_mr, wall_mr) are optional on import: a checkpoint written before the rolling
+// resistance existed restarts with them at zero, which is what it had.
+#include <limits>
 #include <stdexcept>
 
 #include "vofdem/check.h"
@@ -45,6 +48,7 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
   s["disc_drag_coef"] = disc_drag_coef;
   s["disc_drag_vel"] = disc_drag_vel;
   s["disc_wet"] = disc_wet;
+  s["disc_water_level"] = disc_water_level;
   s["disc_force"] = disc_force;
   s["disc_torque"] = disc_torque;
   s["disc_acc"] = disc_acc;
@@ -52,17 +56,20 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
   s["disc_asleep"] = to_double(disc_asleep);
   s["disc_sleep_timer"] = disc_sleep_timer;
   // only the histories that are not zero: the rest is rebuilt by the neighbour search
-  std::vector<double> ci, cj, cxi;
+  std::vector<double> ci, cj, cxi, cmr;
   for (const Pair& p : pairs_) {
-    if (p.xi == 0.0) continue;
+    if (p.xi == 0.0 && p.mr == 0.0) continue;
     ci.push_back(p.i);
     cj.push_back(p.j);
     cxi.push_back(p.xi);
+    cmr.push_back(p.mr);
   }
   s["contact_i"] = ci;
   s["contact_j"] = cj;
   s["contact_xi"] = cxi;
+  s["contact_mr"] = cmr;
   s["wall_xi"] = wall_xi_;
+  s["wall_mr"] = wall_mr_;
   s["scalars"] = {time_,
                   static_cast<double>(steps_),
                   static_cast<double>(removed_),
@@ -96,6 +103,9 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
     disc_drag_vel.assign(2 * n, 0.0);
   }
   set(disc_wet, get(s, "disc_wet", n));
+  // older states hold no water levels: the wet fractions are then held as set
+  if (s.count("disc_water_level")) set(disc_water_level, get(s, "disc_water_level", n));
+  else disc_water_level.assign(n, std::numeric_limits<double>::quiet_NaN());
   set(disc_force, get(s, "disc_force", 2 * n));
   set(disc_torque, get(s, "disc_torque", n));
   set(disc_acc, get(s, "disc_acc", 2 * n));
@@ -105,6 +115,8 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
   const auto& ci = get(s, "contact_i", static_cast<std::size_t>(-1));
   const auto& cj = get(s, "contact_j", ci.size());
   const auto& cxi = get(s, "contact_xi", ci.size());
+  const bool has_mr = s.count("contact_mr") > 0;
+  const std::vector<double> cmr = has_mr ? get(s, "contact_mr", ci.size()) : std::vector<double>(ci.size(), 0.0);
   pairs_.clear();
   for (std::size_t k = 0; k < ci.size(); ++k) {
     const int i = static_cast<int>(ci[k]), j = static_cast<int>(cj[k]);
@@ -113,9 +125,13 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
                                   ") is outside 0 <= i < j < n");
     if (k > 0 && !(pairs_.back().i < i || (pairs_.back().i == i && pairs_.back().j < j)))
       throw std::invalid_argument("import_state: contact pairs are not sorted by (i, j)");
-    pairs_.push_back({i, j, cxi[k], 0.0});  // masses set by the next build
+    pairs_.push_back({i, j, cxi[k], 0.0, cmr[k]});  // masses set by the next build
   }
   set(wall_xi_, get(s, "wall_xi", n * params_.walls.size()));
+  if (s.count("wall_mr"))
+    set(wall_mr_, get(s, "wall_mr", n * params_.walls.size()));
+  else
+    wall_mr_.assign(wall_xi_.size(), 0.0);
   const auto& sc = get(s, "scalars", 9);
   time_ = sc[0];
   steps_ = static_cast<long long>(sc[1]);

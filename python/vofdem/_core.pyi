@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -369,6 +369,24 @@ class DEMParams:
     def restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def rolling_damping(self) -> float:
+        ...
+    @rolling_damping.setter
+    def rolling_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rolling_friction_stone(self) -> float:
+        ...
+    @rolling_friction_stone.setter
+    def rolling_friction_stone(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rolling_friction_wall(self) -> float:
+        ...
+    @rolling_friction_wall.setter
+    def rolling_friction_wall(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def sleep_time(self) -> float:
         ...
     @sleep_time.setter
@@ -463,6 +481,10 @@ class DEMSystem:
         ...
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    def set_wet_fraction(self, i: typing.SupportsInt | typing.SupportsIndex, w: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        wet fraction of stone i; when it grows, (M + M') v is kept
+        """
     def stable_dt(self) -> float:
         ...
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -523,6 +545,11 @@ class DEMSystem:
     @property
     def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+    @property
+    def disc_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        free-surface level at each stone [m]; NaN: disc_wet held as set
+        """
     @property
     def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
@@ -1796,6 +1823,11 @@ class VOFGrid:
         stone diameter D_sp [m]
         """
     @property
+    def dilatation_volume(self) -> float:
+        """
+        water volume per width [m^2] made by the advection's divergence correction where the velocity is not divergence-free (the pressure solve's residual), since construction
+        """
+    @property
     def discharge(self) -> DischargeTable:
         """
         DischargeTable Q(t) [m^3/s]
@@ -1849,6 +1881,11 @@ class VOFGrid:
     def last_pressure_stats(self) -> PressureSolveStats:
         ...
     @property
+    def net_inflow_volume(self) -> float:
+        """
+        water volume per width [m^2] in through the boundary faces minus out, since construction (the VOF advection's fluxes)
+        """
+    @property
     def params(self) -> FlowParams:
         """
         a copy; assign a modified copy to change it
@@ -1856,6 +1893,11 @@ class VOFGrid:
     @params.setter
     def params(self, arg1: FlowParams) -> None:
         ...
+    @property
+    def pressure_fallbacks(self) -> int:
+        """
+        multigrid-CG solves redone by the direct solver (no convergence)
+        """
     @property
     def prev_dt(self) -> float:
         """
@@ -2167,13 +2209,14 @@ COUPLE_RELATIVE_VELOCITY: int = 32
 COUPLE_TWO_WAY: int = 255
 COUPLE_WET_FRACTION: int = 64
 DEM_ADDED_MASS: int = 8
-DEM_ALL_EFFECTS: int = 479
+DEM_ALL_EFFECTS: int = 991
 DEM_BUOYANCY: int = 16
 DEM_DAMPING: int = 64
 DEM_EXTERNAL_FORCE: int = 128
 DEM_FRICTION: int = 4
 DEM_GRAVITY: int = 1
 DEM_REMOVAL: int = 256
+DEM_ROLLING_RESISTANCE: int = 512
 DEM_ROTATION: int = 2
 DEM_SLEEPING: int = 32
 ERGUN_K1: float = 150.0

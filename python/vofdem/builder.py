@@ -30,7 +30,11 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     p.fluid_density = fluid_density
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
+    p.contact_steps = scene.numerics.dem_contact_steps
     p.friction_stone = st.friction_stone
+    p.rolling_friction_stone = st.rolling_friction
+    p.rolling_friction_wall = st.rolling_friction_wall
+    p.rolling_damping = st.rolling_damping
     # the bed and the upstream end wall; downstream the stones leave over the outflow end
     p.walls = [_core.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=st.friction_wall),
                _core.DEMWall(point=[0.0, 0.0], normal=[1.0, 0.0], friction=st.friction_wall)]
@@ -42,6 +46,8 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
         flags |= _core.DEM_ROTATION
     if fx.friction:
         flags |= _core.DEM_FRICTION
+    if fx.rolling_resistance:
+        flags |= _core.DEM_ROLLING_RESISTANCE
     if fx.added_mass:
         flags |= _core.DEM_ADDED_MASS
     if fx.buoyancy:
@@ -52,6 +58,23 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     return p
 
 
+def stone_system(scene: Scene, params, pos, diameters, fixed):
+    """A DEMSystem of the scene's stone model at centres pos (n, 2) [m] with diameters [m] and fixed flags;
+    the one place that turns positions and sizes into stones (discs today), so that every experiment on
+    the stones (calibration.py) builds them the way the weir is built."""
+    pos = np.asarray(pos, float).reshape(-1, 2)
+    d = np.asarray(diameters, float)
+    return _core.DEMSystem(params, pos, 0.5 * d, np.full(len(d), scene.stones.density), [int(f) for f in fixed])
+
+
+def dem_step_hint(message: str) -> str:
+    """A DEM step refused as unstable, said in the scene's terms (the C++ message names DEMParams)."""
+    if "stable step" not in message:
+        return message
+    return (message + "; in the scene: lower numerics.dem_dt, or raise numerics.dem_contact_steps (softer "
+            "contacts), or both with their product kept (the same stiffness in more steps)")
+
+
 def build_stones(scene: Scene):
     """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
     scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
@@ -60,16 +83,17 @@ def build_stones(scene: Scene):
         pos = np.asarray(st.positions, float)
         d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
         fixed = (pos[:, 1] - 0.5 * d <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
-        sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density),
-                               [int(f) for f in fixed])
-        return sys_, None
+        return stone_system(scene, dem_params(scene), pos, d, fixed), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
     pack = dem_params(scene, fluid_density=0.0)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
-    sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
-                                      slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
-                                      d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
-                                      seed=scene.seed, params=pack)
+    try:
+        sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
+                                          slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
+                                          d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
+                                          seed=scene.seed, params=pack)
+    except ValueError as e:
+        raise ValueError(dem_step_hint(str(e))) from None
     sys_.params = dem_params(scene)
     if not st.fix_bottom_layer:
         sys_.disc_fixed[:] = 0

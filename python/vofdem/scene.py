@@ -83,6 +83,19 @@ def _check_number(name: str, value, md) -> float:
     return v
 
 
+def _check_list(name: str, value, md: Optional[dict] = None) -> None:
+    """A list field: a list (a TOML array) whose entries are numbers, in md's range if given. Checked
+    whatever the section's kind, so a key the kind ignores is still refused when it is malformed."""
+    if not isinstance(value, (list, tuple)):
+        raise ValueError(f"{name} = {value!r} must be a list of numbers")
+    for j, v in enumerate(value):
+        if md is None:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise ValueError(f"{name}[{j}] = {v!r} must be a finite number")
+        else:
+            _check_number(f"{name}[{j}]", v, md)
+
+
 def _parse_quantity(name: str, value, kind: Optional[str]):
     """Converts '4.8 cm' to the field's unit; numbers pass unchanged."""
     if not isinstance(value, str):
@@ -208,6 +221,11 @@ class Stones(_Section):
     density: float = _p(2650.0, "density", 1000.0, 20000.0, "stone density [kg/m3]; usual 2650", "(]")
     friction_stone: float = _p(0.577, None, 0.0, 2.0, "stone-stone Coulomb friction [-]; paper 0.577")
     friction_wall: float = _p(0.176, None, 0.0, 2.0, "stone-wall Coulomb friction [-]; paper 0.176")
+    rolling_friction: float = _p(0.0, None, 0.0, 1.0, "stone-stone rolling friction mu_r [-]: the rolling moment "
+                                 "is capped at mu_r R* f_n (Ai et al. 2011, type C); 0 = none, the paper's discs")
+    rolling_friction_wall: float = _p(0.0, None, 0.0, 1.0, "stone-wall rolling friction mu_r [-]; 0 = none")
+    rolling_damping: float = _p(0.3, None, 0.0, 1.0, "rolling damping ratio eta_r [-] below full mobilisation; "
+                                "usual 0.3")
     n_exp: float = _p(0.41, None, 0.0, 1.0, "measured porosity of the packing, eq. (11) [-]; paper 0.41", "()")
     k1: float = _p(200.0, None, 0.0, 1e4, "porous resistance coefficient k1, eq. (7) [-]; paper 200", "(]")
     k2: float = _p(2.8, None, 0.0, 100.0, "porous resistance coefficient k2, eq. (7) [-]; paper 2.8", "(]")
@@ -228,6 +246,9 @@ class Stones(_Section):
     def validate(self, prefix: str = "stones") -> None:
         self._validate_fields(prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
+        if not isinstance(self.positions, (list, tuple)):
+            raise ValueError(f"{prefix}.positions = {self.positions!r} must be a list of pairs [x m, z m]")
+        _check_list(f"{prefix}.diameters", self.diameters, size)
         for j, row in enumerate(self.positions):
             if not isinstance(row, (list, tuple)) or len(row) != 2 or not all(
                     isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in row):
@@ -278,6 +299,11 @@ class Hydrograph(_Section):
 
     def validate(self, prefix: str = "hydrograph") -> None:
         self._validate_fields(prefix)
+        # the table's lists are checked under any kind: a malformed key is an error even where it is ignored
+        q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
+        t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
+        _check_list(f"{prefix}.times", self.times, t_md)
+        _check_list(f"{prefix}.discharge_lps", self.discharge_lps, q_md)
         if self.function is not None:
             if not callable(self.function):
                 raise ValueError(f"{prefix}.function must be a callable t [s] -> Q [m3/s]")
@@ -286,11 +312,6 @@ class Hydrograph(_Section):
             if len(self.times) < 2 or len(self.times) != len(self.discharge_lps):
                 raise ValueError(f"{prefix}.times and {prefix}.discharge_lps must be lists of the same "
                                  f"length >= 2 (got {len(self.times)} and {len(self.discharge_lps)})")
-            q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
-            t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
-            for j, (t, q) in enumerate(zip(self.times, self.discharge_lps)):
-                _check_number(f"{prefix}.times[{j}]", t, t_md)
-                _check_number(f"{prefix}.discharge_lps[{j}]", q, q_md)
             if any(b <= a for a, b in zip(self.times, self.times[1:])):
                 raise ValueError(f"{prefix}.times must be strictly increasing")
 
@@ -360,6 +381,9 @@ class Numerics(_Section):
     cfl: float = _p(0.5, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.5 with adams_bashforth2 "
                     "(0.3 with euler)", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
+    dem_contact_steps: float = _p(20.0, None, 5.0, 1e6, "automatic contact stiffness: DEM steps of dem_dt per "
+                                  "contact of two mean stones [-]; 20 (polygons: 50 at dem_dt 4e-5 s, the same "
+                                  "stiffness)")
     max_dt: float = _p(0.01, "time", 0.0, 1.0, "largest fluid time step [s]", "(]")
     initial_dt: float = _p(1e-3, "time", 0.0, 1.0, "first fluid time step from rest [s]; usual 1e-3", "(]")
     max_dt_growth: float = _p(1.2, None, 1.0, 10.0, "growth limit of the fluid step, dt <= factor x last dt [-]; "
@@ -393,6 +417,8 @@ class Effects(_Section):
     two_way: bool = _flag(True, "porosity follows the stones (feedback on the flow)")
     added_mass: bool = _flag(True, "added mass M' = rho C_M V")
     rotation: bool = _flag(True, "stone rotation, eq. (10)")
+    rolling_resistance: bool = _flag(True, "rolling resistance at contacts (stones.rolling_friction*; "
+                                     "nothing while those are 0)")
     friction: bool = _flag(True, "Coulomb friction at contacts")
     buoyancy: bool = _flag(True, "buoyancy (M - rho_w V) g")
     drag: bool = _flag(True, "drag of the flow on stones, eqs. (16)-(18)")
@@ -504,6 +530,8 @@ class Scene:
             if not isinstance(sec, cls):
                 raise ValueError(f"{key} must be a {cls.__name__}, got {type(sec).__name__}")
             sec.validate(key)
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise ValueError(f"name = {self.name!r} must be a non-empty string")
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or not 0 <= self.seed < 2**63:
             raise ValueError(f"seed = {self.seed!r} must be an integer in [0, 2^63)")
         if self.end_time is not None:
@@ -617,6 +645,9 @@ class Scene:
             data = _toml.loads(text)
         except _toml.TOMLDecodeError as e:
             raise ValueError(f"{source}: not valid TOML: {e}") from None
+        if not data:
+            raise ValueError(f"{source}: the scene is empty (no keys, no sections); write at least the sections "
+                             f"that differ from the defaults, e.g. [flume], or run the ready scene 'maeno2008'")
         return cls.from_dict(data, source)
 
     def replace(self, **changes) -> "Scene":
@@ -627,6 +658,30 @@ class Scene:
                 raise ValueError(_unknown(k, [f.name for f in dataclasses.fields(Scene)], "Scene"))
             setattr(s, k, v)
         return s.validate()
+
+    def with_value(self, key: str, value) -> "Scene":
+        """A validated copy with one parameter set by its dotted name ('stones.friction_stone', or a
+        top-level 'end_time'), the value read as in a scene file (numbers may carry a unit, '4.8 cm')."""
+        s = copy.deepcopy(self)
+        section, _, name = key.rpartition(".")
+        if not section:
+            if key not in ("end_time", "name"):
+                raise ValueError(_unknown(key, [*_SECTIONS, "end_time", "name"], "top level"))
+            setattr(s, key, _parse_quantity(key, value, "time") if key == "end_time" else value)
+            return s.validate()
+        if section not in _SECTIONS:
+            raise ValueError(_unknown(section, list(_SECTIONS), "top level"))
+        fields = {f.name: f for f in dataclasses.fields(_SECTIONS[section]) if not f.metadata.get("python_only")}
+        if name not in fields:
+            raise ValueError(_unknown(name, fields, f"[{section}]", prefix=section))
+        md = fields[name].metadata
+        setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
+        return s.validate()
+
+    def value_of(self, key: str):
+        """The value of a parameter by its dotted name (see `with_value`)."""
+        section, _, name = key.rpartition(".")
+        return getattr(getattr(self, section), name) if section else getattr(self, key)
 
 
 def load_scene(path) -> Scene:

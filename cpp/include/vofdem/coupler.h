@@ -169,8 +169,10 @@ class Coupler {
   int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
   void apply_flow_flags();
   void make_mapper();
+  void import_turbulence(const std::map<std::string, std::vector<double>>& state);
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
+  std::string non_finite_cell(int count, const int* cells) const;
   // with both force effects off: zeroes the fluid forces the stones still hold (once, on the switch)
   void clear_fluid_forces();
   void stage_dem(double dt);

@@ -7,7 +7,11 @@
 // with M_i = rho_s V_i, V_i = pi d_i^3 / 6 (a sphere of the disc's diameter, the paper's V_i; its
 // projected area A_pi = pi d_i^2 / 4), added mass M'_i = rho_w C_M V_i, and I_i = inertia_factor M_i
 // (d_i/2)^2 (0.4: a sphere, the default; 0.5: a disc). The wet fraction w_i in [0, 1] of each stone
-// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h.
+// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. When w_i grows, the
+// water taken on as added mass starts at rest: (M_i + M'_i) v_i is kept (the stone slows as it enters
+// the water; as it leaves, v_i is kept and the water left behind takes its momentum with it), so a
+// change of w_i never adds kinetic energy. Contacts: dem_contact.h; rolling resistance (a moment added
+// to eq. 10, effect kDEMRollingResistance): rolling_resistance.h.
 // F_x, F_z: disc_force_ext, set by the coupler (the fluid's pressure-gradient force, and the drag when it
 // is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (disc_drag_coef c_i, disc_drag_vel
 // U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
@@ -16,10 +20,13 @@
 // evaluation per step. The linear drag is integrated exactly in each half kick (exponential integrator):
 // a half kick of h with the total acceleration a (drag included) adds h a phi(h k), k = c / (M + M'),
 // phi(x) = (1 - e^-x) / x, which is the exact solution of dv/dt = a_other + k (U - v) over h for a_other
-// held; so the drag never overshoots U, at any step and any c (phi = 1 without drag: plain Verlet). Walls are half-planes (the flume bed, its end walls); fixed stones are discs
-// that never move. Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept
-// sorted by (i, j) so that contact histories and force sums are evaluated in one fixed order: runs are
-// bit-for-bit reproducible, and export_state()/import_state() restart them bit-for-bit.
+// held; so the drag never overshoots U, at any step and any c (phi = 1 without drag: plain Verlet). A
+// wet fraction that follows a water level changes M' within a step: k follows it at once (the momentum
+// kept as above), so the kicks after the change integrate the drag with the mass the stone has.
+// Walls are half-planes (the flume bed, its end walls); fixed stones are discs that never move.
+// Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept sorted by (i, j) so
+// that contact histories and force sums are evaluated in one fixed order: runs are bit-for-bit
+// reproducible, and export_state()/import_state() restart them bit-for-bit.
 //
 // References: Maeno, S. & Tomita, A. (2008), ICHE 2008, Nagoya. Gotoh, H. & Sakai, T. (1997), J. Waterway
 // Port Coastal Ocean Eng. 123(6), 329-336. Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29, 47-65.
@@ -47,7 +54,8 @@ enum DEMFlag : unsigned {
   kDEMDamping = 1u << 6,        // contact dashpots
   kDEMExternalForce = 1u << 7,  // disc_force_ext (fluid forces from the coupler)
   kDEMRemoval = 1u << 8,        // stones leaving the domain box are deactivated and counted
-  kDEMAllEffects = (1u << 9) - 1u - (1u << 5),  // everything but sleeping
+  kDEMRollingResistance = 1u << 9,  // rolling moment of rolling_resistance.h (costs nothing while mu_r = 0)
+  kDEMAllEffects = (1u << 10) - 1u - (1u << 5),  // everything but sleeping
 };
 
 // a half-plane wall: the solid lies on the side opposite to `normal`
@@ -70,6 +78,10 @@ struct DEMParams {
   double tangential_damping_factor = 0.5;     // c_t / c_n [-]; 0.5 usual (LAMMPS default)
   double friction_stone = 0.577;              // stone-stone Coulomb coefficient [-] (paper 0.577)
   double inertia_factor = 0.4;                // I = factor M r^2 [-]; 0.4 sphere, 0.5 disc
+  // rolling resistance (rolling_resistance.h; only with kDEMRollingResistance): M_r <= mu_r R* f_n
+  double rolling_friction_stone = 0.0;        // mu_r stone-stone [-], >= 0; 0 = none
+  double rolling_friction_wall = 0.0;         // mu_r stone-wall [-], >= 0; 0 = none
+  double rolling_damping = 0.3;               // eta_r = C_r / (2 sqrt(I_r k_r)) [-] in [0, 1]; off at full mobilisation
   std::array<double, 2> domain_min{-1e30, -1e30};  // removal box, lower corner (x, z) [m]
   std::array<double, 2> domain_max{1e30, 1e30};    // removal box, upper corner (x, z) [m]
   double neighbour_skin = 0.0;                // Verlet-list skin [m]; 0 = 0.1 x the largest diameter
@@ -94,8 +106,8 @@ enum DEMStage : int { kStageIntegrate = 0, kStageRemoval, kStageNeighbours, kSta
 struct DEMEnergy {
   double kinetic = 0.0;        // sum 1/2 (M + M') v^2 + 1/2 I omega^2 [J]
   double potential = 0.0;      // sum -(M - rho_w V w) g . x [J] (zero at the origin)
-  double elastic = 0.0;        // energy in the contact springs at the last force evaluation [J]
-  double dissipated = 0.0;     // dashpots + Coulomb slip + sleeping, accumulated [J]
+  double elastic = 0.0;        // energy in the contact springs (rolling ones too) at the last evaluation [J]
+  double dissipated = 0.0;     // dashpots + Coulomb and rolling slip + sleeping, accumulated [J]
   double work_external = 0.0;  // work of disc_force_ext, accumulated [J]
   double total() const { return kinetic + potential + elastic + dissipated - work_external; }
 };
@@ -117,13 +129,21 @@ class DEMSystem {
   void set_params(const DEMParams& p);
 
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
-  // (normal and tangential-rotational modes of the lightest stone)
+  // (normal and tangential-rotational modes of the lightest stone, the latter with the rolling spring),
+  // and no more than the explicit dashpots allow in a packing (kPackedContacts contacts per stone; binds
+  // for restitution below ~0.12)
   double stable_dt();
+  // contacts per stone assumed by stable_dt() for the highest mode of a packing [-]
+  static constexpr double kPackedContacts = 5.0;
   // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
   // state (export_state) so that a failure can restore it: call advance() with long durations.
   void step(double dt);
   // advances by duration [s] in equal substeps no larger than params().dt
   void advance(double duration);
+
+  // sets the wet fraction w [-] in [0, 1] of stone i: buoyancy and added mass follow at once, and when
+  // w grows the stone's velocity drops so that (M + M') v is kept (the water taken on starts at rest)
+  void set_wet_fraction(int i, double w);
 
   // contact constants in use (after the automatic choice) [N/m]
   double stiffness_normal() const { return kn_; }
@@ -171,6 +191,9 @@ class DEMSystem {
   std::vector<double> disc_drag_vel;        // velocity U the linear drag c (U - v) pulls towards [m/s], 2n
   std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
                                             // when fluid_density > 0, else 0 (set_params keeps it)
+  std::vector<double> disc_water_level;     // free-surface level at each stone [m], n; NaN (default): disc_wet
+                                            // is held as set; else disc_wet follows the stone's height over the
+                                            // substeps, the disc's share below the level (wet_fraction.h)
   std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
   std::vector<double> disc_torque;          // total torque of the last evaluation [N m], n (output)
   std::vector<double> disc_acc;             // acceleration of the last evaluation [m/s^2], 2n
@@ -181,13 +204,17 @@ class DEMSystem {
  private:
   struct Pair {
     int i, j;
-    double xi;      // tangential spring [m]
-    double sqrt_m;  // sqrt of the pair's reduced mass [kg^0.5], set at each build
+    double xi;         // tangential spring [m]
+    double sqrt_m;     // sqrt of the pair's reduced mass [kg^0.5], set at each build
+    double mr = 0.0;   // rolling spring moment M_r^k on i [N m] (rolling resistance only)
+    double roll_c = 0.0;  // 2 R* sqrt(I_r) [kg^0.5 m^2]: C_r = eta_r sqrt(k_t) roll_c (rolling resistance only)
   };
   void prepare();
   void check_params() const;
   void check_stones() const;
   void update_properties();
+  void update_stone_properties(int i);
+  void follow_water_level(int i);
   void build_neighbours();
   bool neighbours_stale() const;
   void advance_checked(double dt, long long nsub);
@@ -201,10 +228,25 @@ class DEMSystem {
   FirstHalf integrate_first_half(double dt);
   void integrate_second_half(double dt);
   void update_kick_scale(double dt);
+  double drag_kick_scale(int i, double dt) const;
   void remove_escaped();
   void body_forces(double dt);
   void contact_forces(double dt);
   void wall_forces(double dt);
+  // rolling resistance (dem_rolling.cpp, law in rolling_resistance.h): whether a contact kind has it,
+  // its check, its term of stable_dt(), and the moments of one stone-stone or stone-wall contact
+  // (applied to disc_torque; the energies returned)
+  bool rolling_stones() const;
+  bool rolling_walls() const;
+  void check_rolling_params() const;
+  double rolling_spin_stiffness(double m_min) const;
+  void update_rolling_inertia();
+  void update_pair_rolling();  // Pair::roll_c of every listed pair
+  struct RollingEnergy {
+    double elastic = 0.0, dissipated = 0.0;
+  };
+  RollingEnergy rolling_contact(Pair& c, double fn, double dt);
+  RollingEnergy rolling_wall(int i, double& mr, double fn, double dt);
   void sleep_update(double dt);
   double reduced_stiffness_mass() const;
 
@@ -225,10 +267,16 @@ class DEMSystem {
   std::vector<double> inv_inertia_;  // 1 / I [1/(kg m^2)]
   std::vector<double> weight_;       // (M - rho_w V w) [kg]: multiplies g
   std::vector<double> kick_scale_;   // phi(h c / (M + M')) of the linear drag for the substep in use [-]
+  double kick_dt_ = 0.0;             // the substep kick_scale_ was computed for [s]
+  std::vector<double> inv_roll_inertia_;  // 1 / (I + (M + M') r^2), 0 if it does not turn [1/(kg m^2)]
+  std::vector<double> wall_roll_c_;       // 2 r sqrt(I + (M + M') r^2) per stone: roll_c of its wall contacts
+  double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off
+  std::vector<double> contact_inv_mass_;  // inv_mass_ at the step's start: the contacts' dashpot masses
 
   // neighbour list and contact histories
   std::vector<Pair> pairs_;
   std::vector<double> wall_xi_;      // tangential spring per (stone, wall) [m], n * nwall
+  std::vector<double> wall_mr_;      // rolling spring moment per (stone, wall) [N m], n * nwall
   std::vector<double> build_pos_;    // positions at the last neighbour build
   double skin_ = 0.0;
   bool rebuild_ = true;
