@@ -100,7 +100,8 @@ def profile_table(profile, wall_seconds: Optional[float] = None, simulated: Opti
 class _Recorder:
     """Reads the simulation's views and appends one snapshot to the writer."""
 
-    def __init__(self, sim, scene: Scene, writer: RunWriter, pos0: Optional[np.ndarray] = None):
+    def __init__(self, sim, scene: Scene, writer: RunWriter, pos0: Optional[np.ndarray] = None,
+                 fixed0: Optional[np.ndarray] = None):
         self.sim, self.scene, self.writer = sim, scene, writer
         g = sim.fluid.grid
         self.nx, self.nz = g.nx, g.nz
@@ -109,6 +110,8 @@ class _Recorder:
         start = sim.stones.disc_pos if pos0 is None else pos0
         self.pos0 = np.array(start, float).reshape(-1, 2).copy()
         self.diameter = 2.0 * np.asarray(sim.stones.disc_radius, float)
+        self.fixed0 = np.zeros(len(self.diameter), bool) if fixed0 is None else np.asarray(fixed0, bool)
+        self.removal_t = np.full(len(self.diameter), np.nan)  # first snapshot of each removal (analysis.py)
         self.moved = 0
 
     def record(self) -> None:
@@ -125,7 +128,9 @@ class _Recorder:
                   "active": np.asarray(st.disc_active).astype(bool)}
         t = float(sim.time)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
-        self.moved = int(np.sum((disp > self.diameter) | ~stones["active"]))
+        removed = (disp > self.diameter) | ~stones["active"]
+        self.moved = int(np.sum(removed))
+        self.removal_t[removed & ~self.fixed0 & np.isnan(self.removal_t)] = t
         self.writer.write_snapshot(t, self.scene.hydrograph.discharge(t), water_level(F, self.z_faces, self.gauge_i),
                                    fields if self.writer.write_fields else None, stones)
 
@@ -168,6 +173,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         for t_next in loop.remaining():
             if _stop_requested:
                 raise KeyboardInterrupt
+            if loop.first_stage_reached():
+                break
             sim.advance(t_next)
             loop.after_advance()
             loop.snapshot()
@@ -197,7 +204,10 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     simulated = float(sim.time) - loop.t_start
     table = profile_table(loop.profile(), wall, simulated)
     writer = loop.writer
-    loop.close("completed", {"wall_seconds": wall, "simulated_seconds": simulated})
+    extra = {"wall_seconds": wall, "simulated_seconds": simulated}
+    if loop.first_stage_reached():
+        extra["stopped"] = "at the first destruction stage"
+    loop.close("completed", extra)
     (out / "profile.md").write_text(table, encoding="utf-8")
     result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
                        [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"])
@@ -237,7 +247,21 @@ class _Loop:
             self.fixed0, pos0 = data.fixed, data.pos[0]
             self.t_start = float(data.times[0])
             self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
-        self.rec = _Recorder(sim, scene, self.writer, pos0)
+        self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
+        if ck is not None and scene.hydrograph.stops_at_first_stage:  # the removals before the kill
+            from .analysis import removal_times
+
+            self.rec.removal_t = removal_times(data.times, data.pos, data.diameter, data.active, data.fixed)
+
+    def first_stage_reached(self) -> bool:
+        """Whether the run stops here: a scene that stops at the first stage (until failure) once the
+        snapshots so far hold a destruction stage (analysis.find_bursts, its default criterion)."""
+        if not self.scene.hydrograph.stops_at_first_stage:
+            return False
+        from .analysis import StageCriterion, find_bursts
+
+        c = StageCriterion()
+        return bool(find_bursts(self.rec.removal_t, c.gap, c.min_stones)[0])
 
     def remaining(self):
         """The snapshot times still to run."""
@@ -300,7 +324,8 @@ def _model_attrs(sim, scene: Scene) -> dict:
 def analyse_run(data: RunData, scene: Scene) -> FailureAnalysis:
     """Failure analysis of a written run."""
     return analyse(data.times, data.pos, data.diameter, scene.weir, scene.hydrograph.discharge_lps_at,
-                   active=data.active, fixed=data.fixed, ramp_start=scene.hydrograph.ramp_start)
+                   active=data.active, fixed=data.fixed, ramp_start=scene.hydrograph.ramp_start,
+                   reference=scene.reference)
 
 
 def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, animation: bool = True,
@@ -318,6 +343,11 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
                delimiter=",", header="time_s,discharge_lps,crest_level_m,crest_lowering_m,stones_removed",
                comments="", fmt="%.6g")
     files += [out / "stage_table.md", out / "stage_table.csv", out / "crest_lowering.csv"]
+    if scene.hydrograph.stops_at_first_stage:
+        from .flood import until_failure_markdown
+
+        (out / "until_failure.md").write_text(until_failure_markdown(a, scene), encoding="utf-8")
+        files.append(out / "until_failure.md")
     if figures or animation:
         from . import plots
 

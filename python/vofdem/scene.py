@@ -17,126 +17,13 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import difflib
 import math
-import re
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
-try:  # Python >= 3.11
-    import tomllib as _toml
-except ModuleNotFoundError:  # pragma: no cover - Python 3.9/3.10
-    import tomli as _toml  # type: ignore[no-redef]
-
-# units a value given as a string may carry, by kind, as factors to the SI unit of that kind
-_UNITS: Dict[str, Dict[str, float]] = {
-    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "km": 1e3},
-    "angle": {"deg": 1.0, "degree": 1.0, "degrees": 1.0, "rad": 180.0 / math.pi},  # to degrees
-    "discharge": {"l/s": 1.0, "lps": 1.0, "m3/s": 1e3, "m^3/s": 1e3},  # to l/s
-    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0},
-    "density": {"kg/m3": 1.0, "kg/m^3": 1.0, "g/cm3": 1e3, "g/cm^3": 1e3},
-}
-# the unit a field of each kind is stored in
-_BASE_UNIT = {"length": "m", "angle": "deg", "discharge": "l/s", "time": "s", "density": "kg/m3"}
-
-
-def _p(default, kind: Optional[str], lo: float, hi: float, doc: str, closed: str = "[]"):
-    """A numeric parameter: unit kind, allowed range [lo, hi] (closed='()' etc. for open ends)."""
-    return field(default=default, metadata=dict(kind=kind, lo=lo, hi=hi, closed=closed, doc=doc))
-
-
-def _choice(default, choices: Sequence[str], doc: str):
-    return field(default=default, metadata=dict(choices=tuple(choices), doc=doc))
-
-
-def _flag(default: bool, doc: str):
-    return field(default=default, metadata=dict(flag=True, doc=doc))
-
-
-def _fmt(v: float) -> str:
-    return repr(float(v)) if isinstance(v, float) else str(v)
-
-
-def _range_text(md) -> str:
-    lo, hi, c = md["lo"], md["hi"], md["closed"]
-    unit = _BASE_UNIT.get(md["kind"], "")
-    return f"{c[0]}{_fmt(lo)}, {_fmt(hi)}{c[1]}" + (f" {unit}" if unit else "")
-
-
-def _check_number(name: str, value, md) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{name} = {value!r} must be a number in {_range_text(md)}")
-    v = float(value)
-    lo, hi, c = md["lo"], md["hi"], md["closed"]
-    ok = math.isfinite(v) and (v >= lo if c[0] == "[" else v > lo) and (v <= hi if c[1] == "]" else v < hi)
-    if not ok:
-        hint = ""
-        if md["kind"] == "discharge" and v > hi:
-            hint = " (discharges ending in _lps are in l/s; write e.g. \"0.01 m3/s\" to give m3/s)"
-        elif md["kind"] == "discharge" and 0 < v < 0.5:
-            hint = " (looks like m3/s; this field is in l/s)"
-        elif md["kind"] == "length" and v > hi:
-            hint = " (lengths are in metres; write e.g. \"4.8 cm\" to give another unit)"
-        elif md["kind"] == "angle" and 0 < v < 1.6 and lo > 1.6:
-            hint = " (angles ending in _deg are in degrees; this looks like radians)"
-        raise ValueError(f"{name} = {_fmt(value)} is outside the allowed range {_range_text(md)}{hint}")
-    return v
-
-
-def _check_list(name: str, value, md: Optional[dict] = None) -> None:
-    """A list field: a list (a TOML array) whose entries are numbers, in md's range if given. Checked
-    whatever the section's kind, so a key the kind ignores is still refused when it is malformed."""
-    if not isinstance(value, (list, tuple)):
-        raise ValueError(f"{name} = {value!r} must be a list of numbers")
-    for j, v in enumerate(value):
-        if md is None:
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise ValueError(f"{name}[{j}] = {v!r} must be a finite number")
-        else:
-            _check_number(f"{name}[{j}]", v, md)
-
-
-def _parse_quantity(name: str, value, kind: Optional[str]):
-    """Converts '4.8 cm' to the field's unit; numbers pass unchanged."""
-    if not isinstance(value, str):
-        return value
-    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([A-Za-z/^0-9]*)\s*", value)
-    if m is None:
-        raise ValueError(f"{name} = {value!r} is not a number or a number with a unit")
-    number, unit = float(m.group(1)), m.group(2)
-    if kind is None:
-        if unit:
-            raise ValueError(f"{name} = {value!r}: this parameter is dimensionless, it takes no unit")
-        return number
-    if unit == "":
-        return number
-    table = _UNITS[kind]
-    if unit not in table:
-        other = [k for k, t in _UNITS.items() if unit in t]
-        what = f"'{unit}' is a unit of {other[0]}" if other else f"unknown unit '{unit}'"
-        raise ValueError(f"{name} = {value!r}: {what}; {name.split('.')[-1]} is a {kind} "
-                         f"(use one of {', '.join(table)})")
-    return number * table[unit]
-
-
-class _Section:
-    """Field-by-field validation shared by the scene's sections."""
-
-    def _validate_fields(self, prefix: str) -> None:
-        for f in dataclasses.fields(self):
-            md = f.metadata
-            name = f"{prefix}.{f.name}"
-            value = getattr(self, f.name)
-            if "lo" in md:
-                if value is None and f.default is None:
-                    continue
-                setattr(self, f.name, _check_number(name, value, md))
-            elif "choices" in md:
-                if value not in md["choices"]:
-                    raise ValueError(f"{name} = {value!r} is not one of {', '.join(map(repr, md['choices']))}")
-            elif "flag" in md:
-                if not isinstance(value, bool):
-                    raise ValueError(f"{name} = {value!r} must be true or false")
+from .reference import Reference, maeno2008_reference
+from .params import (_BASE_UNIT, _UNITS, _Section, _check_list, _check_number, _choice, _flag, _fmt,  # noqa: F401
+                     _p, _parse_quantity, _range_text, _toml, _toml_value, _unknown)
 
 
 @dataclass
@@ -278,29 +165,54 @@ class Hydrograph(_Section):
 
     kind 'ramp' (the paper's): a spin-up at `discharge_start_lps` for `spin_up_duration` seconds (the
     flow settles to a steady state over the weir, stones held in place if `hold_stones_during_spin_up`),
-    then a linear rise to `discharge_end_lps` over `ramp_duration`. The paper's clock starts at the
-    ramp: paper time = simulation time - spin_up_duration.
+    then a linear rise to `discharge_end_lps` over `ramp_duration`. The clock of the rise starts at the
+    ramp: clock = simulation time - spin_up_duration (`ramp_start`).
     kind 'table': piecewise-linear through (`times` [s], `discharge_lps` [l/s]), spin-up included.
-    From Python, `function` (a callable t [s] -> Q [m3/s]) overrides both; it is sampled into a
+    kind 'csv': a measured flood read from the CSV file `file` (relative to the scene file; format in
+    flood.py): its first discharge held for `spin_up_duration` (stones held as for a ramp), then its
+    readings, times x `time_scale`, discharges x `discharge_scale`. The file's content is kept in
+    `times` [s from its first row] and `discharge_lps` [l/s]; a scene written by vofdem (a run's
+    scene.toml) carries it there, and the file is then not read again.
+    kind 'until_failure' (made by `Scene.until_failure()`, ``vofdem run --until-failure``): a ramp from
+    `discharge_start_lps` to `discharge_end_lps` at `until_failure_rate_lps_per_s`; the run stops at
+    the first destruction stage.
+    From Python, `function` (a callable t [s] -> Q [m3/s]) overrides all; it is sampled into a
     table every `table_interval` seconds for the solver.
     """
 
-    kind: str = _choice("ramp", ("ramp", "table"), "'ramp' (spin-up then linear rise) or 'table'")
+    kind: str = _choice("ramp", ("ramp", "table", "csv", "until_failure"),
+                        "'ramp' (spin-up then linear rise), 'table', 'csv' (a measured flood from `file`) or "
+                        "'until_failure' (a slow ramp stopped at the first stage)")
     discharge_start_lps: float = _p(10.0, "discharge", 0.1, 1000.0, "spin-up and ramp start discharge [l/s]")
     discharge_end_lps: float = _p(25.0, "discharge", 0.1, 1000.0, "discharge at the end of the ramp [l/s]")
     ramp_duration: float = _p(120.0, "time", 0.0, 1e5, "duration of the linear rise [s]; paper 120", "(]")
     spin_up_duration: float = _p(20.0, "time", 0.0, 1e4, "time at the start discharge before the ramp [s]")
     hold_stones_during_spin_up: bool = _flag(True, "stones do not move during the spin-up")
-    times: List[float] = field(default_factory=list, metadata=dict(doc="table times [s] (kind = 'table')"))
+    times: List[float] = field(default_factory=list, metadata=dict(doc="table times [s] (kind = 'table'; 'csv': "
+                                                                       "the file's, from its first row)"))
     discharge_lps: List[float] = field(default_factory=list, metadata=dict(doc="table discharges [l/s]"))
+    file: str = field(default="", metadata=dict(text=True, doc="the flood's CSV file (kind = 'csv'), relative to "
+                                                               "the scene file; header e.g. time_s,discharge_lps"))
+    time_scale: float = _p(1.0, None, 0.0, 1e3, "kind 'csv': the file's times are multiplied by this [-]", "(]")
+    discharge_scale: float = _p(1.0, None, 0.0, 1e6, "kind 'csv': the file's discharges are multiplied by this "
+                                "[-]", "(]")
+    until_failure_rate_lps_per_s: float = _p(0.125, "discharge rate", 0.0, 100.0, "rise of --until-failure [l/s per s]; "
+                                             "0.125 = the paper's 15 l/s in 120 s", "(]")
     table_interval: float = _p(0.5, "time", 0.0, 100.0, "sampling step of `function` into a table [s]", "(]")
-    function: Optional[Callable[[float], float]] = field(default=None, metadata=dict(
+    function: Optional[Callable[[float], float]] = field(default=None, compare=False, metadata=dict(
         doc="Python only: Q(t) in m3/s, overrides kind", python_only=True))
+    base_dir: Optional[str] = field(default=None, compare=False, metadata=dict(
+        doc="Python only: the directory `file` is relative to (the scene file's; default the working one)",
+        python_only=True))
 
     def validate(self, prefix: str = "hydrograph") -> None:
         self._validate_fields(prefix)
+        if not isinstance(self.file, str) or "\n" in self.file:
+            raise ValueError(f"{prefix}.file = {self.file!r} must be a file name (text)")
+        if self.kind == "csv" and self.function is None and not self.times:
+            self._read_csv(prefix)
         # the table's lists are checked under any kind: a malformed key is an error even where it is ignored
-        q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
+        q_md = {"lo": 0.0, "hi": 1000.0 if self.kind != "csv" else 1e9, "closed": "[]", "kind": "discharge"}
         t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
         _check_list(f"{prefix}.times", self.times, t_md)
         _check_list(f"{prefix}.discharge_lps", self.discharge_lps, q_md)
@@ -308,24 +220,72 @@ class Hydrograph(_Section):
             if not callable(self.function):
                 raise ValueError(f"{prefix}.function must be a callable t [s] -> Q [m3/s]")
             return
-        if self.kind == "table":
+        if self.kind in ("table", "csv"):
             if len(self.times) < 2 or len(self.times) != len(self.discharge_lps):
                 raise ValueError(f"{prefix}.times and {prefix}.discharge_lps must be lists of the same "
                                  f"length >= 2 (got {len(self.times)} and {len(self.discharge_lps)})")
             if any(b <= a for a, b in zip(self.times, self.times[1:])):
                 raise ValueError(f"{prefix}.times must be strictly increasing")
+        if self.kind == "csv":
+            self._check_csv(prefix)
+        if self.kind == "until_failure":
+            self._check_until_failure(prefix)
+
+    def _read_csv(self, prefix: str) -> None:
+        from pathlib import Path
+
+        from .flood import read_hydrograph_csv
+
+        if not self.file.strip():
+            raise ValueError(f"{prefix}.file is required when {prefix}.kind = 'csv' (the flood's CSV file, "
+                             f"relative to the scene file)")
+        path = Path(self.base_dir or ".") / self.file
+        self.times, self.discharge_lps = read_hydrograph_csv(path)
+
+    def _check_csv(self, prefix: str) -> None:
+        if self.times[0] != 0.0:
+            raise ValueError(f"{prefix}.times[0] = {_fmt(self.times[0])}: a CSV flood's times start at 0 (its first row)")
+        q_max = max(self.discharge_lps) * self.discharge_scale
+        if q_max > 1000.0:
+            raise ValueError(f"{prefix}.discharge_scale = {_fmt(self.discharge_scale)}: the flood of {self.file or 'the file'} "
+                             f"peaks at {q_max:.6g} l/s, outside the allowed range [0, 1000] l/s (scale a field "
+                             f"flood to the flume with discharge_scale)")
+        span = self.times[-1] * self.time_scale
+        if span > 1e6:
+            raise ValueError(f"{prefix}.time_scale = {_fmt(self.time_scale)}: the flood lasts {span:.6g} s, outside "
+                             f"the allowed range (0, 1e6] s")
+
+    def _check_until_failure(self, prefix: str) -> None:
+        rise = self.discharge_end_lps - self.discharge_start_lps
+        if not rise > 0:
+            raise ValueError(f"{prefix}.discharge_end_lps = {_fmt(self.discharge_end_lps)} must be above "
+                             f"{prefix}.discharge_start_lps = {_fmt(self.discharge_start_lps)} for kind 'until_failure'")
+        duration = rise / self.until_failure_rate_lps_per_s
+        if duration > 1e5:
+            raise ValueError(f"{prefix}.until_failure_rate_lps_per_s = {_fmt(self.until_failure_rate_lps_per_s)} "
+                             f"makes the rise last {duration:.4g} s, outside the allowed range (0, 1e5] s")
+        self.ramp_duration = duration
 
     @property
     def ramp_start(self) -> float:
-        """Simulation time [s] at which the paper's clock starts (end of the spin-up)."""
-        return self.spin_up_duration if self.kind == "ramp" and self.function is None else 0.0
+        """Simulation time [s] at which the clock of the rise starts (end of the spin-up)."""
+        if self.function is None and self.kind in ("ramp", "csv", "until_failure"):
+            return self.spin_up_duration
+        return 0.0
 
     @property
     def end_time(self) -> float:
         """Simulation time [s] at the end of the hydrograph."""
         if self.function is None and self.kind == "table":
             return float(self.times[-1])
+        if self.function is None and self.kind == "csv":
+            return self.spin_up_duration + float(self.times[-1]) * self.time_scale
         return self.spin_up_duration + self.ramp_duration
+
+    @property
+    def stops_at_first_stage(self) -> bool:
+        """Whether the run ends at the first destruction stage (kind 'until_failure')."""
+        return self.function is None and self.kind == "until_failure"
 
     def discharge(self, t):
         """Q [m3/s] at simulation time t [s] (scalar or array)."""
@@ -335,6 +295,9 @@ class Hydrograph(_Section):
             return np.vectorize(lambda s: float(self.function(s)))(t) if np.ndim(t) else float(self.function(t))
         if self.kind == "table":
             q = np.interp(t, self.times, self.discharge_lps) * 1e-3
+        elif self.kind == "csv":
+            tc = (np.asarray(t, float) - self.spin_up_duration) / self.time_scale
+            q = np.interp(tc, self.times, self.discharge_lps) * (1e-3 * self.discharge_scale)
         else:
             s = np.clip((np.asarray(t, float) - self.spin_up_duration) / self.ramp_duration, 0.0, 1.0)
             q = (self.discharge_start_lps + (self.discharge_end_lps - self.discharge_start_lps) * s) * 1e-3
@@ -354,6 +317,12 @@ class Hydrograph(_Section):
             t = np.linspace(0.0, t_end, n)
         elif self.kind == "table":
             t = np.asarray(self.times, float)
+        elif self.kind == "csv":
+            t = self.spin_up_duration + np.asarray(self.times, float) * self.time_scale
+            if self.spin_up_duration > 0.0:
+                t = np.concatenate([[0.0], t])
+            if t_end > t[-1]:
+                t = np.append(t, t_end)
         else:
             t = np.array([0.0, self.spin_up_duration, self.spin_up_duration + self.ramp_duration])
             if self.spin_up_duration == 0.0:
@@ -361,6 +330,21 @@ class Hydrograph(_Section):
             if t_end > t[-1]:
                 t = np.append(t, t_end)
         return t, np.asarray(self.discharge(t), float)
+
+    def source(self) -> str:
+        """What the discharge follows, in words (for figures and reports)."""
+        if self.function is not None:
+            return "a Python function"
+        if self.kind == "csv":
+            scale = "" if self.time_scale == 1.0 and self.discharge_scale == 1.0 else (
+                f", times x {self.time_scale:g}, discharges x {self.discharge_scale:g}")
+            return f"measured flood {self.file or '(CSV)'}{scale}"
+        if self.kind == "table":
+            return "a table"
+        rise = f"{self.discharge_start_lps:g} -> {self.discharge_end_lps:g} l/s"
+        if self.kind == "until_failure":
+            return f"until failure: {rise} at {self.until_failure_rate_lps_per_s:g} l/s per s"
+        return f"ramp {rise} over {self.ramp_duration:g} s"
 
 
 @dataclass
@@ -433,7 +417,13 @@ class Output(_Section):
 
 
 _SECTIONS = {"flume": Flume, "weir": Weir, "stones": Stones, "hydrograph": Hydrograph, "grid": GridSpec,
-             "numerics": Numerics, "effects": Effects, "output": Output}
+             "numerics": Numerics, "effects": Effects, "output": Output, "reference": Reference}
+# sections written to a scene file only when they differ from their defaults
+_OPTIONAL_SECTIONS = ("reference",)
+# list keys whose entries may carry a unit, and the kind of that unit
+_LIST_KINDS = {"positions": None, "times": "time", "discharge_lps": "discharge", "diameters": "length",
+               "stage_lps": "discharge", "stage_times": "time", "model_stage_lps": "discharge",
+               "model_stage_times": "time"}
 _TOP_KEYS = ("name", "seed", "end_time")
 
 
@@ -450,6 +440,7 @@ class Scene:
     numerics: Numerics = field(default_factory=Numerics)
     effects: Effects = field(default_factory=Effects)
     output: Output = field(default_factory=Output)
+    reference: Reference = field(default_factory=Reference)
     seed: int = 0
     end_time: Optional[float] = None  # [s]; default: the hydrograph's end
 
@@ -475,7 +466,7 @@ class Scene:
         """
         weir = Weir()
         flume = Flume(length=round(weir.x_toe_down + 1.5, 6))
-        return cls(name="maeno2008", flume=flume, weir=weir)
+        return cls(name="maeno2008", flume=flume, weir=weir, reference=maeno2008_reference())
 
     def quick(self) -> "Scene":
         """A shorter, coarser copy that runs in a few minutes on one core.
@@ -484,7 +475,10 @@ class Scene:
         reaches are shortened to 0.6 m upstream and 0.8 m downstream, the spin-up lasts 5 s and the
         ramp 10 -> 25 l/s lasts 30 s (four times faster than the paper's), snapshots every 0.5 s.
         Stage discharges of a quick run are not comparable with the paper: the discharge rises four
-        times faster than the stones' response time allows for.
+        times faster than the stones' response time allows for. The reference's stage times are
+        dropped (another clock); its discharges are kept for orientation. A measured (CSV) flood runs
+        four times faster as well (time_scale x 0.25, spin-up at most 5 s), and --until-failure's rate is
+        four times the scene's.
         """
         s = copy.deepcopy(self)
         s.name = self.name + "_quick"
@@ -494,13 +488,33 @@ class Scene:
             s.stones.positions = [[x - shift, z] for x, z in s.stones.positions]
         s.flume.length = round(s.weir.x_toe_down + 0.8, 6)
         s.grid = GridSpec(dx=0.05, dz=0.02, dz_bed=0.01, bed_layer_height=0.01)
-        if s.hydrograph.kind == "ramp" and s.hydrograph.function is None:
-            s.hydrograph.spin_up_duration = 5.0
-            s.hydrograph.ramp_duration = 30.0
+        h = s.hydrograph
+        if h.function is None and h.kind in ("ramp", "csv", "until_failure"):
+            h.spin_up_duration = min(h.spin_up_duration, 5.0)
+        if h.kind == "ramp" and h.function is None:
+            h.ramp_duration = 30.0
+        elif h.kind == "csv":  # the measured flood four times faster, as the ramp
+            h.time_scale *= 0.25
+        h.until_failure_rate_lps_per_s *= 4.0
         s.end_time = None
         s.output.snapshot_interval = 0.5
+        s.reference = s.reference.without_times()
         s.validate()
         return s
+
+    def until_failure(self) -> "Scene":
+        """A copy whose discharge rises slowly until the weir fails (``vofdem run --until-failure``):
+        held at the first discharge of the scene's rise for its spin-up, then raised linearly at
+        `hydrograph.until_failure_rate_lps_per_s` up to the scene's largest discharge; the run stops at
+        the first destruction stage (flood.py). The reference's stage times are dropped (another clock)."""
+        from .flood import until_failure_hydrograph
+
+        s = copy.deepcopy(self)
+        s.name = self.name + "_until_failure"
+        s.hydrograph = until_failure_hydrograph(self.hydrograph)
+        s.end_time = None
+        s.reference = s.reference.without_times()
+        return s.validate()
 
     # ---------------------------------------------------------------- validation
     @property
@@ -568,6 +582,8 @@ class Scene:
             out["end_time"] = self.end_time
         for key in _SECTIONS:
             sec = getattr(self, key)
+            if key in _OPTIONAL_SECTIONS and sec == type(sec)():
+                continue
             d = {}
             for f in dataclasses.fields(sec):
                 v = getattr(sec, f.name)
@@ -583,8 +599,9 @@ class Scene:
         return out
 
     @classmethod
-    def from_dict(cls, data: Dict[str, Any], source: str = "scene") -> "Scene":
-        """Builds and validates a scene from a (TOML-like) dict; ValueError on any problem."""
+    def from_dict(cls, data: Dict[str, Any], source: str = "scene", base_dir: Optional[str] = None) -> "Scene":
+        """Builds and validates a scene from a (TOML-like) dict; ValueError on any problem. base_dir: the
+        directory files named in the scene (a CSV flood) are relative to (default the working one)."""
         if not isinstance(data, dict):
             raise ValueError(f"{source}: a scene must be a table of sections")
         valid_top = set(_TOP_KEYS) | set(_SECTIONS)
@@ -607,11 +624,12 @@ class Scene:
                     raise ValueError(_unknown(k, fields, f"[{key}]", prefix=key))
                 md = fields[k].metadata
                 args[k] = _parse_quantity(f"{key}.{k}", v, md.get("kind")) if "lo" in md else v
-            for k in ("positions", "discharge_lps", "times", "diameters"):
+            for k, kind in _LIST_KINDS.items():
                 if k in args and isinstance(args[k], list):
-                    kind = {"times": "time", "discharge_lps": "discharge", "diameters": "length"}.get(k)
                     args[k] = [_parse_quantity(f"{key}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
                                for j, v in enumerate(args[k])]
+            if key == "hydrograph":
+                args["base_dir"] = base_dir
             kwargs[key] = sec_cls(**args)
         return cls(**kwargs)
 
@@ -623,6 +641,8 @@ class Scene:
             if k in d:
                 lines.append(f"{k} = {_toml_value(d[k])}")
         for key in _SECTIONS:
+            if key not in d:
+                continue
             lines.append("")
             lines.append(f"[{key}]")
             for k, v in d[key].items():
@@ -630,7 +650,7 @@ class Scene:
         return "\n".join(lines) + "\n"
 
     @classmethod
-    def from_toml(cls, text: str, source: str = "scene") -> "Scene":
+    def from_toml(cls, text: str, source: str = "scene", base_dir: Optional[str] = None) -> "Scene":
         try:
             data = _toml.loads(text)
         except _toml.TOMLDecodeError as e:
@@ -638,7 +658,7 @@ class Scene:
         if not data:
             raise ValueError(f"{source}: the scene is empty (no keys, no sections); write at least the sections "
                              f"that differ from the defaults, e.g. [flume], or run the ready scene 'maeno2008'")
-        return cls.from_dict(data, source)
+        return cls.from_dict(data, source, base_dir)
 
     def replace(self, **changes) -> "Scene":
         """A validated copy with top-level fields replaced (e.g. seed=3)."""
@@ -666,6 +686,8 @@ class Scene:
             raise ValueError(_unknown(name, fields, f"[{section}]", prefix=section))
         md = fields[name].metadata
         setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
+        if key == "hydrograph.file":  # another flood: read it
+            s.hydrograph.times, s.hydrograph.discharge_lps = [], []
         return s.validate()
 
     def value_of(self, key: str):
@@ -682,31 +704,10 @@ def load_scene(path) -> Scene:
     if not p.is_file():
         raise ValueError(f"scene file {str(p)!r} does not exist")
     try:
-        return Scene.from_toml(p.read_text(encoding="utf-8"), source=str(p))
+        return Scene.from_toml(p.read_text(encoding="utf-8"), source=str(p), base_dir=str(p.parent))
     except ValueError as e:
         msg = str(e)
         raise ValueError(msg if msg.startswith(str(p)) else f"{p}: {msg}") from None
-
-
-def _unknown(key: str, valid, where: str, prefix: Optional[str] = None) -> str:
-    close = difflib.get_close_matches(key, list(valid), n=1, cutoff=0.5)
-    name = f"{prefix}.{key}" if prefix else key
-    hint = f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(sorted(valid))}"
-    return f"unknown key '{name}' in {where}{hint}"
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        return repr(v) if math.isfinite(v) else ("inf" if v > 0 else "-inf" if v < 0 else "nan")
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    raise TypeError(f"cannot write {type(v).__name__} to TOML")
 
 
 def describe_parameters() -> str:
@@ -719,6 +720,7 @@ def describe_parameters() -> str:
                 continue
             default = f.default if f.default is not dataclasses.MISSING else f.default_factory()
             allowed = _range_text(md) if "lo" in md else (" / ".join(md["choices"]) if "choices" in md
-                                                            else ("true / false" if "flag" in md else "list"))
+                                                            else ("true / false" if "flag" in md else
+                                                                  ("text" if "text" in md else "list")))
             rows.append(f"| {key}.{f.name} | {default!r} | {allowed} | {md.get('doc', '')} |")
     return "\n".join(rows)
