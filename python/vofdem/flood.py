@@ -45,7 +45,9 @@ def _rows(path: Path):
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as e:
-        raise ValueError(f"hydrograph.file: cannot read the hydrograph CSV {str(path)!r}: {e.strerror or e}") from None
+        raise ValueError(f"hydrograph.file: cannot read the hydrograph CSV {str(path)!r}: {e.strerror or e} (a scene "
+                         f"of kind 'csv' reads its flood from the file unless hydrograph.times and "
+                         f"hydrograph.discharge_lps hold it)") from None
     except UnicodeDecodeError:
         raise ValueError(f"hydrograph CSV {path}: not a text file (UTF-8)") from None
     for n, line in enumerate(text.splitlines(), start=1):

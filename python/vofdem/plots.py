@@ -72,7 +72,7 @@ def _surface(ax, data, fields):
 
 
 def _outline(ax, scene):
-    x, z = scene.weir.outline()
+    x, z = scene.weir.outline_xz()
     ax.plot(x, z, color=WEIR_COLOR, lw=1.3, zorder=5)
 
 

@@ -343,6 +343,7 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
                delimiter=",", header="time_s,discharge_lps,crest_level_m,crest_lowering_m,stones_removed",
                comments="", fmt="%.6g")
     files += [out / "stage_table.md", out / "stage_table.csv", out / "crest_lowering.csv"]
+    files += _grading_files(out, scene, data, figures)
     if scene.hydrograph.stops_at_first_stage:
         from .flood import until_failure_markdown
 
@@ -356,6 +357,23 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
         if animation and data.has_fields and data.times.size > 1:
             files.append(plots.animate(data, scene, out / "animation", analysis=a))
     return a
+
+
+def _grading_files(out: Path, scene: Scene, data: RunData, figures: bool) -> list:
+    """grading.md (and figures/grading.png) of a graded scene: the packed weir's grading against the
+    requested one (grading.packed_report), from the first snapshot."""
+    from .grading import packed_report
+
+    md, fig = packed_report(scene, data.pos[0], data.diameter)
+    if md is None:
+        return []
+    (out / "grading.md").write_text(md, encoding="utf-8")
+    files = [out / "grading.md"]
+    if figures:
+        (out / "figures").mkdir(parents=True, exist_ok=True)
+        fig.savefig(out / "figures" / "grading.png", dpi=110)
+        files.append(out / "figures" / "grading.png")
+    return files
 
 
 def _targets(t0: float, duration: float, dt: float, release: Optional[float]):

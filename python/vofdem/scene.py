@@ -51,7 +51,10 @@ class Flume(_Section):
 
 @dataclass
 class Weir(_Section):
-    """A trapezoidal rubble mound weir standing on the bed.
+    """The rubble mound weir standing on the bed: a trapezoid (height, crest, two slopes, toe), or any
+    stone body given by `outline`, the points of its upper boundary from the upstream toe to the
+    downstream toe (outline.py: any crest, berms, several slopes). With an outline, height, toe_x and
+    crest_length are derived from it (and the slopes unused); a scene file gives one or the other.
 
     The paper gives the downstream slope (27 deg) only; height 0.25 m, crest 0.20 m and a 27 deg
     upstream slope are assumed defaults.
@@ -62,41 +65,98 @@ class Weir(_Section):
     upstream_slope_deg: float = _p(27.0, "angle", 5.0, 60.0, "upstream face angle to the bed [deg]")
     downstream_slope_deg: float = _p(27.0, "angle", 5.0, 60.0, "downstream face angle to the bed [deg]")
     toe_x: float = _p(1.0, "length", 0.0, 100.0, "x of the upstream toe [m]", "(]")
+    outline: List[List[float]] = field(default_factory=list, metadata=dict(
+        doc="the stone body's upper boundary [[x m, z m], ...] from toe (z = 0) to toe (z = 0), x increasing; "
+            "empty: the trapezoid"))
 
     def validate(self, prefix: str = "weir") -> None:
         self._validate_fields(prefix)
+        if not isinstance(self.outline, (list, tuple)):
+            raise ValueError(f"{prefix}.outline = {self.outline!r} must be a list of points [x m, z m]")
+        if self.outline:
+            from .outline import check_outline
+
+            check_outline(self.outline, f"{prefix}.outline")
+            self.outline = [[float(x), float(z)] for x, z in self.outline]
+            body = self.body()
+            up, down = body.crest()
+            self.height, self.toe_x, self.crest_length = body.height, body.x_toe_up, down - up
+            _check_number(f"{prefix}.outline (its height)", self.height, {"lo": 0.0, "hi": 5.0, "closed": "(]",
+                                                                           "kind": "length"})
+
+    def body(self):
+        """The stone body as an outline.Outline (the trapezoid's four points without an outline)."""
+        from .outline import Outline, trapezoid_points
+
+        if self.outline:
+            return Outline(self.outline)
+        return Outline(trapezoid_points(self.toe_x, self.height, self.crest_length, self.upstream_slope_deg,
+                                        self.downstream_slope_deg))
 
     @property
     def x_crest_up(self) -> float:
         """x of the upstream end of the crest [m]."""
+        if self.outline:
+            return self.body().crest()[0]
         return self.toe_x + self.height / math.tan(math.radians(self.upstream_slope_deg))
 
     @property
     def x_crest_down(self) -> float:
         """x of the downstream end of the crest (the shoulder) [m]."""
+        if self.outline:
+            return self.body().crest()[1]
         return self.x_crest_up + self.crest_length
 
     @property
     def x_toe_down(self) -> float:
         """x of the downstream toe [m]."""
+        if self.outline:
+            return float(self.outline[-1][0])
         return self.x_crest_down + self.height / math.tan(math.radians(self.downstream_slope_deg))
 
     @property
     def base_length(self) -> float:
         return self.x_toe_down - self.toe_x
 
-    def outline(self) -> Tuple[List[float], List[float]]:
-        """The trapezoid's corners (x [m], z [m]) from the upstream toe to the downstream toe."""
-        return ([self.toe_x, self.x_crest_up, self.x_crest_down, self.x_toe_down], [0.0, self.height, self.height, 0.0])
+    def outline_xz(self) -> Tuple[List[float], List[float]]:
+        """The upper boundary's points (x [m], z [m]) from the upstream toe to the downstream toe."""
+        p = self.body().points
+        return list(p[:, 0]), list(p[:, 1])
 
     def surface(self, x):
         """Height of the weir's surface above x [m] (0 outside the weir); x may be an array."""
         import numpy as np
 
+        if self.outline:
+            return self.body().surface(x)
         x = np.asarray(x, dtype=float)
         up = (x - self.toe_x) * math.tan(math.radians(self.upstream_slope_deg))
         down = (self.x_toe_down - x) * math.tan(math.radians(self.downstream_slope_deg))
         return np.clip(np.minimum(np.minimum(up, down), self.height), 0.0, None)
+
+
+# the weir's keys that an outline replaces
+TRAPEZOID_KEYS = ("height", "crest_length", "upstream_slope_deg", "downstream_slope_deg", "toe_x")
+
+
+def _grading_field(name: str, whose: str):
+    """A fresh field of the grading keys shared by [stones] and a zone (grading.py)."""
+    if name == "grading_diameters":
+        return field(default_factory=list, metadata=dict(doc=f"{whose} sieve curve: sizes [m], increasing (with "
+                                                             f"grading_passing); empty: no sieve curve"))
+    if name == "grading_passing":
+        return field(default_factory=list, metadata=dict(doc=f"{whose} sieve curve: mass fraction passing each "
+                                                             f"size [-], 0 first, 1 last"))
+    return _p(None, "length", 0.001, 0.5, f"{whose} grading by sizes: {name} [m] (d15, d50, d85 together)", "[]")
+
+
+def _validate_grading(sec, prefix: str) -> None:
+    _check_list(f"{prefix}.grading_diameters", sec.grading_diameters,
+                {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"})
+    _check_list(f"{prefix}.grading_passing", sec.grading_passing, {"lo": 0.0, "hi": 1.0, "closed": "[]", "kind": None})
+    from .grading import grading_of
+
+    grading_of(sec, prefix)
 
 
 @dataclass
@@ -129,9 +189,15 @@ class Stones(_Section):
         doc="explicit stone centres [[x m, z m], ...] instead of packing the weir; empty = pack"))
     diameters: List[float] = field(default_factory=list, metadata=dict(
         doc="diameters [m] of the explicit stones (same length as positions); empty = all `diameter`"))
+    grading_diameters: List[float] = _grading_field("grading_diameters", "the stones'")
+    grading_passing: List[float] = _grading_field("grading_passing", "the stones'")
+    d15: Optional[float] = _grading_field("d15", "the stones'")
+    d50: Optional[float] = _grading_field("d50", "the stones'")
+    d85: Optional[float] = _grading_field("d85", "the stones'")
 
     def validate(self, prefix: str = "stones") -> None:
         self._validate_fields(prefix)
+        _validate_grading(self, prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
         if not isinstance(self.positions, (list, tuple)):
             raise ValueError(f"{prefix}.positions = {self.positions!r} must be a list of pairs [x m, z m]")
@@ -147,16 +213,26 @@ class Stones(_Section):
             for j, d in enumerate(self.diameters):
                 _check_number(f"{prefix}.diameters[{j}]", d, size)
 
+    def grading(self):
+        """The sieve curve of the stones (grading.Grading) when one is given (grading_diameters and
+        grading_passing, or d15 / d50 / d85; `diameter` and `diameter_spread` are then not used for the
+        packing), else None (sizes uniform in diameter +- spread)."""
+        from .grading import grading_of
+
+        return grading_of(self, "stones")
+
     def mean_diameter(self) -> float:
-        """Number-weighted mean diameter [m] of the grading (or `diameter`)."""
+        """Number-weighted mean diameter [m] of the explicit stones, the grading, or `diameter`."""
         if self.diameters:
             return float(sum(self.diameters) / len(self.diameters))
-        return self.diameter
+        g = self.grading()
+        return g.mean_number_diameter() if g is not None else self.diameter
 
     def max_diameter(self) -> float:
         if self.diameters:
             return float(max(self.diameters))
-        return self.diameter * (1.0 + self.diameter_spread)
+        g = self.grading()
+        return g.d_max if g is not None else self.diameter * (1.0 + self.diameter_spread)
 
 
 @dataclass
@@ -348,6 +424,47 @@ class Hydrograph(_Section):
 
 
 @dataclass
+class Zone(_Section):
+    """A part of the packed weir with its own grading (outline.py): a layer `thickness` [m] thick under
+    the weir's upper boundary (an armour layer), or the inside of the closed polygon `outline`. A stone
+    placed in the first zone holding its place takes that zone's grading; the rest (the core) [stones]'."""
+
+    name: str = field(default="", metadata=dict(text=True, doc="the zone's name (e.g. 'armour')"))
+    thickness: Optional[float] = _p(None, "length", 0.0, 5.0, "a layer this thick under the weir's surface [m]",
+                                    "(]")
+    outline: List[List[float]] = field(default_factory=list, metadata=dict(
+        doc="or a closed polygon [[x m, z m], ...] (three points at least)"))
+    grading_diameters: List[float] = _grading_field("grading_diameters", "the zone's")
+    grading_passing: List[float] = _grading_field("grading_passing", "the zone's")
+    d15: Optional[float] = _grading_field("d15", "the zone's")
+    d50: Optional[float] = _grading_field("d50", "the zone's")
+    d85: Optional[float] = _grading_field("d85", "the zone's")
+
+    def validate(self, prefix: str = "zones[0]") -> None:
+        self._validate_fields(prefix)
+        if not isinstance(self.name, str) or not self.name.strip() or "\n" in self.name:
+            raise ValueError(f"{prefix}.name = {self.name!r} must be a non-empty name of one line")
+        if not isinstance(self.outline, (list, tuple)):
+            raise ValueError(f"{prefix}.outline = {self.outline!r} must be a list of points [x m, z m]")
+        if (self.thickness is None) == (not self.outline):
+            raise ValueError(f"{prefix}.thickness: give a zone either a thickness (a layer under the surface) or an "
+                             f"outline (a polygon), one of the two")
+        if self.outline:
+            from .outline import check_polygon
+
+            check_polygon(self.outline, f"{prefix}.outline")
+        _validate_grading(self, prefix)
+        if self.grading() is None:
+            raise ValueError(f"{prefix}.d50: a zone needs its grading (grading_diameters and grading_passing, or "
+                             f"d15, d50 and d85)")
+
+    def grading(self, prefix: str = "zone"):
+        from .grading import grading_of
+
+        return grading_of(self, prefix)
+
+
+@dataclass
 class GridSpec(_Section):
     """The VOF mesh: uniform in x, `dz` in z with a finer layer `dz_bed` next to the bed."""
 
@@ -421,7 +538,7 @@ _SECTIONS = {"flume": Flume, "weir": Weir, "stones": Stones, "hydrograph": Hydro
 # sections written to a scene file only when they differ from their defaults
 _OPTIONAL_SECTIONS = ("reference",)
 # list keys whose entries may carry a unit, and the kind of that unit
-_LIST_KINDS = {"positions": None, "times": "time", "discharge_lps": "discharge", "diameters": "length",
+_LIST_KINDS = {"positions": None, "grading_diameters": "length", "grading_passing": None, "times": "time", "discharge_lps": "discharge", "diameters": "length",
                "stage_lps": "discharge", "stage_times": "time", "model_stage_lps": "discharge",
                "model_stage_times": "time"}
 _TOP_KEYS = ("name", "seed", "end_time")
@@ -441,6 +558,7 @@ class Scene:
     effects: Effects = field(default_factory=Effects)
     output: Output = field(default_factory=Output)
     reference: Reference = field(default_factory=Reference)
+    zones: List[Zone] = field(default_factory=list)
     seed: int = 0
     end_time: Optional[float] = None  # [s]; default: the hydrograph's end
 
@@ -484,6 +602,10 @@ class Scene:
         s.name = self.name + "_quick"
         shift = s.weir.toe_x - 0.6
         s.weir.toe_x = 0.6
+        if s.weir.outline:
+            s.weir.outline = [[x - shift, z] for x, z in s.weir.outline]
+        for zn in s.zones:
+            zn.outline = [[x - shift, z] for x, z in zn.outline]
         if s.stones.positions:
             s.stones.positions = [[x - shift, z] for x, z in s.stones.positions]
         s.flume.length = round(s.weir.x_toe_down + 0.8, 6)
@@ -540,8 +662,29 @@ class Scene:
             raise ValueError(f"seed = {self.seed!r} must be an integer in [0, 2^63)")
         if self.end_time is not None:
             _check_number("end_time", self.end_time, {"lo": 0.0, "hi": 1e6, "closed": "(]", "kind": "time"})
+        self._validate_zones()
         self._validate_geometry()
         return self
+
+    def _validate_zones(self) -> None:
+        if not isinstance(self.zones, (list, tuple)):
+            raise ValueError(f"zones = {self.zones!r} must be a list of zones ([[zones]] tables)")
+        names = []
+        for j, zn in enumerate(self.zones):
+            if not isinstance(zn, Zone):
+                raise ValueError(f"zones[{j}] must be a Zone, got {type(zn).__name__}")
+            zn.validate(f"zones[{j}]")
+            if zn.name in names:
+                raise ValueError(f"zones[{j}].name = {zn.name!r} is taken by zones[{names.index(zn.name)}]")
+            names.append(zn.name)
+        if self.zones and self.stones.positions:
+            raise ValueError("zones: zones are packed by the generator; they cannot be used with explicit "
+                             "stones.positions")
+
+    def largest_diameter(self) -> float:
+        """The largest stone the scene can hold [m]: explicit, of the core's grading or of a zone's."""
+        d = [self.stones.max_diameter()] + [zn.grading().d_max for zn in self.zones]
+        return max(d)
 
     def _validate_geometry(self) -> None:
         f, w, s, g = self.flume, self.weir, self.stones, self.grid
@@ -555,8 +698,8 @@ class Scene:
         if w.toe_x < 2 * g.dx:
             raise ValueError(f"weir.toe_x = {w.toe_x:.4g} m leaves less than two cells (grid.dx = {g.dx:.4g} m) "
                              f"of flume upstream of the weir for the inflow")
-        if s.max_diameter() >= w.height and not s.positions:
-            raise ValueError(f"stones.diameter = {s.max_diameter():.4g} m must be smaller than "
+        if self.largest_diameter() >= w.height and not s.positions:
+            raise ValueError(f"stones.diameter = {self.largest_diameter():.4g} m (the largest stone) must be smaller than "
                              f"weir.height = {w.height:.4g} m to build the weir")
         if g.dx >= f.length / 4 or g.dz >= f.height / 4:
             raise ValueError(f"grid.dx = {g.dx:.4g} m / grid.dz = {g.dz:.4g} m is too coarse: the flume needs at "
@@ -584,13 +727,12 @@ class Scene:
             sec = getattr(self, key)
             if key in _OPTIONAL_SECTIONS and sec == type(sec)():
                 continue
-            d = {}
-            for f in dataclasses.fields(sec):
-                v = getattr(sec, f.name)
-                if f.metadata.get("python_only") or v is None:
-                    continue
-                d[f.name] = copy.deepcopy(v)
-            out[key] = d
+            out[key] = _section_dict(sec)
+            if key == "weir" and sec.outline:  # the outline replaces the trapezoid's keys
+                for k in TRAPEZOID_KEYS:
+                    out[key].pop(k)
+        if self.zones:
+            out["zones"] = [_section_dict(zn) for zn in self.zones]
         h = self.hydrograph
         if h.function is not None:
             t, q = h.table(self.duration)
@@ -604,7 +746,7 @@ class Scene:
         directory files named in the scene (a CSV flood) are relative to (default the working one)."""
         if not isinstance(data, dict):
             raise ValueError(f"{source}: a scene must be a table of sections")
-        valid_top = set(_TOP_KEYS) | set(_SECTIONS)
+        valid_top = set(_TOP_KEYS) | set(_SECTIONS) | {"zones"}
         for key in data:
             if key not in valid_top:
                 raise ValueError(_unknown(key, valid_top, "top level"))
@@ -617,20 +759,20 @@ class Scene:
             table = data[key]
             if not isinstance(table, dict):
                 raise ValueError(f"[{key}] must be a table of parameters, got {table!r}")
-            fields = {f.name: f for f in dataclasses.fields(sec_cls) if not f.metadata.get("python_only")}
-            args = {}
-            for k, v in table.items():
-                if k not in fields:
-                    raise ValueError(_unknown(k, fields, f"[{key}]", prefix=key))
-                md = fields[k].metadata
-                args[k] = _parse_quantity(f"{key}.{k}", v, md.get("kind")) if "lo" in md else v
-            for k, kind in _LIST_KINDS.items():
-                if k in args and isinstance(args[k], list):
-                    args[k] = [_parse_quantity(f"{key}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
-                               for j, v in enumerate(args[k])]
+            args = _section_args(sec_cls, table, key)
             if key == "hydrograph":
                 args["base_dir"] = base_dir
+            if key == "weir" and args.get("outline"):
+                both = [k for k in TRAPEZOID_KEYS if k in table]
+                if both:
+                    raise ValueError(f"weir.{both[0]}: the weir is given by weir.outline; its height, crest, slopes "
+                                     f"and toe come from the outline (give one or the other)")
             kwargs[key] = sec_cls(**args)
+        if "zones" in data:
+            zones = data["zones"]
+            if not isinstance(zones, list) or not all(isinstance(z, dict) for z in zones):
+                raise ValueError(f"zones = {zones!r} must be a list of tables ([[zones]] in a scene file)")
+            kwargs["zones"] = [Zone(**_section_args(Zone, z, f"zones[{j}]")) for j, z in enumerate(zones)]
         return cls(**kwargs)
 
     def to_toml(self) -> str:
@@ -647,6 +789,8 @@ class Scene:
             lines.append(f"[{key}]")
             for k, v in d[key].items():
                 lines.append(f"{k} = {_toml_value(v)}")
+        for zone in d.get("zones", []):
+            lines += ["", "[[zones]]"] + [f"{k} = {_toml_value(v)}" for k, v in zone.items()]
         return "\n".join(lines) + "\n"
 
     @classmethod
@@ -685,6 +829,8 @@ class Scene:
         if name not in fields:
             raise ValueError(_unknown(name, fields, f"[{section}]", prefix=section))
         md = fields[name].metadata
+        if section == "weir" and name in TRAPEZOID_KEYS and s.weir.outline:
+            raise ValueError(f"{key}: the weir is given by weir.outline; its {name} comes from the outline")
         setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
         if key == "hydrograph.file":  # another flood: read it
             s.hydrograph.times, s.hydrograph.discharge_lps = [], []
@@ -694,6 +840,33 @@ class Scene:
         """The value of a parameter by its dotted name (see `with_value`)."""
         section, _, name = key.rpartition(".")
         return getattr(getattr(self, section), name) if section else getattr(self, key)
+
+
+def _section_dict(sec) -> Dict[str, Any]:
+    """A section's keys and values (TOML-ready), without the Python-only fields and unset optional ones."""
+    d = {}
+    for f in dataclasses.fields(sec):
+        v = getattr(sec, f.name)
+        if f.metadata.get("python_only") or v is None:
+            continue
+        d[f.name] = copy.deepcopy(v)
+    return d
+
+
+def _section_args(sec_cls, table: Dict[str, Any], where: str) -> Dict[str, Any]:
+    """A section's constructor arguments from a TOML table: unknown keys refused, units converted."""
+    fields = {f.name: f for f in dataclasses.fields(sec_cls) if not f.metadata.get("python_only")}
+    args = {}
+    for k, v in table.items():
+        if k not in fields:
+            raise ValueError(_unknown(k, fields, f"[{where}]", prefix=where))
+        md = fields[k].metadata
+        args[k] = _parse_quantity(f"{where}.{k}", v, md.get("kind")) if "lo" in md else v
+    for k, kind in _LIST_KINDS.items():
+        if k in args and isinstance(args[k], list):
+            args[k] = [_parse_quantity(f"{where}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
+                       for j, v in enumerate(args[k])]
+    return args
 
 
 def load_scene(path) -> Scene:
