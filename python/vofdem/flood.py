@@ -28,8 +28,11 @@ discharge for this rate.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import List, Tuple
+from typing import Callable, List, Optional, Tuple
+
+from .params import _Section, _check_list, _choice, _flag, _fmt, _p
 
 TIME_UNITS = {"time_s": 1.0, "time_min": 60.0, "time_h": 3600.0}  # to s
 DISCHARGE_UNITS = {"discharge_lps": 1.0, "discharge_m3s": 1000.0}  # to l/s
@@ -108,6 +111,190 @@ def read_hydrograph_csv(path) -> Tuple[List[float], List[float]]:
                          f"needs at least two")
     t0 = times[0]
     return [t - t0 for t in times], q
+
+
+@dataclass
+class Hydrograph(_Section):
+    """Inflow discharge Q(t) at x = 0.
+
+    kind 'ramp' (the paper's): a spin-up at `discharge_start_lps` for `spin_up_duration` seconds (the
+    flow settles to a steady state over the weir, stones held in place if `hold_stones_during_spin_up`),
+    then a linear rise to `discharge_end_lps` over `ramp_duration`. The clock of the rise starts at the
+    ramp: clock = simulation time - spin_up_duration (`ramp_start`).
+    kind 'table': piecewise-linear through (`times` [s], `discharge_lps` [l/s]), spin-up included.
+    kind 'csv': a measured flood read from the CSV file `file` (relative to the scene file; format in
+    flood.py): its first discharge held for `spin_up_duration` (stones held as for a ramp), then its
+    readings, times x `time_scale`, discharges x `discharge_scale`. The file's content is kept in
+    `times` [s from its first row] and `discharge_lps` [l/s]; a scene written by vofdem (a run's
+    scene.toml) carries it there, and the file is then not read again.
+    kind 'until_failure' (made by `Scene.until_failure()`, ``vofdem run --until-failure``): a ramp from
+    `discharge_start_lps` to `discharge_end_lps` at `until_failure_rate_lps_per_s`; the run stops at
+    the first destruction stage.
+    From Python, `function` (a callable t [s] -> Q [m3/s]) overrides all; it is sampled into a
+    table every `table_interval` seconds for the solver.
+    """
+
+    kind: str = _choice("ramp", ("ramp", "table", "csv", "until_failure"),
+                        "'ramp' (spin-up then linear rise), 'table', 'csv' (a measured flood from `file`) or "
+                        "'until_failure' (a slow ramp stopped at the first stage)")
+    discharge_start_lps: float = _p(10.0, "discharge", 0.1, 1000.0, "spin-up and ramp start discharge [l/s]")
+    discharge_end_lps: float = _p(25.0, "discharge", 0.1, 1000.0, "discharge at the end of the ramp [l/s]")
+    ramp_duration: float = _p(120.0, "time", 0.0, 1e5, "duration of the linear rise [s]; paper 120", "(]")
+    spin_up_duration: float = _p(20.0, "time", 0.0, 1e4, "time at the start discharge before the ramp [s]")
+    hold_stones_during_spin_up: bool = _flag(True, "stones do not move during the spin-up")
+    times: List[float] = field(default_factory=list, metadata=dict(doc="table times [s] (kind = 'table'; 'csv': "
+                                                                       "the file's, from its first row)"))
+    discharge_lps: List[float] = field(default_factory=list, metadata=dict(doc="table discharges [l/s]"))
+    file: str = field(default="", metadata=dict(text=True, doc="the flood's CSV file (kind = 'csv'), relative to "
+                                                               "the scene file; header e.g. time_s,discharge_lps"))
+    time_scale: float = _p(1.0, None, 0.0, 1e3, "kind 'csv': the file's times are multiplied by this [-]", "(]")
+    discharge_scale: float = _p(1.0, None, 0.0, 1e6, "kind 'csv': the file's discharges are multiplied by this "
+                                "[-]", "(]")
+    until_failure_rate_lps_per_s: float = _p(0.125, "discharge rate", 0.0, 100.0, "rise of --until-failure [l/s per s]; "
+                                             "0.125 = the paper's 15 l/s in 120 s", "(]")
+    table_interval: float = _p(0.5, "time", 0.0, 100.0, "sampling step of `function` into a table [s]", "(]")
+    function: Optional[Callable[[float], float]] = field(default=None, compare=False, metadata=dict(
+        doc="Python only: Q(t) in m3/s, overrides kind", python_only=True))
+    base_dir: Optional[str] = field(default=None, compare=False, metadata=dict(
+        doc="Python only: the directory `file` is relative to (the scene file's; default the working one)",
+        python_only=True))
+
+    def validate(self, prefix: str = "hydrograph") -> None:
+        self._validate_fields(prefix)
+        if not isinstance(self.file, str) or "\n" in self.file:
+            raise ValueError(f"{prefix}.file = {self.file!r} must be a file name (text)")
+        if self.kind == "csv" and self.function is None and not self.times:
+            self._read_csv(prefix)
+        # the table's lists are checked under any kind: a malformed key is an error even where it is ignored
+        q_md = {"lo": 0.0, "hi": 1000.0 if self.kind != "csv" else 1e9, "closed": "[]", "kind": "discharge"}
+        t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
+        _check_list(f"{prefix}.times", self.times, t_md)
+        _check_list(f"{prefix}.discharge_lps", self.discharge_lps, q_md)
+        if self.function is not None:
+            if not callable(self.function):
+                raise ValueError(f"{prefix}.function must be a callable t [s] -> Q [m3/s]")
+            return
+        if self.kind in ("table", "csv"):
+            if len(self.times) < 2 or len(self.times) != len(self.discharge_lps):
+                raise ValueError(f"{prefix}.times and {prefix}.discharge_lps must be lists of the same "
+                                 f"length >= 2 (got {len(self.times)} and {len(self.discharge_lps)})")
+            if any(b <= a for a, b in zip(self.times, self.times[1:])):
+                raise ValueError(f"{prefix}.times must be strictly increasing")
+        if self.kind == "csv":
+            self._check_csv(prefix)
+        if self.kind == "until_failure":
+            self._check_until_failure(prefix)
+
+    def _read_csv(self, prefix: str) -> None:
+        if not self.file.strip():
+            raise ValueError(f"{prefix}.file is required when {prefix}.kind = 'csv' (the flood's CSV file, "
+                             f"relative to the scene file)")
+        path = Path(self.base_dir or ".") / self.file
+        self.times, self.discharge_lps = read_hydrograph_csv(path)
+
+    def _check_csv(self, prefix: str) -> None:
+        if self.times[0] != 0.0:
+            raise ValueError(f"{prefix}.times[0] = {_fmt(self.times[0])}: a CSV flood's times start at 0 (its first row)")
+        q_max = max(self.discharge_lps) * self.discharge_scale
+        if q_max > 1000.0:
+            raise ValueError(f"{prefix}.discharge_scale = {_fmt(self.discharge_scale)}: the flood of {self.file or 'the file'} "
+                             f"peaks at {q_max:.6g} l/s, outside the allowed range [0, 1000] l/s (scale a field "
+                             f"flood to the flume with discharge_scale)")
+        span = self.times[-1] * self.time_scale
+        if span > 1e6:
+            raise ValueError(f"{prefix}.time_scale = {_fmt(self.time_scale)}: the flood lasts {span:.6g} s, outside "
+                             f"the allowed range (0, 1e6] s")
+
+    def _check_until_failure(self, prefix: str) -> None:
+        rise = self.discharge_end_lps - self.discharge_start_lps
+        if not rise > 0:
+            raise ValueError(f"{prefix}.discharge_end_lps = {_fmt(self.discharge_end_lps)} must be above "
+                             f"{prefix}.discharge_start_lps = {_fmt(self.discharge_start_lps)} for kind 'until_failure'")
+        duration = rise / self.until_failure_rate_lps_per_s
+        if duration > 1e5:
+            raise ValueError(f"{prefix}.until_failure_rate_lps_per_s = {_fmt(self.until_failure_rate_lps_per_s)} "
+                             f"makes the rise last {duration:.4g} s, outside the allowed range (0, 1e5] s")
+        self.ramp_duration = duration
+
+    @property
+    def ramp_start(self) -> float:
+        """Simulation time [s] at which the clock of the rise starts (end of the spin-up)."""
+        if self.function is None and self.kind in ("ramp", "csv", "until_failure"):
+            return self.spin_up_duration
+        return 0.0
+
+    @property
+    def end_time(self) -> float:
+        """Simulation time [s] at the end of the hydrograph."""
+        if self.function is None and self.kind == "table":
+            return float(self.times[-1])
+        if self.function is None and self.kind == "csv":
+            return self.spin_up_duration + float(self.times[-1]) * self.time_scale
+        return self.spin_up_duration + self.ramp_duration
+
+    @property
+    def stops_at_first_stage(self) -> bool:
+        """Whether the run ends at the first destruction stage (kind 'until_failure')."""
+        return self.function is None and self.kind == "until_failure"
+
+    def discharge(self, t):
+        """Q [m3/s] at simulation time t [s] (scalar or array)."""
+        import numpy as np
+
+        if self.function is not None:
+            return np.vectorize(lambda s: float(self.function(s)))(t) if np.ndim(t) else float(self.function(t))
+        if self.kind == "table":
+            q = np.interp(t, self.times, self.discharge_lps) * 1e-3
+        elif self.kind == "csv":
+            tc = (np.asarray(t, float) - self.spin_up_duration) / self.time_scale
+            q = np.interp(tc, self.times, self.discharge_lps) * (1e-3 * self.discharge_scale)
+        else:
+            s = np.clip((np.asarray(t, float) - self.spin_up_duration) / self.ramp_duration, 0.0, 1.0)
+            q = (self.discharge_start_lps + (self.discharge_end_lps - self.discharge_start_lps) * s) * 1e-3
+        return float(q) if np.ndim(q) == 0 else q
+
+    def discharge_lps_at(self, t):
+        """Q [l/s] at simulation time t [s]."""
+        return self.discharge(t) * 1e3
+
+    def table(self, t_end: Optional[float] = None):
+        """(times [s], Q [m3/s]) describing Q(t) exactly for a piecewise-linear solver input."""
+        import numpy as np
+
+        t_end = self.end_time if t_end is None else t_end
+        if self.function is not None:
+            n = max(2, int(math.ceil(t_end / self.table_interval)) + 1)
+            t = np.linspace(0.0, t_end, n)
+        elif self.kind == "table":
+            t = np.asarray(self.times, float)
+        elif self.kind == "csv":
+            t = self.spin_up_duration + np.asarray(self.times, float) * self.time_scale
+            if self.spin_up_duration > 0.0:
+                t = np.concatenate([[0.0], t])
+            if t_end > t[-1]:
+                t = np.append(t, t_end)
+        else:
+            t = np.array([0.0, self.spin_up_duration, self.spin_up_duration + self.ramp_duration])
+            if self.spin_up_duration == 0.0:
+                t = t[1:]
+            if t_end > t[-1]:
+                t = np.append(t, t_end)
+        return t, np.asarray(self.discharge(t), float)
+
+    def source(self) -> str:
+        """What the discharge follows, in words (for figures and reports)."""
+        if self.function is not None:
+            return "a Python function"
+        if self.kind == "csv":
+            scale = "" if self.time_scale == 1.0 and self.discharge_scale == 1.0 else (
+                f", times x {self.time_scale:g}, discharges x {self.discharge_scale:g}")
+            return f"measured flood {self.file or '(CSV)'}{scale}"
+        if self.kind == "table":
+            return "a table"
+        rise = f"{self.discharge_start_lps:g} -> {self.discharge_end_lps:g} l/s"
+        if self.kind == "until_failure":
+            return f"until failure: {rise} at {self.until_failure_rate_lps_per_s:g} l/s per s"
+        return f"ramp {rise} over {self.ramp_duration:g} s"
 
 
 def until_failure_hydrograph(h):
