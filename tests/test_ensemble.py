@@ -258,3 +258,23 @@ def test_the_dashboard_link_is_printed_only_where_a_dashboard_is_served(monkeypa
     monkeypatch.setattr(cluster, "has_bokeh", lambda: False)
     assert cluster.dashboard_link(served, local=True) is None
     assert cluster.dashboard_link(served, local=False) == "http://127.0.0.1:8787/status"
+
+
+def test_the_stone_models_script_at_a_tiny_size(tmp_path):
+    """benchmarks/stone_models_weir.py (each stone model and coupling over packings) on 1 seed of two
+    quick scenes for 2 s, in this process."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "stone_models_weir.py"
+    spec = importlib.util.spec_from_file_location("stone_models_weir", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    md = mod.main(["--quick", "--seeds", "0", "--end-time", "2", "--workers", "0", "--scenes", "maeno2008",
+                   "maeno2008_rolling_consistent", "--out", str(tmp_path / "ens"), "--results", str(tmp_path),
+                   "--figures", str(tmp_path)])
+    text = md.read_text()
+    assert "| discs | paper's | 1 | 0 | none | 0 | none | 0 | 0 |" in text
+    assert "| discs, mu_r = 0.4 | consistent | 1 | 0 | none |" in text
+    assert "## `maeno2008_rolling_consistent`: discs, mu_r = 0.4, consistent coupling" in text
+    assert (tmp_path / "stone_models_weir.png").stat().st_size > 0
