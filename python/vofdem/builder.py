@@ -5,6 +5,8 @@ C++ core; no physics lives here.
 """
 from __future__ import annotations
 
+from typing import Optional
+
 import numpy as np
 
 from . import _core
@@ -310,11 +312,14 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     return p
 
 
-def build_simulation(scene: Scene):
+def build_simulation(scene: Scene, packing: Optional[dict] = None):
     """The coupled simulation of a scene: the flow (build_fluid), the packed weir (build_stones) and the
-    Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones."""
+    Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones.
+    packing: a dict that receives the packing's report under 'report' (None for explicit stones)."""
     fluid = build_fluid(scene)
-    stones, _ = build_stones(scene)
+    stones, report = build_stones(scene)
+    if packing is not None:
+        packing["report"] = report
     params = stones.params
     params.fluid_density = fluid.params.rho_water
     stones.params = params

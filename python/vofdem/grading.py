@@ -157,7 +157,7 @@ def grading_table(grading: Grading, diameters, label: str = "stones") -> str:
     """Markdown: the requested and the packed mass fraction passing at the curve's points and at d15 / d50
     / d85, and the packed characteristic sizes."""
     d = np.asarray(diameters, float)
-    sizes = sorted(set(grading.diameters) | {grading.d(p) for p in (0.15, 0.5, 0.85)})
+    sizes = sorted({round(v, 9) for v in (*grading.diameters, *(grading.d(p) for p in (0.15, 0.5, 0.85)))})
     rows = [f"**{label}**: {d.size} stones, {1e3 * d.min():.1f}-{1e3 * d.max():.1f} mm; largest deviation of "
             f"the packed curve from the requested one {grading_deviation(grading, d):.3f} (mass fraction).", "",
             "| size [mm] | requested passing | packed passing |", "|---|---|---|"]
@@ -220,11 +220,12 @@ def grading_of(section, prefix: str) -> Optional[Grading]:
     return None
 
 
-def packed_report(scene, pos, diameters):
-    """(markdown, figure) of a packed weir's grading against the scene's sieve curves: per zone (the stones
-    whose centre lies in it) and the core, the table of `grading_table` and the curves of `fig_grading`;
-    with the DEM contact the builder chose for the grading (builder.graded_contact). (None, None) when the
-    scene has no sieve curve."""
+def packed_report(scene, pos, diameters, zone=None):
+    """(markdown, figure) of a packed weir's grading against the scene's sieve curves, per zone and the
+    core: the table of `grading_table` and the curves of `fig_grading`, with the DEM contact the builder
+    chose for the grading (builder.graded_contact). zone: the zone each stone was drawn for (the outline
+    packer's OutlinePackingReport.zone, -1 the core); without it a stone counts in the zone where its
+    centre lies. (None, None) when the scene has no sieve curve."""
     from .builder import dem_params, is_graded
     from .outline import zone_index
 
@@ -233,18 +234,26 @@ def packed_report(scene, pos, diameters):
     pos = np.asarray(pos, float).reshape(-1, 2)
     d = np.asarray(diameters, float)
     where = zone_index(pos[:, 0], pos[:, 1], scene.weir.body(), scene.zones)
-    parts = [(zn.name, zn.grading(), d[where == j]) for j, zn in enumerate(scene.zones)]
+    label = where if zone is None else np.asarray(zone, int)
+    parts = [(zn.name, zn.grading(), label == j) for j, zn in enumerate(scene.zones)]
     core = scene.stones.grading()
     if core is not None:
-        parts.append(("core" if scene.zones else "stones", core, d[where == -1]))
+        parts.append(("core" if scene.zones else "stones", core, label == -1))
     p, n = dem_params(scene), scene.numerics
+    how = ("Each stone counts in the zone it was drawn for (the packer's label); the share of them whose "
+           "centre lies in that zone in the packed weir is given." if zone is not None else
+           "Each stone counts in the zone where its centre lies in the packed weir.")
     lines = [f"# Grading of the packed weir: {scene.name} (seed {scene.seed})", "",
-             "Each stone counts in the zone where its centre lies in the packed weir; masses as spheres of the "
-             "stones' diameters (d^3).", ""]
-    for label, g, dz in parts:
-        lines.append(grading_table(g, dz, label) if dz.size else f"**{label}**: no stone\n")
+             how + " Masses as spheres of the stones' diameters (d^3).", ""]
+    for (label_, g, sel), j in zip(parts, list(range(len(scene.zones))) + [-1]):
+        if not sel.any():
+            lines.append(f"**{label_}**: no stone\n")
+            continue
+        lines.append(grading_table(g, d[sel], label_))
+        if zone is not None and scene.zones:
+            lines.append(f"Centres in their zone: {np.mean(where[sel] == j):.0%} of the {label_} stones.\n")
     lines += [f"DEM contact of the graded stones: k_n = {p.stiffness_normal:.4g} N/m ({n.dem_contact_steps:g} steps "
               f"of {n.dem_dt:g} s per contact of two stones of the finest d50), DEM step {p.dt:.3g} s"
               + (" (lowered from numerics.dem_dt for the smallest stones)" if p.dt < n.dem_dt else "") + ".", ""]
-    fig = fig_grading([(label, g, dz) for label, g, dz in parts if dz.size])
+    fig = fig_grading([(label_, g, d[sel]) for label_, g, sel in parts if sel.any()])
     return "\n".join(lines), fig

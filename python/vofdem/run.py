@@ -61,11 +61,11 @@ class RunResult:
         return self.wall_seconds / self.simulated_seconds if self.simulated_seconds > 0 else float("nan")
 
 
-def build_simulation(scene: Scene):
+def build_simulation(scene: Scene, packing: Optional[dict] = None):
     """Builds the coupled simulation of a scene (see builder.build_simulation)."""
     from .builder import build_simulation as build
 
-    return build(scene)
+    return build(scene, packing)
 
 
 def grid_faces(grid):
@@ -160,8 +160,13 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         raise ValueError(str(e)) from e
     if ck is None:
         (out / "scene.toml").write_text(scene.to_toml(), encoding="utf-8")
+    packing: dict = {}
+    if ck is None:  # a grading report of an earlier run in this directory is not this one's
+        (out / "grading.md").unlink(missing_ok=True)
     if sim is None:
-        sim = (build or build_simulation)(scene)
+        sim = build(scene) if build is not None else build_simulation(scene, packing)
+    if ck is None and getattr(packing.get("report"), "zone", None) is not None:
+        _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table(np.asarray(t_tab, float), np.asarray(q_tab, float))
     loop = _Loop(sim, scene, out, __version__, ck)
@@ -359,11 +364,30 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
     return a
 
 
-def _grading_files(out: Path, scene: Scene, data: RunData, figures: bool) -> list:
-    """grading.md (and figures/grading.png) of a graded scene: the packed weir's grading against the
-    requested one (grading.packed_report), from the first snapshot."""
+def _write_grading(out: Path, scene: Scene, stones, zone, figures: bool) -> None:
+    """grading.md (and figures/grading.png) of a weir the outline packer built: each stone in the zone it
+    was drawn for (grading.packed_report)."""
     from .grading import packed_report
 
+    pos = np.asarray(stones.disc_pos, float).reshape(-1, 2)
+    md, fig = packed_report(scene, pos, 2.0 * np.asarray(stones.disc_radius, float), zone)
+    if md is None:
+        return
+    (out / "grading.md").write_text(md, encoding="utf-8")
+    if figures is not False and scene.output.figures:
+        (out / "figures").mkdir(parents=True, exist_ok=True)
+        fig.savefig(out / "figures" / "grading.png", dpi=110)
+
+
+def _grading_files(out: Path, scene: Scene, data: RunData, figures: bool) -> list:
+    """grading.md (and figures/grading.png) of a graded scene: the packed weir's grading against the
+    requested one (grading.packed_report). Written when the weir was built (the stones' zones as
+    drawn); a weir from elsewhere (a test double) counts each stone in the zone of its first place."""
+    from .grading import packed_report
+
+    if (out / "grading.md").exists():
+        return [out / "grading.md"] + ([out / "figures" / "grading.png"] if (out / "figures" / "grading.png").exists()
+                                       else [])
     md, fig = packed_report(scene, data.pos[0], data.diameter)
     if md is None:
         return []
