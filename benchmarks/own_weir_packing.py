@@ -1,12 +1,14 @@
 """Packing of weirs of any outline with sieve curves and zones (vofdem.outline_packing), measured over seeds:
 
+0. the sampler alone: 320 stones drawn by mass in stratified blocks against independent draws, the
+   largest difference of their mass curve from the requested one over 20 seeds;
 1. a graded weir of 300+ stones (d15 / d50 / d85 = 18 / 25 / 36 mm, trapezoidal outline): the packed
    grading against the requested one (largest difference of mass fraction passing, d15 / d50 / d85),
    stones drawn but left over, porosity, outline error, wall time;
 2. a weir with a berm and an armour layer (6 cm; armour 40 / 50 / 60 mm over a 20 / 30 / 45 mm core):
    how well the zones are kept (share of each zone's stones whose centre lies in it, the farthest);
 3. scenes/own_weir.toml: the packed weir drawn by zone, its grading figure and table, and (unless
-   --no-run) its quick run, whose hydrograph figure goes to the docs.
+   --no-run) its quick run, whose hydrograph figure goes to the docs, and its quick --until-failure run.
 
 Writes benchmarks/results/own_weir_packing.md and docs/figures/own_weir_{packed,grading,hydrograph}.png.
     PYTHONPATH=python python3 benchmarks/own_weir_packing.py [--seeds 10] [--no-run]
@@ -14,6 +16,7 @@ Writes benchmarks/results/own_weir_packing.md and docs/figures/own_weir_{packed,
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import subprocess
 import sys
@@ -56,6 +59,21 @@ d85 = 0.06
 
 def _arrays(stones):
     return np.asarray(stones.disc_pos).reshape(-1, 2), 2.0 * np.asarray(stones.disc_radius)
+
+
+def sampler_rows(n_seeds: int = 20, n: int = 320):
+    from vofdem.grading import BLOCK, Grading, Sampler
+
+    g = Grading.from_d(0.02, 0.03, 0.045)
+    strat, iid = [], []
+    for seed in range(n_seeds):
+        s = Sampler(g, np.random.default_rng(seed))
+        strat.append(grading_deviation(g, np.array([s.draw() for _ in range(n)])))
+        iid.append(grading_deviation(g, g.inverse_number_cdf(np.random.default_rng(seed).random(n))))
+    return [f"{n} stones drawn by mass from d15 / d50 / d85 = 20 / 30 / 45 mm, {n_seeds} seeds: largest difference "
+            f"of the mass curve from the requested one {np.mean(strat):.3f} on average (at most {np.max(strat):.3f}) "
+            f"in stratified blocks of {BLOCK}, against {np.mean(iid):.3f} (at most {np.max(iid):.3f}) for independent "
+            f"draws."]
 
 
 def graded_rows(seeds):
@@ -136,7 +154,9 @@ def main() -> int:
     pdem = dem_params(own)
     lines = ["# Packing weirs of any outline: sieve curves and zones", "",
              "Made by `benchmarks/own_weir_packing.py` (numbers of one machine; wall times on a shared 2-core "
-             "machine).", "", "## 1. A graded weir of 300+ stones: the packed grading", ""]
+             "machine).", "", "## 0. The sampler", ""]
+    lines += sampler_rows()
+    lines += ["", "## 1. A graded weir of 300+ stones: the packed grading", ""]
     lines += graded_rows(range(args.seeds))
     lines += ["", "## 2. A berm and an armour layer: zones kept", ""]
     lines += zone_rows(range(min(6, args.seeds)))
@@ -151,10 +171,18 @@ def main() -> int:
         t1 = time.perf_counter()
         subprocess.run([sys.executable, "-m", "vofdem", "run", "scenes/own_weir.toml", "--quick", "--out", str(out),
                         "--no-progress", "--no-animation"], cwd=ROOT, check=True, stdout=subprocess.DEVNULL,
-                       env={**__import__("os").environ, "PYTHONPATH": str(ROOT / "python")})
+                       env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
         shutil.copyfile(out / "figures" / "hydrograph.png", figs / "own_weir_hydrograph.png")
         lines += ["", f"Quick run (`vofdem run scenes/own_weir.toml --quick`): {time.perf_counter() - t1:.0f} s wall; "
                   "its stage table:", "", (out / "stage_table.md").read_text(encoding="utf-8")]
+        uf = ROOT / "out" / "own_weir_quick_until_failure"
+        t1 = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "vofdem", "run", "scenes/own_weir.toml", "--quick", "--until-failure",
+                        "--out", str(uf), "--no-progress", "--no-animation", "--no-figures"], cwd=ROOT, check=True,
+                       stdout=subprocess.DEVNULL, env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
+        lines += ["", f"Quick until-failure run (`vofdem run scenes/own_weir.toml --quick --until-failure`): "
+                  f"{time.perf_counter() - t1:.0f} s wall:", "",
+                  (uf / "until_failure.md").read_text(encoding="utf-8").split("\n", 2)[2]]
     lines += ["", f"Total {time.perf_counter() - t0:.0f} s."]
     res = ROOT / "benchmarks" / "results" / "own_weir_packing.md"
     res.write_text("\n".join(lines) + "\n", encoding="utf-8")

@@ -699,7 +699,7 @@ def load_scene(path) -> Scene:
 def describe_parameters() -> str:
     """A markdown table of every scene parameter: section, name, default, range, meaning."""
     rows = ["| parameter | default | allowed | meaning |", "|---|---|---|---|"]
-    for key, cls in _SECTIONS.items():
+    for key, cls in [*_SECTIONS.items(), ("zones[]", Zone)]:
         for f in dataclasses.fields(cls):
             md = f.metadata
             if md.get("python_only"):
