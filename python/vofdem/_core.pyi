@@ -1907,6 +1907,11 @@ class VOFGrid:
     def profile(self) -> StageProfile:
         ...
     @property
+    def retried_steps(self) -> int:
+        """
+        steps advance() took again, shorter, after a CFL breach
+        """
+    @property
     def step_count(self) -> int:
         ...
     @property
