@@ -21,7 +21,7 @@ ensemble-demo: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --quick --seeds 0-19 --no-figures --no-animation --out $(OUT)/ensemble_demo
 	@echo "fragility figure: $(OUT)/ensemble_demo/fragility.png (tables in $(OUT)/ensemble_demo/ensemble.md)"
 
-# the whole scene over 30 packings (about 2 CPU-minutes per member: half an hour on 2 cores; resumes where it stopped)
+# the whole scene over 30 packings (about 46 CPU-seconds per member: 12 minutes on 2 free cores; resumes where it stopped)
 maeno-fragility: install
 	$(PY) benchmarks/maeno2008_fragility.py --seeds 0-29
 
