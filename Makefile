@@ -4,7 +4,7 @@
 PY ?= python3
 OUT ?= out
 
-.PHONY: demo full ensemble-demo maeno-fragility test install test-cpp test-py bench
+.PHONY: demo full ensemble-demo maeno-fragility test test-fast install test-cpp test-py bench
 
 install:
 	bash scripts/install_deps.sh test
@@ -26,6 +26,11 @@ maeno-fragility: install
 	$(PY) benchmarks/maeno2008_fragility.py --seeds 0-29
 
 test: install test-cpp test-py
+
+# the developer's loop: the optimised C++ tests and the Python tests not marked slow (minutes less)
+test-fast: install
+	bash scripts/test_cpp.sh --fast
+	$(PY) -m pytest -q -p no:cacheprovider -m "not slow" tests
 
 test-cpp:
 	bash scripts/test_cpp.sh
