@@ -292,8 +292,8 @@ class GridSpec(_Section):
 
 @dataclass
 class Numerics(_Section):
-    cfl: float = _p(0.5, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.5 with adams_bashforth2 "
-                    "(0.3 with euler)", "(]")
+    cfl: float = _p(0.5, None, 0.0, 0.5, "Courant number of the fluid step [-]; usual 0.5 with adams_bashforth2 "
+                    "(0.3 with euler); above 0.5 the VOF advection is not bounded", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
     dem_contact_steps: float = _p(20.0, None, 5.0, 1e6, "automatic contact stiffness: DEM steps of dem_dt per "
                                   "contact of two mean stones [-]; 20 (polygons: 50 at dem_dt 4e-5 s, the same "

@@ -188,8 +188,12 @@ TEST(VOFGrid, SwitchedOffEffectsAreNotEntered) {
 TEST(VOFGrid, BadParametersAreRefused) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.1, 0.1);
   FlowParams p;
-  p.cfl = 1.5;
-  EXPECT_THROW(VOFGrid(g, p), std::invalid_argument);
+  for (double cfl : {1.5, 0.51, 0.0}) {
+    p.cfl = cfl;
+    EXPECT_THROW(VOFGrid(g, p), std::invalid_argument) << cfl;
+  }
+  p.cfl = 0.5;
+  EXPECT_NO_THROW(VOFGrid(g, p));
   VOFGrid flow(g, FlowParams{});
   std::vector<double> n(g.ncell(), 1.2);
   EXPECT_THROW(flow.set_porosity(n), std::invalid_argument);

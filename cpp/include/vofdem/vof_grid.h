@@ -102,6 +102,9 @@ enum class CornerViscosity { kArithmetic = 0, kHarmonic = 1 };
 // clear_step_history()) is forward Euler
 enum class MomentumTimeScheme { kEuler = 0, kAdamsBashforth2 = 1 };
 
+// the largest accepted FlowParams::cfl: the split VOF advection stays bounded up to it (vof_advection.h)
+constexpr double kMaxFlowCfl = 0.5;
+
 // parameters of the flow, constant while stepping (SI units)
 struct FlowParams {
   double rho_water = 998.2;    // water density [kg/m^3], 998.2 at 20 C
@@ -110,7 +113,7 @@ struct FlowParams {
   double nu_air = 1.516e-5;    // air kinematic viscosity [m^2/s], 1.516e-5 at 20 C
   double gravity_x = 0.0;      // gravity along the flume [m/s^2], 0 (or g sin(slope))
   double gravity_z = -9.81;    // gravity upwards component [m/s^2], -9.81
-  double cfl = 0.4;            // target advective Courant number (pore velocity) [-], 0.2-0.45
+  double cfl = 0.4;            // target advective Courant number (pore velocity) [-], (0, kMaxFlowCfl]
   double max_dt = 0.01;        // largest time step [s], 0.01
   // first step [s] (from rest the velocity terms impose no limit yet), 1e-3: a gravity wave of a
   // 0.5 m deep flow, sqrt(g h) = 2.2 m/s, crosses 0.44 of a 5 mm cell in it
