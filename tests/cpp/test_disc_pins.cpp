@@ -1,0 +1,66 @@
+// The disc path pinned: hashes of a disc heap, a packed disc weir and a coupled disc scene, taken
+// before the polygon stones were added. A change of any bit of the disc results fails these tests.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+#include "coupler_scenes.h"
+#include "vofdem/weir_packing.h"
+
+using namespace vofdem;
+
+namespace {
+// FNV-1a over keys and bytes of a state map
+std::uint64_t hash_state(const std::map<std::string, std::vector<double>>& state) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const auto& [key, v] : state) {
+    for (char c : key) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    const auto* b = reinterpret_cast<const unsigned char*>(v.data());
+    for (std::size_t k = 0; k < v.size() * sizeof(double); ++k) h = (h ^ b[k]) * 1099511628211ull;
+  }
+  return h;
+}
+
+DEMSystem disc_heap() {
+  std::mt19937_64 g(11);
+  auto u = [&g] { return static_cast<double>(g() >> 11) * 0x1.0p-53; };
+  std::vector<double> pos, radius;
+  for (int k = 0; k < 48; ++k) {
+    pos.push_back(0.03 + 0.055 * (k % 7) + 0.004 * u());
+    pos.push_back(0.03 + 0.055 * (k / 7));
+    radius.push_back(0.024 * (0.9 + 0.2 * u()));
+  }
+  DEMParams p;
+  p.add_flume(0.0, 0.4, 0.0, 0.3);
+  p.restitution = 0.3;
+  p.flags |= kDEMSleeping;
+  return DEMSystem(p, pos, radius, {2650.0});
+}
+}  // namespace
+
+TEST(DiscPins, HeapOfDiscs) {
+  DEMSystem s = disc_heap();
+  s.advance(0.4);
+  EXPECT_EQ(hash_state(s.export_state()), 667770253280658626ull);
+}
+
+TEST(DiscPins, PackedDiscWeir) {
+  WeirSpec spec;
+  spec.height = 0.12;
+  spec.crest = 0.08;
+  spec.seed = 3;
+  spec.settle_time_max = 1.0;
+  WeirPackingReport r;
+  DEMSystem s = pack_weir(spec, DEMParams{}, r);
+  EXPECT_EQ(hash_state(s.export_state()), 12875397040209891258ull);
+  EXPECT_EQ(r.porosity, 0.21092099704267009);
+  EXPECT_EQ(r.outline_error, 0.041679925299481661);
+}
+
+TEST(DiscPins, CoupledDiscsInATank) {
+  auto sc = test::tank(0.3, 0.3, 0.01, 0.2, {0.1, 0.15, 0.16, 0.12, 0.2, 0.05}, 0.02, kCoupleDefault);
+  for (int k = 0; k < 20; ++k) sc.sim->step();
+  EXPECT_EQ(hash_state(sc.sim->export_state()), 17381371964670235526ull);
+}
