@@ -70,6 +70,7 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
                   static_cast<double>(ncontact_),
                   static_cast<double>(nwall_contact_),
                   forces_valid_ ? 1.0 : 0.0};
+  if (shape_ == StoneShape::kPolygon) export_polygons(s);
   return s;
 }
 
@@ -106,6 +107,7 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
     pairs_.push_back({i, j, cxi[k], 0.0});  // masses set by the next build
   }
   set(wall_xi_, get(s, "wall_xi", n * params_.walls.size()));
+  import_polygons(s);  // the shape: polygons if the state has them, else discs
   const auto& sc = get(s, "scalars", 9);
   time_ = sc[0];
   steps_ = static_cast<long long>(sc[1]);

@@ -10,6 +10,10 @@
 // scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h.
 // F_x, F_z: disc_force_ext, set by the coupler (the fluid's drag and pressure-gradient forces).
 //
+// Stone shape: discs (the default) or convex polygons (set_polygons(); polygon.h gives the matching 3D
+// stone's V and I, polygon_contact.h the contact manifolds). For polygons disc_radius is the bounding
+// radius (neighbour search), disc_angle the orientation of the body-frame vertices poly_vertex.
+//
 // Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
 // evaluation per step. Walls are half-planes (the flume bed, its end walls); fixed stones are discs
 // that never move. Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept
@@ -27,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "vofdem/polygon.h"
 #include "vofdem/profile.h"
 
 namespace vofdem {
@@ -134,10 +139,24 @@ class DEMSystem {
   int neighbour_builds() const { return nbuilds_; }
   DEMEnergy energy() const;
 
-  // derived per-stone properties of the sphere of the disc's diameter (read-only for users)
+  // derived per-stone properties of the sphere of the disc's diameter, or of the matching 3D stone of
+  // a polygon (polygon.h) (read-only for users)
   double mass(int i) const;    // M_i [kg]
   double volume(int i) const;  // V_i [m^3]
-  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]
+  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]; polygons: mean over directions, r_A P / 2
+  // ---- stone shape ----
+  StoneShape shape() const { return shape_; }
+  // makes every stone a convex polygon: body-frame vertices (x, z pairs, counter-clockwise, centroid at
+  // the origin) [m], stone i owning vertices offset[i] .. offset[i+1]-1 (3 to 16 each); sets disc_radius
+  // to each bounding radius. Throws std::invalid_argument for a bad polygon (naming the stone).
+  void set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset);
+  // nominal diameter [m]: 2 r for a disc, the equal-area disc's diameter for a polygon
+  double nominal_diameter(int i) const;
+  // projected area [m^2] of the 3D stone seen along the direction (ux, uz) in the flume's plane: pi r^2
+  // for a disc; (pi / 2) r_A W for a polygon, W its width across the direction (an ellipsoid's exact rule)
+  double projected_area(int i, double ux, double uz) const;
+  // moment of inertia I_i [kg m^2] about the axis normal to the flume's plane
+  double inertia(int i) const;
   // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
   std::vector<std::array<int, 2>> neighbour_pairs() const;
   // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
@@ -170,12 +189,23 @@ class DEMSystem {
   std::vector<double> disc_alpha;           // angular acceleration of the last evaluation [rad/s^2], n
   std::vector<std::uint8_t> disc_asleep;    // 1: sleeping (not integrated), n
   std::vector<double> disc_sleep_timer;     // time spent below the sleep speed [s], n
+  // polygon stones only (empty for discs): body-frame vertices (x, z pairs, CCW) [m] and the index of
+  // each stone's first vertex, n + 1 (set_polygons)
+  std::vector<double> poly_vertex;
+  std::vector<int> poly_offset;
 
  private:
+  // tangential springs of up to two manifold points of a polygon contact, by feature id (-1: empty)
+  struct PolygonHistory {
+    int id[2] = {-1, -1};
+    double xi[2] = {0.0, 0.0};
+    double spring(int feature) const { return id[0] == feature ? xi[0] : (id[1] == feature ? xi[1] : 0.0); }
+  };
   struct Pair {
     int i, j;
     double xi;      // tangential spring [m]
     double sqrt_m;  // sqrt of the pair's reduced mass [kg^0.5], set at each build
+    PolygonHistory poly{};  // polygon stones: the springs of the manifold points
   };
   void prepare();
   void check_params() const;
@@ -199,6 +229,15 @@ class DEMSystem {
   void wall_forces(double dt);
   void sleep_update(double dt);
   double reduced_stiffness_mass() const;
+  // polygon stones (dem_polygon.cpp)
+  void update_polygon_properties();
+  void polygon_world();
+  void polygon_contact_forces(double dt);
+  void polygon_wall_forces(double dt);
+  double polygon_stable_dt() const;
+  double inertia_of(int i, double mass) const;
+  void export_polygons(std::map<std::string, std::vector<double>>& s) const;
+  void import_polygons(const std::map<std::string, std::vector<double>>& s);
 
   DEMParams params_;
   int n_ = 0;
@@ -234,6 +273,15 @@ class DEMSystem {
   std::vector<Pair> new_pairs_;
   std::vector<double> cached_radius_;
   std::vector<std::uint8_t> cached_active_, cached_fixed_;
+
+  // polygon stones: shape, derived section properties and per-evaluation world geometry
+  StoneShape shape_ = StoneShape::kDisc;
+  std::vector<double> poly_area_;     // section area A [m^2], n
+  std::vector<double> poly_jratio_;   // J_A / A [m^2], n
+  std::vector<double> poly_normal_;   // body-frame edge normals, as poly_vertex
+  std::vector<double> poly_world_, poly_world_normal_;  // world-frame vertices and normals
+  std::vector<double> cached_poly_vertex_;
+  std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
 
   StageProfile profile_;
 };

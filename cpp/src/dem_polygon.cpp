@@ -1,0 +1,309 @@
+// Polygon stones in DEMSystem: their shape, contact forces, stable step and checkpoint.
+//
+// Each manifold point of polygon_contact.h carries the disc's contact law (dem_contact.h) with the
+// point's depth delta_p and the relative velocity of the two bodies at the point:
+//
+//   v_rel = (v_i + omega_i x r_i) - (v_j + omega_j x r_j),   r = p - x (lever arm to the centre)
+//   f_n,p = k_n delta_p + c_n,p d(delta_p)/dt,   f_s,p = -k_t xi_p - c_t,p v_t,p,  |f_s,p| <= mu max(f_n,p, 0)
+//   c_n,p = 2 zeta sqrt(m* k_n / N)   (N points: each carries its share of the pair's mass, so a flat face
+//                                      striking flat on N points has the restitution e of the disc)
+//
+// and the force -f_n n + f_s t at p acts on i (its opposite on j), with the torque r x F. Each point's
+// tangential spring xi_p is kept from step to step by its feature id; a point that is new starts at 0.
+// k_n is the disc's (the same automatic stiffness from the mean stone's mass): a vertex touching a
+// face has the disc's stiffness, a face lying on a face twice (two points).
+//
+// Stable step: the largest eigenvalue of one pair's two points is bounded by the trace,
+//   omega^2 <= 2 N k (1/m + R^2 / I)  with N = 2 points and two equal stones,
+// R the bounding radius (the largest lever arm); the step is pi / (10 omega) as for discs.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "vofdem/check.h"
+#include "vofdem/dem_contact.h"
+#include "vofdem/dem_system.h"
+#include "vofdem/polygon_contact.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// checks the polygon arrays of n stones; throws std::invalid_argument naming the stone
+void check_polygons(const std::vector<double>& vertex, const std::vector<int>& offset, int n) {
+  if (offset.size() != static_cast<std::size_t>(n) + 1)
+    throw std::invalid_argument("poly_offset has " + std::to_string(offset.size()) + " entries, expected n + 1 = " +
+                                std::to_string(n + 1));
+  if (offset[0] != 0) throw std::invalid_argument("poly_offset[0] = " + std::to_string(offset[0]) + ", expected 0");
+  for (int i = 0; i < n; ++i) {
+    const int c = offset[i + 1] - offset[i];
+    if (c < 3 || c > kPolygonMaxVertices)
+      throw std::invalid_argument("stone " + std::to_string(i) + " has " + std::to_string(c) +
+                                  " vertices: allowed range [3, " + std::to_string(kPolygonMaxVertices) + "]");
+  }
+  if (vertex.size() != 2 * static_cast<std::size_t>(offset[n]))
+    throw std::invalid_argument("poly_vertex has " + std::to_string(vertex.size()) + " values, expected 2 x " +
+                                std::to_string(offset[n]) + " (x, z pairs)");
+  for (int i = 0; i < n; ++i) {
+    const double* v = &vertex[2 * static_cast<std::size_t>(offset[i])];
+    const int c = offset[i + 1] - offset[i];
+    for (int k = 0; k < 2 * c; ++k) require_finite("poly_vertex", v[k]);
+    if (!polygon_is_convex_ccw(v, c))
+      throw std::invalid_argument("stone " + std::to_string(i) +
+                                  ": its polygon is not strictly convex and counter-clockwise");
+    const PolygonProperties q = polygon_properties(v, c);
+    if (std::hypot(q.centroid[0], q.centroid[1]) > 1e-6 * q.bounding_radius)
+      throw std::invalid_argument("stone " + std::to_string(i) + ": its polygon's centroid (" +
+                                  format_value(q.centroid[0]) + ", " + format_value(q.centroid[1]) +
+                                  ") m is not at the body origin (allowed |c| <= 1e-6 R)");
+  }
+}
+
+// cross product of 2D vectors: the torque of force (fx, fz) at lever (rx, rz)
+inline double cross(double rx, double rz, double fx, double fz) { return rx * fz - rz * fx; }
+}  // namespace
+
+void DEMSystem::set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset) {
+  check_polygons(vertex, offset, n_);
+  poly_vertex = vertex;
+  poly_offset = offset;
+  shape_ = StoneShape::kPolygon;
+  update_polygon_properties();
+  pairs_.clear();
+  poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
+  rebuild_ = true;
+  prepared_ = false;
+  forces_valid_ = false;
+}
+
+// section area, J/A, edge normals and bounding radius (disc_radius) of every polygon
+void DEMSystem::update_polygon_properties() {
+  check_polygons(poly_vertex, poly_offset, n_);
+  const std::size_t un = static_cast<std::size_t>(n_);
+  poly_area_.assign(un, 0.0);
+  poly_jratio_.assign(un, 0.0);
+  poly_normal_.assign(poly_vertex.size(), 0.0);
+  poly_world_.assign(poly_vertex.size(), 0.0);
+  poly_world_normal_.assign(poly_vertex.size(), 0.0);
+  for (int i = 0; i < n_; ++i) {
+    const int o = poly_offset[i], c = poly_offset[i + 1] - o;
+    const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], c);
+    poly_area_[i] = q.area;
+    poly_jratio_[i] = q.polar_moment / q.area;
+    disc_radius[i] = q.bounding_radius;
+    polygon_edge_normals(&poly_vertex[2 * o], c, &poly_normal_[2 * o]);
+  }
+  cached_poly_vertex_ = poly_vertex;
+}
+
+double DEMSystem::nominal_diameter(int i) const {
+  if (shape_ == StoneShape::kPolygon) return polygon_nominal_diameter(poly_area_[i]);
+  return 2.0 * disc_radius[i];
+}
+
+double DEMSystem::projected_area(int i, double ux, double uz) const {
+  if (shape_ != StoneShape::kPolygon || (ux == 0.0 && uz == 0.0)) return projected_area(i);
+  const int o = poly_offset[i];
+  const double w = polygon_width_across(&poly_vertex[2 * o], poly_offset[i + 1] - o, disc_angle[i], ux, uz);
+  return 0.25 * kPi * polygon_nominal_diameter(poly_area_[i]) * w;
+}
+
+double DEMSystem::polygon_stable_dt() const {
+  const bool rot = params_.flags & kDEMRotation;
+  double lam = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i] || disc_fixed[i]) continue;
+    const double m = mass(i), r = disc_radius[i];
+    lam = std::max(lam, 1.0 / m + (rot ? r * r / inertia_of(i, m) : 0.0));
+  }
+  if (!(lam > 0.0) || kn_ <= 0.0) return INFINITY;
+  const double w = std::sqrt(4.0 * std::max(kn_, kt_) * lam);
+  return kPi / (10.0 * w);
+}
+
+// world-frame vertices and edge normals of the active stones (once per force evaluation)
+void DEMSystem::polygon_world() {
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    const int o = poly_offset[i], c = poly_offset[i + 1] - o;
+    polygon_to_world(&poly_vertex[2 * o], c, disc_pos[2 * i], disc_pos[2 * i + 1], disc_angle[i], &poly_world_[2 * o]);
+    polygon_to_world(&poly_normal_[2 * o], c, 0.0, 0.0, disc_angle[i], &poly_world_normal_[2 * o]);
+  }
+}
+
+void DEMSystem::polygon_contact_forces(double dt) {
+  polygon_world();
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double ct_factor = p.tangential_damping_factor;
+  const double kt = friction ? kt_ : 0.0;
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (Pair& c : pairs_) {
+    const int i = c.i, j = c.j;
+    const double xi0 = disc_pos[2 * i], zi0 = disc_pos[2 * i + 1], xj0 = disc_pos[2 * j], zj0 = disc_pos[2 * j + 1];
+    const double dx = xj0 - xi0, dz = zj0 - zi0, rs = disc_radius[i] + disc_radius[j];
+    if (dx * dx + dz * dz >= rs * rs) {  // bounding discs apart
+      c.poly = PolygonHistory{};
+      continue;
+    }
+    const int oi = poly_offset[i], oj = poly_offset[j];
+    const ContactManifold m =
+        collide_polygons(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi,
+                         &poly_world_[2 * oj], &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj);
+    PolygonHistory next;
+    if (m.count > 0) ++ncontact;
+    const double nx = m.normal[0], nz = m.normal[1];
+    const double cn = m.count > 0 ? damp * c.sqrt_m / std::sqrt(static_cast<double>(m.count)) : 0.0;
+    for (int k = 0; k < m.count; ++k) {
+      const ContactManifold::Point& q = m.point[k];
+      const double rix = q.x - xi0, riz = q.z - zi0, rjx = q.x - xj0, rjz = q.z - zj0;
+      const double vrx = disc_vel[2 * i] - disc_omega[i] * riz - disc_vel[2 * j] + disc_omega[j] * rjz;
+      const double vrz = disc_vel[2 * i + 1] + disc_omega[i] * rix - disc_vel[2 * j + 1] - disc_omega[j] * rjx;
+      const double vn = vrx * nx + vrz * nz;
+      const double vt = -vrx * nz + vrz * nx;
+      double xi = c.poly.spring(q.id);
+      const ContactForce f = friction ? linear_contact(q.depth, vn, vt, xi, dt, kn_, kt, cn, ct_factor * cn,
+                                                       p.friction_stone, true)
+                                      : linear_contact(q.depth, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+      // force on i: -f_n n + f_s t, with t = (-n_z, n_x); its opposite on j
+      const double fx = -f.fn * nx - f.ft * nz, fz = -f.fn * nz + f.ft * nx;
+      disc_force[2 * i] += fx;
+      disc_force[2 * i + 1] += fz;
+      disc_force[2 * j] -= fx;
+      disc_force[2 * j + 1] -= fz;
+      disc_torque[i] += cross(rix, riz, fx, fz);
+      disc_torque[j] -= cross(rjx, rjz, fx, fz);
+      next.id[k] = q.id;
+      next.xi[k] = xi;
+      elastic += f.energy_spring;
+      dissipated += f.power_damp * dt + f.energy_slip;
+    }
+    c.poly = next;
+  }
+  elastic_ = elastic;
+  dissipated_ += dissipated;
+  ncontact_ = ncontact;
+}
+
+void DEMSystem::polygon_wall_forces(double dt) {
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double kt = friction ? kt_ : 0.0;
+  const std::size_t nw = p.walls.size();
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (std::size_t w = 0; w < nw; ++w) {
+    const DEMWall& wall = p.walls[w];
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
+      const int i = wall_cand_[c];
+      if (inv_mass_[i] == 0.0) continue;
+      PolygonHistory& hist = poly_wall_hist_[static_cast<std::size_t>(i) * nw + w];
+      const double x0 = disc_pos[2 * i], z0 = disc_pos[2 * i + 1];
+      const double s = (x0 - wall.point[0]) * wx + (z0 - wall.point[1]) * wz;
+      const int o = poly_offset[i];
+      const ContactManifold m =
+          s >= disc_radius[i] ? ContactManifold{}
+                              : collide_polygon_wall(&poly_world_[2 * o], &poly_world_normal_[2 * o],
+                                                     poly_offset[i + 1] - o, wall.point[0], wall.point[1], wx, wz);
+      PolygonHistory next;
+      if (m.count > 0) ++ncontact;
+      const double nx = m.normal[0], nz = m.normal[1];
+      const double cn = m.count > 0 ? damp * std::sqrt(mass_eff_[i] / m.count) : 0.0;
+      for (int k = 0; k < m.count; ++k) {
+        const ContactManifold::Point& q = m.point[k];
+        const double rx = q.x - x0, rz = q.z - z0;
+        const double vx = disc_vel[2 * i] - disc_omega[i] * rz, vz = disc_vel[2 * i + 1] + disc_omega[i] * rx;
+        const double vn = vx * nx + vz * nz;
+        const double vt = -vx * nz + vz * nx;
+        double xi = hist.spring(q.id);
+        const ContactForce f = friction ? linear_contact(q.depth, vn, vt, xi, dt, kn_, kt, cn,
+                                                         p.tangential_damping_factor * cn, wall.friction, true)
+                                        : linear_contact(q.depth, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+        const double fx = -f.fn * nx - f.ft * nz, fz = -f.fn * nz + f.ft * nx;
+        disc_force[2 * i] += fx;
+        disc_force[2 * i + 1] += fz;
+        disc_torque[i] += cross(rx, rz, fx, fz);
+        next.id[k] = q.id;
+        next.xi[k] = xi;
+        elastic += f.energy_spring;
+        dissipated += f.power_damp * dt + f.energy_slip;
+      }
+      hist = next;
+    }
+  }
+  elastic_ += elastic;
+  dissipated_ += dissipated;
+  nwall_contact_ = ncontact;
+}
+
+// ---- checkpoint: the shape and the manifold points' springs (polygon systems only)
+
+void DEMSystem::export_polygons(std::map<std::string, std::vector<double>>& s) const {
+  s["poly_vertex"] = poly_vertex;
+  s["poly_offset"] = std::vector<double>(poly_offset.begin(), poly_offset.end());
+  std::vector<double> ci, cj, cid, cxi;
+  for (const Pair& c : pairs_) {
+    if (c.poly.id[0] < 0 && c.poly.id[1] < 0) continue;
+    ci.push_back(c.i);
+    cj.push_back(c.j);
+    for (int k = 0; k < 2; ++k) cid.push_back(c.poly.id[k]), cxi.push_back(c.poly.xi[k]);
+  }
+  s["poly_contact_i"] = ci;
+  s["poly_contact_j"] = cj;
+  s["poly_contact_id"] = cid;
+  s["poly_contact_xi"] = cxi;
+  std::vector<double> wid, wxi;
+  for (const PolygonHistory& h : poly_wall_hist_)
+    for (int k = 0; k < 2; ++k) wid.push_back(h.id[k]), wxi.push_back(h.xi[k]);
+  s["poly_wall_id"] = wid;
+  s["poly_wall_xi"] = wxi;
+}
+
+void DEMSystem::import_polygons(const std::map<std::string, std::vector<double>>& s) {
+  const auto it = s.find("poly_vertex");
+  if (it == s.end()) {  // a disc state
+    shape_ = StoneShape::kDisc;
+    poly_vertex.clear();
+    poly_offset.clear();
+    poly_wall_hist_.clear();
+    return;
+  }
+  auto need = [&s](const char* key, std::size_t size) -> const std::vector<double>& {
+    const auto f = s.find(key);
+    if (f == s.end()) throw std::invalid_argument(std::string("import_state: missing array '") + key + "'");
+    if (size != static_cast<std::size_t>(-1) && f->second.size() != size)
+      throw std::invalid_argument(std::string("import_state: array '") + key + "' has size " +
+                                  std::to_string(f->second.size()) + ", expected " + std::to_string(size));
+    return f->second;
+  };
+  const auto& off = need("poly_offset", static_cast<std::size_t>(n_) + 1);
+  set_polygons(it->second, std::vector<int>(off.begin(), off.end()));
+  const auto& ci = need("poly_contact_i", static_cast<std::size_t>(-1));
+  const auto& cj = need("poly_contact_j", ci.size());
+  const auto& cid = need("poly_contact_id", 2 * ci.size());
+  const auto& cxi = need("poly_contact_xi", 2 * ci.size());
+  for (std::size_t k = 0; k < ci.size(); ++k) {
+    Pair c{static_cast<int>(ci[k]), static_cast<int>(cj[k]), 0.0, 0.0, PolygonHistory{}};
+    if (!(c.i >= 0 && c.i < c.j && c.j < n_) ||
+        (!pairs_.empty() && !(pairs_.back().i < c.i || (pairs_.back().i == c.i && pairs_.back().j < c.j))))
+      throw std::invalid_argument("import_state: polygon contact pair (" + std::to_string(c.i) + ", " +
+                                  std::to_string(c.j) + ") is outside 0 <= i < j < n or not sorted by (i, j)");
+    for (int q = 0; q < 2; ++q) c.poly.id[q] = static_cast<int>(cid[2 * k + q]), c.poly.xi[q] = cxi[2 * k + q];
+    pairs_.push_back(c);
+  }
+  const std::size_t nwh = static_cast<std::size_t>(n_) * params_.walls.size();
+  const auto& wid = need("poly_wall_id", 2 * nwh);
+  const auto& wxi = need("poly_wall_xi", 2 * nwh);
+  for (std::size_t k = 0; k < nwh; ++k)
+    for (int q = 0; q < 2; ++q)
+      poly_wall_hist_[k].id[q] = static_cast<int>(wid[2 * k + q]), poly_wall_hist_[k].xi[q] = wxi[2 * k + q];
+}
+
+}  // namespace vofdem
