@@ -17,6 +17,14 @@ namespace vofdem::bind {
 
 namespace {
 
+const char* shape_name(StoneShape s) { return s == StoneShape::kPolygon ? "polygon" : "disc"; }
+
+StoneShape shape_from_name(const std::string& name) {
+  if (name == "disc") return StoneShape::kDisc;
+  if (name == "polygon") return StoneShape::kPolygon;
+  throw py::value_error("shape = '" + name + "' is not one of 'disc', 'polygon'");
+}
+
 std::vector<double> flat_pos(const py::array_t<double, py::array::c_style | py::array::forcecast>& pos) {
   return std::vector<double>(pos.data(), pos.data() + pos.size());
 }
@@ -112,7 +120,7 @@ void bind_system(py::module_& m) {
            py::arg("i"), py::arg("ux"), py::arg("uz"))
       .def("nominal_diameter", &DEMSystem::nominal_diameter, py::arg("i"))
       .def("inertia", &DEMSystem::inertia, py::arg("i"))
-      .def_property_readonly("shape", [](const DEMSystem& s) { return s.shape() == StoneShape::kPolygon ? "polygon" : "disc"; })
+      .def_property_readonly("shape", [](const DEMSystem& s) { return shape_name(s.shape()); })
       .def("set_polygons",
            [](DEMSystem& s, const A& vertex, const std::vector<int>& offset) { s.set_polygons(flat_pos(vertex), offset); },
            py::arg("vertex"), py::arg("offset"),
@@ -167,6 +175,21 @@ void bind_packing(py::module_& m) {
       .def_readwrite("seed", &WeirSpec::seed)
       .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
       .def_readwrite("rest_speed", &WeirSpec::rest_speed)
+      .def_property(
+          "shape", [](const WeirSpec& w) { return shape_name(w.shape); },
+          [](WeirSpec& w, const std::string& name) { w.shape = shape_from_name(name); })
+      .def_property(
+          "polygon_vertices_min", [](const WeirSpec& w) { return w.polygon.vertices_min; },
+          [](WeirSpec& w, int v) { w.polygon.vertices_min = v; })
+      .def_property(
+          "polygon_vertices_max", [](const WeirSpec& w) { return w.polygon.vertices_max; },
+          [](WeirSpec& w, int v) { w.polygon.vertices_max = v; })
+      .def_property(
+          "aspect_ratio", [](const WeirSpec& w) { return w.polygon.aspect_ratio; },
+          [](WeirSpec& w, double v) { w.polygon.aspect_ratio = v; })
+      .def_property(
+          "radial_jitter", [](const WeirSpec& w) { return w.polygon.radial_jitter; },
+          [](WeirSpec& w, double v) { w.polygon.radial_jitter = v; })
       .def("x_end", &WeirSpec::x_end)
       .def("top", &WeirSpec::top, py::arg("x"))
       .def("area", &WeirSpec::area);
@@ -187,8 +210,14 @@ void bind_packing(py::module_& m) {
       "pack_weir",
       [](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
          double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
-         double rest_speed, const DEMParams& params) {
+         double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
+         double aspect_ratio, double radial_jitter) {
         WeirSpec spec;
+        spec.shape = shape_from_name(shape);
+        spec.polygon.vertices_min = vertices_min;
+        spec.polygon.vertices_max = vertices_max;
+        spec.polygon.aspect_ratio = aspect_ratio;
+        spec.polygon.radial_jitter = radial_jitter;
         spec.height = height;
         spec.crest = crest;
         spec.slope_up_deg = slope_up_deg;
@@ -213,7 +242,9 @@ void bind_packing(py::module_& m) {
       py::arg("height") = 0.25, py::arg("crest") = 0.20, py::arg("slope_up_deg") = 27.0,
       py::arg("slope_down_deg") = 27.0, py::arg("x_toe") = 1.0, py::arg("z_bed") = 0.0, py::arg("d_mean") = 0.048,
       py::arg("d_spread") = 0.1, py::arg("density") = 2650.0, py::arg("seed") = 0, py::arg("settle_time_max") = 6.0,
-      py::arg("rest_speed") = 1e-3, py::arg("params") = DEMParams());
+      py::arg("rest_speed") = 1e-3, py::arg("params") = DEMParams(), py::arg("shape") = "disc",
+      py::arg("polygon_vertices_min") = 5, py::arg("polygon_vertices_max") = 8, py::arg("aspect_ratio") = 1.5,
+      py::arg("radial_jitter") = 0.2);
   m.def(
       "random_polygons",
       [](const A& diameters, std::uint64_t seed, int vertices_min, int vertices_max, double aspect_ratio,

@@ -190,6 +190,42 @@ void polygon_to_world(const double* v, int n, double x, double z, double angle, 
   }
 }
 
+bool polygon_contains(const double* w, int n, double x, double z) {
+  for (int k = 0; k < n; ++k) {
+    const int l = k + 1 == n ? 0 : k + 1;
+    if (cross(w[2 * l] - w[2 * k], w[2 * l + 1] - w[2 * k + 1], x - w[2 * k], z - w[2 * k + 1]) < 0.0) return false;
+  }
+  return true;
+}
+
+double polygon_distance(const double* w, int n, double x, double z) {
+  if (polygon_contains(w, n, x, z)) return 0.0;
+  double d2 = INFINITY;
+  for (int k = 0; k < n; ++k) {
+    const int l = k + 1 == n ? 0 : k + 1;
+    const double ex = w[2 * l] - w[2 * k], ez = w[2 * l + 1] - w[2 * k + 1];
+    const double px = x - w[2 * k], pz = z - w[2 * k + 1];
+    const double t = std::clamp((px * ex + pz * ez) / (ex * ex + ez * ez), 0.0, 1.0);
+    const double dx = px - t * ex, dz = pz - t * ez;
+    d2 = std::min(d2, dx * dx + dz * dz);
+  }
+  return std::sqrt(d2);
+}
+
+double polygon_rest_angle(const double* v, int n) {
+  int best = 0;
+  double longest = -1.0;
+  for (int k = 0; k < n; ++k) {
+    const int l = k + 1 == n ? 0 : k + 1;
+    const double len = std::hypot(v[2 * l] - v[2 * k], v[2 * l + 1] - v[2 * k + 1]);
+    if (len > longest) longest = len, best = k;
+  }
+  const int l = best + 1 == n ? 0 : best + 1;
+  // the edge's outward normal (right perpendicular of a CCW edge) turned to point down
+  const double nx = v[2 * l + 1] - v[2 * best + 1], nz = -(v[2 * l] - v[2 * best]);
+  return -0.5 * kPi - std::atan2(nz, nx);
+}
+
 int clip_polygon_axis(const double* in, int n, int axis, double c, double s, double* out) {
   int m = 0;
   for (int k = 0; k < n; ++k) {

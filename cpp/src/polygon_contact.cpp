@@ -1,6 +1,7 @@
 // Contact manifolds of convex polygons (see polygon_contact.h).
 #include "vofdem/polygon_contact.h"
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 
@@ -123,6 +124,10 @@ ContactManifold collide_polygons(const double* va, const double* ua, int na, con
   m.normal[0] = flip ? -nx : nx;
   m.normal[1] = flip ? -nz : nz;
   return m;
+}
+
+double polygon_separation(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb) {
+  return std::max(max_separation(va, ua, na, vb, nb).value, max_separation(vb, ub, nb, va, na).value);
 }
 
 ContactManifold collide_polygon_wall(const double* v, const double* u, int n, double px, double pz, double wx,

@@ -102,6 +102,13 @@ void polygon_to_world(const double* v, int n, double x, double z, double angle, 
 // for n + 1 vertices) and returns the vertex count (0 if nothing is left)
 int clip_polygon_axis(const double* in, int n, int axis, double c, double s, double* out);
 
+// true if (x, z) lies inside the convex CCW polygon w (n world vertices) or on its boundary
+bool polygon_contains(const double* w, int n, double x, double z);
+// distance [m] from (x, z) to the convex CCW polygon w (n world vertices); 0 inside
+double polygon_distance(const double* w, int n, double x, double z);
+// the rotation [rad] that lays the polygon's longest edge flat at the bottom (outward normal -z)
+double polygon_rest_angle(const double* v, int n);
+
 // area [m^2] of the polygon (n vertices, x, z pairs) by the shoelace formula (signed: > 0 if CCW)
 double polygon_area(const double* v, int n);
 

@@ -51,6 +51,10 @@ void polygon_edge_normals(const double* v, int n, double* out);
 ContactManifold collide_polygons(const double* va, const double* ua, int na, const double* vb, const double* ub,
                                  int nb);
 
+// the larger of the two separations s_A, s_B [m]: > 0 apart (by at least that much along some axis),
+// < 0 overlapping (by that depth along the best axis)
+double polygon_separation(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb);
+
 // manifold of a convex CCW polygon (n vertices v, edge normals u, world frame) with the half-plane wall
 // through (px, pz) whose unit normal (wx, wz) points out of the solid; normal from the polygon into the wall
 ContactManifold collide_polygon_wall(const double* v, const double* u, int n, double px, double pz, double wx,
