@@ -30,6 +30,7 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     p.fluid_density = fluid_density
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
+    p.contact_steps = scene.numerics.dem_contact_steps
     p.friction_stone = st.friction_stone
     # the bed and the upstream end wall; downstream the stones leave over the outflow end
     p.walls = [_core.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=st.friction_wall),
@@ -52,28 +53,57 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     return p
 
 
+def polygon_options(scene: Scene) -> dict:
+    """The scene's polygon-shape parameters as keyword arguments of pack_weir / random_polygons."""
+    st = scene.stones
+    return dict(polygon_vertices_min=st.polygon_vertices_min, polygon_vertices_max=st.polygon_vertices_max,
+                aspect_ratio=st.aspect_ratio, radial_jitter=st.polygon_radial_jitter)
+
+
+def _explicit_stones(scene: Scene):
+    """DEMSystem of the scene's explicit stones: discs, or polygons of those nominal diameters drawn from the
+    scene's seed (unrotated; the fixed ones are those whose lowest point touches the bed)."""
+    st = scene.stones
+    pos = np.asarray(st.positions, float)
+    d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
+    low = pos[:, 1] - 0.5 * d
+    if st.shape == "polygon":
+        o = polygon_options(scene)
+        vertex, offset = _core.random_polygons(d, seed=scene.seed, vertices_min=o["polygon_vertices_min"],
+                                               vertices_max=o["polygon_vertices_max"], aspect_ratio=o["aspect_ratio"],
+                                               radial_jitter=o["radial_jitter"])
+        low = pos[:, 1] + np.array([vertex[offset[i]:offset[i + 1], 1].min() for i in range(len(pos))])
+    fixed = (low <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
+    sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density), [int(f) for f in fixed])
+    if st.shape == "polygon":
+        sys_.set_polygons(vertex, offset)
+    return sys_
+
+
 def build_stones(scene: Scene):
     """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
     scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
     st, w = scene.stones, scene.weir
     if st.positions:
-        pos = np.asarray(st.positions, float)
-        d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
-        fixed = (pos[:, 1] - 0.5 * d <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
-        sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density),
-                               [int(f) for f in fixed])
-        return sys_, None
+        return _explicit_stones(scene), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
     pack = dem_params(scene, fluid_density=0.0)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
     sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
                                       slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
                                       d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
-                                      seed=scene.seed, params=pack)
+                                      seed=scene.seed, params=pack, **_shape_options(scene))
     sys_.params = dem_params(scene)
     if not st.fix_bottom_layer:
         sys_.disc_fixed[:] = 0
     return sys_, report
+
+
+def _shape_options(scene: Scene) -> dict:
+    """pack_weir's stone-shape arguments: none for discs (its defaults), the shape and its parameters for polygons."""
+    if scene.stones.shape == "disc":
+        return {}
+    return dict(shape="polygon", **polygon_options(scene))
 
 
 def flow_params(scene: Scene):
@@ -148,7 +178,7 @@ def weir_spec(scene: Scene):
 
 
 def solid_fraction(scene: Scene, stones) -> float:
-    """phi [-]: the 2D area fraction of the weir's outline covered by the stones' discs, 1 minus the
+    """phi [-]: the 2D area fraction of the weir's outline covered by the stones (discs or polygons), 1 minus the
     packing porosity that pack_weir reports (weir_porosity, sampled every 2 mm)."""
     return 1.0 - float(_core.weir_porosity(stones, weir_spec(scene)))
 

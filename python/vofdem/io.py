@@ -17,6 +17,12 @@ Layout of ``run.h5`` (SI units; T snapshots, a grid of nx x nz cells, n stones):
     /stones/pos, vel    (T,n,2)   [m], [m/s]
     /stones/active      (T,n)     uint8   0 once a stone has left the domain
     /stones/force_drag, force_pressure (T,n,2) [N]   fluid forces on each stone
+    polygon stones only (stones.shape = 'polygon'; diameter is then the nominal, equal-area one):
+    /stones/poly_vertex (m,2)     [m]     body-frame vertices of every stone (constant), counter-clockwise
+    /stones/poly_offset (n+1,)            stone i owns poly_vertex[poly_offset[i]:poly_offset[i+1]]
+    /stones/angle       (T,n)     [rad]   orientation (body frame to world, counter-clockwise)
+    /stones/poly_world  (T,m,2)   [m]     world-frame vertices (for ParaView: the XDMF draws them as polygons)
+    /stones/poly_topology (n + m + n,)    XDMF mixed topology: 3 (polygon), vertex count, indices, per stone
     /profile/names, seconds, calls        the solver's per-stage cost (written at the end)
 
 The file is opened in HDF5's single-writer/multiple-reader mode and flushed after every snapshot, so a
@@ -50,7 +56,7 @@ class RunWriter:
 
     def __init__(self, path, x_faces: Sequence[float], z_faces: Sequence[float], diameters: Sequence[float],
                  fixed: Sequence[bool], scene_toml: str = "", seed: int = 0, version: str = "",
-                 write_fields: bool = True):
+                 write_fields: bool = True, polygons=None):
         self.path = Path(path)
         self.xmf_path = self.path.with_suffix(".xmf")
         self.x_faces = np.asarray(x_faces, float)
@@ -58,6 +64,9 @@ class RunWriter:
         self.nx, self.nz = self.x_faces.size - 1, self.z_faces.size - 1
         self.n = len(diameters)
         self.write_fields = write_fields
+        # polygon stones: (body-frame vertices (m, 2), offsets (n + 1)); None for discs
+        self.polygons = None if polygons is None else (np.asarray(polygons[0], float).reshape(-1, 2),
+                                                        np.asarray(polygons[1], np.int64))
         self.count = 0
         self._times = []
         self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -79,8 +88,35 @@ class RunWriter:
             f.create_dataset(f"stones/{name}", (0, self.n, 2), maxshape=(None, self.n, 2), dtype="f8",
                              chunks=(16, nc, 2))
         f.create_dataset("stones/active", (0, self.n), maxshape=(None, self.n), dtype="u1", chunks=(16, nc))
+        if self.polygons is not None:
+            self._create_polygon_datasets(nc)
         f.swmr_mode = True
         self.write_xdmf()
+
+    def _create_polygon_datasets(self, nc: int) -> None:
+        f, (vertex, offset) = self.file, self.polygons
+        if offset.size != self.n + 1 or offset[-1] != len(vertex):
+            raise ValueError(f"polygons: {offset.size} offsets for {self.n} stones and {len(vertex)} vertices "
+                             "(expected n + 1 offsets ending at the vertex count)")
+        f["stones/poly_vertex"] = vertex
+        f["stones/poly_offset"] = offset
+        topo = []
+        for i in range(self.n):
+            topo += [3, int(offset[i + 1] - offset[i])] + list(range(int(offset[i]), int(offset[i + 1])))
+        f["stones/poly_topology"] = np.asarray(topo, np.int64)
+        m = len(vertex)
+        f.create_dataset("stones/angle", (0, self.n), maxshape=(None, self.n), dtype="f8", chunks=(16, nc))
+        f.create_dataset("stones/poly_world", (0, m, 2), maxshape=(None, m, 2), dtype="f8", chunks=(4, max(1, m), 2))
+
+    def _write_polygons(self, k: int, stones: Dict) -> None:
+        f, (vertex, offset) = self.file, self.polygons
+        angle = np.asarray(stones["angle"], float).reshape(self.n)
+        ds = f["stones/angle"]
+        ds.resize((k + 1, self.n))
+        ds[k] = angle
+        ds = f["stones/poly_world"]
+        ds.resize((k + 1, len(vertex), 2))
+        ds[k] = world_polygon_vertices(vertex, offset, np.asarray(stones["pos"]).reshape(self.n, 2), angle)
 
     def __enter__(self):
         return self
@@ -112,6 +148,8 @@ class RunWriter:
         ds.resize((k + 1, self.n))
         if self.n:
             ds[k] = np.asarray(stones["active"]).astype(np.uint8)
+        if self.polygons is not None:
+            self._write_polygons(k, stones)
         f.flush()
         self.count += 1
         self._times.append(float(t))
@@ -119,7 +157,8 @@ class RunWriter:
 
     def write_xdmf(self) -> None:
         """Rewrites the XDMF beside the HDF5 for the snapshots written so far (atomic replace)."""
-        text = xdmf_text(self.path.name, self.nx, self.nz, self.n, self._times, self.write_fields)
+        npv = 0 if self.polygons is None else len(self.polygons[0])
+        text = xdmf_text(self.path.name, self.nx, self.nz, self.n, self._times, self.write_fields, npv)
         tmp = self.xmf_path.with_suffix(".xmf.tmp")
         tmp.write_text(text, encoding="utf-8")
         os.replace(tmp, self.xmf_path)
@@ -141,9 +180,23 @@ class RunWriter:
                 f.attrs[k] = v
 
 
-def xdmf_text(h5name: str, nx: int, nz: int, n: int, times: Sequence[float], fields: bool = True) -> str:
+def world_polygon_vertices(vertex, offset, pos, angle) -> np.ndarray:
+    """World-frame vertices (m, 2) [m] of polygon stones: body vertices (m, 2), offsets (n + 1), centres
+    (n, 2) [m], angles (n,) [rad] counter-clockwise."""
+    vertex = np.asarray(vertex, float).reshape(-1, 2)
+    counts = np.diff(np.asarray(offset))
+    owner = np.repeat(np.arange(counts.size), counts)
+    c, s = np.cos(np.asarray(angle, float))[owner], np.sin(np.asarray(angle, float))[owner]
+    p = np.asarray(pos, float).reshape(-1, 2)[owner]
+    return np.stack([p[:, 0] + c * vertex[:, 0] - s * vertex[:, 1], p[:, 1] + s * vertex[:, 0] + c * vertex[:, 1]],
+                    axis=1)
+
+
+def xdmf_text(h5name: str, nx: int, nz: int, n: int, times: Sequence[float], fields: bool = True,
+              n_poly_vertices: int = 0) -> str:
     """XDMF 2 text: a temporal collection of the fields on a 2D rectilinear mesh (cell-centred
-    attributes, x_faces/z_faces as node coordinates) and one of the stones as points."""
+    attributes, x_faces/z_faces as node coordinates), one of the stones as points and, for polygon
+    stones (n_poly_vertices > 0), one of their outlines as polygons."""
     T = len(times)
     root = ET.Element("Xdmf", Version="2.0")
     dom = ET.SubElement(root, "Domain")
@@ -192,6 +245,20 @@ def xdmf_text(h5name: str, nx: int, nz: int, n: int, times: Sequence[float], fie
                 for c, comp in enumerate(("x", "z")):
                     a = ET.SubElement(g, "Attribute", Name=f"{name}_{comp}", AttributeType="Scalar", Center="Node")
                     slab(a, f"/stones/{name}", [T, n, 2], [k, 0, c], [1, n, 1], [n])
+    if n and n_poly_vertices:
+        m = n_poly_vertices
+        coll = ET.SubElement(dom, "Grid", Name="stone_polygons", GridType="Collection", CollectionType="Temporal")
+        for k, t in enumerate(times):
+            g = ET.SubElement(coll, "Grid", Name=f"stone_polygons_{k}", GridType="Uniform")
+            ET.SubElement(g, "Time", Value=repr(float(t)))
+            topo = ET.SubElement(g, "Topology", TopologyType="Mixed", NumberOfElements=str(n))
+            hdf(topo, "/stones/poly_topology", [2 * n + m], "Int", "8")
+            geo = ET.SubElement(g, "Geometry", GeometryType="XY")
+            slab(geo, "/stones/poly_world", [T, m, 2], [k, 0, 0], [1, m, 2], [m, 2])
+            a = ET.SubElement(g, "Attribute", Name="active", AttributeType="Scalar", Center="Cell")
+            slab(a, "/stones/active", [T, n], [k, 0], [1, n], [n], "UChar", "1")
+            a = ET.SubElement(g, "Attribute", Name="fixed", AttributeType="Scalar", Center="Cell")
+            hdf(a, "/stones/fixed", [n], "UChar", "1")
     ET.indent(root) if hasattr(ET, "indent") else None
     return '<?xml version="1.0" ?>\n<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
@@ -216,6 +283,10 @@ class RunData:
             self.force_drag = f["stones/force_drag"][:T]
             self.force_pressure = f["stones/force_pressure"][:T]
             self.active = f["stones/active"][:T].astype(bool)
+            # polygon stones (None for discs)
+            self.poly_vertex = f["stones/poly_vertex"][()] if "stones/poly_vertex" in f else None
+            self.poly_offset = f["stones/poly_offset"][()] if "stones/poly_offset" in f else None
+            self.angle = f["stones/angle"][:T] if "stones/angle" in f else None
             self.has_fields = "fields" in f
             self.profile = None
             if "profile" in f:
@@ -243,6 +314,13 @@ class RunData:
         """All fields (nz, nx) of snapshot k (negative k counts from the end)."""
         with h5py.File(self.path, "r", libver="latest", swmr=True) as f:
             return {name: f[f"fields/{name}"][k].astype(float) for name in FIELD_NAMES}
+
+    def stone_outlines(self, k: int):
+        """Polygon stones: the world outline (v, 2) [m] of every stone at snapshot k; None for discs."""
+        if self.poly_vertex is None:
+            return None
+        w = world_polygon_vertices(self.poly_vertex, self.poly_offset, self.pos[k], self.angle[k])
+        return [w[a:b] for a, b in zip(self.poly_offset[:-1], self.poly_offset[1:])]
 
     def index_at(self, t: float) -> int:
         """Snapshot nearest to time t [s]."""

@@ -63,6 +63,20 @@ def build_simulation(scene: Scene):
     return build(scene)
 
 
+def stone_diameters(stones) -> np.ndarray:
+    """Diameters [m] of the stones: 2 r for discs, the nominal (equal-area disc's) diameter for polygons."""
+    if getattr(stones, "shape", "disc") == "polygon":
+        return np.array([stones.nominal_diameter(i) for i in range(stones.n)], float)
+    return 2.0 * np.asarray(stones.disc_radius, float)
+
+
+def stone_polygons(stones):
+    """(body-frame vertices (m, 2) [m], offsets (n + 1)) of polygon stones, copied; None for discs."""
+    if getattr(stones, "shape", "disc") != "polygon":
+        return None
+    return np.array(stones.poly_vertex, float), np.array(stones.poly_offset, np.int64)
+
+
 def grid_faces(grid):
     """(x_faces [m], z_faces [m]) of a Grid2D."""
     x = grid.x0 + grid.dx * np.arange(grid.nx + 1)
@@ -102,7 +116,8 @@ class _Recorder:
         self.x_faces, self.z_faces = grid_faces(g)
         self.gauge_i = int(np.clip(np.searchsorted(self.x_faces, scene.gauge_x) - 1, 0, self.nx - 1))
         self.pos0 = np.array(sim.stones.disc_pos, float).reshape(-1, 2).copy()
-        self.diameter = 2.0 * np.asarray(sim.stones.disc_radius, float)
+        self.diameter = stone_diameters(sim.stones)
+        self.polygons = stone_polygons(sim.stones) is not None
         self.moved = 0
 
     def record(self) -> None:
@@ -117,6 +132,8 @@ class _Recorder:
                   "force_drag": np.asarray(sim.disc_force_drag).reshape(-1, 2),
                   "force_pressure": np.asarray(sim.disc_force_pressure).reshape(-1, 2),
                   "active": np.asarray(st.disc_active).astype(bool)}
+        if self.polygons:
+            stones["angle"] = np.array(st.disc_angle, float)
         t = float(sim.time)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
         self.moved = int(np.sum((disp > self.diameter) | ~stones["active"]))
@@ -144,8 +161,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     x_faces, z_faces = grid_faces(sim.fluid.grid)
     st = sim.stones
     fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
-    writer = RunWriter(out / "run.h5", x_faces, z_faces, 2.0 * np.asarray(st.disc_radius, float), fixed0,
-                       scene_toml=scene.to_toml(), seed=scene.seed, version=__version__)
+    writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), fixed0,
+                       scene_toml=scene.to_toml(), seed=scene.seed, version=__version__, polygons=stone_polygons(st))
     rec = _Recorder(sim, scene, writer)
     duration, dt_snap = scene.duration, scene.output.snapshot_interval
     ramp = scene.hydrograph.ramp_start
@@ -199,7 +216,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
 def _model_attrs(sim, scene: Scene) -> dict:
     """The model options of the run: the drag model, the porosity mapping and the porosity n_s inside
     each disc that eq. (11) used (n_exp, or the bulk-consistent value computed at build)."""
-    out = {"drag_model": scene.stones.drag_model, "porosity_mapping": scene.stones.porosity_mapping}
+    out = {"drag_model": scene.stones.drag_model, "porosity_mapping": scene.stones.porosity_mapping,
+           "stone_shape": scene.stones.shape}
     params = getattr(sim, "params", None)
     if params is not None and hasattr(params, "n_exp"):
         out["disc_porosity"] = float(params.n_exp)

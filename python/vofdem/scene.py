@@ -201,7 +201,10 @@ class Weir(_Section):
 
 @dataclass
 class Stones(_Section):
-    """The weir's stones (discs in the x-z plane with the mass and area of spheres)."""
+    """The weir's stones: discs in the x-z plane with the mass and area of spheres (``shape = 'disc'``), or
+    convex polygons of quarried-stone form with the mass, inertia and projected area of the matching 3D
+    stone (``shape = 'polygon'``; polygon.h). A polygon's ``diameter`` is its nominal diameter, that of the
+    disc of equal area (the matching stone has the mass of the sphere of that diameter)."""
 
     diameter: float = _p(0.048, "length", 0.001, 0.5, "mean stone diameter [m]; the paper's 0.048", "[]")
     diameter_spread: float = _p(0.1, None, 0.0, 0.5, "diameters uniform in d (1 +- spread) [-]; 0 = one size")
@@ -220,6 +223,14 @@ class Stones(_Section):
                                     "1 - (1 - n_exp) / phi that makes the weir's mean porosity n_exp ('bulk'; phi: the "
                                     "packing's 2D solid fraction)")
     fix_bottom_layer: bool = _flag(True, "stones touching the bed are fixed to it (as in the paper)")
+    shape: str = _choice("disc", ("disc", "polygon"),
+                         "stone shape: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
+                         "form, one per stone from the seed)")
+    polygon_vertices_min: int = _p(5, None, 3, 16, "fewest vertices of a polygon stone [-]; usual 5")
+    polygon_vertices_max: int = _p(8, None, 3, 16, "most vertices of a polygon stone [-]; usual 8")
+    aspect_ratio: float = _p(1.5, None, 1.0, 3.0, "length / thickness of a polygon stone's section [-]; usual 1.5")
+    polygon_radial_jitter: float = _p(0.2, None, 0.0, 0.5, "polygon vertex radii 1 +- jitter before the hull [-]; "
+                                      "usual 0.2")
     positions: List[List[float]] = field(default_factory=list, metadata=dict(
         doc="explicit stone centres [[x m, z m], ...] instead of packing the weir; empty = pack"))
     diameters: List[float] = field(default_factory=list, metadata=dict(
@@ -227,6 +238,7 @@ class Stones(_Section):
 
     def validate(self, prefix: str = "stones") -> None:
         self._validate_fields(prefix)
+        self._validate_polygon(prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
         for j, row in enumerate(self.positions):
             if not isinstance(row, (list, tuple)) or len(row) != 2 or not all(
@@ -238,6 +250,16 @@ class Stones(_Section):
                                  f"{prefix}.positions has {len(self.positions)}: they must match")
             for j, d in enumerate(self.diameters):
                 _check_number(f"{prefix}.diameters[{j}]", d, size)
+
+    def _validate_polygon(self, prefix: str) -> None:
+        for name in ("polygon_vertices_min", "polygon_vertices_max"):
+            v = getattr(self, name)
+            if v != int(v):
+                raise ValueError(f"{prefix}.{name} = {_fmt(v)} must be a whole number in [3, 16]")
+            setattr(self, name, int(v))
+        if self.polygon_vertices_max < self.polygon_vertices_min:
+            raise ValueError(f"{prefix}.polygon_vertices_max = {self.polygon_vertices_max} is outside the allowed "
+                             f"range [{self.polygon_vertices_min}, 16] (at least {prefix}.polygon_vertices_min)")
 
     def mean_diameter(self) -> float:
         """Number-weighted mean diameter [m] of the grading (or `diameter`)."""
@@ -359,6 +381,9 @@ class GridSpec(_Section):
 class Numerics(_Section):
     cfl: float = _p(0.3, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.3", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
+    dem_contact_steps: float = _p(20.0, None, 5.0, 1e6, "automatic contact stiffness: DEM steps of dem_dt per "
+                                  "contact of two mean stones [-]; 20 (polygons: 50 at dem_dt 4e-5 s, the same "
+                                  "stiffness)")
     max_dt: float = _p(0.01, "time", 0.0, 1.0, "largest fluid time step [s]", "(]")
     initial_dt: float = _p(1e-3, "time", 0.0, 1.0, "first fluid time step from rest [s]; usual 1e-3", "(]")
     max_dt_growth: float = _p(1.2, None, 1.0, 10.0, "growth limit of the fluid step, dt <= factor x last dt [-]; "
@@ -519,6 +544,9 @@ class Scene:
         if g.dx >= f.length / 4 or g.dz >= f.height / 4:
             raise ValueError(f"grid.dx = {g.dx:.4g} m / grid.dz = {g.dz:.4g} m is too coarse: the flume needs at "
                              f"least 4 cells each way (length {f.length:.4g} m, height {f.height:.4g} m)")
+        if s.shape == "polygon" and self.numerics.porosity_method == "lookup":
+            raise ValueError("numerics.porosity_method = 'lookup' (the paper's table of disc areas) is for disc "
+                             "stones; stones.shape = 'polygon' needs porosity_method = 'exact'")
         if g.bed_layer_height >= f.height / 2:
             raise ValueError(f"grid.bed_layer_height = {g.bed_layer_height:.4g} m is outside the allowed range "
                              f"[0, {f.height / 2:.4g}) m (half the domain height)")
