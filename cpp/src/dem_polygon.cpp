@@ -87,6 +87,7 @@ void DEMSystem::update_polygon_properties() {
   poly_normal_.assign(poly_vertex.size(), 0.0);
   poly_world_.assign(poly_vertex.size(), 0.0);
   poly_world_normal_.assign(poly_vertex.size(), 0.0);
+  poly_world_stamp_.assign(un, -1);
   for (int i = 0; i < n_; ++i) {
     const int o = poly_offset[i], c = poly_offset[i + 1] - o;
     const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], c);
@@ -123,18 +124,52 @@ double DEMSystem::polygon_stable_dt() const {
   return kPi / (10.0 * w);
 }
 
-// world-frame vertices and edge normals of the active stones (once per force evaluation)
-void DEMSystem::polygon_world() {
-  for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i]) continue;
-    const int o = poly_offset[i], c = poly_offset[i + 1] - o;
-    polygon_to_world(&poly_vertex[2 * o], c, disc_pos[2 * i], disc_pos[2 * i + 1], disc_angle[i], &poly_world_[2 * o]);
-    polygon_to_world(&poly_normal_[2 * o], c, 0.0, 0.0, disc_angle[i], &poly_world_normal_[2 * o]);
+// world-frame vertices and edge normals of stone i, computed once per force evaluation and only for
+// the stones whose bounding disc touches another's or a wall (free-flying stones cost nothing)
+void DEMSystem::polygon_world(int i) {
+  if (poly_world_stamp_[i] == poly_eval_) return;
+  poly_world_stamp_[i] = poly_eval_;
+  const int o = poly_offset[i], n = poly_offset[i + 1] - o;
+  const double c = std::cos(disc_angle[i]), s = std::sin(disc_angle[i]);
+  polygon_to_world(&poly_vertex[2 * o], n, disc_pos[2 * i], disc_pos[2 * i + 1], c, s, &poly_world_[2 * o]);
+  polygon_to_world(&poly_normal_[2 * o], n, 0.0, 0.0, c, s, &poly_world_normal_[2 * o]);
+}
+
+// the reference face (flip, edge) of pair (i, j), centre offset (dx, dz), and whether the two overlap.
+// The cache answers when it can prove the full separating-axis test would give the same: a cached
+// separating axis that still separates; or a cached reference axis that led every other by `margin`,
+// while no separation can have changed by more than
+//   b = |d - d0| + 2 (|theta_i - theta_i0| + |theta_j - theta_j0|) (R_i + R_j)
+// (a vertex moves relative to the other body's frame by at most that), with 2 b < margin. Otherwise the
+// full test runs and refreshes the cache. Either way the same axis and the same arithmetic: bit-identical.
+bool DEMSystem::polygon_reference(SatCache& sc, int i, int j, double dx, double dz, int& flip, int& edge) {
+  const int oi = poly_offset[i], oj = poly_offset[j], ni = poly_offset[i + 1] - oi, nj = poly_offset[j + 1] - oj;
+  const double *va = &poly_world_[2 * oi], *ua = &poly_world_normal_[2 * oi];
+  const double *vb = &poly_world_[2 * oj], *ub = &poly_world_normal_[2 * oj];
+  if (sc.flip >= 0) {
+    const double s = sc.flip ? polygon_axis_separation(vb, ub, sc.edge, va, ni)
+                             : polygon_axis_separation(va, ua, sc.edge, vb, nj);
+    if (sc.margin <= 0.0 && s > 0.0) return false;  // still apart
+    if (sc.margin > 0.0) {
+      const double reach = disc_radius[i] + disc_radius[j];
+      const double b = std::hypot(dx - sc.dx, dz - sc.dz) +
+                       2.0 * (std::fabs(disc_angle[i] - sc.ai) + std::fabs(disc_angle[j] - sc.aj)) * reach;
+      if (2.0 * b < sc.margin - 1e-12 * reach) {
+        flip = sc.flip;
+        edge = sc.edge;
+        return s < 0.0;
+      }
+    }
   }
+  const SatResult r = polygon_sat(va, ua, ni, vb, ub, nj);
+  sc = SatCache{r.flip, r.edge, r.value < 0.0 ? r.margin : 0.0, dx, dz, disc_angle[i], disc_angle[j]};
+  flip = r.flip;
+  edge = r.edge;
+  return r.value < 0.0;
 }
 
 void DEMSystem::polygon_contact_forces(double dt) {
-  polygon_world();
+  ++poly_eval_;  // the world geometry of the last evaluation is stale
   const DEMParams& p = params_;
   const bool friction = p.flags & kDEMFriction;
   const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
@@ -142,18 +177,30 @@ void DEMSystem::polygon_contact_forces(double dt) {
   const double kt = friction ? kt_ : 0.0;
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
-  for (Pair& c : pairs_) {
+  if (poly_sat_builds_ != nbuilds_ || poly_sat_cache_.size() != pairs_.size()) {
+    poly_sat_cache_.assign(pairs_.size(), SatCache{});  // a new list: new pairs
+    poly_sat_builds_ = nbuilds_;
+  }
+  for (std::size_t pc = 0; pc < pairs_.size(); ++pc) {
+    Pair& c = pairs_[pc];
+    SatCache& cache = poly_sat_cache_[pc];
     const int i = c.i, j = c.j;
     const double xi0 = disc_pos[2 * i], zi0 = disc_pos[2 * i + 1], xj0 = disc_pos[2 * j], zj0 = disc_pos[2 * j + 1];
     const double dx = xj0 - xi0, dz = zj0 - zi0, rs = disc_radius[i] + disc_radius[j];
     if (dx * dx + dz * dz >= rs * rs) {  // bounding discs apart
       c.poly = PolygonHistory{};
+      cache.flip = -1;
       continue;
     }
+    polygon_world(i);
+    polygon_world(j);
     const int oi = poly_offset[i], oj = poly_offset[j];
+    int flip = 0, edge = 0;
     const ContactManifold m =
-        collide_polygons(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi,
-                         &poly_world_[2 * oj], &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj);
+        polygon_reference(cache, i, j, dx, dz, flip, edge)
+            ? polygon_manifold(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi,
+                               &poly_world_[2 * oj], &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj, flip, edge)
+            : ContactManifold{};
     PolygonHistory next;
     if (m.count > 0) ++ncontact;
     const double nx = m.normal[0], nz = m.normal[1];
@@ -208,6 +255,7 @@ void DEMSystem::polygon_wall_forces(double dt) {
       const double x0 = disc_pos[2 * i], z0 = disc_pos[2 * i + 1];
       const double s = (x0 - wall.point[0]) * wx + (z0 - wall.point[1]) * wz;
       const int o = poly_offset[i];
+      if (s < disc_radius[i]) polygon_world(i);
       const ContactManifold m =
           s >= disc_radius[i] ? ContactManifold{}
                               : collide_polygon_wall(&poly_world_[2 * o], &poly_world_normal_[2 * o],

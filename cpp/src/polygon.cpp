@@ -182,7 +182,10 @@ double polygon_width_across(const double* v, int n, double angle, double ux, dou
 }
 
 void polygon_to_world(const double* v, int n, double x, double z, double angle, double* out) {
-  const double c = std::cos(angle), s = std::sin(angle);
+  polygon_to_world(v, n, x, z, std::cos(angle), std::sin(angle), out);
+}
+
+void polygon_to_world(const double* v, int n, double x, double z, double c, double s, double* out) {
   for (int k = 0; k < n; ++k) {
     const double bx = v[2 * k], bz = v[2 * k + 1];
     out[2 * k] = x + c * bx - s * bz;

@@ -183,3 +183,36 @@ TEST(PolygonContact, PolygonOnAWall) {
   ASSERT_EQ(c.count, 1);
   EXPECT_NEAR(c.point[0].depth, -lowest, 1e-14);
 }
+
+TEST(PolygonContact, SeparationMatchesTheSlowReference) {
+  // slow obvious reference: every edge normal of each polygon against every vertex of the other
+  auto slow = [](const std::vector<double>& a, const std::vector<double>& b) {
+    const auto ua = normals(a);
+    double best = -INFINITY;
+    for (std::size_t k = 0; k < a.size() / 2; ++k) {
+      double s = INFINITY;
+      for (std::size_t j = 0; j < b.size() / 2; ++j)
+        s = std::min(s, ua[2 * k] * (b[2 * j] - a[2 * k]) + ua[2 * k + 1] * (b[2 * j + 1] - a[2 * k + 1]));
+      best = std::max(best, s);
+    }
+    return best;
+  };
+  std::mt19937_64 rng(9);
+  PolygonSpec spec;
+  int overlapping = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const auto pa = random_convex_polygon(rng, spec, 0.05), pb = random_convex_polygon(rng, spec, 0.05);
+    std::vector<double> a(pa.size()), b(pb.size());
+    polygon_to_world(pa.data(), static_cast<int>(pa.size() / 2), 1.0, 0.2, 6.3 * rng_uniform01(rng), a.data());
+    polygon_to_world(pb.data(), static_cast<int>(pb.size() / 2), 1.0 + 0.06 * rng_uniform01(rng),
+                     0.2 + 0.06 * rng_uniform01(rng), 6.3 * rng_uniform01(rng), b.data());
+    const auto ua = normals(a), ub = normals(b);
+    const double fast = polygon_separation(a.data(), ua.data(), static_cast<int>(a.size() / 2), b.data(), ub.data(),
+                                           static_cast<int>(b.size() / 2));
+    const double ref = std::max(slow(a, b), slow(b, a));
+    ASSERT_EQ(fast > 0.0, ref > 0.0) << trial;
+    overlapping += ref < 0.0;
+    EXPECT_EQ(fast, ref) << trial;
+  }
+  EXPECT_GT(overlapping, 200);
+}

@@ -96,6 +96,8 @@ double polygon_width_across(const double* v, int n, double angle, double ux, dou
 
 // the polygon's vertices in the world frame: centre (x, z) [m], angle [rad] counter-clockwise
 void polygon_to_world(const double* v, int n, double x, double z, double angle, double* out);
+// the same with the angle's cosine c and sine s given
+void polygon_to_world(const double* v, int n, double x, double z, double c, double s, double* out);
 
 // Sutherland-Hodgman clip of the convex polygon in (n vertices, x, z pairs) to the half-plane
 // s * coordinate[axis] <= s * c (s = +1: keep below c; s = -1: keep above c); writes to out (room

@@ -30,6 +30,8 @@
 // our own code.
 #pragma once
 
+#include <cmath>
+
 namespace vofdem {
 
 struct ContactManifold {
@@ -47,9 +49,23 @@ struct ContactManifold {
 void polygon_edge_normals(const double* v, int n, double* out);
 
 // manifold of two convex CCW polygons given in the world frame: na vertices va with edge normals ua,
-// nb vertices vb with normals ub; normal from A to B
+// nb vertices vb with normals ub; normal from A to B. It is polygon_sat, then polygon_manifold.
 ContactManifold collide_polygons(const double* va, const double* ua, int na, const double* vb, const double* ub,
                                  int nb);
+
+// the separating-axis test of two polygons (arguments as collide_polygons)
+struct SatResult {
+  double value = -INFINITY;  // the largest separation over both polygons' edge normals [m] (>= 0: apart)
+  int flip = 0;              // 0: that axis is an edge normal of A (the reference face), 1: of B
+  int edge = 0;              // its edge
+  double margin = 0.0;       // value minus the largest separation of every other axis [m]; 0 if apart
+};
+SatResult polygon_sat(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb);
+// the separation along polygon 1's edge normal `edge` alone [m] (the same arithmetic as polygon_sat)
+double polygon_axis_separation(const double* v1, const double* u1, int edge, const double* v2, int n2);
+// the manifold clipped from the reference face `edge` of A (flip 0) or of B (flip 1)
+ContactManifold polygon_manifold(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb,
+                                 int flip, int edge);
 
 // the larger of the two separations s_A, s_B [m]: > 0 apart (by at least that much along some axis),
 // < 0 overlapping (by that depth along the best axis)
