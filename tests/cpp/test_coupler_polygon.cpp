@@ -9,6 +9,7 @@
 #include <string>
 
 #include "coupler_scenes.h"
+#include "vofdem/fluid_forces.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -46,6 +47,26 @@ Scene box_tank(double width, double height, double h, double level, const std::v
 
 std::map<std::string, std::vector<double>> diff_free(const Scene& s) { return s.sim->export_state(); }
 }  // namespace
+
+TEST(CouplerPolygon, DragOfAGivenProjectedAreaByHand) {
+  // F = w 1/2 rho A_p (0.4 |v| + 24 nu / d) v with v = U - u_p: A_p = 1.2e-3 m^2, d = 0.04 m, w = 0.5
+  StoneFlowSample s;
+  s.area = 1.0;
+  s.wet = 0.5;
+  s.u = 0.3;
+  s.w_vel = -0.4;
+  const double up = -0.1, wp = 0.1, rho = 1000.0, nu = 1e-6;
+  const DragForce f = stone_drag_area(s, up, wp, 0.04, 1.2e-3, rho, nu, DragLaw::kPaper);
+  const double vx = 0.4, vz = -0.5, speed = std::hypot(vx, vz);
+  const double coef = 0.5 * 0.5 * rho * 1.2e-3 * (0.4 * speed + 24.0 * nu / 0.04);
+  EXPECT_NEAR(f.fx, coef * vx, 1e-15);
+  EXPECT_NEAR(f.fz, coef * vz, 1e-15);
+  // the sphere's area pi d^2 / 4 gives the disc drag exactly
+  const DragForce g = stone_drag_area(s, up, wp, 0.04, 0.25 * kPi * 0.04 * 0.04, rho, nu, DragLaw::kPaper);
+  const DragForce h = stone_drag(s, up, wp, 0.04, rho, nu, DragLaw::kPaper);
+  EXPECT_EQ(g.fx, h.fx);
+  EXPECT_EQ(g.fz, h.fz);
+}
 
 TEST(CouplerPolygon, FlatStoneFallsAtTheTerminalVelocityOfItsProjectedArea) {
   // a 6 x 3 cm box falling flat: A_p = (pi/2) r_A W with W = 6 cm across the vertical fall,
