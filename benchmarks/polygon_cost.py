@@ -20,9 +20,12 @@ import math
 import os
 import time
 
-import numpy as np
+os.environ.setdefault("OMP_NUM_THREADS", "1")  # no idle BLAS threads in the process's CPU time
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import vofdem
+import numpy as np  # noqa: E402
+
+import vofdem  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 D_MEAN, SPREAD, RHO, PITCH, DT, STEPS_PER_CONTACT = 0.048, 0.10, 2650.0, 0.085, 4e-5, 50.0

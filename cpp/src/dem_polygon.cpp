@@ -30,6 +30,7 @@ namespace vofdem {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kSqrtHalf = 0.70710678118654752440;  // a point's share of the pair's mass: sqrt(1 / N), N = 2
 
 // checks the polygon arrays of n stones; throws std::invalid_argument naming the stone
 void check_polygons(const std::vector<double>& vertex, const std::vector<int>& offset, int n) {
@@ -152,7 +153,8 @@ bool DEMSystem::polygon_reference(SatCache& sc, int i, int j, double dx, double 
     if (sc.margin <= 0.0 && s > 0.0) return false;  // still apart
     if (sc.margin > 0.0) {
       const double reach = disc_radius[i] + disc_radius[j];
-      const double b = std::hypot(dx - sc.dx, dz - sc.dz) +
+      const double ex = dx - sc.dx, ez = dz - sc.dz;  // sqrt, not hypot: no overflow here, and 5x cheaper
+      const double b = std::sqrt(ex * ex + ez * ez) +
                        2.0 * (std::fabs(disc_angle[i] - sc.ai) + std::fabs(disc_angle[j] - sc.aj)) * reach;
       if (2.0 * b < sc.margin - 1e-12 * reach) {
         flip = sc.flip;
@@ -204,7 +206,7 @@ void DEMSystem::polygon_contact_forces(double dt) {
     PolygonHistory next;
     if (m.count > 0) ++ncontact;
     const double nx = m.normal[0], nz = m.normal[1];
-    const double cn = m.count > 0 ? damp * c.sqrt_m / std::sqrt(static_cast<double>(m.count)) : 0.0;
+    const double cn = m.count == 2 ? damp * c.sqrt_m * kSqrtHalf : damp * c.sqrt_m;
     for (int k = 0; k < m.count; ++k) {
       const ContactManifold::Point& q = m.point[k];
       const double rix = q.x - xi0, riz = q.z - zi0, rjx = q.x - xj0, rjz = q.z - zj0;
@@ -263,7 +265,7 @@ void DEMSystem::polygon_wall_forces(double dt) {
       PolygonHistory next;
       if (m.count > 0) ++ncontact;
       const double nx = m.normal[0], nz = m.normal[1];
-      const double cn = m.count > 0 ? damp * std::sqrt(mass_eff_[i] / m.count) : 0.0;
+      const double cn = m.count == 2 ? damp * std::sqrt(mass_eff_[i]) * kSqrtHalf : damp * std::sqrt(mass_eff_[i]);
       for (int k = 0; k < m.count; ++k) {
         const ContactManifold::Point& q = m.point[k];
         const double rx = q.x - x0, rz = q.z - z0;
