@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
-"""Dry angle of repose of a heap of 300 stones poured onto a rough base: polygons against discs.
+"""Dry angle of repose of a heap of 300 stones collapsed from a column onto a rough base: polygons
+against discs.
 
-The base is a row of fixed stones of the same kind lying on the bed (polygons on their longest edge),
-1.6 m long. 300 free stones (nominal diameter 4.8 cm +- 10 %, density 2650, friction 0.577 between
-stones and 0.577 on the bed, restitution 0 as in the scenes) start on a narrow lattice column (4 wide)
-above the middle of the base and fall onto it as a stream, which builds the heap. When every stone is
-slower than 1 mm/s (or after `--time` s) the heap's surface is taken as the highest stone point in bins
-of 2 cm, and a straight line is fitted to each flank between 20 % and 80 % of the heap's height; the
-angle of repose is the mean of the two flanks' angles. Polygons: random convex 5-8-gons of aspect
+The protocol of tests/test_dem.py (discs): the base is a row of fixed stones of the same kind lying on
+the bed (polygons on their longest edge) from x = -2.5 to 2.5 m; 300 free stones (nominal diameter
+4.8 cm +- 10 %, density 2650, friction 0.577 between stones, 0.176 on the bed, restitution 0 as in the
+scenes) start on a lattice column 20 stones wide just above the base (pitch 1.12 d for discs, 1.12 d x
+1.47 for polygons: their bounding discs must not overlap) and collapse into a heap. When every stone
+is slower than 1 mm/s (or after `--time` s) the heap's surface is taken as the highest stone point in
+bins of one diameter, and a straight line is fitted to each flank between 10 % of the heap's height
+plus one diameter and 90 %; the angle of repose is the mean of the two flanks' angles. Polygons: random convex 5-8-gons of aspect
 ratio 1.5 at random orientations, DEM step 4e-5 s with 50 steps per contact (the discs' stiffness);
 discs: the same with their own shape. Uncalibrated shape parameters: a first measurement, not a fit.
 
-usage: PYTHONPATH=python python3 benchmarks/polygon_repose.py [--seeds 0 1 2] [--n 300]
+usage: PYTHONPATH=python python3 benchmarks/polygon_repose.py [--seeds 0 1 2] [--n 300] [--aspect-ratio 1.5]
+       [--vertices 5 8] [--shapes disc polygon] [--out FILE]
 Writes benchmarks/results/polygon_repose.md.
 """
 import argparse
@@ -25,7 +28,8 @@ import vofdem
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 D, SPREAD, RHO, MU = 0.048, 0.10, 2650.0, 0.577
-BASE = 1.6
+X0, X1 = -2.5, 2.5
+SHAPE = {}  # polygon shape parameters of vofdem.random_polygons (command line)
 
 
 def rest_angle(v):
@@ -42,40 +46,36 @@ def rotate(v, a):
 
 def build(shape, n, seed):
     rng = np.random.default_rng(seed)
-    # the base: touching stones lying on the bed
-    n_base = int(BASE / D) + 4
-    d_base = D * rng.uniform(1 - SPREAD, 1 + SPREAD, n_base)
-    d_free = D * rng.uniform(1 - SPREAD, 1 + SPREAD, n)
-    d = np.concatenate([d_base, d_free])
+    n_base = int((X1 - X0) / (0.9 * D)) + 2
+    d = D * rng.uniform(1 - SPREAD, 1 + SPREAD, n_base + n)
     pos, angle, fixed = [], [], []
     vertex = offset = None
     if shape == "polygon":
-        vertex, offset = vofdem.random_polygons(d, seed=seed)
-    x = 0.0
+        vertex, offset = vofdem.random_polygons(d, seed=seed, **SHAPE)
+    # the base: touching stones lying on the bed
+    x = X0
     for i in range(n_base):
         if shape == "polygon":
             v = vertex[offset[i]:offset[i + 1]]
             a = rest_angle(v)
             w = rotate(v, a)
-            x_c, z_c = x - w[:, 0].min(), -w[:, 1].min()
-            x = x_c + w[:, 0].max()
+            x_c, z_c, x_next = x - w[:, 0].min(), -w[:, 1].min(), x - w[:, 0].min() + w[:, 0].max()
         else:
-            a, x_c, z_c = 0.0, x + 0.5 * d[i], 0.5 * d[i]
-            x = x_c + 0.5 * d[i]
-        if x > BASE:
+            a, x_c, z_c, x_next = 0.0, x + 0.5 * d[i], 0.5 * d[i], x + d[i]
+        if x_next > X1:
             break
         pos.append((x_c, z_c)), angle.append(a), fixed.append(1)
+        x = x_next
     nb = len(pos)
-    pitch, cols = 0.085, 4
+    pitch, cols = 1.12 * D * (1.47 if shape == "polygon" else 1.0), 20
     for k in range(n):
-        pos.append((0.5 * BASE + (k % cols - 0.5 * (cols - 1)) * pitch + rng.uniform(-0.002, 0.002),
-                    0.15 + (k // cols) * pitch))
+        pos.append(((k % cols - 0.5 * (cols - 1)) * pitch + 0.002 * rng.standard_normal(),
+                    1.6 * D * (1.47 if shape == "polygon" else 1.0) + (k // cols) * pitch))
         angle.append(rng.uniform(0, 2 * math.pi)), fixed.append(0)
     keep = list(range(nb)) + list(range(n_base, n_base + n))
     p = vofdem.DEMParams()
     p.friction_stone = MU
-    p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=MU)]
-    p.domain_min, p.domain_max = [-1.0, -0.5], [BASE + 1.0, 20.0]
+    p.add_flume(X0, X1, 0.0, 0.176)
     if shape == "polygon":
         p.dt, p.contact_steps = 4e-5, 50.0
     s = vofdem.DEMSystem(p, np.array(pos), 0.5 * d[keep], np.array([RHO]), fixed)
@@ -87,17 +87,17 @@ def build(shape, n, seed):
     return s, nb
 
 
-def surface(s, shape, bin_w=0.02):
-    """(x bin centres, highest stone point in each bin) of the free and fixed stones."""
+def surface(s, shape, bin_w=D):
+    """(x bin centres, highest point of a free stone in each bin)."""
     if shape == "polygon":
         v, off = np.asarray(s.poly_vertex), np.asarray(s.poly_offset)
         pts = np.concatenate([rotate(v[off[i]:off[i + 1]], s.disc_angle[i]) + s.disc_pos[i] for i in range(s.n)
-                              if s.disc_active[i]])
+                              if s.disc_active[i] and not s.disc_fixed[i]])
     else:
         t = np.linspace(0, 2 * math.pi, 24, endpoint=False)
         pts = np.concatenate([s.disc_pos[i] + s.disc_radius[i] * np.stack([np.cos(t), np.sin(t)], 1)
-                              for i in range(s.n) if s.disc_active[i]])
-    edges = np.arange(-0.5, BASE + 0.5 + bin_w, bin_w)
+                              for i in range(s.n) if s.disc_active[i] and not s.disc_fixed[i]])
+    edges = np.arange(X0, X1 + bin_w, bin_w)
     idx = np.digitize(pts[:, 0], edges) - 1
     top = np.full(edges.size - 1, np.nan)
     for b in range(top.size):
@@ -107,19 +107,17 @@ def surface(s, shape, bin_w=0.02):
     return 0.5 * (edges[1:] + edges[:-1]), top
 
 
-def flank_angles(x, top, base_top):
+def flank_angles(x, top):
+    """Angles [deg] of the two flanks: line fits between 10 % of the height plus one diameter and 90 %."""
     ok = np.isfinite(top)
     x, top = x[ok], top[ok]
-    h = top - base_top
-    peak = int(np.argmax(h))
-    hmax = h[peak]
+    zt = top.max()
     out = []
-    for side in (slice(0, peak + 1), slice(peak, None)):
-        xs, hs = x[side], h[side]
-        m = (hs > 0.2 * hmax) & (hs < 0.8 * hmax)
-        slope = np.polyfit(xs[m], hs[m], 1)[0] if m.sum() >= 3 else float("nan")
+    for side in (-1, 1):
+        m = (np.sign(x) == side) & (top > 0.1 * zt + D) & (top < 0.9 * zt)
+        slope = np.polyfit(x[m], top[m], 1)[0] if m.sum() >= 3 else float("nan")
         out.append(math.degrees(math.atan(abs(slope))))
-    return out, hmax
+    return out, zt
 
 
 def run(shape, n, seed, t_max):
@@ -131,13 +129,18 @@ def run(shape, n, seed, t_max):
         t += 0.1
         free = np.asarray(s.disc_fixed) == 0
         v = np.hypot(s.disc_vel[free, 0], s.disc_vel[free, 1])
-        if t > 1.0 and v.max() < 1e-3:
+        if t > 0.5 and v.max() < 1e-3:
             break
-    base_top = float(np.median([s.disc_pos[i, 1] + s.disc_radius[i] for i in range(nb)]))
     x, top = surface(s, shape)
-    (left, right), h = flank_angles(x, top, base_top)
+    (left, right), h = flank_angles(x, top)
     return {"left": left, "right": right, "height": h, "time": t, "cpu": time.process_time() - t0,
-            "vmax": float(v.max()), "lost": int(s.removed_count)}
+            "vmax": float(v.max()), "lost": int(off_base(s, nb))}
+
+
+def off_base(s, nb):
+    """Free stones that ran off the base's ends."""
+    x = s.disc_pos[nb:, 0]
+    return np.sum((x < X0) | (x > X1))
 
 
 def main():
@@ -146,21 +149,27 @@ def main():
     ap.add_argument("--n", type=int, default=300)
     ap.add_argument("--time", type=float, default=8.0, help="longest settling time [s simulated]")
     ap.add_argument("--out", default=os.path.join(HERE, "results", "polygon_repose.md"))
+    ap.add_argument("--aspect-ratio", type=float, default=1.5)
+    ap.add_argument("--vertices", type=int, nargs=2, default=[5, 8], metavar=("MIN", "MAX"))
+    ap.add_argument("--shapes", nargs="+", default=["disc", "polygon"])
     args = ap.parse_args()
+    SHAPE.update(aspect_ratio=args.aspect_ratio, vertices_min=args.vertices[0], vertices_max=args.vertices[1])
     lines = ["# Dry angle of repose: polygons against discs", "",
-             f"{args.n} stones poured onto a rough base of fixed stones (see the script's docstring), friction 0.577, "
-             "restitution 0; flanks fitted between 20 % and 80 % of the heap's height. Written by "
+             f"{args.n} stones collapsed from a column onto a rough base of fixed stones (the protocol of "
+             "tests/test_dem.py; see the script's docstring), friction 0.577, restitution 0; flanks fitted between "
+             f"10 % of the heap's height + d and 90 %. Polygons: {args.vertices[0]}-{args.vertices[1]} vertices, "
+             f"aspect ratio {args.aspect_ratio}. Written by "
              "`benchmarks/polygon_repose.py`.", "",
              "| shape | seed | left flank [deg] | right flank [deg] | mean [deg] | heap height [m] | settled at [s] "
-             "| max speed [m/s] | CPU [s] |", "|---|---|---|---|---|---|---|---|---|"]
+             "| max speed [m/s] | stones off the base | CPU [s] |", "|---|---|---|---|---|---|---|---|---|---|"]
     means = {}
-    for shape in ("disc", "polygon"):
+    for shape in args.shapes:
         for seed in args.seeds:
             r = run(shape, args.n, seed, args.time)
             mean = 0.5 * (r["left"] + r["right"])
             means.setdefault(shape, []).append(mean)
             lines.append(f"| {shape} | {seed} | {r['left']:.1f} | {r['right']:.1f} | {mean:.1f} | {r['height']:.3f} | "
-                         f"{r['time']:.1f} | {r['vmax']:.2g} | {r['cpu']:.0f} |")
+                         f"{r['time']:.1f} | {r['vmax']:.2g} | {r['lost']} | {r['cpu']:.0f} |")
             print(lines[-1], flush=True)
     lines.append("")
     for shape, m in means.items():
