@@ -116,3 +116,17 @@ def test_short_run_of_the_polygon_scene_writes_polygons(tmp_path):
     # the XDMF also references the polygons: topology, world vertices, active and fixed per snapshot
     assert check_xdmf(res.xmf_path) == T * 7 + T * 10 + T * 4
     assert (tmp_path / "figures" / "porosity_initial.png").is_file()
+
+
+def test_polygon_output_helpers_by_hand():
+    from vofdem import polygon_output as po
+
+    vertex = np.array([[-1.0, -0.5], [1.0, -0.5], [1.0, 0.5], [-1.0, 0.5], [0.0, -1.0], [1.0, 1.0], [-1.0, 0.0]])
+    offset = np.array([0, 4, 7])
+    w = po.world_polygon_vertices(vertex, offset, [[10.0, 0.0], [0.0, 5.0]], [math.pi / 2, 0.0])
+    # the rectangle turned a quarter counter-clockwise about (10, 0); the triangle moved up by 5
+    assert np.allclose(w[:4], [[10.5, -1.0], [10.5, 1.0], [9.5, 1.0], [9.5, -1.0]])
+    assert np.allclose(w[4:], vertex[4:] + [0.0, 5.0])
+    assert po.topology(offset).tolist() == [3, 4, 0, 1, 2, 3, 3, 3, 4, 5, 6]
+    with pytest.raises(ValueError, match="offsets"):
+        po.check_polygons(vertex, np.array([0, 4]), 2)

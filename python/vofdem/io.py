@@ -17,12 +17,7 @@ Layout of ``run.h5`` (SI units; T snapshots, a grid of nx x nz cells, n stones):
     /stones/pos, vel    (T,n,2)   [m], [m/s]
     /stones/active      (T,n)     uint8   0 once a stone has left the domain
     /stones/force_drag, force_pressure (T,n,2) [N]   fluid forces on each stone
-    polygon stones only (stones.shape = 'polygon'; diameter is then the nominal, equal-area one):
-    /stones/poly_vertex (m,2)     [m]     body-frame vertices of every stone (constant), counter-clockwise
-    /stones/poly_offset (n+1,)            stone i owns poly_vertex[poly_offset[i]:poly_offset[i+1]]
-    /stones/angle       (T,n)     [rad]   orientation (body frame to world, counter-clockwise)
-    /stones/poly_world  (T,m,2)   [m]     world-frame vertices (for ParaView: the XDMF draws them as polygons)
-    /stones/poly_topology (n + m + n,)    XDMF mixed topology: 3 (polygon), vertex count, indices, per stone
+    /stones/poly_*, /stones/angle        polygon stones only: see polygon_output.py
     /profile/names, seconds, calls        the solver's per-stage cost (written at the end)
 
 The file is opened in HDF5's single-writer/multiple-reader mode and flushed after every snapshot, so a
@@ -39,6 +34,8 @@ from typing import Dict, Optional, Sequence
 
 import h5py
 import numpy as np
+
+from . import polygon_output
 
 FIELD_NAMES = ("F", "p", "porosity", "u", "w")
 STONE_VECTORS = ("pos", "vel", "force_drag", "force_pressure")
@@ -89,34 +86,9 @@ class RunWriter:
                              chunks=(16, nc, 2))
         f.create_dataset("stones/active", (0, self.n), maxshape=(None, self.n), dtype="u1", chunks=(16, nc))
         if self.polygons is not None:
-            self._create_polygon_datasets(nc)
+            polygon_output.create_datasets(f, *self.polygons, self.n, nc)
         f.swmr_mode = True
         self.write_xdmf()
-
-    def _create_polygon_datasets(self, nc: int) -> None:
-        f, (vertex, offset) = self.file, self.polygons
-        if offset.size != self.n + 1 or offset[-1] != len(vertex):
-            raise ValueError(f"polygons: {offset.size} offsets for {self.n} stones and {len(vertex)} vertices "
-                             "(expected n + 1 offsets ending at the vertex count)")
-        f["stones/poly_vertex"] = vertex
-        f["stones/poly_offset"] = offset
-        topo = []
-        for i in range(self.n):
-            topo += [3, int(offset[i + 1] - offset[i])] + list(range(int(offset[i]), int(offset[i + 1])))
-        f["stones/poly_topology"] = np.asarray(topo, np.int64)
-        m = len(vertex)
-        f.create_dataset("stones/angle", (0, self.n), maxshape=(None, self.n), dtype="f8", chunks=(16, nc))
-        f.create_dataset("stones/poly_world", (0, m, 2), maxshape=(None, m, 2), dtype="f8", chunks=(4, max(1, m), 2))
-
-    def _write_polygons(self, k: int, stones: Dict) -> None:
-        f, (vertex, offset) = self.file, self.polygons
-        angle = np.asarray(stones["angle"], float).reshape(self.n)
-        ds = f["stones/angle"]
-        ds.resize((k + 1, self.n))
-        ds[k] = angle
-        ds = f["stones/poly_world"]
-        ds.resize((k + 1, len(vertex), 2))
-        ds[k] = world_polygon_vertices(vertex, offset, np.asarray(stones["pos"]).reshape(self.n, 2), angle)
 
     def __enter__(self):
         return self
@@ -149,7 +121,7 @@ class RunWriter:
         if self.n:
             ds[k] = np.asarray(stones["active"]).astype(np.uint8)
         if self.polygons is not None:
-            self._write_polygons(k, stones)
+            polygon_output.write_snapshot(f, k, *self.polygons, stones["pos"], stones["angle"])
         f.flush()
         self.count += 1
         self._times.append(float(t))
@@ -178,18 +150,6 @@ class RunWriter:
                 f["profile/calls"] = np.asarray(calls, np.int64)
             for k, v in (extra_attrs or {}).items():
                 f.attrs[k] = v
-
-
-def world_polygon_vertices(vertex, offset, pos, angle) -> np.ndarray:
-    """World-frame vertices (m, 2) [m] of polygon stones: body vertices (m, 2), offsets (n + 1), centres
-    (n, 2) [m], angles (n,) [rad] counter-clockwise."""
-    vertex = np.asarray(vertex, float).reshape(-1, 2)
-    counts = np.diff(np.asarray(offset))
-    owner = np.repeat(np.arange(counts.size), counts)
-    c, s = np.cos(np.asarray(angle, float))[owner], np.sin(np.asarray(angle, float))[owner]
-    p = np.asarray(pos, float).reshape(-1, 2)[owner]
-    return np.stack([p[:, 0] + c * vertex[:, 0] - s * vertex[:, 1], p[:, 1] + s * vertex[:, 0] + c * vertex[:, 1]],
-                    axis=1)
 
 
 def xdmf_text(h5name: str, nx: int, nz: int, n: int, times: Sequence[float], fields: bool = True,
@@ -283,10 +243,7 @@ class RunData:
             self.force_drag = f["stones/force_drag"][:T]
             self.force_pressure = f["stones/force_pressure"][:T]
             self.active = f["stones/active"][:T].astype(bool)
-            # polygon stones (None for discs)
-            self.poly_vertex = f["stones/poly_vertex"][()] if "stones/poly_vertex" in f else None
-            self.poly_offset = f["stones/poly_offset"][()] if "stones/poly_offset" in f else None
-            self.angle = f["stones/angle"][:T] if "stones/angle" in f else None
+            self.poly_vertex, self.poly_offset, self.angle = polygon_output.read(f, T)  # None for discs
             self.has_fields = "fields" in f
             self.profile = None
             if "profile" in f:
@@ -319,8 +276,7 @@ class RunData:
         """Polygon stones: the world outline (v, 2) [m] of every stone at snapshot k; None for discs."""
         if self.poly_vertex is None:
             return None
-        w = world_polygon_vertices(self.poly_vertex, self.poly_offset, self.pos[k], self.angle[k])
-        return [w[a:b] for a, b in zip(self.poly_offset[:-1], self.poly_offset[1:])]
+        return polygon_output.outlines(self.poly_vertex, self.poly_offset, self.pos[k], self.angle[k])
 
     def index_at(self, t: float) -> int:
         """Snapshot nearest to time t [s]."""

@@ -21,6 +21,7 @@ import numpy as np
 
 from .analysis import FailureAnalysis, analyse
 from .io import RunData, RunWriter, cell_velocities
+from .polygon_output import stone_diameters, stone_polygons
 from .scene import Scene
 
 
@@ -61,20 +62,6 @@ def build_simulation(scene: Scene):
     from .builder import build_simulation as build
 
     return build(scene)
-
-
-def stone_diameters(stones) -> np.ndarray:
-    """Diameters [m] of the stones: 2 r for discs, the nominal (equal-area disc's) diameter for polygons."""
-    if getattr(stones, "shape", "disc") == "polygon":
-        return np.array([stones.nominal_diameter(i) for i in range(stones.n)], float)
-    return 2.0 * np.asarray(stones.disc_radius, float)
-
-
-def stone_polygons(stones):
-    """(body-frame vertices (m, 2) [m], offsets (n + 1)) of polygon stones, copied; None for discs."""
-    if getattr(stones, "shape", "disc") != "polygon":
-        return None
-    return np.array(stones.poly_vertex, float), np.array(stones.poly_offset, np.int64)
 
 
 def grid_faces(grid):
