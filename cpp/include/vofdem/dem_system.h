@@ -159,7 +159,8 @@ class DEMSystem {
   double inertia(int i) const;
   // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
   std::vector<std::array<int, 2>> neighbour_pairs() const;
-  // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
+  // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests; for polygon stones,
+  // pairs whose bounding discs overlap)
   std::vector<std::array<int, 2>> overlapping_pairs_reference() const;
   // pairs that overlap now, from the fast neighbour search
   std::vector<std::array<int, 2>> overlapping_pairs();
