@@ -8,8 +8,9 @@ the bed (polygons on their longest edge) from x = -2.5 to 2.5 m; 300 free stones
 scenes) start on a lattice column 20 stones wide just above the base (pitch 1.12 d for discs, 1.12 d x
 1.47 for polygons: their bounding discs must not overlap) and collapse into a heap. When every stone
 is slower than 1 mm/s (or after `--time` s) the heap's surface is taken as the highest stone point in
-bins of one diameter, and a straight line is fitted to each flank between 10 % of the heap's height
-plus one diameter and 90 %; the angle of repose is the mean of the two flanks' angles. Polygons: random convex 5-8-gons of aspect
+bins of one diameter, and a straight line is fitted to each flank, as it runs continuously down from the
+peak, between 25 % and 85 % of the heap's height; the angle of repose is the mean of the two flanks'
+angles. With --pour the stones are poured two at a time onto the middle of the base instead (a funnel). Polygons: random convex 5-8-gons of aspect
 ratio 1.5 at random orientations, DEM step 4e-5 s with 50 steps per contact (the discs' stiffness);
 discs: the same with their own shape. Uncalibrated shape parameters: a first measurement, not a fit.
 
@@ -108,22 +109,55 @@ def surface(s, shape, bin_w=D):
 
 
 def flank_angles(x, top):
-    """Angles [deg] of the two flanks: line fits between 10 % of the height plus one diameter and 90 %."""
+    """Angles [deg] of the two flanks: line fits to the flank that runs continuously down from the peak,
+    between 25 % and 85 % of the heap's height (the rounded top, the toe and stones strewn on the base
+    beyond the toe left out)."""
     ok = np.isfinite(top)
     x, top = x[ok], top[ok]
-    zt = top.max()
+    peak = int(np.argmax(top))
+    zt = top[peak]
     out = []
-    for side in (-1, 1):
-        m = (np.sign(x) == side) & (top > 0.1 * zt + D) & (top < 0.9 * zt)
-        slope = np.polyfit(x[m], top[m], 1)[0] if m.sum() >= 3 else float("nan")
+    for step in (-1, 1):
+        k, xs, zs = peak, [], []
+        while 0 <= k < x.size and top[k] > 0.2 * zt:  # the flank, down to a fifth of the height
+            if 0.25 * zt < top[k] < 0.85 * zt:
+                xs.append(x[k]), zs.append(top[k])
+            k += step
+        slope = np.polyfit(xs, zs, 1)[0] if len(xs) >= 3 else float("nan")
         out.append(math.degrees(math.atan(abs(slope))))
     return out, zt
 
 
-def run(shape, n, seed, t_max):
+def pour(s, nb, seed, interval=0.05, batch=2):
+    """Pours the free stones instead of collapsing the column: they are held (fixed) off the base and
+    released `batch` at a time every `interval` s, each dropped from 1.5 d above the top of the settled
+    stones at the heap's middle. Returns the simulated time used [s]."""
+    rng = np.random.default_rng(seed + 1000)
+    free = np.arange(nb, s.n)
+    s.disc_pos[free, 0] += X1 + 2.0  # held beside the base, out of reach
+    s.disc_fixed[free] = 1
+    t = 0.0
+    for k in range(0, free.size, batch):
+        # the top of the heap: the settled stones near the middle (those still falling do not count)
+        released = free[:k]
+        speed = np.hypot(s.disc_vel[released, 0], s.disc_vel[released, 1])
+        near = released[(np.abs(s.disc_pos[released, 0]) < 2 * D) & (speed < 0.05)]
+        top = max([s.disc_pos[i, 1] + s.disc_radius[i] for i in near] + [D])
+        for q, i in enumerate(free[k:k + batch]):
+            s.disc_pos[i] = [(q - 0.5 * (batch - 1)) * 1.5 * D + rng.uniform(-0.005, 0.005), top + 1.5 * D]
+            s.disc_vel[i] = [0.0, 0.0]
+            s.disc_omega[i] = 0.0
+            s.disc_fixed[i] = 0
+        s.advance(interval)
+        t += interval
+    return t
+
+
+def run(shape, n, seed, t_max, poured=False):
     s, nb = build(shape, n, seed)
     t0 = time.process_time()
-    t = 0.0
+    t = pour(s, nb, seed) if poured else 0.0
+    t_max += t
     while t < t_max:
         s.advance(0.1)
         t += 0.1
@@ -152,12 +186,13 @@ def main():
     ap.add_argument("--aspect-ratio", type=float, default=1.5)
     ap.add_argument("--vertices", type=int, nargs=2, default=[5, 8], metavar=("MIN", "MAX"))
     ap.add_argument("--shapes", nargs="+", default=["disc", "polygon"])
+    ap.add_argument("--pour", action="store_true", help="pour the stones two at a time instead of collapsing a column")
     args = ap.parse_args()
     SHAPE.update(aspect_ratio=args.aspect_ratio, vertices_min=args.vertices[0], vertices_max=args.vertices[1])
     lines = ["# Dry angle of repose: polygons against discs", "",
-             f"{args.n} stones collapsed from a column onto a rough base of fixed stones (the protocol of "
-             "tests/test_dem.py; see the script's docstring), friction 0.577, restitution 0; flanks fitted between "
-             f"10 % of the heap's height + d and 90 %. Polygons: {args.vertices[0]}-{args.vertices[1]} vertices, "
+             f"{args.n} stones {'poured two at a time onto' if args.pour else 'collapsed from a column onto'} a rough "
+             "base of fixed stones (see the script's docstring), friction 0.577, restitution 0; flanks fitted between "
+             f"25 % and 85 % of the heap's height. Polygons: {args.vertices[0]}-{args.vertices[1]} vertices, "
              f"aspect ratio {args.aspect_ratio}. Written by "
              "`benchmarks/polygon_repose.py`.", "",
              "| shape | seed | left flank [deg] | right flank [deg] | mean [deg] | heap height [m] | settled at [s] "
@@ -165,7 +200,7 @@ def main():
     means = {}
     for shape in args.shapes:
         for seed in args.seeds:
-            r = run(shape, args.n, seed, args.time)
+            r = run(shape, args.n, seed, args.time, args.pour)
             mean = 0.5 * (r["left"] + r["right"])
             means.setdefault(shape, []).append(mean)
             lines.append(f"| {shape} | {seed} | {r['left']:.1f} | {r['right']:.1f} | {mean:.1f} | {r['height']:.3f} | "
