@@ -89,6 +89,7 @@ void DEMSystem::update_polygon_properties() {
   poly_world_.assign(poly_vertex.size(), 0.0);
   poly_world_normal_.assign(poly_vertex.size(), 0.0);
   poly_world_stamp_.assign(un, -1);
+  poly_sat_cache_.clear();  // its axes belong to the old shapes
   for (int i = 0; i < n_; ++i) {
     const int o = poly_offset[i], c = poly_offset[i + 1] - o;
     const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], c);

@@ -225,6 +225,30 @@ TEST(DEMPolygon, StableStepBoundsTheRockingModes) {
   EXPECT_THROW(s.step(2.0 * dt), std::invalid_argument);
 }
 
+TEST(DEMPolygon, SleepingAndRemovalWorkAsForDiscs) {
+  DEMParams p;
+  p.flags |= kDEMSleeping;
+  p.stiffness_normal = 1e5;
+  p.dt = 5e-5;
+  p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.5});
+  p.domain_min = {-1.0, -0.5};
+  p.domain_max = {1.0, 2.0};
+  const double m = box_mass(0.03, 0.015);
+  DEMSystem s = boxes(p, {0.0, 0.015 - m * 9.81 / 2e5, 0.5, 0.5}, 0.03, 0.015);
+  s.disc_vel[2] = 2.0;  // the second box is thrown out of the domain
+  s.advance(0.6);
+  EXPECT_EQ(s.disc_asleep[0], 1);
+  EXPECT_EQ(s.removed_count(), 1);
+  EXPECT_EQ(s.disc_active[1], 0);
+  const double x = s.disc_pos[0];
+  s.advance(0.2);
+  EXPECT_EQ(s.disc_pos[0], x);  // asleep: not integrated
+  s.disc_force_ext[0] = 2.0;     // more than mu M g = 0.75 N
+  s.advance(0.1);
+  EXPECT_EQ(s.disc_asleep[0], 0);
+  EXPECT_GT(s.disc_vel[0], 0.01);
+}
+
 TEST(DEMPolygon, RefusesBadPolygons) {
   DEMSystem s(DEMParams{}, {0.0, 0.0}, {0.03}, {kRho});
   EXPECT_THROW(s.set_polygons({-1, -1, -1, 1, 1, 1, 1, -1}, {0, 4}), std::invalid_argument);  // clockwise
