@@ -174,6 +174,32 @@ TEST(DEMPolygon, BlockOnInclineHoldsBelowTheFrictionAngleAndSlidesAbove) {
   }
 }
 
+TEST(DEMPolygon, HexagonTipsOverAtThirtyDegrees) {
+  // a regular hexagon lying on an edge, friction 0.8 (no sliding below 38.7 degrees): it tips over its
+  // lower vertex when the weight's line passes it, tan(theta) = (s/2) / (sqrt(3) s/2), theta = 30 degrees
+  const double r = 0.025;
+  std::vector<double> v;
+  for (int k = 0; k < 6; ++k) v.push_back(r * std::cos(kPi / 3.0 * (k - 1))), v.push_back(r * std::sin(kPi / 3.0 * (k - 1)));
+  auto run = [&](double deg) {
+    const double th = deg * kPi / 180.0;
+    DEMParams p;
+    p.gravity = {9.81 * std::sin(th), -9.81 * std::cos(th)};
+    p.dt = 4e-5;
+    p.contact_steps = 50;
+    p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.8});
+    DEMSystem s(p, {0.0, r * std::sqrt(3.0) / 2.0}, {r}, {kRho});
+    s.set_polygons(v, {0, 6});
+    s.advance(1.0);
+    return s;
+  };
+  const DEMSystem held = run(29.0);
+  EXPECT_LT(std::fabs(held.disc_angle[0]), 1e-3);
+  EXPECT_LT(std::fabs(held.disc_pos[0]), 1e-4);
+  const DEMSystem rolling = run(31.0);
+  EXPECT_LT(rolling.disc_angle[0], -kPi);  // rolled over more than three edges down the slope
+  EXPECT_GT(rolling.disc_pos[0], 0.05);
+}
+
 TEST(DEMPolygon, EnergyIsConservedWithoutDampingOrFriction) {
   DEMSystem s = random_polygons(24, 3);
   DEMParams p = s.params();
