@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """2D DEM settling benchmark: vofdem.DEMSystem against LAMMPS (gran/hooke/history) in one run.
 
-The set-up is that of ../shared/peers/dem_settle (run_lammps.py): N discs of diameter
+The set-up is that of ../shared/peers/dem_settle (run_lammps.py; the peers' folder is found relative
+to the project root, or set VOFDEM_PEERS to it): N discs of diameter
 0.048 m * U(0.9, 1.1) (same random stream, same seed), density 2650, at rest on a square lattice of
 pitch 0.055 m with +-1 mm x-jitter, settling for 20,000 steps of 1e-4 s onto a floor between two side
 walls; linear spring-dashpot normal force, tangential history spring kt = 2/7 kn with Coulomb friction
@@ -31,8 +32,11 @@ import numpy as np
 
 import vofdem
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from peers import peers_dir  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-PEER = "/work/shared/peers/dem_settle/run_lammps.sh"
+PEER = str(peers_dir() / "dem_settle" / "run_lammps.sh")
 D_MEAN, POLY, RHO, PITCH = 0.048, 0.10, 2650.0, 0.055
 
 

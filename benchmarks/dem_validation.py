@@ -40,8 +40,9 @@ def wall_impact(vx, vz, e, mu=0.3, kn=1e5, steps_per_contact=400):
     return s.disc_vel[0].copy(), s.disc_omega[0], duration, tc
 
 
-def incline(theta, mu, rotation=True, f=0.4):
+def incline(theta, mu, rotation=True, f=0.4, mu_r=0.0, hold=False):
     p = vofdem.DEMParams()
+    p.rolling_friction_wall = mu_r
     p.gravity = [9.81 * math.sin(theta), -9.81 * math.cos(theta)]
     p.stiffness_normal = 1e5
     p.inertia_factor = f
@@ -50,10 +51,51 @@ def incline(theta, mu, rotation=True, f=0.4):
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=mu)]
     delta = M * 9.81 * math.cos(theta) / 1e5
     s = vofdem.DEMSystem(p, pos=np.array([[0.0, R - delta]]), radius=np.array([R]))
+    if hold:
+        s.advance(2.0)
+        return s.disc_vel[0, 0], s.disc_pos[0, 0]
     s.advance(0.5)
     v0 = s.disc_vel[0, 0]
     s.advance(0.5)
     return (s.disc_vel[0, 0] - v0) / 0.5
+
+
+def rolling_box(frac, mu_r=0.3):
+    """(total - E0) / dissipated after 0.5 s of 60 stones falling into a box, rolling friction mu_r."""
+    rng = np.random.default_rng(5)
+    p = vofdem.DEMParams()
+    p.add_flume(0.0, 0.45, 0.0, 0.3)
+    p.stiffness_normal, p.restitution = 2e5, 0.3
+    p.rolling_friction_stone = p.rolling_friction_wall = mu_r
+    pos = np.array([[0.03 + 0.055 * (k % 8) + 0.002 * rng.random(), 0.03 + 0.055 * (k // 8)] for k in range(60)])
+    s = vofdem.DEMSystem(p, pos=pos, radius=R * (0.9 + 0.2 * rng.random(60)))
+    dt = frac * s.stable_dt()
+    e0 = s.energy().total
+    for _ in range(int(0.5 / dt)):
+        s.step(dt)
+    e = s.energy()
+    return (e.total - e0) / e.dissipated
+
+
+def rolling_rows():
+    """Rolling resistance (tests/cpp/test_rolling_resistance.cpp): a disc on an incline holds while
+    tan(theta) <= mu_r and rolls at g (sin - mu_r cos) / (1 + f) above; the energy balance."""
+    g, mu, mu_r = 9.81, 0.577, 0.2
+    rows = []
+    v, x = incline(math.atan(0.95 * mu_r), mu, mu_r=mu_r, hold=True)
+    rows.append(f"| rolling resistance mu_r = {mu_r}, tan(theta) = 0.95 mu_r, 2 s | speed {abs(v):.1e} m/s, "
+                f"displacement {abs(x):.1e} m (holds: 0) |")
+    for f in (0.4, 0.5):
+        for k in (1.2, 1.5, 2.0):
+            th = math.atan(k * mu_r)
+            a = incline(th, mu, f=f, mu_r=mu_r)
+            ex = g * (math.sin(th) - mu_r * math.cos(th)) / (1.0 + f)
+            rows.append(f"| rolling resistance mu_r = {mu_r}, f = {f}, tan(theta) = {k} mu_r | acceleration error "
+                        f"{100 * (a - ex) / ex:+.3f} % against g (sin - mu_r cos) / (1 + f) |")
+    e1, e2 = rolling_box(0.5), rolling_box(0.25)
+    rows.append(f"| rolling resistance 0.3, 60 stones into a box (e = 0.3), energy balance | (total - E0) / dissipated "
+                f"{100 * e1:+.2f} % at stable_dt / 2, {100 * e2:+.2f} % at stable_dt / 4 |")
+    return rows
 
 
 def main():
@@ -86,6 +128,7 @@ def main():
         a = incline(th, 0.577, f=f)
         ex = frac * g * math.sin(th)
         rows.append(f"| rolling, {name}, 20 deg | acceleration error {100 * (a - ex) / ex:+.3f} % |")
+    rows += rolling_rows()
     lines = ["# DEM validation (analytic contact cases)", "",
              "Stone: 4.8 cm, 2650 kg/m^3 (sphere mass 0.15345 kg), k_n = 1e5 N/m unless stated.", "",
              "| case | result |", "|---|---|"] + rows

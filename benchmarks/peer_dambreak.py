@@ -17,6 +17,7 @@ import os
 import platform
 import re
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -26,7 +27,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 from vofdem import validation as val  # noqa: E402
 
-PEERS = os.environ.get("VOFDEM_PEERS", "/work/shared/peers")
+sys.path.insert(0, HERE)
+from peers import peers_dir  # noqa: E402
+
+PEERS = str(peers_dir())
 WRAPPERS = {"interFoam": "run_interfoam.sh", "interIsoFoam": "run_interisofoam.sh", "gerris2D": "run_gerris.sh"}
 
 

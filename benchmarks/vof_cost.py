@@ -4,7 +4,8 @@ Scenes: the Martin & Moyce dam break (two-phase, closed tank, open top) at about
 cells, and the seed paper's flume (2.5 cm x 1 cm cells, 0.5 cm at the bed) with a rubble mound weir
 (n = 0.41, D = 4.8 cm) under 10 l/s. Each run first advances a short warm-up, then times a fixed
 simulated interval; figures are microseconds per cell per step (wall time / steps / cells) on one
-core. Writes benchmarks/results/vof_cost.md.
+core. Writes benchmarks/results/vof_cost.md. The peers' stored runs are read from ../shared/peers/results
+(relative to the project root; set VOFDEM_PEERS to use another folder).
 
 Usage: PYTHONPATH=python python3 benchmarks/vof_cost.py [--quick]
 """
@@ -20,6 +21,9 @@ import numpy as np
 
 import vofdem
 from vofdem import flow as vflow
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from peers import peers_dir  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SOLVERS = [("Eigen LDLT", vofdem.PressureSolverKind.EIGEN_DIRECT),
@@ -55,7 +59,7 @@ def weir_flume(kind) -> vofdem.VOFGrid:
     return f
 
 
-PEERS = Path("/work/shared/peers/results")
+PEERS = peers_dir() / "results"
 MM_T = np.array([0.41, 0.84, 1.19, 1.43, 1.63, 1.83, 1.98, 2.20, 2.32, 2.51, 2.65, 2.83, 2.98, 3.11, 3.33])
 MM_Z = np.array([1.11, 1.22, 1.44, 1.67, 1.89, 2.11, 2.33, 2.56, 2.78, 3.00, 3.22, 3.44, 3.67, 3.89, 4.11])
 
@@ -189,7 +193,7 @@ def main() -> None:
         "",
         "## Against the peers on their dam break",
         "",
-        "Same case as `/work/shared/peers` (a = 5.715 cm column in an 8a x 2.5a tank, no-slip walls, water",
+        "Same case as `../shared/peers` (a = 5.715 cm column in an 8a x 2.5a tank, no-slip walls, water",
         "1000 kg/m^3 / air 1 kg/m^3, t_end = 0.2 s, Courant 0.45 here, 0.5 for the peers). vofdem runs now",
         "(construction included); the peers' wall times and fronts are their stored runs on this machine",
         "(`results/walltimes.csv`, serial). Time ratio = peer wall / vofdem wall; error = RMS of Z = x/a",

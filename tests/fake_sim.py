@@ -74,6 +74,22 @@ class FakeSimulation:
         self.time = float(t_end)
 
 
+    def export_state(self):
+        st, fl = self.stones, self.fluid
+        return {"time": np.array([self.time]), "pos": st.disc_pos.copy(), "vel": st.disc_vel.copy(),
+                "active": st.disc_active.astype(float), "fixed": st.disc_fixed.astype(float),
+                "drag": self.disc_force_drag.copy(), "pressure": self.disc_force_pressure.copy(),
+                "F": fl.cell_F.copy(), "p": fl.cell_p.copy(), "u": fl.face_u.copy()}
+
+    def import_state(self, s):
+        st, fl = self.stones, self.fluid
+        self.time = float(s["time"][0])
+        st.disc_pos[...], st.disc_vel[...] = s["pos"], s["vel"]
+        st.disc_active[...], st.disc_fixed[...] = s["active"] != 0, s["fixed"] != 0
+        self.disc_force_drag[...], self.disc_force_pressure[...] = s["drag"], s["pressure"]
+        fl.cell_F[...], fl.cell_p[...], fl.face_u[...] = s["F"], s["p"], s["u"]
+
+
 def short_scene():
     """The quick Maeno 2008 scene with a 2 s spin-up, a 30 s ramp 10 -> 25 l/s and 1 s snapshots."""
     from vofdem.scene import Hydrograph, Scene

@@ -52,6 +52,25 @@ def test_scene_keys_validate_and_round_trip():
     assert dem_params(small_polygon_scene()).contact_steps == 50.0
 
 
+def test_polygons_refuse_the_discs_rolling_resistance():
+    # a polygon resists rolling by its shape: the disc law's mu_r is refused naming both keys
+    for key in ("rolling_friction", "rolling_friction_wall"):
+        u = Scene.maeno2008()
+        u.stones.shape = "polygon"
+        setattr(u.stones, key, 0.4)
+        with pytest.raises(ValueError, match=rf"stones.{key} = 0.4 is outside the allowed range \[0, 0\] with "
+                                             r"stones.shape = 'polygon'"):
+            u.validate()
+        u.stones.shape = "disc"
+        u.validate()
+    # and in C++, whichever comes first
+    p = vofdem.DEMParams()
+    p.rolling_friction_stone = 0.4
+    box = np.array([[-0.02, -0.01], [0.02, -0.01], [0.02, 0.01], [-0.02, 0.01]])
+    with pytest.raises(ValueError, match="rolling_friction_stone"):
+        vofdem.DEMSystem(p, np.zeros((1, 2)), [0.03]).set_polygons(box, [0, 4])
+
+
 def test_scene_file_is_the_paper_scene_with_polygons():
     s = load_scene(ROOT / "scenes" / "maeno2008_polygons.toml")
     ref = Scene.maeno2008()
@@ -113,8 +132,9 @@ def test_short_run_of_the_polygon_scene_writes_polygons(tmp_path):
         area = 0.5 * np.sum(w[:, 0] * np.roll(w[:, 1], -1) - np.roll(w[:, 0], -1) * w[:, 1])
         assert area == pytest.approx(math.pi * d.diameter[i] ** 2 / 4, rel=1e-12)
         assert np.allclose(w.mean(axis=0), d.pos[T - 1, i], atol=0.6 * d.diameter[i])
-    # the XDMF also references the polygons: topology, world vertices, active and fixed per snapshot
-    assert check_xdmf(res.xmf_path) == T * 7 + T * 10 + T * 4
+    # the XDMF also references the polygons: per snapshot, topology, world vertices and four cell data
+    # (diameter, fixed, active, angle) beside the fields' 7 and the points' 9
+    assert check_xdmf(res.xmf_path) == T * 7 + T * 9 + T * 6
     assert (tmp_path / "figures" / "porosity_initial.png").is_file()
 
 

@@ -52,6 +52,9 @@ void bind_params(py::module_& m) {
       .def_readwrite("tangential_damping_factor", &DEMParams::tangential_damping_factor)
       .def_readwrite("friction_stone", &DEMParams::friction_stone)
       .def_readwrite("inertia_factor", &DEMParams::inertia_factor)
+      .def_readwrite("rolling_friction_stone", &DEMParams::rolling_friction_stone)
+      .def_readwrite("rolling_friction_wall", &DEMParams::rolling_friction_wall)
+      .def_readwrite("rolling_damping", &DEMParams::rolling_damping)
       .def_readwrite("domain_min", &DEMParams::domain_min)
       .def_readwrite("domain_max", &DEMParams::domain_max)
       .def_readwrite("neighbour_skin", &DEMParams::neighbour_skin)
@@ -72,6 +75,7 @@ void bind_params(py::module_& m) {
   m.attr("DEM_DAMPING") = static_cast<unsigned>(kDEMDamping);
   m.attr("DEM_EXTERNAL_FORCE") = static_cast<unsigned>(kDEMExternalForce);
   m.attr("DEM_REMOVAL") = static_cast<unsigned>(kDEMRemoval);
+  m.attr("DEM_ROLLING_RESISTANCE") = static_cast<unsigned>(kDEMRollingResistance);
   m.attr("DEM_ALL_EFFECTS") = static_cast<unsigned>(kDEMAllEffects);
 
   py::class_<DEMEnergy>(m, "DEMEnergy", "Energy bookkeeping of the DEM [J].")

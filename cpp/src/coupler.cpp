@@ -495,6 +495,14 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/inlet_volume"] = {f.inlet_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
+    // the k-epsilon model's own state: the next step reads its k, eps, nu_t and wall shear
+    const KEpsilonModel& t = f.turbulence();
+    s["turbulence/cell_k"] = t.cell_k;
+    s["turbulence/cell_eps"] = t.cell_eps;
+    s["turbulence/cell_nut"] = t.cell_nut;
+    s["turbulence/cell_u_tau"] = t.cell_u_tau;
+    s["turbulence/face_x_wall_shear"] = t.face_x_wall_shear;
+    s["turbulence/face_z_wall_shear"] = t.face_z_wall_shear;
   }
   if (stones_)
     for (auto& kv : stones_->export_state()) s["dem/" + kv.first] = std::move(kv.second);
@@ -512,6 +520,19 @@ const std::vector<double>& need(const std::map<std::string, std::vector<double>>
   return it->second;
 }
 }  // namespace
+
+// the k-epsilon model's state (sizes checked by import_state); states written before it was part
+// of the checkpoint keep the model as it is
+void Coupler::import_turbulence(const std::map<std::string, std::vector<double>>& s) {
+  if (!s.count("turbulence/cell_k")) return;
+  KEpsilonModel& t = fluid_->turbulence();
+  t.cell_k = s.at("turbulence/cell_k");
+  t.cell_eps = s.at("turbulence/cell_eps");
+  t.cell_nut = s.at("turbulence/cell_nut");
+  t.cell_u_tau = s.at("turbulence/cell_u_tau");
+  t.face_x_wall_shear = s.at("turbulence/face_x_wall_shear");
+  t.face_z_wall_shear = s.at("turbulence/face_z_wall_shear");
+}
 
 void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
   const std::size_t any = static_cast<std::size_t>(-1), n = static_cast<std::size_t>(n_);
@@ -542,6 +563,12 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     need(s, "fluid/face_w", nfz);
     need(s, "fluid/face_z_solid_w", nfz);
     if (s.count("fluid/last_dt")) require_non_negative("fluid/last_dt", need(s, "fluid/last_dt", 1)[0]);
+    if (s.count("turbulence/cell_k")) {
+      for (const char* k : {"turbulence/cell_k", "turbulence/cell_eps", "turbulence/cell_nut", "turbulence/cell_u_tau"})
+        need(s, k, nc);
+      need(s, "turbulence/face_x_wall_shear", nfx);
+      need(s, "turbulence/face_z_wall_shear", nfz);
+    }
     DischargeTable t;
     t.times = need(s, "fluid/discharge_times", any);
     t.discharge = need(s, "fluid/discharge_q", any);
@@ -563,6 +590,7 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
     fluid_->update_face_porosity();
+    import_turbulence(s);
   }
   if (stones_) stones_->import_state(dem);
   time_ = s.at("coupler/time")[0];

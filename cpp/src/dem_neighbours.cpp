@@ -2,7 +2,7 @@
 //
 // Pairs (i < j) whose gap is below the skin are listed in (i, j) order; the list is rebuilt when a
 // stone has moved more than half the skin since the last build, so no contact can be missed. Each
-// pair carries its tangential spring (the contact history); a rebuild carries the histories over by a
+// pair carries its tangential and rolling springs (the contact history); a rebuild carries them over by a
 // merge of the two sorted lists, so the order of every force sum is fixed and runs are reproducible.
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ void DEMSystem::build_wall_candidates() {
       if (s < disc_radius[i] + skin_) {
         wall_cand_.push_back(i);
       } else {
-        wall_xi_[static_cast<std::size_t>(i) * nw + w] = 0.0;
+        wall_xi_[static_cast<std::size_t>(i) * nw + w] = wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
         if (!poly_wall_hist_.empty()) poly_wall_hist_[static_cast<std::size_t>(i) * nw + w] = PolygonHistory{};
       }
     }
@@ -119,16 +119,18 @@ void DEMSystem::build_neighbours() {
     std::sort(new_pairs_.begin() + static_cast<std::ptrdiff_t>(first), new_pairs_.end(),
               [](const Pair& a, const Pair& b) { return a.j < b.j; });
   }
-  // carry the tangential springs over (both lists sorted by (i, j))
+  // carry the tangential and rolling springs over (both lists sorted by (i, j))
   std::size_t k = 0;
   for (Pair& p : new_pairs_) {
     while (k < pairs_.size() && (pairs_[k].i < p.i || (pairs_[k].i == p.i && pairs_[k].j < p.j))) ++k;
     if (k < pairs_.size() && pairs_[k].i == p.i && pairs_[k].j == p.j) {
       p.xi = pairs_[k].xi;
+      p.mr = pairs_[k].mr;
       p.poly = pairs_[k].poly;
     }
   }
   pairs_.swap(new_pairs_);
+  update_pair_rolling();
 }
 
 std::vector<std::array<int, 2>> DEMSystem::neighbour_pairs() const {

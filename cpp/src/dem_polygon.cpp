@@ -68,6 +68,7 @@ inline double cross(double rx, double rz, double fx, double fz) { return rx * fz
 
 void DEMSystem::set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset) {
   check_polygons(vertex, offset, n_);
+  check_rolling_shape(StoneShape::kPolygon);
   poly_vertex = vertex;
   poly_offset = offset;
   shape_ = StoneShape::kPolygon;
@@ -341,7 +342,7 @@ void DEMSystem::import_polygons(const std::map<std::string, std::vector<double>>
   const auto& cid = need("poly_contact_id", 2 * ci.size());
   const auto& cxi = need("poly_contact_xi", 2 * ci.size());
   for (std::size_t k = 0; k < ci.size(); ++k) {
-    Pair c{static_cast<int>(ci[k]), static_cast<int>(cj[k]), 0.0, 0.0, PolygonHistory{}};
+    Pair c{static_cast<int>(ci[k]), static_cast<int>(cj[k]), 0.0, 0.0};
     if (!(c.i >= 0 && c.i < c.j && c.j < n_) ||
         (!pairs_.empty() && !(pairs_.back().i < c.i || (pairs_.back().i == c.i && pairs_.back().j < c.j))))
       throw std::invalid_argument("import_state: polygon contact pair (" + std::to_string(c.i) + ", " +

@@ -1,6 +1,8 @@
 // Checkpoint of DEMSystem: every piece of its state as named flat arrays of doubles, so that a run
 // restarted from export_state() continues bit-for-bit (stone arrays, accelerations of the velocity
-// Verlet scheme, contact histories, sleep timers, counters, time, energy accumulators).
+// Verlet scheme, contact histories, sleep timers, counters, time, energy accumulators). The rolling
+// springs (contact_mr, wall_mr) are optional on import: a checkpoint written before the rolling
+// resistance existed restarts with them at zero, which is what it had.
 #include <stdexcept>
 
 #include "vofdem/check.h"
@@ -50,17 +52,20 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
   s["disc_asleep"] = to_double(disc_asleep);
   s["disc_sleep_timer"] = disc_sleep_timer;
   // only the histories that are not zero: the rest is rebuilt by the neighbour search
-  std::vector<double> ci, cj, cxi;
+  std::vector<double> ci, cj, cxi, cmr;
   for (const Pair& p : pairs_) {
-    if (p.xi == 0.0) continue;
+    if (p.xi == 0.0 && p.mr == 0.0) continue;
     ci.push_back(p.i);
     cj.push_back(p.j);
     cxi.push_back(p.xi);
+    cmr.push_back(p.mr);
   }
   s["contact_i"] = ci;
   s["contact_j"] = cj;
   s["contact_xi"] = cxi;
+  s["contact_mr"] = cmr;
   s["wall_xi"] = wall_xi_;
+  s["wall_mr"] = wall_mr_;
   s["scalars"] = {time_,
                   static_cast<double>(steps_),
                   static_cast<double>(removed_),
@@ -96,6 +101,8 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
   const auto& ci = get(s, "contact_i", static_cast<std::size_t>(-1));
   const auto& cj = get(s, "contact_j", ci.size());
   const auto& cxi = get(s, "contact_xi", ci.size());
+  const bool has_mr = s.count("contact_mr") > 0;
+  const std::vector<double> cmr = has_mr ? get(s, "contact_mr", ci.size()) : std::vector<double>(ci.size(), 0.0);
   pairs_.clear();
   for (std::size_t k = 0; k < ci.size(); ++k) {
     const int i = static_cast<int>(ci[k]), j = static_cast<int>(cj[k]);
@@ -104,9 +111,13 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
                                   ") is outside 0 <= i < j < n");
     if (k > 0 && !(pairs_.back().i < i || (pairs_.back().i == i && pairs_.back().j < j)))
       throw std::invalid_argument("import_state: contact pairs are not sorted by (i, j)");
-    pairs_.push_back({i, j, cxi[k], 0.0});  // masses set by the next build
+    pairs_.push_back({i, j, cxi[k], 0.0, cmr[k]});  // masses set by the next build
   }
   set(wall_xi_, get(s, "wall_xi", n * params_.walls.size()));
+  if (s.count("wall_mr"))
+    set(wall_mr_, get(s, "wall_mr", n * params_.walls.size()));
+  else
+    wall_mr_.assign(wall_xi_.size(), 0.0);
   import_polygons(s);  // the shape: polygons if the state has them, else discs
   const auto& sc = get(s, "scalars", 9);
   time_ = sc[0];

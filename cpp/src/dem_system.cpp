@@ -85,6 +85,7 @@ void DEMSystem::resize(int n) {
   poly_wall_hist_.clear();
   pairs_.clear();
   wall_xi_.assign(un * params_.walls.size(), 0.0);
+  wall_mr_.assign(un * params_.walls.size(), 0.0);
   rebuild_ = true;
   prepared_ = false;
   forces_valid_ = false;
@@ -95,9 +96,12 @@ void DEMSystem::set_params(const DEMParams& p) {
   params_ = p;
   check_params();
   forces_valid_ = false;
-  if (params_.walls.size() != old_walls) wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
-  if (shape_ == StoneShape::kPolygon && params_.walls.size() != old_walls)
-    poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
+  if (params_.walls.size() != old_walls) {
+    wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
+    wall_mr_.assign(wall_xi_.size(), 0.0);
+    if (shape_ == StoneShape::kPolygon)
+      poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
+  }
   rebuild_ = true;
   prepared_ = false;
 }
@@ -116,6 +120,7 @@ void DEMSystem::check_params() const {
   require_non_negative("tangential_damping_factor", p.tangential_damping_factor);
   require_non_negative("friction_stone", p.friction_stone);
   require_in_open_closed("inertia_factor", p.inertia_factor, 0.0, 1.0);
+  check_rolling_params();
   require_non_negative("neighbour_skin", p.neighbour_skin);
   require_non_negative("sleep_velocity", p.sleep_velocity);
   require_non_negative("sleep_time", p.sleep_time);
@@ -224,10 +229,12 @@ void DEMSystem::prepare() {
   skin_ = skin;
   if (wall_xi_.size() != static_cast<std::size_t>(n_) * p.walls.size())
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
+  if (wall_mr_.size() != wall_xi_.size()) wall_mr_.assign(wall_xi_.size(), 0.0);
   if (shape_ == StoneShape::kPolygon && poly_wall_hist_.size() != static_cast<std::size_t>(n_) * p.walls.size())
     poly_wall_hist_.assign(static_cast<std::size_t>(n_) * p.walls.size(), PolygonHistory{});
   if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
   update_properties();
+  update_rolling_inertia();
   // radii, activity or fixing may have been changed through the views: the list is rebuilt; else only
   // the pairs' reduced masses are refreshed (wet fractions may have changed)
   if (cached_radius_ != disc_radius || cached_active_ != disc_active || cached_fixed_ != disc_fixed) {
@@ -238,6 +245,7 @@ void DEMSystem::prepare() {
   }
   if (!rebuild_) {
     for (Pair& c : pairs_) c.sqrt_m = std::sqrt(1.0 / (inv_mass_[c.i] + inv_mass_[c.j]));
+    update_pair_rolling();
   }
   prepared_ = true;
 }
@@ -252,7 +260,7 @@ double DEMSystem::stable_dt() {
   // two of the lightest stones: normal mode and the tangential mode that includes their spin
   const double w2_n = 2.0 * kn_ / m_min;
   const double rot = (params_.flags & kDEMRotation) ? 1.0 / params_.inertia_factor : 0.0;
-  const double w2_t = 2.0 * kt_ * (1.0 + rot) / m_min;
+  const double w2_t = 2.0 * kt_ * (1.0 + rot) / m_min + rolling_spin_stiffness(m_min);
   const double w = std::sqrt(std::max(w2_n, w2_t));
   return kPi / (10.0 * w);
 }
@@ -427,7 +435,10 @@ void DEMSystem::remove_escaped() {
     disc_acc[2 * i] = disc_acc[2 * i + 1] = 0.0;
     disc_alpha[i] = 0.0;
     disc_force[2 * i] = disc_force[2 * i + 1] = 0.0;
-    for (std::size_t w = 0; w < p.walls.size(); ++w) wall_xi_[i * p.walls.size() + w] = 0.0;
+    for (std::size_t w = 0; w < p.walls.size(); ++w) {
+      wall_xi_[i * p.walls.size() + w] = 0.0;
+      wall_mr_[i * p.walls.size() + w] = 0.0;
+    }
     if (shape_ == StoneShape::kPolygon)
       for (std::size_t w = 0; w < p.walls.size(); ++w) poly_wall_hist_[i * p.walls.size() + w] = PolygonHistory{};
     ++removed_;
@@ -463,6 +474,7 @@ void DEMSystem::contact_forces(double dt) {
   const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
   const double ct_factor = p.tangential_damping_factor;
   const double kt = friction ? kt_ : 0.0;
+  const bool rolling = rolling_stones();
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
   for (Pair& c : pairs_) {
@@ -474,6 +486,7 @@ void DEMSystem::contact_forces(double dt) {
     const double d2 = dx * dx + dz * dz;
     if (d2 >= rs * rs) {
       c.xi = 0.0;
+      c.mr = 0.0;
       continue;
     }
     ++ncontact;
@@ -499,6 +512,11 @@ void DEMSystem::contact_forces(double dt) {
     disc_torque[j] += rj * f.ft;
     elastic += f.energy_spring;
     dissipated += f.power_damp * dt + f.energy_slip;
+    if (rolling) {
+      const RollingEnergy e = rolling_contact(c, f.fn, dt);
+      elastic += e.elastic;
+      dissipated += e.dissipated;
+    }
   }
   elastic_ = elastic;
   dissipated_ += dissipated;
@@ -510,6 +528,7 @@ void DEMSystem::wall_forces(double dt) {
   const bool friction = p.flags & kDEMFriction;
   const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
   const double kt = friction ? kt_ : 0.0;
+  const bool rolling = rolling_walls();
   const std::size_t nw = p.walls.size();
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
@@ -527,6 +546,7 @@ void DEMSystem::wall_forces(double dt) {
       const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
       if (s >= r) {
         xi = 0.0;
+        wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
         continue;
       }
       ++ncontact;
@@ -542,6 +562,11 @@ void DEMSystem::wall_forces(double dt) {
       disc_torque[i] += r * f.ft;
       elastic += f.energy_spring;
       dissipated += f.power_damp * dt + f.energy_slip;
+      if (rolling) {
+        const RollingEnergy e = rolling_wall(i, wall_mr_[static_cast<std::size_t>(i) * nw + w], f.fn, dt);
+        elastic += e.elastic;
+        dissipated += e.dissipated;
+      }
     }
   }
   elastic_ += elastic;

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -367,6 +367,24 @@ class DEMParams:
         ...
     @restitution.setter
     def restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rolling_damping(self) -> float:
+        ...
+    @rolling_damping.setter
+    def rolling_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rolling_friction_stone(self) -> float:
+        ...
+    @rolling_friction_stone.setter
+    def rolling_friction_stone(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rolling_friction_wall(self) -> float:
+        ...
+    @rolling_friction_wall.setter
+    def rolling_friction_wall(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def sleep_time(self) -> float:
@@ -1451,6 +1469,14 @@ class FlowParams:
     def gravity_z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def initial_dt(self) -> float:
+        """
+        first time step [s], 1e-3
+        """
+    @initial_dt.setter
+    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def k1(self) -> float:
         """
         linear resistance coefficient of eq. (7) [-], 200
@@ -1467,12 +1493,12 @@ class FlowParams:
     def k2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def initial_dt(self) -> float:
+    def max_dt(self) -> float:
         """
-        first time step [s], 1e-3
+        largest time step [s], 0.01
         """
-    @initial_dt.setter
-    def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @max_dt.setter
+    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def max_dt_growth(self) -> float:
@@ -1481,14 +1507,6 @@ class FlowParams:
         """
     @max_dt_growth.setter
     def max_dt_growth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_dt(self) -> float:
-        """
-        largest time step [s], 0.01
-        """
-    @max_dt.setter
-    def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def min_dt(self) -> float:
@@ -1768,6 +1786,14 @@ class VOFGrid:
         water volume per width [m^2] that entered through the inlet
         """
     @property
+    def last_dt(self) -> float:
+        """
+        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
+        """
+    @last_dt.setter
+    def last_dt(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def last_pressure_stats(self) -> PressureSolveStats:
         ...
     @property
@@ -1783,14 +1809,6 @@ class VOFGrid:
         ...
     @property
     def step_count(self) -> int:
-        ...
-    @property
-    def last_dt(self) -> float:
-        """
-        the last step [s] the growth limit starts from (0: none yet, initial_dt applies)
-        """
-    @last_dt.setter
-    def last_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def time(self) -> float:
@@ -2078,13 +2096,14 @@ COUPLE_RELATIVE_VELOCITY: int = 32
 COUPLE_TWO_WAY: int = 255
 COUPLE_WET_FRACTION: int = 64
 DEM_ADDED_MASS: int = 8
-DEM_ALL_EFFECTS: int = 479
+DEM_ALL_EFFECTS: int = 991
 DEM_BUOYANCY: int = 16
 DEM_DAMPING: int = 64
 DEM_EXTERNAL_FORCE: int = 128
 DEM_FRICTION: int = 4
 DEM_GRAVITY: int = 1
 DEM_REMOVAL: int = 256
+DEM_ROLLING_RESISTANCE: int = 512
 DEM_ROTATION: int = 2
 DEM_SLEEPING: int = 32
 ERGUN_K1: float = 150.0

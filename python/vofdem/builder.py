@@ -32,6 +32,9 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     p.dt = scene.numerics.dem_dt
     p.contact_steps = scene.numerics.dem_contact_steps
     p.friction_stone = st.friction_stone
+    p.rolling_friction_stone = st.rolling_friction
+    p.rolling_friction_wall = st.rolling_friction_wall
+    p.rolling_damping = st.rolling_damping
     # the bed and the upstream end wall; downstream the stones leave over the outflow end
     p.walls = [_core.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=st.friction_wall),
                _core.DEMWall(point=[0.0, 0.0], normal=[1.0, 0.0], friction=st.friction_wall)]
@@ -43,6 +46,8 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
         flags |= _core.DEM_ROTATION
     if fx.friction:
         flags |= _core.DEM_FRICTION
+    if fx.rolling_resistance:
+        flags |= _core.DEM_ROLLING_RESISTANCE
     if fx.added_mass:
         flags |= _core.DEM_ADDED_MASS
     if fx.buoyancy:
@@ -60,24 +65,43 @@ def polygon_options(scene: Scene) -> dict:
                 aspect_ratio=st.aspect_ratio, radial_jitter=st.polygon_radial_jitter)
 
 
+def stone_shapes(scene: Scene, diameters, seed=None):
+    """(body-frame vertices (m, 2) [m], offsets (n + 1)) of polygon stones of these nominal diameters [m],
+    drawn from `seed` (default the scene's) with the scene's shape parameters; None for disc stones."""
+    if scene.stones.shape != "polygon":
+        return None
+    o = polygon_options(scene)
+    return _core.random_polygons(np.asarray(diameters, float), seed=scene.seed if seed is None else int(seed),
+                                 vertices_min=o["polygon_vertices_min"], vertices_max=o["polygon_vertices_max"],
+                                 aspect_ratio=o["aspect_ratio"], radial_jitter=o["radial_jitter"])
+
+
+def stone_system(scene: Scene, params, pos, diameters, fixed, shapes=None):
+    """A DEMSystem of the scene's stone model at centres pos (n, 2) [m] with (nominal) diameters [m] and
+    fixed flags; the one place that turns positions and sizes into stones, so that every experiment on
+    the stones (calibration.py) builds them the way the weir is built. Polygon stones take `shapes`
+    (stone_shapes' (vertex, offset)) or are drawn from the scene's seed, unrotated."""
+    pos = np.asarray(pos, float).reshape(-1, 2)
+    d = np.asarray(diameters, float)
+    sys_ = _core.DEMSystem(params, pos, 0.5 * d, np.full(len(d), scene.stones.density), [int(f) for f in fixed])
+    if scene.stones.shape == "polygon":
+        sys_.set_polygons(*(shapes if shapes is not None else stone_shapes(scene, d)))
+    return sys_
+
+
 def _explicit_stones(scene: Scene):
-    """DEMSystem of the scene's explicit stones: discs, or polygons of those nominal diameters drawn from the
-    scene's seed (unrotated; the fixed ones are those whose lowest point touches the bed)."""
+    """DEMSystem of the scene's explicit stones (discs or polygons of those nominal diameters, unrotated);
+    the fixed ones are those whose lowest point touches the bed."""
     st = scene.stones
     pos = np.asarray(st.positions, float)
     d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
+    shapes = stone_shapes(scene, d)
     low = pos[:, 1] - 0.5 * d
-    if st.shape == "polygon":
-        o = polygon_options(scene)
-        vertex, offset = _core.random_polygons(d, seed=scene.seed, vertices_min=o["polygon_vertices_min"],
-                                               vertices_max=o["polygon_vertices_max"], aspect_ratio=o["aspect_ratio"],
-                                               radial_jitter=o["radial_jitter"])
+    if shapes is not None:
+        vertex, offset = shapes
         low = pos[:, 1] + np.array([vertex[offset[i]:offset[i + 1], 1].min() for i in range(len(pos))])
     fixed = (low <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
-    sys_ = _core.DEMSystem(dem_params(scene), pos, 0.5 * d, np.full(len(pos), st.density), [int(f) for f in fixed])
-    if st.shape == "polygon":
-        sys_.set_polygons(vertex, offset)
-    return sys_
+    return stone_system(scene, dem_params(scene), pos, d, fixed, shapes)
 
 
 def build_stones(scene: Scene):

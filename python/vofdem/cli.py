@@ -1,8 +1,10 @@
-"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N | --seeds 0-4]`` and helpers.
+"""Command line: ``vofdem run SCENE [--quick] [--out DIR] [--seed N | --seeds 0-4]`` and helpers, among them
+``vofdem calibrate repose|pull SCENE`` (the laboratory experiments on the stones, calibration.py).
 
-SCENE is a TOML scene file or the name of a ready scene (``maeno2008``). Exit codes: 0 success,
-2 a bad scene or bad arguments (one line on stderr), 1 a solver failure (the output written so far
-is kept and marked failed in run.h5).
+SCENE is a TOML scene file or the name of a ready scene (``maeno2008``); ``vofdem run --resume DIR``
+continues a killed run from its last checkpoint. Exit codes: 0 success, 2 a bad scene or bad
+arguments, an unwritable output directory (one line on stderr), 1 a solver failure or a failing
+write, e.g. a full disk (the output written so far is kept; a solver failure is marked in run.h5).
 """
 from __future__ import annotations
 
@@ -19,7 +21,9 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="vofdem", description="VOF-DEM model of a rubble mound weir's destruction")
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("run", help="run a scene and write HDF5/XDMF output, stage tables, figures, animation")
-    r.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    r.add_argument("scene", nargs="?", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    r.add_argument("--resume", type=Path, default=None, metavar="DIR",
+                   help="continue the killed run in DIR from its last checkpoint (written after every snapshot)")
     r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes")
     r.add_argument("--out", type=Path, default=None, help="output directory (default: out/<scene name>)")
     seed = r.add_mutually_exclusive_group()
@@ -38,7 +42,53 @@ def _parser() -> argparse.ArgumentParser:
     a.add_argument("out", type=Path)
     a.add_argument("--no-animation", action="store_true")
     sub.add_parser("params", help="print every scene parameter with its default and allowed range")
+    _calibrate_parser(sub)
     return p
+
+
+def _calibrate_parser(sub) -> None:
+    k = sub.add_parser("calibrate", help="laboratory experiments on the scene's stones: angle of repose, pull-out test")
+    ks = k.add_subparsers(dest="experiment", required=True)
+    r = ks.add_parser("repose", help="pour heaps from a funnel onto a rough base and fit their flanks")
+    r.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    r.add_argument("--seeds", default="0-2", help="one heap per seed, e.g. '0-2' (default)")
+    r.add_argument("--stones", type=int, default=300, help="stones poured per heap (default 300)")
+    r.add_argument("--submerged", action="store_true", help="also pour the heaps under still water")
+    r.add_argument("--out", type=Path, default=None, help="output directory (default: out/calibration/<scene name>)")
+    q = ks.add_parser("pull", help="the paper's pull-out test of slope stones of the packed weir (Fig. 5, Table 1)")
+    q.add_argument("scene", help="TOML scene file, or a ready scene: " + ", ".join(READY))
+    q.add_argument("--seeds", default="0-4", help="one packed weir per seed (default '0-4')")
+    q.add_argument("--per-seed", type=int, default=2, help="slope stones pulled per weir (default 2)")
+    q.add_argument("--spring", type=float, default=50.0, help="spring stiffness [N/m] (default 50)")
+    q.add_argument("--speed", type=float, default=0.02, help="anchor speed [m/s] (default 0.02)")
+    q.add_argument("--out", type=Path, default=None, help="output directory (default: out/calibration/<scene name>)")
+
+
+def _calibrate(args, scene) -> int:
+    """Runs a calibration experiment, prints its table and writes it with a figure to the output directory."""
+    from . import calibration as cal
+    from .ensemble import parse_seeds
+
+    seeds = parse_seeds(args.seeds)
+    out = args.out or Path("out") / "calibration" / scene.name
+    out.mkdir(parents=True, exist_ok=True)
+    log = lambda msg: print(msg, file=sys.stderr)  # noqa: E731
+    if args.experiment == "repose":
+        setup = cal.ReposeSetup(n_stones=args.stones)
+        res = cal.repose_test(scene, seeds, False, setup, log)
+        if args.submerged:
+            res += cal.repose_test(scene, seeds, True, setup, log)
+        table, name = cal.repose_markdown(res), "repose"
+        cal.fig_heap(res[0]).savefig(out / "heap.png", dpi=110)
+    else:
+        setup = cal.PullSetup(spring=args.spring, speed=args.speed)
+        res = cal.pull_test(scene, seeds, args.per_seed, setup=setup, log=log)
+        table, name = cal.pull_markdown(res), "pull"
+        cal.fig_pull(res).savefig(out / "pull.png", dpi=110)
+    (out / f"{name}.md").write_text(f"# {name} test of scene '{scene.name}'\n\n{table}\n", encoding="utf-8")
+    print(table)
+    print(f"output: {out}/ ({name}.md, {'heap' if name == 'repose' else 'pull'}.png)")
+    return 0
 
 
 def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, end_time: Optional[float] = None):
@@ -61,6 +111,23 @@ def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, en
     return scene
 
 
+def _scene_of(args):
+    """The scene of `vofdem run`/`check`: SCENE with its options, or a resumed run's own scene.toml."""
+    resume = getattr(args, "resume", None)
+    if resume is None:
+        if args.scene is None:
+            raise ValueError("give a SCENE (a scene file or a ready scene) or --resume DIR")
+        return resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
+    if args.scene is not None or args.quick or args.seed is not None or args.seeds or args.end_time is not None:
+        raise ValueError("--resume DIR continues the run with its own scene (DIR/scene.toml): give no SCENE, "
+                         "--quick, --seed(s) or --end-time with it")
+    from .scene import load_scene
+
+    if not (resume / "scene.toml").is_file():
+        raise ValueError(f"--resume {resume}: no scene.toml there, not a run directory")
+    return load_scene(resume / "scene.toml")
+
+
 def _terminate(signum, frame):
     from .run import request_stop
 
@@ -76,6 +143,12 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
 
         print(describe_parameters())
         return 0
+    if args.command == "calibrate":
+        try:
+            return _calibrate(args, resolve_scene(args.scene))
+        except ValueError as e:
+            print(f"vofdem: error: {e}", file=sys.stderr)
+            return 2
     try:
         if args.command == "analyse":
             from .run import postprocess
@@ -83,7 +156,7 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             a = postprocess(args.out, animation=not args.no_animation)
             print(a.stage_table_markdown())
             return 0
-        scene = resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
+        scene = _scene_of(args)
         from .ensemble import parse_seeds
 
         seeds = parse_seeds(args.seeds) if getattr(args, "seeds", None) else None
@@ -94,9 +167,10 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
         print(scene.to_toml(), end="")
         return 0
     from .ensemble import ensemble_markdown, run_ensemble
+    from .io import OutputError
     from .run import SolverError, run_scene
 
-    out = args.out or Path("out") / scene.name
+    out = args.resume or args.out or Path("out") / scene.name
     # a terminated run closes its output as 'interrupted' (with the profile) once the solver returns
     signal.signal(signal.SIGTERM, _terminate)
     opts = dict(progress=not args.no_progress, figures=not args.no_figures, animation=not args.no_animation,
@@ -108,9 +182,12 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             print(ensemble_markdown(outcomes))
             print(f"output: {out}/ (ensemble.md/.csv, one run directory per seed)")
             return 0
-        res = run_scene(scene, out, **opts)
+        res = run_scene(scene, out, resume=args.resume is not None, **opts)
     except SolverError as e:
         print(f"vofdem: {e}", file=sys.stderr)
+        return 1
+    except OutputError as e:
+        print(f"vofdem: output error: {e}", file=sys.stderr)
         return 1
     except ValueError as e:  # e.g. the solver refusing a parameter of the scene
         print(f"vofdem: error: {e}", file=sys.stderr)
@@ -121,7 +198,7 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
     print()
     print(res.profile_table)
     print(res.analysis.stage_table_markdown())
-    print(f"output: {out}/ (run.h5 + run.xmf for ParaView, stage_table.md/.csv, figures/, animation)")
+    print(f"output: {out}/ (run.h5 + run.xmf for ParaView, stones.xmf, stage_table.md/.csv, figures/, animation)")
     return 0
 
 

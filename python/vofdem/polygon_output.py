@@ -9,9 +9,14 @@ A run of polygon stones (``stones.shape = 'polygon'``) writes, beside the stones
     /stones/poly_topology (2 n + m,)         XDMF mixed topology: 3 (polygon), vertex count, vertex indices
     /stones/angle         (T, n)     [rad]   orientation (body frame to world, counter-clockwise)
     /stones/poly_world    (T, m, 2)  [m]     world-frame vertices, for ParaView (drawn as polygons)
+    /snapshots/<k>/angle, poly_world         snapshot k of the two series (virtual datasets, as io.py's)
 
-The functions here know nothing of the file's layout beyond these names, so the writer (io.py) calls
-them at its own creation, snapshot and read steps.
+The two series are made at full size with the file, like every series of io.py, so a killed run leaves
+them readable. run.xmf gets a third temporal collection, ``stone_polygons``: a mixed topology of polygons
+on the world vertices, with diameter, fixed, active and angle per stone (ParaView's three XDMF readers
+draw it; meshio 5.3 reads no polygons in a mixed topology, so it has no file of its own). The functions
+here know nothing of the file's layout beyond these names, so the writer (io.py) calls them at its own
+creation, snapshot and read steps.
 """
 from __future__ import annotations
 
@@ -77,27 +82,46 @@ def check_polygons(vertex, offset, n: int) -> None:
                          "(expected n + 1 offsets ending at the vertex count)")
 
 
-def create_datasets(f, vertex, offset, n: int, chunk_rows: int) -> None:
-    """The polygon datasets of run.h5 (h5py file f): the constant shapes and the empty series."""
+def create_datasets(f, vertex, offset, n: int, series) -> None:
+    """The polygon datasets of run.h5 (h5py file f), made with the file: the constant shapes, and the
+    series at full size through the writer's `series(f, name, tail, dtype, fill)` (nothing is resized)."""
     check_polygons(vertex, offset, n)
     f["stones/poly_vertex"] = vertex
     f["stones/poly_offset"] = offset
     f["stones/poly_topology"] = topology(offset)
-    m = len(vertex)
-    f.create_dataset("stones/angle", (0, n), maxshape=(None, n), dtype="f8", chunks=(16, max(1, chunk_rows)))
-    f.create_dataset("stones/poly_world", (0, m, 2), maxshape=(None, m, 2), dtype="f8", chunks=(4, max(1, m), 2))
+    series(f, "stones/angle", (n,), "f8", np.nan)
+    series(f, "stones/poly_world", (len(vertex), 2), "f8", np.nan)
 
 
 def write_snapshot(f, k: int, vertex, offset, pos, angle) -> None:
-    """Appends snapshot k: the stones' angles and world vertices."""
+    """Writes snapshot k into the series made by create_datasets: the stones' angles and world vertices."""
     n = np.asarray(offset).size - 1
     angle = np.asarray(angle, float).reshape(n)
-    ds = f["stones/angle"]
-    ds.resize((k + 1, n))
-    ds[k] = angle
-    ds = f["stones/poly_world"]
-    ds.resize((k + 1, len(vertex), 2))
-    ds[k] = world_polygon_vertices(vertex, offset, pos, angle)
+    f["stones/angle"][k] = angle
+    f["stones/poly_world"][k] = world_polygon_vertices(vertex, offset, pos, angle)
+
+
+def xdmf_grid(h5name: str, k: int, t: float, n: int, m: int, item, attribute) -> str:
+    """XDMF 3 text of snapshot k's polygons: n stones of m vertices in all, a mixed topology of polygons
+    on the world vertices, with the stones' constant and per-snapshot values as cell data. `item` and
+    `attribute` are the writer's DataItem and Attribute makers."""
+    snap = f"/snapshots/{k:06d}"
+    parts = [f'<Grid Name="stone_polygons_{k}" GridType="Uniform">', f'<Time Value="{float(t)!r}"/>',
+             f'<Topology TopologyType="Mixed" NumberOfElements="{n}">'
+             + item([2 * n + m], "/stones/poly_topology", h5name, "Int", "8") + "</Topology>",
+             '<Geometry GeometryType="XY">' + item([m, 2], f"{snap}/poly_world", h5name) + "</Geometry>",
+             attribute("diameter", "Scalar", "Cell", item([n], "/stones/diameter", h5name)),
+             attribute("fixed", "Scalar", "Cell", item([n], "/stones/fixed", h5name, "UChar", "1")),
+             attribute("active", "Scalar", "Cell", item([n], f"{snap}/active", h5name, "UChar", "1")),
+             attribute("angle", "Scalar", "Cell", item([n], f"{snap}/angle", h5name))]
+    return "".join(parts) + "</Grid>"
+
+
+def reopen(f):
+    """(vertex, offset) of an existing run file's polygon stones, or None for discs."""
+    if "stones/poly_vertex" not in f:
+        return None
+    return f["stones/poly_vertex"][()], f["stones/poly_offset"][()].astype(np.int64)
 
 
 def read(f, count: int):

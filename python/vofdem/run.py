@@ -5,22 +5,27 @@ The loop talks to the coupled simulation only through these names:
 ``sim.fluid`` with ``grid``, ``cell_F``, ``cell_p``, ``cell_porosity``, ``face_u``, ``face_w``;
 ``sim.stones`` with ``disc_pos`` (n, 2), ``disc_vel`` (n, 2), ``disc_radius``, ``disc_active``,
 ``disc_fixed``; ``sim.disc_force_drag``, ``sim.disc_force_pressure`` (n, 2) [N]; ``sim.profile`` with
-``names``, ``seconds``, ``calls``.
+``names``, ``seconds``, ``calls``; ``sim.export_state()`` / ``sim.import_state(dict)`` (checkpoints).
 
 A solver failure (RuntimeError while stepping) closes the output with everything written so far,
-marks it failed and raises ``SolverError`` with the solver's message.
+marks it failed and raises ``SolverError`` with the solver's message. A failing write (disk full)
+raises ``OutputError`` naming the file, with the snapshots written before it kept. After every
+snapshot the loop writes a checkpoint (checkpoint.py); ``run_scene(..., resume=True)`` continues a
+killed run from it.
 """
 from __future__ import annotations
 
 import time as _time
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Callable, List, Optional
 
 import numpy as np
 
 from .analysis import FailureAnalysis, analyse
-from .io import RunData, RunWriter, cell_velocities
+from .checkpoint import CHECKPOINT_EVERY, CHECKPOINT_NAME, Checkpoint, load_checkpoint, save_checkpoint
+from .io import OutputError, RunData, RunWriter, cell_velocities, check_writable
 from .polygon_output import stone_diameters, stone_polygons
 from .scene import Scene
 
@@ -96,13 +101,14 @@ def profile_table(profile, wall_seconds: Optional[float] = None, simulated: Opti
 class _Recorder:
     """Reads the simulation's views and appends one snapshot to the writer."""
 
-    def __init__(self, sim, scene: Scene, writer: RunWriter):
+    def __init__(self, sim, scene: Scene, writer: RunWriter, pos0: Optional[np.ndarray] = None):
         self.sim, self.scene, self.writer = sim, scene, writer
         g = sim.fluid.grid
         self.nx, self.nz = g.nx, g.nz
         self.x_faces, self.z_faces = grid_faces(g)
         self.gauge_i = int(np.clip(np.searchsorted(self.x_faces, scene.gauge_x) - 1, 0, self.nx - 1))
-        self.pos0 = np.array(sim.stones.disc_pos, float).reshape(-1, 2).copy()
+        start = sim.stones.disc_pos if pos0 is None else pos0
+        self.pos0 = np.array(start, float).reshape(-1, 2).copy()
         self.diameter = stone_diameters(sim.stones)
         self.polygons = stone_polygons(sim.stones) is not None
         self.moved = 0
@@ -129,68 +135,73 @@ class _Recorder:
 
 
 def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: Optional[bool] = None,
-              animation: Optional[bool] = None, build: Optional[Callable] = None, log=print) -> RunResult:
+              animation: Optional[bool] = None, build: Optional[Callable] = None, log=print,
+              resume: bool = False) -> RunResult:
     """Runs a scene to its end, writing ``out_dir``/run.h5 + run.xmf, the stage tables, the figures,
     the animation and the per-stage cost table. Returns a RunResult; raises SolverError on a solver
-    failure (after closing the output)."""
+    failure (after closing the output), OutputError on a failing write, ValueError (before the run) if
+    the output directory is not writable. resume: continue the killed run in ``out_dir`` from its
+    checkpoint (the scene must be the run's own: ``out_dir``/scene.toml)."""
     from . import __version__
 
     global _stop_requested
     _stop_requested = False
     scene.validate()
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "scene.toml").write_text(scene.to_toml(), encoding="utf-8")
+    ck = load_checkpoint(out / CHECKPOINT_NAME) if resume else None
+    if ck is not None and ck.scene_toml != scene.to_toml():
+        raise ValueError(f"the scene differs from the one of the run in '{out}' (resume with its own scene.toml)")
+    if ck is not None and RunData(out / "run.h5").attrs.get("status") == "completed":
+        raise ValueError(f"the run in '{out}' has completed: nothing to resume")
+    try:
+        check_writable(out)
+    except OutputError as e:
+        raise ValueError(str(e)) from e
+    if ck is None:
+        (out / "scene.toml").write_text(scene.to_toml(), encoding="utf-8")
     if sim is None:
         sim = (build or build_simulation)(scene)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table(np.asarray(t_tab, float), np.asarray(q_tab, float))
-    x_faces, z_faces = grid_faces(sim.fluid.grid)
-    st = sim.stones
-    fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
-    writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), fixed0,
-                       scene_toml=scene.to_toml(), seed=scene.seed, version=__version__, polygons=stone_polygons(st))
-    rec = _Recorder(sim, scene, writer)
-    duration, dt_snap = scene.duration, scene.output.snapshot_interval
-    ramp = scene.hydrograph.ramp_start
-    hold = scene.hydrograph.hold_stones_during_spin_up and ramp > float(sim.time) and len(fixed0) > 0
-    if hold:
-        st.disc_fixed[:] = True
-    wall0 = _time.perf_counter()
+    loop = _Loop(sim, scene, out, __version__, ck)
+    duration = scene.duration
     bar = _progress_bar(duration, progress)
-    t0 = float(sim.time)
     try:
-        rec.record()
-        for t_next in _targets(t0, duration, dt_snap, ramp if hold else None):
+        if ck is None:
+            loop.snapshot()
+        for t_next in loop.remaining():
             if _stop_requested:
                 raise KeyboardInterrupt
             sim.advance(t_next)
-            if hold and float(sim.time) >= ramp - 1e-9:
-                st.disc_fixed[:] = fixed0
-                hold = False
-            rec.record()
+            loop.after_advance()
+            loop.snapshot()
             if bar is not None:
                 bar.n = round(min(float(sim.time), duration), 3)
                 bar.set_postfix_str(f"Q={scene.hydrograph.discharge_lps_at(float(sim.time)):.2f} l/s, "
-                                    f"stones moved={rec.moved}", refresh=False)
+                                    f"stones moved={loop.rec.moved}", refresh=False)
                 bar.refresh()
     except RuntimeError as e:
         if bar is not None:
             bar.close()
-        writer.close(f"failed: {e}", profile=_profile_tuple(sim), extra_attrs=_model_attrs(sim, scene))
+        loop.close(f"failed: {e}")
         raise SolverError(f"solver failed at t = {float(sim.time):.4g} s: {e} (output so far kept in {out})") from e
+    except OutputError:
+        if bar is not None:
+            bar.close()
+        loop.close_quietly("failed: output could not be written")
+        raise
     except BaseException:
         if bar is not None:
             bar.close()
-        writer.close("interrupted", profile=_profile_tuple(sim), extra_attrs=_model_attrs(sim, scene))
+        loop.close("interrupted")
         raise
     if bar is not None:
         bar.close()
-    wall = _time.perf_counter() - wall0
-    simulated = float(sim.time) - t0
-    table = profile_table(sim.profile, wall, simulated)
-    writer.close("completed", profile=_profile_tuple(sim),
-                 extra_attrs={"wall_seconds": wall, "simulated_seconds": simulated, **_model_attrs(sim, scene)})
+    wall = loop.wall_seconds()
+    simulated = float(sim.time) - loop.t_start
+    table = profile_table(loop.profile(), wall, simulated)
+    writer = loop.writer
+    loop.close("completed", {"wall_seconds": wall, "simulated_seconds": simulated})
     (out / "profile.md").write_text(table, encoding="utf-8")
     result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
                        [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"])
@@ -198,6 +209,86 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
                                   animation=scene.output.animation if animation is None else animation,
                                   files=result.files)
     return result
+
+
+class _Loop:
+    """The run loop's state: the writer, the snapshot times, the held stones, the checkpoints and the
+    cost so far (a resumed run adds the killed run's profile and wall time to its own)."""
+
+    def __init__(self, sim, scene: Scene, out: Path, version: str, ck: Optional[Checkpoint]):
+        self.sim, self.scene, self.out = sim, scene, out
+        st = sim.stones
+        self.wall0 = _time.perf_counter()
+        if ck is None:
+            self.fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
+            ramp = scene.hydrograph.ramp_start
+            self.hold = scene.hydrograph.hold_stones_during_spin_up and ramp > float(sim.time) and len(self.fixed0) > 0
+            self.t_start = float(sim.time)
+            self.targets = _targets(self.t_start, scene.duration, scene.output.snapshot_interval,
+                                    ramp if self.hold else None)
+            x_faces, z_faces = grid_faces(sim.fluid.grid)
+            self.writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), self.fixed0,
+                                    capacity=1 + len(self.targets), scene_toml=scene.to_toml(), seed=scene.seed,
+                                    version=version, polygons=stone_polygons(st))
+            if self.hold:
+                st.disc_fixed[:] = True
+            self.base_profile, self.base_wall, pos0 = {}, 0.0, None
+        else:
+            sim.import_state(ck.state)
+            self.targets, self.hold = ck.targets, ck.hold
+            self.writer = RunWriter.reopen(out / "run.h5", ck.snapshots)
+            data = RunData(self.writer.path)
+            self.fixed0, pos0 = data.fixed, data.pos[0]
+            self.t_start = float(data.times[0])
+            self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
+        self.rec = _Recorder(sim, scene, self.writer, pos0)
+
+    def remaining(self):
+        """The snapshot times still to run."""
+        return self.targets[self.writer.count - 1:]
+
+    def after_advance(self) -> None:
+        """Releases the held stones once the ramp starts."""
+        if self.hold and float(self.sim.time) >= self.scene.hydrograph.ramp_start - 1e-9:
+            self.sim.stones.disc_fixed[:] = self.fixed0
+            self.hold = False
+
+    def snapshot(self) -> None:
+        """Records a snapshot, then (every CHECKPOINT_EVERY snapshots) the checkpoint."""
+        self.rec.record()
+        if self.writer.count % CHECKPOINT_EVERY == 0 or self.writer.count == 1 + len(self.targets):
+            names, seconds, calls = self.profile_tuple()
+            save_checkpoint(self.out / CHECKPOINT_NAME, Checkpoint(
+                dict(self.sim.export_state()), self.writer.count, self.targets, self.hold, self.scene.to_toml(),
+                {n: (s, c) for n, s, c in zip(names, seconds, calls)}, self.wall_seconds()))
+
+    def wall_seconds(self) -> float:
+        return self.base_wall + _time.perf_counter() - self.wall0
+
+    def profile_tuple(self):
+        """(names, seconds, calls) of the solver's profile plus the killed run's (resumed runs)."""
+        own = _profile_tuple(self.sim)
+        if own is None:
+            return None
+        names, seconds, calls = own
+        base = self.base_profile
+        return (names, [s + base.get(n, (0.0, 0))[0] for n, s in zip(names, seconds)],
+                [c + base.get(n, (0.0, 0))[1] for n, c in zip(names, calls)])
+
+    def profile(self):
+        names, seconds, calls = self.profile_tuple()
+        return SimpleNamespace(names=names, seconds=seconds, calls=calls)
+
+    def close(self, status: str, extra: Optional[dict] = None) -> None:
+        self.writer.close(status, profile=self.profile_tuple(),
+                          extra_attrs={**(extra or {}), **_model_attrs(self.sim, self.scene)})
+
+    def close_quietly(self, status: str) -> None:
+        """Closes after a failed write: a second failure (the disk still full) must not hide the first."""
+        try:
+            self.close(status)
+        except OutputError:
+            pass
 
 
 def _model_attrs(sim, scene: Scene) -> dict:

@@ -211,6 +211,11 @@ class Stones(_Section):
     density: float = _p(2650.0, "density", 1000.0, 20000.0, "stone density [kg/m3]; usual 2650", "(]")
     friction_stone: float = _p(0.577, None, 0.0, 2.0, "stone-stone Coulomb friction [-]; paper 0.577")
     friction_wall: float = _p(0.176, None, 0.0, 2.0, "stone-wall Coulomb friction [-]; paper 0.176")
+    rolling_friction: float = _p(0.0, None, 0.0, 1.0, "stone-stone rolling friction mu_r [-]: the rolling moment "
+                                 "is capped at mu_r R* f_n (Ai et al. 2011, type C); 0 = none, the paper's discs")
+    rolling_friction_wall: float = _p(0.0, None, 0.0, 1.0, "stone-wall rolling friction mu_r [-]; 0 = none")
+    rolling_damping: float = _p(0.3, None, 0.0, 1.0, "rolling damping ratio eta_r [-] below full mobilisation; "
+                                "usual 0.3")
     n_exp: float = _p(0.41, None, 0.0, 1.0, "measured porosity of the packing, eq. (11) [-]; paper 0.41", "()")
     k1: float = _p(200.0, None, 0.0, 1e4, "porous resistance coefficient k1, eq. (7) [-]; paper 200", "(]")
     k2: float = _p(2.8, None, 0.0, 100.0, "porous resistance coefficient k2, eq. (7) [-]; paper 2.8", "(]")
@@ -260,6 +265,12 @@ class Stones(_Section):
         if self.polygon_vertices_max < self.polygon_vertices_min:
             raise ValueError(f"{prefix}.polygon_vertices_max = {self.polygon_vertices_max} is outside the allowed "
                              f"range [{self.polygon_vertices_min}, 16] (at least {prefix}.polygon_vertices_min)")
+        # a polygon resists rolling by its shape; the disc law on its bounding radius has no physical basis
+        for name in ("rolling_friction", "rolling_friction_wall"):
+            if self.shape == "polygon" and getattr(self, name) > 0.0:
+                raise ValueError(f"{prefix}.{name} = {_fmt(getattr(self, name))} is outside the allowed range [0, 0] "
+                                 f"with {prefix}.shape = 'polygon': the rolling resistance is a law for disc stones "
+                                 "(polygon stones resist rolling by their shape)")
 
     def mean_diameter(self) -> float:
         """Number-weighted mean diameter [m] of the grading (or `diameter`)."""
@@ -408,6 +419,8 @@ class Effects(_Section):
     two_way: bool = _flag(True, "porosity follows the stones (feedback on the flow)")
     added_mass: bool = _flag(True, "added mass M' = rho C_M V")
     rotation: bool = _flag(True, "stone rotation, eq. (10)")
+    rolling_resistance: bool = _flag(True, "rolling resistance at contacts (stones.rolling_friction*; "
+                                     "nothing while those are 0)")
     friction: bool = _flag(True, "Coulomb friction at contacts")
     buoyancy: bool = _flag(True, "buoyancy (M - rho_w V) g")
     drag: bool = _flag(True, "drag of the flow on stones, eqs. (16)-(18)")

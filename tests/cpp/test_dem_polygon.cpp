@@ -288,3 +288,33 @@ TEST(DEMPolygon, RefusesBadPolygons) {
   }
   EXPECT_EQ(s.shape(), StoneShape::kDisc);  // unchanged by the refused calls
 }
+
+TEST(DEMPolygon, RefusesTheDiscsRollingResistance) {
+  // a polygon resists rolling by its shape: mu_r > 0 is refused whichever comes first, shape or parameter
+  DEMParams p;
+  p.rolling_friction_stone = 0.4;
+  DEMSystem s(p, {0.0, 0.0}, {0.03}, {kRho});
+  const std::vector<double> box = {-0.02, -0.01, 0.02, -0.01, 0.02, 0.01, -0.02, 0.01};
+  try {
+    s.set_polygons(box, {0, 4});
+    ADD_FAILURE() << "set_polygons accepted rolling_friction_stone = 0.4";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rolling_friction_stone"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.shape(), StoneShape::kDisc);  // unchanged by the refused call
+  p.rolling_friction_stone = 0.0;
+  s.set_params(p);
+  s.set_polygons(box, {0, 4});
+  p.rolling_friction_wall = 0.2;
+  try {
+    s.set_params(p);
+    ADD_FAILURE() << "set_params accepted rolling_friction_wall = 0.2 for polygon stones";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rolling_friction_wall"), std::string::npos) << e.what();
+  }
+  p.rolling_friction_wall = 0.0;
+  p.flags &= ~kDEMRollingResistance;
+  p.contact_steps = 50;  // the polygons' stable step (docs/dem.md)
+  s.set_params(p);  // mu_r = 0: accepted, the flag on or off
+  EXPECT_NO_THROW(s.advance(1e-3));
+}

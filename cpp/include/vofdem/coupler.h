@@ -150,6 +150,7 @@ class Coupler {
   void check_scene() const;
   void apply_flow_flags();
   void make_mapper();
+  void import_turbulence(const std::map<std::string, std::vector<double>>& state);
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
   // with both force effects off: zeroes the fluid forces the stones still hold (once, on the switch)

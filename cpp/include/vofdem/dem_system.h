@@ -7,7 +7,8 @@
 // with M_i = rho_s V_i, V_i = pi d_i^3 / 6 (a sphere of the disc's diameter, the paper's V_i; its
 // projected area A_pi = pi d_i^2 / 4), added mass M'_i = rho_w C_M V_i, and I_i = inertia_factor M_i
 // (d_i/2)^2 (0.4: a sphere, the default; 0.5: a disc). The wet fraction w_i in [0, 1] of each stone
-// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h.
+// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h;
+// rolling resistance (a moment added to eq. 10, effect kDEMRollingResistance): rolling_resistance.h.
 // F_x, F_z: disc_force_ext, set by the coupler (the fluid's drag and pressure-gradient forces).
 //
 // Stone shape: discs (the default) or convex polygons (set_polygons(); polygon.h gives the matching 3D
@@ -47,7 +48,8 @@ enum DEMFlag : unsigned {
   kDEMDamping = 1u << 6,        // contact dashpots
   kDEMExternalForce = 1u << 7,  // disc_force_ext (fluid forces from the coupler)
   kDEMRemoval = 1u << 8,        // stones leaving the domain box are deactivated and counted
-  kDEMAllEffects = (1u << 9) - 1u - (1u << 5),  // everything but sleeping
+  kDEMRollingResistance = 1u << 9,  // rolling moment of rolling_resistance.h (costs nothing while mu_r = 0)
+  kDEMAllEffects = (1u << 10) - 1u - (1u << 5),  // everything but sleeping
 };
 
 // a half-plane wall: the solid lies on the side opposite to `normal`
@@ -70,6 +72,10 @@ struct DEMParams {
   double tangential_damping_factor = 0.5;     // c_t / c_n [-]; 0.5 usual (LAMMPS default)
   double friction_stone = 0.577;              // stone-stone Coulomb coefficient [-] (paper 0.577)
   double inertia_factor = 0.4;                // I = factor M r^2 [-]; 0.4 sphere, 0.5 disc
+  // rolling resistance (rolling_resistance.h; only with kDEMRollingResistance): M_r <= mu_r R* f_n
+  double rolling_friction_stone = 0.0;        // mu_r stone-stone [-], >= 0; 0 = none (discs only: polygons refuse > 0)
+  double rolling_friction_wall = 0.0;         // mu_r stone-wall [-], >= 0; 0 = none (discs only)
+  double rolling_damping = 0.3;               // eta_r = C_r / (2 sqrt(I_r k_r)) [-] in [0, 1]; off at full mobilisation
   std::array<double, 2> domain_min{-1e30, -1e30};  // removal box, lower corner (x, z) [m]
   std::array<double, 2> domain_max{1e30, 1e30};    // removal box, upper corner (x, z) [m]
   double neighbour_skin = 0.0;                // Verlet-list skin [m]; 0 = 0.1 x the largest diameter
@@ -94,8 +100,8 @@ enum DEMStage : int { kStageIntegrate = 0, kStageRemoval, kStageNeighbours, kSta
 struct DEMEnergy {
   double kinetic = 0.0;        // sum 1/2 (M + M') v^2 + 1/2 I omega^2 [J]
   double potential = 0.0;      // sum -(M - rho_w V w) g . x [J] (zero at the origin)
-  double elastic = 0.0;        // energy in the contact springs at the last force evaluation [J]
-  double dissipated = 0.0;     // dashpots + Coulomb slip + sleeping, accumulated [J]
+  double elastic = 0.0;        // energy in the contact springs (rolling ones too) at the last evaluation [J]
+  double dissipated = 0.0;     // dashpots + Coulomb and rolling slip + sleeping, accumulated [J]
   double work_external = 0.0;  // work of disc_force_ext, accumulated [J]
   double total() const { return kinetic + potential + elastic + dissipated - work_external; }
 };
@@ -117,7 +123,7 @@ class DEMSystem {
   void set_params(const DEMParams& p);
 
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
-  // (normal and tangential-rotational modes of the lightest stone)
+  // (normal and tangential-rotational modes of the lightest stone, the latter with the rolling spring)
   double stable_dt();
   // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
   // state (export_state) so that a failure can restore it: call advance() with long durations.
@@ -204,8 +210,10 @@ class DEMSystem {
   };
   struct Pair {
     int i, j;
-    double xi;      // tangential spring [m]
-    double sqrt_m;  // sqrt of the pair's reduced mass [kg^0.5], set at each build
+    double xi;         // tangential spring [m]
+    double sqrt_m;     // sqrt of the pair's reduced mass [kg^0.5], set at each build
+    double mr = 0.0;   // rolling spring moment M_r^k on i [N m] (rolling resistance only)
+    double roll_c = 0.0;  // 2 R* sqrt(I_r) [kg^0.5 m^2]: C_r = eta_r sqrt(k_t) roll_c (rolling resistance only)
     PolygonHistory poly{};  // polygon stones: the springs of the manifold points
   };
   void prepare();
@@ -228,6 +236,21 @@ class DEMSystem {
   void body_forces(double dt);
   void contact_forces(double dt);
   void wall_forces(double dt);
+  // rolling resistance (dem_rolling.cpp, law in rolling_resistance.h): whether a contact kind has it,
+  // its check, its term of stable_dt(), and the moments of one stone-stone or stone-wall contact
+  // (applied to disc_torque; the energies returned)
+  bool rolling_stones() const;
+  bool rolling_walls() const;
+  void check_rolling_params() const;
+  void check_rolling_shape(StoneShape shape) const;  // refuses mu_r > 0 for polygon stones
+  double rolling_spin_stiffness(double m_min) const;
+  void update_rolling_inertia();
+  void update_pair_rolling();  // Pair::roll_c of every listed pair
+  struct RollingEnergy {
+    double elastic = 0.0, dissipated = 0.0;
+  };
+  RollingEnergy rolling_contact(Pair& c, double fn, double dt);
+  RollingEnergy rolling_wall(int i, double& mr, double fn, double dt);
   void sleep_update(double dt);
   double reduced_stiffness_mass() const;
   // polygon stones (dem_polygon.cpp)
@@ -258,10 +281,14 @@ class DEMSystem {
   std::vector<double> inv_mass_;     // 1 / (M + M'), 0 if fixed or inactive [1/kg]
   std::vector<double> inv_inertia_;  // 1 / I [1/(kg m^2)]
   std::vector<double> weight_;       // (M - rho_w V w) [kg]: multiplies g
+  std::vector<double> inv_roll_inertia_;  // 1 / (I + (M + M') r^2), 0 if it does not turn [1/(kg m^2)]
+  std::vector<double> wall_roll_c_;       // 2 r sqrt(I + (M + M') r^2) per stone: roll_c of its wall contacts
+  double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off
 
   // neighbour list and contact histories
   std::vector<Pair> pairs_;
   std::vector<double> wall_xi_;      // tangential spring per (stone, wall) [m], n * nwall
+  std::vector<double> wall_mr_;      // rolling spring moment per (stone, wall) [N m], n * nwall
   std::vector<double> build_pos_;    // positions at the last neighbour build
   double skin_ = 0.0;
   bool rebuild_ = true;

@@ -1,0 +1,136 @@
+"""Real clients read the output: ParaView's three XDMF readers (pvbatch, tests/paraview_dump.py) and
+meshio, on a whole run of the quick scene (71 snapshots) and on a run killed with SIGKILL. Each must
+find every (completed) time step, the field and stone array names, and the values of run.h5."""
+import shutil
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+from test_resume import _vofdem, kill_at_snapshot
+
+from vofdem.io import FIELD_NAMES, completed_snapshots
+
+ROOT = Path(__file__).resolve().parents[1]
+READERS = ("XDMFReader", "Xdmf3ReaderS", "Xdmf3ReaderT")
+QUICK = ["run", "maeno2008", "--quick", "--no-figures", "--no-animation", "--no-progress"]
+# point data of the stones in the XDMF and their datasets in run.h5
+STONE_DATA = {"velocity": "stones/vel", "force_drag": "stones/force_drag", "force_pressure": "stones/force_pressure",
+              "position": "stones/pos"}
+PVBATCH = shutil.which("pvbatch")
+needs_pvbatch = pytest.mark.skipif(PVBATCH is None, reason="pvbatch (Debian's paraview package) is not installed: "
+                                   "the ParaView readers are not tested (scripts/install_deps.sh installs it)")
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("quick") / "run"
+    p = _vofdem(*QUICK, "--out", str(out))
+    assert p.wait(timeout=900) == 0, p.stderr.read()
+    p.stderr.close()
+    return out
+
+
+@pytest.fixture(scope="module")
+def killed_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("killed") / "run"
+    kill_at_snapshot(out, int(np.random.default_rng().integers(20, 60)), QUICK)
+    return out
+
+
+def _expected(out):
+    with h5py.File(out / "run.h5", "r") as f:  # plain h5py, default mode
+        T = completed_snapshots(f["time"][()])
+        h5 = {name: f[name][:T] for name in ["time", *STONE_DATA.values()] + [f"fields/{n}" for n in FIELD_NAMES]}
+        h5["stones/diameter"] = f["stones/diameter"][()]
+        return T, h5
+
+
+def _compare(reader, z, T, h5):
+    """A reader's arrays (paraview_dump.py) against run.h5."""
+    times = z["times"]
+    # all of a whole run's snapshots; a killed run's XDMF may lack the last completed one
+    assert T - 1 <= times.size <= T and times.size >= 2, (reader, times.size, T)
+    assert np.array_equal(times, h5["time"][:times.size]), reader
+    assert {k.split("/")[-1] for k in z if k.startswith("fields/0/cell/")} == set(FIELD_NAMES)
+    assert {k.split("/")[-1] for k in z if k.startswith("stones/0/point/")} == \
+        set(STONE_DATA) | {"diameter", "fixed", "active"}
+    for k in range(times.size):
+        for name in FIELD_NAMES:
+            assert np.array_equal(z[f"fields/{k}/cell/{name}"], h5[f"fields/{name}"][k].ravel()), (reader, k, name)
+        for name, ds in STONE_DATA.items():
+            assert np.array_equal(z[f"stones/{k}/point/{name}"][:, :2], h5[ds][k]), (reader, k, name)
+        assert np.array_equal(z[f"stones/{k}/points"][:, :2], h5["stones/pos"][k]), (reader, k)
+        assert np.array_equal(z[f"stones/{k}/point/diameter"], h5["stones/diameter"]), (reader, k)
+
+
+def _check_paraview(out, tmp_path):
+    T, h5 = _expected(out)
+    r = subprocess.run([PVBATCH, str(ROOT / "tests" / "paraview_dump.py"), str(out / "run.xmf"),
+                        str(tmp_path / "pv_"), *READERS], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "HDF5-DIAG" not in r.stderr and "XDMF Error" not in r.stderr, r.stderr[:2000]
+    for reader in READERS:
+        with np.load(tmp_path / f"pv_{reader}.npz") as z:
+            _compare(reader, dict(z), T, h5)
+    return T
+
+
+def _check_meshio(out):
+    import meshio
+
+    T, h5 = _expected(out)
+    with meshio.xdmf.TimeSeriesReader(out / "run.xmf") as r:
+        points, cells = r.read_points_cells()
+        assert T - 1 <= r.num_steps <= T and cells[0].type == "quad"
+        assert len(cells[0].data) == h5["fields/F"].shape[1] * h5["fields/F"].shape[2]
+        for k in range(r.num_steps):
+            t, point_data, cell_data = r.read_data(k)
+            assert t == h5["time"][k] and set(cell_data) == set(FIELD_NAMES)
+            for name in FIELD_NAMES:
+                assert np.array_equal(cell_data[name][0], h5[f"fields/{name}"][k]), (k, name)
+    with meshio.xdmf.TimeSeriesReader(out / "stones.xmf") as r:
+        points, cells = r.read_points_cells()
+        assert cells[0].type == "vertex" and np.array_equal(points, h5["stones/pos"][0])
+        for k in range(r.num_steps):
+            t, point_data, _ = r.read_data(k)
+            assert t == h5["time"][k]
+            for name, ds in STONE_DATA.items():
+                assert np.array_equal(point_data[name], h5[ds][k]), (k, name)
+    return T
+
+
+@pytest.mark.slow
+@needs_pvbatch
+def test_paraview_reads_every_snapshot_of_a_whole_run(quick_run, tmp_path):
+    assert _check_paraview(quick_run, tmp_path) == 71
+    with h5py.File(quick_run / "run.h5", "r") as f:  # several chunks' worth of snapshots of every series
+        assert f.attrs["status"] == "completed" and f["fields/F"].shape[0] == 71
+
+
+@pytest.mark.slow
+def test_meshio_reads_every_snapshot_of_a_whole_run(quick_run):
+    assert _check_meshio(quick_run) == 71
+
+
+@pytest.mark.slow
+@needs_pvbatch
+def test_paraview_and_meshio_read_a_run_killed_with_sigkill(killed_run, tmp_path):
+    with h5py.File(killed_run / "run.h5", "r") as f:
+        assert f.attrs["status"] == "running"
+    T = _check_paraview(killed_run, tmp_path)
+    assert 20 <= T < 71
+    assert _check_meshio(killed_run) == T
+
+
+
+@pytest.mark.slow
+@needs_pvbatch
+def test_the_paraview_example_builds_its_view(quick_run):
+    # the pipeline of examples/paraview_view.py without rendering (rendering needs a display)
+    r = subprocess.run([PVBATCH, str(ROOT / "examples" / "paraview_view.py"), str(quick_run), "--check"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "t = 35 s: cells 1196, water cells" in r.stdout and "stones 80" in r.stdout
+    assert "porosity" in r.stdout and "velocity" in r.stdout

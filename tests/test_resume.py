@@ -1,0 +1,134 @@
+"""A run killed with SIGKILL at a random snapshot: its file opens in plain h5py, `vofdem run --resume`
+continues it from its checkpoint, and it ends bit for bit as a run that was never stopped; with disc
+stones and with polygon stones (their shapes, orientations and per-point contact springs)."""
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+import vofdem
+from vofdem.checkpoint import load_checkpoint
+from vofdem.io import completed_snapshots
+
+ENV = dict(os.environ, PYTHONPATH=str(Path(vofdem.__file__).resolve().parents[1]) + os.pathsep
+           + os.environ.get("PYTHONPATH", ""))
+ROOT = Path(__file__).resolve().parents[1]
+# a scene's quick variant to 8 s: 17 snapshots, the stones held during the 5 s spin-up and released
+OPTIONS = ["--quick", "--end-time", "8", "--no-figures", "--no-animation", "--no-progress"]
+RUN = ["run", "maeno2008", *OPTIONS]
+SCENES = {"discs": "maeno2008", "polygons": str(ROOT / "scenes" / "maeno2008_polygons.toml")}
+SNAPSHOTS = 17
+
+
+def _vofdem(*args, **kw):
+    return subprocess.Popen([sys.executable, "-m", "vofdem", *args], env=ENV, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True, **kw)
+
+
+def _completed(path) -> int:
+    try:
+        with h5py.File(path, "r") as f:
+            return completed_snapshots(f["time"][()])
+    except (OSError, KeyError):  # not made yet
+        return 0
+
+
+def kill_at_snapshot(out: Path, k: int, args=RUN) -> None:
+    """Starts `vofdem *args` into `out` and SIGKILLs it once `k` snapshots are complete."""
+    p = _vofdem(*args, "--out", str(out))
+    deadline = time.monotonic() + 300
+    while _completed(out / "run.h5") < k and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)
+    p.send_signal(signal.SIGKILL)
+    p.wait(timeout=60)
+    assert p.returncode == -signal.SIGKILL, f"the run ended before it was killed: {p.stderr.read()}"
+    p.stderr.close()
+
+
+def _datasets(path, prefix=""):
+    out = {}
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset) and n.startswith(prefix)
+                     else None)
+    return out
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("stones", sorted(SCENES))
+def test_killed_run_resumes_bit_for_bit(tmp_path, stones):
+    run = ["run", SCENES[stones], *OPTIONS]
+    ref = _vofdem(*run, "--out", str(tmp_path / "ref"))
+    assert ref.wait(timeout=600) == 0, ref.stderr.read()
+    ref.stderr.close()
+    k = int(np.random.default_rng().integers(2, SNAPSHOTS - 2))
+    out = tmp_path / "killed"
+    kill_at_snapshot(out, k, run)
+    # plain h5py, default mode: every completed snapshot equals the uninterrupted run's
+    series = ["time", "fields/F", "fields/p", "stones/pos", "stones/force_pressure"]
+    if stones == "polygons":
+        series += ["stones/angle", "stones/poly_world"]
+    with h5py.File(out / "run.h5", "r") as f, h5py.File(tmp_path / "ref" / "run.h5", "r") as g:
+        assert f.attrs["status"] == "running"
+        T = completed_snapshots(f["time"][()])
+        assert k <= T < SNAPSHOTS, (k, T)
+        for name in series:
+            assert np.array_equal(f[name][:T], g[name][:T]), name
+    r = _vofdem("run", "--resume", str(out))
+    assert r.wait(timeout=600) == 0, r.stderr.read()
+    r.stderr.close()
+    # the same results bit for bit: every dataset of run.h5 but the cost, the stage tables, the final state
+    a, b = _datasets(tmp_path / "ref" / "run.h5"), _datasets(out / "run.h5")
+    assert a.keys() == b.keys()
+    for name in a:
+        if not name.startswith("profile/"):
+            assert np.array_equal(a[name], b[name], equal_nan=True), name
+    with h5py.File(out / "run.h5", "r") as f:
+        assert f.attrs["status"] == "completed"
+    for table in ("stage_table.md", "stage_table.csv", "crest_lowering.csv"):
+        assert (out / table).read_text() == (tmp_path / "ref" / table).read_text(), table
+    sa, sb = load_checkpoint(tmp_path / "ref" / "checkpoint.h5"), load_checkpoint(out / "checkpoint.h5")
+    assert sa.state.keys() == sb.state.keys() and len(sa.state) > 30 and sa.snapshots == sb.snapshots == SNAPSHOTS
+    # polygon runs carry the shapes and the contact points' springs (some of them loaded) in the state
+    assert ("dem/poly_vertex" in sa.state) == (stones == "polygons")
+    if stones == "polygons":
+        assert "stones/poly_world" in a and np.count_nonzero(sa.state["dem/poly_contact_xi"]) > 0
+    for name in sa.state:
+        assert np.array_equal(sa.state[name], sb.state[name]), name
+    # the stage profile adds up the killed part and the resumed part
+    assert b["profile/calls"].sum() >= a["profile/calls"].sum()
+
+
+def test_resume_errors(tmp_path, capsys):
+    from vofdem.cli import main
+
+    assert main(["run", "--resume", str(tmp_path / "nothing")]) == 2
+    assert "no scene.toml there, not a run directory" in capsys.readouterr().err
+    assert main(["run", "maeno2008", "--resume", str(tmp_path)]) == 2
+    assert "give no SCENE" in capsys.readouterr().err
+    assert main(["run"]) == 2
+    assert "give a SCENE" in capsys.readouterr().err
+    from vofdem.scene import Scene
+
+    (tmp_path / "scene.toml").write_text(Scene.maeno2008().quick().to_toml())
+    assert main(["run", "--resume", str(tmp_path), "--no-progress"]) == 2
+    assert "no checkpoint" in capsys.readouterr().err
+
+
+def test_checkpoint_round_trip_is_exact(tmp_path):
+    from vofdem.checkpoint import Checkpoint, save_checkpoint
+
+    state = {"fluid/face_u": np.array([0.1, -2.5e-300, np.pi]), "coupler/time": np.array([7.25]),
+             "dem/contact_i": np.zeros(0)}
+    ck = Checkpoint(state, 3, [0.5, 1.0], True, "name = 'x'\n", {"fluid": (1.5, 7)}, 2.0)
+    save_checkpoint(tmp_path / "c.h5", ck)
+    back = load_checkpoint(tmp_path / "c.h5")
+    assert back.state.keys() == state.keys() and all(np.array_equal(back.state[k], v) for k, v in state.items())
+    assert (back.snapshots, back.targets, back.hold, back.scene_toml, back.profile, back.wall_seconds) == \
+        (3, [0.5, 1.0], True, "name = 'x'\n", {"fluid": (1.5, 7)}, 2.0)
+    assert not (tmp_path / "c.h5.tmp").exists()
