@@ -166,10 +166,35 @@ bool DEMSystem::polygon_reference(SatCache& sc, int i, int j, double dx, double 
     }
   }
   const SatResult r = polygon_sat(va, ua, ni, vb, ub, nj);
-  sc = SatCache{r.flip, r.edge, r.value < 0.0 ? r.margin : 0.0, dx, dz, disc_angle[i], disc_angle[j]};
+  sc.flip = r.flip;
+  sc.edge = r.edge;
+  sc.margin = r.value < 0.0 ? r.margin : 0.0;
+  sc.dx = dx;
+  sc.dz = dz;
+  sc.ai = disc_angle[i];
+  sc.aj = disc_angle[j];
   flip = r.flip;
   edge = r.edge;
   return r.value < 0.0;
+}
+
+// the incident edge of pair (i, j) for the reference face (flip, edge), from the cache while no edge normal
+// can have turned enough to change the choice: n . u_k changes by at most |dtheta_i| + |dtheta_j| (both
+// unit normals turn with their stones), so the choice holds while 2 (|dtheta_i| + |dtheta_j|) stays below
+// the lead it had. The same edge either way, so the same arithmetic follows: bit-identical.
+int DEMSystem::polygon_incident(SatCache& sc, int i, int j, int flip, int edge) {
+  if (sc.inc >= 0 && sc.inc_flip == flip && sc.inc_edge == edge &&
+      2.0 * (std::fabs(disc_angle[i] - sc.inc_ai) + std::fabs(disc_angle[j] - sc.inc_aj)) < sc.inc_margin - 1e-12)
+    return sc.inc;
+  const int ref = flip ? j : i, other = flip ? i : j;
+  const double* u = &poly_world_normal_[2 * (poly_offset[ref] + edge)];
+  const int o = poly_offset[other];
+  sc.inc = polygon_incident_edge(&poly_world_normal_[2 * o], poly_offset[other + 1] - o, u[0], u[1], &sc.inc_margin);
+  sc.inc_flip = flip;
+  sc.inc_edge = edge;
+  sc.inc_ai = disc_angle[i];
+  sc.inc_aj = disc_angle[j];
+  return sc.inc;
 }
 
 void DEMSystem::polygon_contact_forces(double dt) {
@@ -200,11 +225,14 @@ void DEMSystem::polygon_contact_forces(double dt) {
     polygon_world(j);
     const int oi = poly_offset[i], oj = poly_offset[j];
     int flip = 0, edge = 0;
+    if (!polygon_reference(cache, i, j, dx, dz, flip, edge)) {  // apart: cleared in place, no manifold
+      c.poly = PolygonHistory{};
+      continue;
+    }
     const ContactManifold m =
-        polygon_reference(cache, i, j, dx, dz, flip, edge)
-            ? polygon_manifold(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi,
-                               &poly_world_[2 * oj], &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj, flip, edge)
-            : ContactManifold{};
+        polygon_manifold(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi, &poly_world_[2 * oj],
+                         &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj, flip, edge,
+                         polygon_incident(cache, i, j, flip, edge));
     PolygonHistory next;
     if (m.count > 0) ++ncontact;
     const double nx = m.normal[0], nz = m.normal[1];

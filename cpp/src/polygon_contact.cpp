@@ -36,18 +36,7 @@ Separation max_separation(const double* v1, const double* u1, int n1, const doub
 }
 
 // the edge of polygon 2 most anti-parallel to n
-int incident_edge(const double* u2, int n2, double nx, double nz) {
-  int edge = 0;
-  double lo = INFINITY;
-  for (int k = 0; k < n2; ++k) {
-    const double d = nx * u2[2 * k] + nz * u2[2 * k + 1];
-    if (d < lo) {
-      lo = d;
-      edge = k;
-    }
-  }
-  return edge;
-}
+int incident_edge(const double* u2, int n2, double nx, double nz) { return polygon_incident_edge(u2, n2, nx, nz); }
 
 // the id of a point: the vertex of A and the vertex of B that make it, whichever face is the reference
 // (a face-on-face point keeps its id when the reference face changes sides)
@@ -66,6 +55,23 @@ void add_point(ContactManifold& m, double px, double pz, double s, double nx, do
 }
 
 }  // namespace
+
+int polygon_incident_edge(const double* u2, int n2, double nx, double nz, double* margin) {
+  int edge = 0;
+  double lo = INFINITY, next = INFINITY;
+  for (int k = 0; k < n2; ++k) {
+    const double d = nx * u2[2 * k] + nz * u2[2 * k + 1];
+    if (d < lo) {
+      next = lo;
+      lo = d;
+      edge = k;
+    } else if (d < next) {
+      next = d;
+    }
+  }
+  if (margin) *margin = next - lo;
+  return edge;
+}
 
 void polygon_edge_normals(const double* v, int n, double* out) {
   for (int k = 0; k < n; ++k) {
@@ -107,7 +113,7 @@ ContactManifold collide_polygons(const double* va, const double* ua, int na, con
 }
 
 ContactManifold polygon_manifold(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb,
-                                 int flip, int edge) {
+                                 int flip, int edge, int incident) {
   ContactManifold m;
   const double* v1 = flip ? vb : va;
   const double* u1 = flip ? ub : ua;
@@ -117,7 +123,7 @@ ContactManifold polygon_manifold(const double* va, const double* ua, int na, con
   const int n2 = flip ? na : nb;
   const int i11 = edge, i12 = i11 + 1 == n1 ? 0 : i11 + 1;
   const double nx = u1[2 * i11], nz = u1[2 * i11 + 1];
-  const int i21 = incident_edge(u2, n2, nx, nz), i22 = i21 + 1 == n2 ? 0 : i21 + 1;
+  const int i21 = incident >= 0 ? incident : incident_edge(u2, n2, nx, nz), i22 = i21 + 1 == n2 ? 0 : i21 + 1;
   // along the reference edge from v11 to v12; the incident edge runs the other way (v22 near v11)
   const double tx = -nz, tz = nx;
   const double* v11 = v1 + 2 * i11;

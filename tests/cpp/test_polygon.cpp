@@ -216,3 +216,32 @@ TEST(PolygonContact, SeparationMatchesTheSlowReference) {
   }
   EXPECT_GT(overlapping, 200);
 }
+
+TEST(PolygonContact, IncidentEdgeAndItsMarginByHand) {
+  // a unit square's normals: (0,-1), (1,0), (0,1), (-1,0); against n = (1, 0) the left edge (3) is the
+  // most anti-parallel (n . u = -1), the bottom and top next (0): a lead of 1
+  const auto u = normals(box(1, 1));
+  double margin = -1.0;
+  EXPECT_EQ(polygon_incident_edge(u.data(), 4, 1.0, 0.0, &margin), 3);
+  EXPECT_DOUBLE_EQ(margin, 1.0);
+  // n turned by 45 degrees towards z: bottom and left tie (-sqrt(1/2)); the first is kept, the lead is 0
+  const double c = std::sqrt(0.5);
+  EXPECT_EQ(polygon_incident_edge(u.data(), 4, c, c, &margin), 0);
+  EXPECT_DOUBLE_EQ(margin, 0.0);
+  // turned by 30 degrees: left (-cos 30) leads bottom (-sin 30) by cos 30 - sin 30
+  const double cs = std::cos(kPi / 6), sn = std::sin(kPi / 6);
+  EXPECT_EQ(polygon_incident_edge(u.data(), 4, cs, sn, &margin), 3);
+  EXPECT_NEAR(margin, cs - sn, 1e-15);
+  // the manifold with the incident edge given is the one that finds it
+  const auto a = box(1, 1), b = box(1, 1, 1.9, 0.5, 0.05);
+  const auto ua = normals(a), ub = normals(b);
+  const int inc = polygon_incident_edge(ub.data(), 4, ua[2], ua[3]);
+  const ContactManifold found = polygon_manifold(a.data(), ua.data(), 4, b.data(), ub.data(), 4, 0, 1);
+  const ContactManifold given = polygon_manifold(a.data(), ua.data(), 4, b.data(), ub.data(), 4, 0, 1, inc);
+  ASSERT_EQ(found.count, 2);
+  ASSERT_EQ(given.count, found.count);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(given.point[k].x, found.point[k].x);
+    EXPECT_EQ(given.point[k].depth, found.point[k].depth);
+  }
+}

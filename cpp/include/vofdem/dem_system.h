@@ -258,6 +258,7 @@ class DEMSystem {
   void polygon_world(int i);
   struct SatCache;
   bool polygon_reference(SatCache& cache, int i, int j, double dx, double dz, int& flip, int& edge);
+  int polygon_incident(SatCache& cache, int i, int j, int flip, int edge);
   void polygon_contact_forces(double dt);
   void polygon_wall_forces(double dt);
   double polygon_stable_dt() const;
@@ -318,6 +319,10 @@ class DEMSystem {
     int flip = -1, edge = 0;  // the axis (flip -1: none)
     double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
     double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
+    // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
+    // its lead over the next edge (in n . u) [-]; inc -1: none
+    int inc = -1, inc_flip = 0, inc_edge = 0;
+    double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
   };
   std::vector<SatCache> poly_sat_cache_;
   int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to

@@ -63,9 +63,14 @@ struct SatResult {
 SatResult polygon_sat(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb);
 // the separation along polygon 1's edge normal `edge` alone [m] (the same arithmetic as polygon_sat)
 double polygon_axis_separation(const double* v1, const double* u1, int edge, const double* v2, int n2);
-// the manifold clipped from the reference face `edge` of A (flip 0) or of B (flip 1)
+// the manifold clipped from the reference face `edge` of A (flip 0) or of B (flip 1); `incident`: the
+// other polygon's incident edge if known (polygon_incident_edge), -1 to find it
 ContactManifold polygon_manifold(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb,
-                                 int flip, int edge);
+                                 int flip, int edge, int incident = -1);
+// the incident edge of polygon 2 (n2 edge normals u2) for the reference normal n: the edge whose normal
+// is most anti-parallel to n (the first of equals); margin (if given): the next smallest n . u minus the
+// smallest [-], how far the choice is from changing
+int polygon_incident_edge(const double* u2, int n2, double nx, double nz, double* margin = nullptr);
 
 // the larger of the two separations s_A, s_B [m]: > 0 apart (by at least that much along some axis),
 // < 0 overlapping (by that depth along the best axis)
