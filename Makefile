@@ -4,7 +4,7 @@
 PY ?= python3
 OUT ?= out
 
-.PHONY: demo full test install test-cpp test-py bench
+.PHONY: demo full ensemble-demo maeno-fragility test install test-cpp test-py bench
 
 install:
 	bash scripts/install_deps.sh test
@@ -15,6 +15,15 @@ demo: install
 # the whole scenario on the paper's grid and hydrograph (long: see the README for its cost)
 full: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --out $(OUT)/maeno2008
+
+# an ensemble of the quick scene over 20 packings on a local Dask cluster: its fragility curves in a few minutes
+ensemble-demo: install
+	$(PY) -m vofdem run scenes/maeno2008.toml --quick --seeds 0-19 --no-figures --no-animation --out $(OUT)/ensemble_demo
+	@echo "fragility figure: $(OUT)/ensemble_demo/fragility.png (tables in $(OUT)/ensemble_demo/ensemble.md)"
+
+# the whole scene over 30 packings (about 2 CPU-minutes per member: half an hour on 2 cores; resumes where it stopped)
+maeno-fragility: install
+	$(PY) benchmarks/maeno2008_fragility.py --seeds 0-29
 
 test: install test-cpp test-py
 

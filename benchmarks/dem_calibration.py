@@ -62,9 +62,7 @@ def stones(model):
     radial_jitter) gives the polygon scene with that shape."""
     if isinstance(model, tuple):
         return polygon_scene(model)
-    s = Scene.maeno2008()
-    s.stones.rolling_friction = s.stones.rolling_friction_wall = model
-    return s
+    return cal.with_rolling(Scene.maeno2008(), model)
 
 
 def polygon_scene(shape):

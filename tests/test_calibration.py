@@ -11,9 +11,7 @@ from vofdem.scene import Scene
 
 
 def scene(mu_r=0.0):
-    s = Scene.maeno2008()
-    s.stones.rolling_friction = s.stones.rolling_friction_wall = mu_r
-    return s
+    return cal.with_rolling(Scene.maeno2008(), mu_r)
 
 
 def test_flank_fit_recovers_a_hand_made_heap():
@@ -42,14 +40,16 @@ def test_setups_refuse_bad_values():
 
 
 def test_small_heaps_at_rest_and_steeper_with_rolling_resistance():
-    setup = cal.ReposeSetup(n_stones=40)
+    # 60 stones: a submerged heap with rolling resistance stands narrow and steep, and fewer give its
+    # flanks too few envelope bins to fit
+    setup = cal.ReposeSetup(n_stones=60)
     plain = cal.pour_heap(scene(0.0), 0, False, setup)
     rolled = cal.pour_heap(scene(0.5), 0, False, setup)
     wet = cal.pour_heap(scene(0.5), 0, True, setup)
     for r in (plain, rolled, wet):
         assert r.settled and r.max_speed < setup.rest_speed
         assert 5.0 < r.angle < 70.0
-        assert len(r.pos) == len(r.fixed) and r.fixed.sum() > 0 and (~r.fixed).sum() == 40
+        assert len(r.pos) == len(r.fixed) and r.fixed.sum() > 0 and (~r.fixed).sum() == 60
     assert rolled.height > 1.15 * plain.height  # the same stones stand higher
     assert "| dry | 0 |" in cal.repose_markdown([plain]) and "submerged" in cal.repose_markdown([wet])
 

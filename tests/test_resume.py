@@ -113,6 +113,8 @@ def test_resume_errors(tmp_path, capsys):
     assert "give no SCENE" in capsys.readouterr().err
     assert main(["run"]) == 2
     assert "give a SCENE" in capsys.readouterr().err
+    assert main(["run", "--resume", str(tmp_path), "--seeds", "0-1"]) == 2
+    assert "an ensemble (--seeds, --vary) resumes when the same command is run again" in capsys.readouterr().err
     from vofdem.scene import Scene
 
     (tmp_path / "scene.toml").write_text(Scene.maeno2008().quick().to_toml())

@@ -72,6 +72,7 @@ def test_incline_holds_below_mu_r_and_rolls_above_at_the_hand_rate():
 def pile(mu_r):
     p = vofdem.DEMParams()
     p.rolling_friction_stone = p.rolling_friction_wall = mu_r
+    p.contact_steps = 32.0  # the rolling springs' mode under critical damping (DEMSystem::stable_dt)
     p.add_flume(0.0, 0.5, 0.0)
     rng = np.random.default_rng(2)
     pos = np.array([[0.04 + 0.055 * (k % 8) + 0.002 * rng.random(), 0.03 + 0.055 * (k // 8)] for k in range(40)])
@@ -126,10 +127,11 @@ def test_scene_keys_are_range_checked_and_mapped_to_the_dem():
 
 
 def test_the_weir_is_packed_with_the_rolling_resistance():
+    from vofdem.calibration import with_rolling
+
     s = Scene.maeno2008()
     plain, _ = build_stones(s)
-    s.stones.rolling_friction = s.stones.rolling_friction_wall = 0.4
-    rolled, _ = build_stones(s)
+    rolled, _ = build_stones(with_rolling(s, 0.4))
     assert rolled.params.rolling_friction_stone == 0.4
     # the same seed packs differently: the packer used the rolling resistance
     n = min(plain.n, rolled.n)
@@ -154,6 +156,10 @@ def test_rolling_scenes_are_the_base_scenes_with_the_calibrated_stones():
         s, b = load_scene(root / f"{name}.toml"), load_scene(root / f"{base}.toml")
         assert s.name == name and s.effects.rolling_resistance
         assert (s.stones.rolling_friction, s.stones.rolling_friction_wall, s.stones.rolling_damping) == (0.4, 0.4, 0.3)
+        # the same contact stiffness in more, shorter DEM steps (the rolling springs' stable step)
+        assert s.numerics.dem_contact_steps * s.numerics.dem_dt == pytest.approx(
+            b.numerics.dem_contact_steps * b.numerics.dem_dt, rel=1e-12)
         s.name = b.name
         s.stones.rolling_friction = s.stones.rolling_friction_wall = 0.0
+        s.numerics.dem_dt, s.numerics.dem_contact_steps = b.numerics.dem_dt, b.numerics.dem_contact_steps
         assert s == b

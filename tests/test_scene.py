@@ -95,6 +95,14 @@ def test_units_in_strings_are_converted():
     ("[hydrograph]\nkind = 'table'\ntimes = [0, 0]\ndischarge_lps = [10, 20]", r"hydrograph.times must be strictly increasing"),
     ("seed = -1", r"seed = -1 must be an integer"),
     ("[flume\nwidth = 1", r"not valid TOML"),
+    # keys the chosen kind ignores are still checked
+    ('[hydrograph]\nkind = "ramp"\ntimes = "abc"', r"hydrograph.times = 'abc' must be a list of numbers"),
+    ("[hydrograph]\ndischarge_lps = [10, nan]", r"hydrograph.discharge_lps\[1\] = nan is outside the allowed range"),
+    ("[stones]\npositions = 5", r"stones.positions = 5 must be a list of pairs"),
+    ("[stones]\ndiameters = 0.05", r"stones.diameters = 0.05 must be a list of numbers"),
+    ("name = 3", r"name = 3 must be a non-empty string"),
+    ("", r"the scene is empty"),
+    ("# nothing but a comment\n", r"the scene is empty"),
 ])
 def test_validation_errors_name_the_problem(text, message):
     with pytest.raises(ValueError, match=message):

@@ -118,6 +118,8 @@ void bind_system(py::module_& m) {
       .def_property_readonly("neighbour_builds", &DEMSystem::neighbour_builds)
       .def("energy", &DEMSystem::energy)
       .def("mass", &DEMSystem::mass, py::arg("i"))
+      .def("set_wet_fraction", &DEMSystem::set_wet_fraction, py::arg("i"), py::arg("w"),
+           "wet fraction of stone i; when it grows, (M + M') v is kept")
       .def("volume", &DEMSystem::volume, py::arg("i"))
       .def("projected_area", py::overload_cast<int>(&DEMSystem::projected_area, py::const_), py::arg("i"))
       .def("projected_area", py::overload_cast<int, double, double>(&DEMSystem::projected_area, py::const_),
@@ -156,6 +158,9 @@ void bind_system(py::module_& m) {
       .def_property_readonly("disc_active",
                              [](py::object self) { return view(self.cast<DEMSystem&>().disc_active, self); })
       .def_property_readonly("disc_wet", [](py::object self) { return view(self.cast<DEMSystem&>().disc_wet, self); })
+      .def_property_readonly("disc_water_level",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_water_level, self); },
+                             "free-surface level at each stone [m]; NaN: disc_wet held as set")
       .def_property_readonly("disc_torque",
                              [](py::object self) { return view(self.cast<DEMSystem&>().disc_torque, self); })
       .def_property_readonly("disc_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().disc_alpha, self); })

@@ -218,9 +218,14 @@ void bind_vof(py::module_& m) {
       .def("inlet_discharge_per_width", &VOFGrid::inlet_discharge_per_width, "q = Q(t) / B now [m^2/s]")
       .def_property_readonly("inlet_volume", &VOFGrid::inlet_volume,
                              "water volume per width [m^2] that entered through the inlet")
+      .def_property_readonly("net_inflow_volume", &VOFGrid::net_inflow_volume,
+                             "water volume per width [m^2] in through the boundary faces minus out, since "
+                             "construction (the VOF advection's fluxes)")
       .def_property_readonly("profile", py::overload_cast<>(&VOFGrid::profile),
                              py::return_value_policy::reference_internal)
       .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)
+      .def_property_readonly("pressure_fallbacks", &VOFGrid::pressure_fallbacks,
+                             "multigrid-CG solves redone by the direct solver (no convergence)")
       .def("__repr__", [](const VOFGrid& f) {
         return "VOFGrid(nx=" + std::to_string(f.grid().nx()) + ", nz=" + std::to_string(f.grid().nz()) +
                ", t=" + std::to_string(f.time()) + ")";

@@ -8,6 +8,7 @@
 #include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
 #include "vofdem/fluid_forces.h"
+#include "vofdem/wet_fraction.h"
 
 namespace vofdem {
 
@@ -245,6 +246,21 @@ void Coupler::update_fluid_forces() {
   stage_fluid_forces();
 }
 
+// names the first of a stone's cells whose flow is not finite (the cause of a non-finite force), or ""
+std::string Coupler::non_finite_cell(int count, const int* cells) const {
+  const int nx = fluid_->grid().nx();
+  for (int m = 0; m < count; ++m) {
+    const int c = cells[m];
+    const double v[] = {fluid_->cell_F[c], cell_U_[c], cell_W_[c], cell_dpdx_[c], cell_dpdz_[c]};
+    const char* names[] = {"water fraction", "pore velocity U", "pore velocity W", "dp/dx", "dp/dz"};
+    for (int q = 0; q < 5; ++q)
+      if (!std::isfinite(v[q]))
+        return "; the flow is not finite in its cell (i=" + std::to_string(c % nx) + ", k=" + std::to_string(c / nx) +
+               "): " + names[q] + " = " + format_value(v[q]);
+  }
+  return "";
+}
+
 void Coupler::stage_fluid_forces() {
   ScopedStage timer(profile_, st_forces_);
   // one-way coupling: the stones' cell lists without touching the flow's porosity
@@ -298,17 +314,25 @@ void Coupler::stage_fluid_forces() {
       const auto f = stone_pressure_force(s, stones_->volume(j));
       fs[0] = f[0], fs[1] = f[1];
     }
-    if (fl & kCoupleWetFraction) stones_->disc_wet[j] = s.wet;
     if (fl & kCoupleForces) {
       forces_applied_ = true;
       stones_->disc_force_ext[2 * j] = fd[0] + fs[0];
       stones_->disc_force_ext[2 * j + 1] = fd[1] + fs[1];
     }
-    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1]))
+    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1] + s.wet))
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
                                ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
-                               format_value(fs[1]) + " N) at x = " + format_value(stones_->disc_pos[2 * j]) +
-                               " m, z = " + format_value(stones_->disc_pos[2 * j + 1]) + " m");
+                               format_value(fs[1]) + " N; wet fraction " + format_value(s.wet) + ") at x = " +
+                               format_value(stones_->disc_pos[2 * j]) + " m, z = " +
+                               format_value(stones_->disc_pos[2 * j + 1]) + " m" +
+                               non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
+    if (fl & kCoupleWetFraction) {
+      // w now, and the level that gives it, so that w follows the stone over the DEM's substeps
+      const double w = std::clamp(s.wet, 0.0, 1.0);
+      stones_->set_wet_fraction(j, w);
+      stones_->disc_water_level[j] =
+          water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);
+    }
   }
 }
 
@@ -493,6 +517,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/step_count"] = {static_cast<double>(f.step_count())};
     s["fluid/last_dt"] = {f.last_dt()};
     s["fluid/inlet_volume"] = {f.inlet_volume()};
+    s["fluid/net_inflow_volume"] = {f.net_inflow_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
     // the k-epsilon model's own state: the next step reads its k, eps, nu_t and wall shear
@@ -587,6 +612,8 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     // older states have no last step: the next one starts from FlowParams::initial_dt
     fluid_->set_last_dt(s.count("fluid/last_dt") ? need(s, "fluid/last_dt", 1)[0] : 0.0);
     fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
+    // older states have no boundary budget: it restarts from 0
+    fluid_->set_net_inflow_volume(s.count("fluid/net_inflow_volume") ? need(s, "fluid/net_inflow_volume", 1)[0] : 0.0);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
     fluid_->update_face_porosity();

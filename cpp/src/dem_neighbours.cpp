@@ -113,7 +113,7 @@ void DEMSystem::build_neighbours() {
         const double dx = o.x - xi, dz = o.z - zi;
         const double cut = ri + o.r;
         if (dx * dx + dz * dz < cut * cut)
-          new_pairs_.push_back({i, o.index, 0.0, std::sqrt(1.0 / (inv_mass_[i] + inv_mass_[o.index]))});
+          new_pairs_.push_back({i, o.index, 0.0, std::sqrt(1.0 / (contact_inv_mass_[i] + contact_inv_mass_[o.index]))});
       }
     }
     std::sort(new_pairs_.begin() + static_cast<std::ptrdiff_t>(first), new_pairs_.end(),

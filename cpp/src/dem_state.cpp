@@ -3,6 +3,7 @@
 // Verlet scheme, contact histories, sleep timers, counters, time, energy accumulators). The rolling
 // springs (contact_mr, wall_mr) are optional on import: a checkpoint written before the rolling
 // resistance existed restarts with them at zero, which is what it had.
+#include <limits>
 #include <stdexcept>
 
 #include "vofdem/check.h"
@@ -45,6 +46,7 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
   s["disc_active"] = to_double(disc_active);
   s["disc_force_ext"] = disc_force_ext;
   s["disc_wet"] = disc_wet;
+  s["disc_water_level"] = disc_water_level;
   s["disc_force"] = disc_force;
   s["disc_torque"] = disc_torque;
   s["disc_acc"] = disc_acc;
@@ -92,6 +94,9 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
   set(disc_active, get(s, "disc_active", n));
   set(disc_force_ext, get(s, "disc_force_ext", 2 * n));
   set(disc_wet, get(s, "disc_wet", n));
+  // older states hold no water levels: the wet fractions are then held as set
+  if (s.count("disc_water_level")) set(disc_water_level, get(s, "disc_water_level", n));
+  else disc_water_level.assign(n, std::numeric_limits<double>::quiet_NaN());
   set(disc_force, get(s, "disc_force", 2 * n));
   set(disc_torque, get(s, "disc_torque", n));
   set(disc_acc, get(s, "disc_acc", 2 * n));

@@ -46,6 +46,7 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
   ax_ = pb.face_x_coef;
   az_ = pb.face_z_coef;
   active_ = pb.cell_active;
+  close_negligible_faces(grid);
 
   // checks, and the pattern of open faces and active cells: the groups change only with it
   const int nfx = grid.nface_x(), nfz = grid.nface_z();
@@ -103,6 +104,27 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
 
   if (!same) find_groups();
   groups_valid_ = true;
+}
+
+void PressureSystem::close_negligible_faces(const Grid2D& grid) {
+  const int nx = grid.nx(), nz = grid.nz(), sx = nx + 1;
+  cell_amax_.assign(grid.ncell(), 0.0);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int c = i + nx * k;
+      // NaN or negative values are left to the checks that follow
+      cell_amax_[c] = std::max(std::max(ax_[i + sx * k], ax_[i + 1 + sx * k]), std::max(az_[c], az_[c + nx]));
+    }
+  for (int k = 0; k < nz; ++k)
+    for (int i = 1; i < nx; ++i) {
+      double& a = ax_[i + sx * k];
+      if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i - 1 + nx * k], cell_amax_[i + nx * k])) a = 0.0;
+    }
+  for (int k = 1; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      double& a = az_[i + nx * k];
+      if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i + nx * (k - 1)], cell_amax_[i + nx * k])) a = 0.0;
+    }
 }
 
 void PressureSystem::find_groups() {

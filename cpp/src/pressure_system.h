@@ -3,7 +3,11 @@
 // From (P) it keeps M = -A0 (symmetric, positive semi-definite), the boundary source g_c (sum of
 // a_f p_bc over the Dirichlet faces of c) and the connected groups of active cells (coupled through
 // faces with a_f > 0). A group without a Dirichlet face is singular: its right-hand side is projected
-// on zero mean and its solution is fixed to zero mean.
+// on zero mean and its solution is fixed to zero mean. An interior face whose a_f is below
+// kNegligibleFace times the largest face of either of its cells counts as closed: its flux is below
+// round-off anyway, and a pocket of cells joined to the rest only through such faces (porosity 1e-6:
+// ~1e-15 of an open face) would otherwise be a numerically singular group that breaks the LDLT
+// factorisation and stalls the CG.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +50,7 @@ class PressureSystem {
 
  private:
   void find_groups();
+  void close_negligible_faces(const Grid2D& grid);
 
   int nx_ = 0, nz_ = 0, nactive_ = 0;
   // open faces (x then z) and active cells of the last build, and whether its groups are known
@@ -57,6 +62,10 @@ class PressureSystem {
   std::vector<int> singular_cells_, singular_start_;
   // work space of the group search
   std::vector<int> stack_, group_;
+  std::vector<double> cell_amax_;  // largest face coefficient of each cell (close_negligible_faces)
 };
+
+// a face below this fraction of its cells' largest face is closed [-]
+constexpr double kNegligibleFace = 1e-13;
 
 }  // namespace vofdem::detail

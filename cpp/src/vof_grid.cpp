@@ -47,7 +47,7 @@ double FlowStableDt::min() const { return std::min({advective, viscous, gravity,
 
 struct VOFGrid::Snapshot {
   std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps, cell_porosity_prev;
-  double time = 0.0, inlet_volume = 0.0;
+  double time = 0.0, inlet_volume = 0.0, net_inflow_volume = 0.0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -385,6 +385,7 @@ void VOFGrid::save_state() {
   s.cell_eps = turbulence_->cell_eps;
   s.time = time_;
   s.inlet_volume = inlet_volume_;
+  s.net_inflow_volume = net_inflow_volume_;
   s.cell_porosity_prev = cell_porosity_prev_;
 }
 
@@ -401,6 +402,8 @@ void VOFGrid::restore_state() {
   turbulence_->time = s.time;
   time_ = s.time;
   inlet_volume_ = s.inlet_volume;
+  net_inflow_volume_ = s.net_inflow_volume;
+  flux_dt_ = 0.0;  // the fluxes in the scratch are not those of a completed step
   cell_porosity_prev_ = s.cell_porosity_prev;
 }
 
@@ -494,6 +497,15 @@ void VOFGrid::stage_advect_vof(double dt) {
     fail("advect_vof", e.what(), 0, -1);
   }
   check_finite("advect_vof", "water fraction", cell_F, 0);
+  // the water budget: what the two sweeps carried through the boundary faces (left, right, bed, top)
+  const int nx = grid_.nx(), sx = nx + 1;
+  const std::vector<double>& fx = vof_scratch_.face_flux_x;
+  const std::vector<double>& fz = vof_scratch_.face_flux_z;
+  double net = 0.0;
+  for (int k = 0; k < nz; ++k) net += fx[sx * k] - fx[nx + sx * k];
+  for (int i = 0; i < nx; ++i) net += fz[i] - fz[i + nx * nz];
+  net_inflow_volume_ += net;
+  flux_dt_ = dt;
 }
 
 void VOFGrid::stage_momentum(double dt) {
@@ -600,6 +612,13 @@ void VOFGrid::stage_pressure(double dt) {
       }
       problem_.face_x_coef[j] = a;
       problem_.face_x_bc[j] = i == nx ? outlet_pressure(k) : 0.0;
+      // water drawn in from the still tailwater starts from rest: its static pressure at the end face is
+      // the outside pressure less 1/2 rho U^2 (a total-pressure inlet); a fixed static pressure lets the
+      // inflow run away (-25 m/s below a weir's jet)
+      if (i == nx && params_.outlet == OutletBoundary::kTailwater && face_u[j] < 0.0 && face_x_porosity[j] > 0.0) {
+        const double U = face_u[j] / face_x_porosity[j];
+        problem_.face_x_bc[j] -= 0.5 * face_x_rho_[j] * U * U;
+      }
     }
   }
   for (int k = 0; k <= nz; ++k) {
@@ -634,9 +653,25 @@ void VOFGrid::stage_pressure(double dt) {
     solver_->setup(grid_, problem_);
     pressure_stats_ = solver_->solve(rhs_, cell_p, params_.pressure_tol);
   } catch (const std::runtime_error& e) {
-    fail("pressure", e.what(), 0, -1);
+    if (solver_->kind() != PressureSolverKind::kMultigridCG) fail("pressure", e.what(), 0, -1);
+    solve_pressure_directly(e.what());
   }
   check_finite("pressure", "pressure", cell_p, 0);
+}
+
+// a multigrid-CG solve that failed (p left as it was) is redone by the direct solver: exact to round-off
+// whatever the coefficients, at the cost of a factorisation
+void VOFGrid::solve_pressure_directly(const std::string& why) {
+  if (!fallback_solver_) fallback_solver_ = make_pressure_solver(PressureSolverKind::kEigenDirect);
+  try {
+    fallback_solver_->setup(grid_, problem_);
+    const int iterations = PressureSolverParams().max_iterations;
+    pressure_stats_ = fallback_solver_->solve(rhs_, cell_p, params_.pressure_tol);
+    pressure_stats_.iterations = iterations;
+  } catch (const std::runtime_error& e) {
+    fail("pressure", why + "; the direct solver failed too: " + e.what(), 0, -1);
+  }
+  ++pressure_fallbacks_;
 }
 
 void VOFGrid::stage_correct() {
@@ -808,6 +843,11 @@ double VOFGrid::discharge_through(int i) const {
                                 std::to_string(grid_.nx()) + "]");
   const int nx = grid_.nx(), sx = nx + 1;
   double q = 0.0;
+  const std::vector<double>& flux = vof_scratch_.face_flux_x;
+  if (flux_dt_ > 0.0 && flux.size() == static_cast<std::size_t>(grid_.nface_x())) {
+    for (int k = 0; k < grid_.nz(); ++k) q += flux[i + sx * k];
+    return q / flux_dt_;
+  }
   for (int k = 0; k < grid_.nz(); ++k) {
     const double u = face_u[i + sx * k];
     // the fraction of the cell the flow leaves (the inflow fraction 1 at the inlet)

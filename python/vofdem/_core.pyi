@@ -493,6 +493,10 @@ class DEMSystem:
         """
         Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.
         """
+    def set_wet_fraction(self, i: typing.SupportsInt | typing.SupportsIndex, w: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        wet fraction of stone i; when it grows, (M + M') v is kept
+        """
     def stable_dt(self) -> float:
         ...
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -547,6 +551,11 @@ class DEMSystem:
     @property
     def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+    @property
+    def disc_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        free-surface level at each stone [m]; NaN: disc_wet held as set
+        """
     @property
     def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
@@ -1797,6 +1806,11 @@ class VOFGrid:
     def last_pressure_stats(self) -> PressureSolveStats:
         ...
     @property
+    def net_inflow_volume(self) -> float:
+        """
+        water volume per width [m^2] in through the boundary faces minus out, since construction (the VOF advection's fluxes)
+        """
+    @property
     def params(self) -> FlowParams:
         """
         a copy; assign a modified copy to change it
@@ -1804,6 +1818,11 @@ class VOFGrid:
     @params.setter
     def params(self, arg1: FlowParams) -> None:
         ...
+    @property
+    def pressure_fallbacks(self) -> int:
+        """
+        multigrid-CG solves redone by the direct solver (no convergence)
+        """
     @property
     def profile(self) -> StageProfile:
         ...

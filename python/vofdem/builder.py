@@ -104,6 +104,14 @@ def _explicit_stones(scene: Scene):
     return stone_system(scene, dem_params(scene), pos, d, fixed, shapes)
 
 
+def dem_step_hint(message: str) -> str:
+    """A DEM step refused as unstable, said in the scene's terms (the C++ message names DEMParams)."""
+    if "stable step" not in message:
+        return message
+    return (message + "; in the scene: lower numerics.dem_dt, or raise numerics.dem_contact_steps (softer "
+            "contacts), or both with their product kept (the same stiffness in more steps)")
+
+
 def build_stones(scene: Scene):
     """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
     scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
@@ -113,10 +121,13 @@ def build_stones(scene: Scene):
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
     pack = dem_params(scene, fluid_density=0.0)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
-    sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
-                                      slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
-                                      d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
-                                      seed=scene.seed, params=pack, **_shape_options(scene))
+    try:
+        sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
+                                          slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
+                                          d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
+                                          seed=scene.seed, params=pack, **_shape_options(scene))
+    except ValueError as e:
+        raise ValueError(dem_step_hint(str(e))) from None
     sys_.params = dem_params(scene)
     if not st.fix_bottom_layer:
         sys_.disc_fixed[:] = 0

@@ -30,7 +30,17 @@ def _parser() -> argparse.ArgumentParser:
     seed.add_argument("--seed", type=int, default=None, help="random seed of the packing (overrides the scene)")
     seed.add_argument("--seeds", default=None,
                       help="an ensemble over packings, e.g. '0-4' or '0,3,7': one run per seed in DIR/seed<N>/, "
-                           "summary in DIR/ensemble.md")
+                           "summary in DIR/ensemble.md, fragility curves in DIR/fragility.png")
+    r.add_argument("--vary", action="append", default=None, metavar="KEY=V1,V2,...",
+                   help="an ensemble over parameter values, e.g. 'stones.friction_stone=0.5,0.577,0.65' (any scene "
+                        "key; several --vary make a product), each combination over the seeds")
+    r.add_argument("--workers", type=int, default=None,
+                   help="ensemble: worker processes of the local Dask cluster (default: one per core; 0: no Dask, "
+                        "one member after the other in this process)")
+    r.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="ensemble: run on an existing Dask cluster (e.g. tcp://host:8786, or a scheduler file .json)")
+    r.add_argument("--retry-failed", action="store_true",
+                   help="ensemble: run again the members whose solver failed (finished members are kept)")
     r.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     r.add_argument("--no-figures", action="store_true", help="skip the figures")
     r.add_argument("--no-animation", action="store_true", help="skip the animation")
@@ -118,9 +128,12 @@ def _scene_of(args):
         if args.scene is None:
             raise ValueError("give a SCENE (a scene file or a ready scene) or --resume DIR")
         return resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
-    if args.scene is not None or args.quick or args.seed is not None or args.seeds or args.end_time is not None:
+    if getattr(args, "seeds", None) or getattr(args, "vary", None):
+        raise ValueError("--resume DIR continues one run; an ensemble (--seeds, --vary) resumes when the same "
+                         "command is run again on its output directory")
+    if args.scene is not None or args.quick or args.seed is not None or args.end_time is not None:
         raise ValueError("--resume DIR continues the run with its own scene (DIR/scene.toml): give no SCENE, "
-                         "--quick, --seed(s) or --end-time with it")
+                         "--quick, --seed or --end-time with it")
     from .scene import load_scene
 
     if not (resume / "scene.toml").is_file():
@@ -150,6 +163,11 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             print(f"vofdem: error: {e}", file=sys.stderr)
             return 2
     try:
+        if args.command == "analyse" and not (args.out / "run.h5").exists() and (args.out / "ensemble.csv").exists():
+            from .ensemble import summarise
+
+            print(summarise(args.out))
+            return 0
         if args.command == "analyse":
             from .run import postprocess
 
@@ -160,13 +178,17 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
         from .ensemble import parse_seeds
 
         seeds = parse_seeds(args.seeds) if getattr(args, "seeds", None) else None
+        if seeds is None and getattr(args, "vary", None):
+            seeds = [scene.seed]
+        if seeds is None and (getattr(args, "workers", None) is not None or getattr(args, "scheduler", None)):
+            raise ValueError("--workers and --scheduler are for ensembles (--seeds or --vary)")
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
     if args.command == "check":
         print(scene.to_toml(), end="")
         return 0
-    from .ensemble import ensemble_markdown, run_ensemble
+    from .ensemble import run_ensemble
     from .io import OutputError
     from .run import SolverError, run_scene
 
@@ -177,10 +199,11 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
                 build=build)
     try:
         if seeds is not None:
-            outcomes = run_ensemble(scene, seeds, out, **opts)
+            run_ensemble(scene, seeds, out, vary=args.vary, workers=args.workers, scheduler=args.scheduler,
+                         retry_failed=args.retry_failed, **opts)
             print()
-            print(ensemble_markdown(outcomes))
-            print(f"output: {out}/ (ensemble.md/.csv, one run directory per seed)")
+            print((out / "ensemble.md").read_text(encoding="utf-8").split("\n| member |")[0])
+            print(f"output: {out}/ (ensemble.md/.csv, fragility.csv/.png, one run directory per member)")
             return 0
         res = run_scene(scene, out, resume=args.resume is not None, **opts)
     except SolverError as e:

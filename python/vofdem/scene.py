@@ -83,6 +83,19 @@ def _check_number(name: str, value, md) -> float:
     return v
 
 
+def _check_list(name: str, value, md: Optional[dict] = None) -> None:
+    """A list field: a list (a TOML array) whose entries are numbers, in md's range if given. Checked
+    whatever the section's kind, so a key the kind ignores is still refused when it is malformed."""
+    if not isinstance(value, (list, tuple)):
+        raise ValueError(f"{name} = {value!r} must be a list of numbers")
+    for j, v in enumerate(value):
+        if md is None:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise ValueError(f"{name}[{j}] = {v!r} must be a finite number")
+        else:
+            _check_number(f"{name}[{j}]", v, md)
+
+
 def _parse_quantity(name: str, value, kind: Optional[str]):
     """Converts '4.8 cm' to the field's unit; numbers pass unchanged."""
     if not isinstance(value, str):
@@ -245,6 +258,9 @@ class Stones(_Section):
         self._validate_fields(prefix)
         self._validate_polygon(prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
+        if not isinstance(self.positions, (list, tuple)):
+            raise ValueError(f"{prefix}.positions = {self.positions!r} must be a list of pairs [x m, z m]")
+        _check_list(f"{prefix}.diameters", self.diameters, size)
         for j, row in enumerate(self.positions):
             if not isinstance(row, (list, tuple)) or len(row) != 2 or not all(
                     isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in row):
@@ -311,6 +327,11 @@ class Hydrograph(_Section):
 
     def validate(self, prefix: str = "hydrograph") -> None:
         self._validate_fields(prefix)
+        # the table's lists are checked under any kind: a malformed key is an error even where it is ignored
+        q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
+        t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
+        _check_list(f"{prefix}.times", self.times, t_md)
+        _check_list(f"{prefix}.discharge_lps", self.discharge_lps, q_md)
         if self.function is not None:
             if not callable(self.function):
                 raise ValueError(f"{prefix}.function must be a callable t [s] -> Q [m3/s]")
@@ -319,11 +340,6 @@ class Hydrograph(_Section):
             if len(self.times) < 2 or len(self.times) != len(self.discharge_lps):
                 raise ValueError(f"{prefix}.times and {prefix}.discharge_lps must be lists of the same "
                                  f"length >= 2 (got {len(self.times)} and {len(self.discharge_lps)})")
-            q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
-            t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
-            for j, (t, q) in enumerate(zip(self.times, self.discharge_lps)):
-                _check_number(f"{prefix}.times[{j}]", t, t_md)
-                _check_number(f"{prefix}.discharge_lps[{j}]", q, q_md)
             if any(b <= a for a, b in zip(self.times, self.times[1:])):
                 raise ValueError(f"{prefix}.times must be strictly increasing")
 
@@ -532,6 +548,8 @@ class Scene:
             if not isinstance(sec, cls):
                 raise ValueError(f"{key} must be a {cls.__name__}, got {type(sec).__name__}")
             sec.validate(key)
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise ValueError(f"name = {self.name!r} must be a non-empty string")
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or not 0 <= self.seed < 2**63:
             raise ValueError(f"seed = {self.seed!r} must be an integer in [0, 2^63)")
         if self.end_time is not None:
@@ -648,6 +666,9 @@ class Scene:
             data = _toml.loads(text)
         except _toml.TOMLDecodeError as e:
             raise ValueError(f"{source}: not valid TOML: {e}") from None
+        if not data:
+            raise ValueError(f"{source}: the scene is empty (no keys, no sections); write at least the sections "
+                             f"that differ from the defaults, e.g. [flume], or run the ready scene 'maeno2008'")
         return cls.from_dict(data, source)
 
     def replace(self, **changes) -> "Scene":
@@ -658,6 +679,30 @@ class Scene:
                 raise ValueError(_unknown(k, [f.name for f in dataclasses.fields(Scene)], "Scene"))
             setattr(s, k, v)
         return s.validate()
+
+    def with_value(self, key: str, value) -> "Scene":
+        """A validated copy with one parameter set by its dotted name ('stones.friction_stone', or a
+        top-level 'end_time'), the value read as in a scene file (numbers may carry a unit, '4.8 cm')."""
+        s = copy.deepcopy(self)
+        section, _, name = key.rpartition(".")
+        if not section:
+            if key not in ("end_time", "name"):
+                raise ValueError(_unknown(key, [*_SECTIONS, "end_time", "name"], "top level"))
+            setattr(s, key, _parse_quantity(key, value, "time") if key == "end_time" else value)
+            return s.validate()
+        if section not in _SECTIONS:
+            raise ValueError(_unknown(section, list(_SECTIONS), "top level"))
+        fields = {f.name: f for f in dataclasses.fields(_SECTIONS[section]) if not f.metadata.get("python_only")}
+        if name not in fields:
+            raise ValueError(_unknown(name, fields, f"[{section}]", prefix=section))
+        md = fields[name].metadata
+        setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
+        return s.validate()
+
+    def value_of(self, key: str):
+        """The value of a parameter by its dotted name (see `with_value`)."""
+        section, _, name = key.rpartition(".")
+        return getattr(getattr(self, section), name) if section else getattr(self, key)
 
 
 def load_scene(path) -> Scene:

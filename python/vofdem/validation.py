@@ -272,7 +272,7 @@ class WeirRun:
     q: float            # imposed discharge per width [m^2/s]
     H: float            # upstream head above the crest [m] (time average over the last window)
     q_ideal: float      # sqrt(g) (2H/3)^(3/2) [m^2/s]
-    q_out: float        # discharge_through() the end face, time-averaged [m^2/s] (reads 5-10 % high there)
+    q_out: float        # discharge_through() the end face, time-averaged [m^2/s] (the VOF outflow)
     wall_s: float
     steps: int
     cells: int

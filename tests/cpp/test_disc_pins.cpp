@@ -59,5 +59,7 @@ TEST(DiscPins, CoupledDiscsInATank) {
   for (int k = 0; k < 20; ++k) sc.sim->step();
   const auto state = sc.sim->export_state();
   EXPECT_TRUE(test::rolling_springs_zero(state));
-  EXPECT_EQ(test::pin_hash(state), 17381371964670235526ull);
+  // taken again when the wet fraction came to follow each stone over the DEM's substeps (a change of
+  // the disc physics, wet_fraction.h): the same hash as the disc-only code with that change
+  EXPECT_EQ(test::pin_hash(state), 4131412915860899595ull);
 }

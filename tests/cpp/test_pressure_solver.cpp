@@ -169,6 +169,34 @@ TEST(PressureSolver, InactiveCellsAreUntouchedAndIsolatedGroupsAreZero) {
   }
 }
 
+TEST(PressureSolver, AFaceOfNegligibleCoefficientCountsAsClosed) {
+  // 3 x 1: cell 0 open to p = 2 on the left, joined to cells 1-2 through a face 1e-20 of the others
+  // (porosity 1e-6 with its resistance): cells 1-2 solve as the closed pair they practically are
+  const Grid2D g = Grid2D::uniform(3, 1, 3.0, 1.0);
+  PressureProblem pb;
+  pb.resize(g);
+  pb.face_x_coef[g.face_x(0, 0)] = 4.0;
+  pb.face_x_bc[g.face_x(0, 0)] = 2.0;
+  pb.face_x_coef[g.face_x(1, 0)] = 1e-20;
+  pb.face_x_coef[g.face_x(2, 0)] = 1.0;
+  for (auto kind : kAllKinds) {
+    auto s = make_pressure_solver(kind);
+    s->setup(g, pb);
+    std::vector<double> p(3, 0.0);
+    s->solve({1.0, 1.0, -1.0}, p, 1e-12);
+    EXPECT_NEAR(p[0], 2.0 - 1.0 / 4.0, 1e-12);
+    EXPECT_NEAR(p[1], -0.5, 1e-12);  // the closed pair of SingularPairTakesTheCompatiblePartAndZeroMean
+    EXPECT_NEAR(p[2], 0.5, 1e-12);
+  }
+  // a face at 1e-12 of its neighbours is kept: it still carries flux above round-off
+  pb.face_x_coef[g.face_x(1, 0)] = 1e-12;
+  auto s = make_pressure_solver(kDirect);
+  s->setup(g, pb);
+  std::vector<double> p(3, 0.0);
+  s->solve({1.0, 1.0, -1.0}, p, 1e-12);
+  EXPECT_GT(std::abs(p[1] + 0.5), 1.0);  // joined to cell 0: no longer the zero-mean pair
+}
+
 TEST(PressureSolver, RefusesBadInput) {
   const Grid2D g = Grid2D::uniform(3, 2, 3.0, 2.0);
   PressureProblem pb;

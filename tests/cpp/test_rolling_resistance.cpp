@@ -321,6 +321,7 @@ TEST(RollingResistance, StaticHeapDoesNotCreep) {
     fixed.push_back(0);
   }
   DEMParams p = rolling_params(0.3, 0.3);
+  p.contact_steps = 32.0;  // the damped bound of the rolling mode needs more than 20 (see stable_dt())
   p.add_flume(-0.65, 0.65, 0.0, 0.176);
   DEMSystem s(p, pos, radius, {kRho}, fixed);
   double vmax = INFINITY;
@@ -399,17 +400,28 @@ TEST(RollingResistance, SwitchedOffReproducesTheResultsFromBeforeTheModel) {
 }
 
 TEST(RollingResistance, StableStepIncludesTheRollingSpring) {
+  // restitution 0.5: weak dashpots, so the undamped contact modes set the step
   DEMParams p;
+  p.restitution = 0.5;
+  DEMParams pr = rolling_params(0.3, 0.0);
+  pr.restitution = 0.5;
   DEMSystem plain(p, {0.0, 0.0}, {kR}, {kRho});
-  DEMSystem rolling(rolling_params(0.3, 0.0), {0.0, 0.0}, {kR}, {kRho});
+  DEMSystem rolling(pr, {0.0, 0.0}, {kR}, {kRho});
   const double m = sphere_mass(kR), f = 0.4;
   const double dt0 = plain.stable_dt(), dt1 = rolling.stable_dt();
   const double kn = plain.stiffness_normal(), kt = plain.stiffness_tangential();
   // pi / (10 omega), omega^2 = max(2 k_n / m, 2 k_t (1 + 1/f) / m [+ 2 k_t / (f m)])
+  const double w1 = std::sqrt(2.0 * kt * (1.0 + 1.0 / f) / m + 2.0 * kt / (f * m));
   EXPECT_NEAR(dt0, kPi / (10.0 * std::sqrt(std::max(2.0 * kn / m, 2.0 * kt * (1.0 + 1.0 / f) / m))), 1e-15);
-  EXPECT_NEAR(dt1, kPi / (10.0 * std::sqrt(2.0 * kt * (1.0 + 1.0 / f) / m + 2.0 * kt / (f * m))), 1e-15);
+  EXPECT_NEAR(dt1, kPi / (10.0 * w1), 1e-15);
   EXPECT_LT(dt1, dt0);
   EXPECT_GE(dt1, 1e-4);  // the paper's DEM step stays accepted with the automatic stiffness
+  // critical damping (the default): the packed stone's damped bound on the same mode binds, below the
+  // paper's step at 20 steps per contact (scenes with rolling resistance take more steps per contact)
+  DEMSystem critical(rolling_params(0.3, 0.0), {0.0, 0.0}, {kR}, {kRho});
+  const double a = std::sqrt(DEMSystem::kPackedContacts);
+  EXPECT_NEAR(critical.stable_dt(), 2.0 / (a * w1 * (a + std::sqrt(1.0 + a * a))), 1e-15);
+  EXPECT_LT(critical.stable_dt(), 1e-4);
 }
 
 TEST(RollingResistance, RefusesBadParameters) {

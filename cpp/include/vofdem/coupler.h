@@ -153,6 +153,7 @@ class Coupler {
   void import_turbulence(const std::map<std::string, std::vector<double>>& state);
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
+  std::string non_finite_cell(int count, const int* cells) const;
   // with both force effects off: zeroes the fluid forces the stones still hold (once, on the switch)
   void clear_fluid_forces();
   void stage_dem(double dt);

@@ -7,8 +7,11 @@
 // with M_i = rho_s V_i, V_i = pi d_i^3 / 6 (a sphere of the disc's diameter, the paper's V_i; its
 // projected area A_pi = pi d_i^2 / 4), added mass M'_i = rho_w C_M V_i, and I_i = inertia_factor M_i
 // (d_i/2)^2 (0.4: a sphere, the default; 0.5: a disc). The wet fraction w_i in [0, 1] of each stone
-// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. Contacts: dem_contact.h;
-// rolling resistance (a moment added to eq. 10, effect kDEMRollingResistance): rolling_resistance.h.
+// scales buoyancy and added mass: (M_i - rho_w V_i w_i) g and rho_w C_M V_i w_i. When w_i grows, the
+// water taken on as added mass starts at rest: (M_i + M'_i) v_i is kept (the stone slows as it enters
+// the water; as it leaves, v_i is kept and the water left behind takes its momentum with it), so a
+// change of w_i never adds kinetic energy. Contacts: dem_contact.h; rolling resistance (a moment added
+// to eq. 10, effect kDEMRollingResistance): rolling_resistance.h.
 // F_x, F_z: disc_force_ext, set by the coupler (the fluid's drag and pressure-gradient forces).
 //
 // Stone shape: discs (the default) or convex polygons (set_polygons(); polygon.h gives the matching 3D
@@ -123,13 +126,21 @@ class DEMSystem {
   void set_params(const DEMParams& p);
 
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
-  // (normal and tangential-rotational modes of the lightest stone, the latter with the rolling spring)
+  // (normal and tangential-rotational modes of the lightest stone, the latter with the rolling spring),
+  // and no more than the explicit dashpots allow in a packing (kPackedContacts contacts per stone; binds
+  // for restitution below ~0.12)
   double stable_dt();
+  // contacts per stone assumed by stable_dt() for the highest mode of a packing [-]
+  static constexpr double kPackedContacts = 5.0;
   // one DEM step of dt [s] (0 < dt <= stable_dt(); refused otherwise). Each call first copies the
   // state (export_state) so that a failure can restore it: call advance() with long durations.
   void step(double dt);
   // advances by duration [s] in equal substeps no larger than params().dt
   void advance(double duration);
+
+  // sets the wet fraction w [-] in [0, 1] of stone i: buoyancy and added mass follow at once, and when
+  // w grows the stone's velocity drops so that (M + M') v is kept (the water taken on starts at rest)
+  void set_wet_fraction(int i, double w);
 
   // contact constants in use (after the automatic choice) [N/m]
   double stiffness_normal() const { return kn_; }
@@ -190,6 +201,9 @@ class DEMSystem {
   std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
   std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
                                             // when fluid_density > 0, else 0 (set_params keeps it)
+  std::vector<double> disc_water_level;     // free-surface level at each stone [m], n; NaN (default): disc_wet
+                                            // is held as set; else disc_wet follows the stone's height over the
+                                            // substeps, the disc's share below the level (wet_fraction.h)
   std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
   std::vector<double> disc_torque;          // total torque of the last evaluation [N m], n (output)
   std::vector<double> disc_acc;             // acceleration of the last evaluation [m/s^2], 2n
@@ -220,6 +234,8 @@ class DEMSystem {
   void check_params() const;
   void check_stones() const;
   void update_properties();
+  void update_stone_properties(int i);
+  void follow_water_level(int i);
   void build_neighbours();
   bool neighbours_stale() const;
   void advance_checked(double dt, long long nsub);
@@ -285,6 +301,7 @@ class DEMSystem {
   std::vector<double> inv_roll_inertia_;  // 1 / (I + (M + M') r^2), 0 if it does not turn [1/(kg m^2)]
   std::vector<double> wall_roll_c_;       // 2 r sqrt(I + (M + M') r^2) per stone: roll_c of its wall contacts
   double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off
+  std::vector<double> contact_inv_mass_;  // inv_mass_ at the step's start: the contacts' dashpot masses
 
   // neighbour list and contact histories
   std::vector<Pair> pairs_;

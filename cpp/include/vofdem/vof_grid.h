@@ -25,7 +25,9 @@
 //   step: the model advances with the velocities of the step's start) and, on the bed and end walls,
 //   the log-law wall shear that replaces the slip / no-slip condition there.
 // - Pressure projection: u^{n+1} = u* - beta_f grad p, beta_f = dt n_f / (rho_f (1 + dt n_f R'_f)),
-//   p the absolute pressure [Pa] with p = 0 at the open top (see pressure_solver.h).
+//   p the absolute pressure [Pa] with p = 0 at the open top (see pressure_solver.h). A multigrid-CG
+//   solve that does not converge within its iteration limit (many scattered near-solid cells) is
+//   redone by the direct solver, and counted (pressure_fallbacks()); the step goes on.
 //
 // Porosity at faces (documented rule): a face is as open as its tighter neighbour,
 //   n_f = min(n_L, n_R) (0 when either side is solid), D_f = D of that neighbour (mean on a tie),
@@ -216,19 +218,29 @@ class VOFGrid {
   void pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const;
   // water volume sum(n F V) per metre of flume width [m^2]
   double water_volume() const;
-  // discharge per unit width [m^2/s] through x-face column i (sum u dz over water faces weighted by
-  // the upwind F)
+  // discharge per unit width [m^2/s] through x-face column i: the water the VOF advection carried
+  // through it in the last step, divided by that step (exact: the water budget's own flux). Before the
+  // first step, after a restart and without a free surface: sum of u dz F, F the upwind cell's fraction
+  // (1 entering at the inlet), which reads several % high at a free-overfall brink
   double discharge_through(int i) const;
   // water volume per metre of width [m^2] that entered through the inlet since construction
   double inlet_volume() const { return inlet_volume_; }
   // restores the inlet volume counter (restart only)
   void set_inlet_volume(double v) { inlet_volume_ = v; }
+  // water volume per metre of width [m^2] that entered through the domain's boundary faces minus what
+  // left through them (inlet, outlet end, open top) since construction, summed from the VOF advection's
+  // own fluxes: water_volume() - its start value equals this to round-off while the porosity is fixed
+  double net_inflow_volume() const { return net_inflow_volume_; }
+  // restores the net inflow counter (restart only)
+  void set_net_inflow_volume(double v) { net_inflow_volume_ = v; }
   // inlet discharge per unit width now [m^2/s]
   double inlet_discharge_per_width() const;
 
   StageProfile& profile() { return profile_; }
   const StageProfile& profile() const { return profile_; }
   const PressureSolveStats& last_pressure_stats() const { return pressure_stats_; }
+  // multigrid-CG solves that did not converge and were redone by the direct solver, since construction
+  long long pressure_fallbacks() const { return pressure_fallbacks_; }
 
  private:
   struct Snapshot;
@@ -239,6 +251,7 @@ class VOFGrid {
   void stage_porous_resistance(double dt);
   void stage_turbulence(double dt);
   void stage_pressure(double dt);
+  void solve_pressure_directly(const std::string& why);
   void stage_correct();
   void stage_checks(double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
@@ -261,6 +274,8 @@ class VOFGrid {
   long long step_count_ = 0;
   double last_dt_ = 0.0;  // see last_dt()
   double inlet_volume_ = 0.0;
+  double net_inflow_volume_ = 0.0;
+  double flux_dt_ = 0.0;  // the step whose VOF fluxes vof_scratch_ holds [s] (0: none)
 
   // derived per step
   // phase properties from F (caches: refreshed by const queries too)
@@ -276,6 +291,8 @@ class VOFGrid {
   PressureProblem problem_;
   std::unique_ptr<PressureSolver> solver_;
   PressureSolveStats pressure_stats_;
+  std::unique_ptr<PressureSolver> fallback_solver_;  // the direct solver, made on the first fallback
+  long long pressure_fallbacks_ = 0;
   VofBoundaryInflow vof_inflow_;
   VofScratch vof_scratch_;
   std::unique_ptr<Snapshot> snapshot_;

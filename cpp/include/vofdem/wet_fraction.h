@@ -1,0 +1,53 @@
+// Wet fraction of a stone crossing the free surface, followed between fluid steps.
+//
+//   w(s) = (acos(-s) + s sqrt(1 - s^2)) / pi,   s = (h - z) / r clamped to [-1, 1]          (W)
+//
+// the share of a disc of radius r centred at height z that lies below a level h (w = 0 above the
+// surface, 1/2 with the centre on it, 1 under water). The coupler measures the wet fraction w of each
+// stone from the water fraction of the cells it covers (eq. 9's buoyancy and added mass) once per fluid
+// step, and hands the DEM the level h at which (W) gives that w at the stone's present height:
+// h = z + r s(w), s(w) the inverse of (W); +infinity for a stone under water, -infinity for one in the
+// air. The DEM then moves w with the stone over its substeps instead of holding it over the exchange
+// step: a floating stone's buoyancy follows its height without lag (a wet fraction held while the stone
+// moves is a restoring force that lags the motion, which feeds the bobbing energy).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+namespace vofdem {
+
+// share of a disc below the level, (W); s = (h - z) / r [-], any value (clamped), NaN -> NaN
+inline double disc_wet_fraction(double s) {
+  if (std::isnan(s)) return s;
+  if (s <= -1.0) return 0.0;
+  if (s >= 1.0) return 1.0;
+  // clamped: round-off near s = +-1 may step just outside [0, 1]
+  const double w = (std::acos(-s) + s * std::sqrt(1.0 - s * s)) / M_PI;
+  return w < 0.0 ? 0.0 : (w > 1.0 ? 1.0 : w);
+}
+
+// the level [m] at which a disc of radius r [m] centred at z [m] has wet fraction w [-]: z + r s with
+// disc_wet_fraction(s) = w (Newton on dw/ds = 2 sqrt(1 - s^2) / pi inside a shrinking bracket, bisection
+// where a step leaves it; to 1e-13 in s); +inf for w >= 1, -inf for w <= 0
+inline double water_level_of_wet_fraction(double z, double r, double w) {
+  if (!(w > 0.0)) return -std::numeric_limits<double>::infinity();
+  if (w >= 1.0) return std::numeric_limits<double>::infinity();
+  double lo = -1.0, hi = 1.0, s = 2.0 * w - 1.0;
+  for (int it = 0; it < 200 && hi - lo > 1e-13; ++it) {
+    const double f = disc_wet_fraction(s) - w;
+    if (f == 0.0) break;
+    (f < 0.0 ? lo : hi) = s;
+    const double slope = 2.0 * std::sqrt(1.0 - s * s) / M_PI;
+    double next = slope > 0.0 ? s - f / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - s) < 1e-14) {
+      s = next;
+      break;
+    }
+    s = next;
+  }
+  return z + r * s;
+}
+
+}  // namespace vofdem
