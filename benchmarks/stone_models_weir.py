@@ -6,7 +6,7 @@ rolling resistance, the polygon stones; each with the paper's and the consistent
 seeds for all, on the paper's grid and hydrograph. Each ensemble is resumable (a second call runs only
 what is missing). Writes benchmarks/results/stone_models_weir.md (the comparison, then each scene's
 members) and docs/figures/stone_models_weir.png (every member's stage discharges next to the
-experiment's and the paper's model's).
+observed and modelled ones of the scenes' [reference] table: the experiment's and the paper's model's).
 
     PYTHONPATH=python python3 benchmarks/stone_models_weir.py                 # 10 seeds, all scenes
     PYTHONPATH=python python3 benchmarks/stone_models_weir.py --seeds 0-2 --scenes maeno2008_rolling
@@ -26,8 +26,23 @@ from vofdem.scene import load_scene
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ("maeno2008", "maeno2008_consistent", "maeno2008_rolling", "maeno2008_rolling_consistent",
           "maeno2008_polygons", "maeno2008_polygons_consistent")
-EXPERIMENT = (14.0, 16.5, 20.4)  # first removals, second stage, third stage [l/s] (Maeno et al. 2002)
-MODEL = (17.1, 19.2)  # the paper's model: second and third stage [l/s]
+
+
+def reference_lines(ref):
+    """((observed discharge [l/s], label), ...) and (modelled discharge, ...) of the scenes' [reference]."""
+    obs = [(q, f"observed: stage {k}") for k, (q, _) in sorted(ref.stages().items())]
+    mod = [q for _, (q, _) in sorted(ref.stages(model=True).items())]
+    return obs, mod
+
+
+def reference_text(ref) -> str:
+    """The reference's values in words (the scenes' [reference] table), '' when it has none."""
+    if not ref.given:
+        return ""
+    obs = " / ".join(f"{q:g}" for _, (q, _) in sorted(ref.stages().items()))
+    mod = ", ".join(f"stage {k} {q:g}" for k, (q, _) in sorted(ref.stages(model=True).items()))
+    return (f"Observed ({ref.citation}): first removal {ref.first_removal_lps:g}, stages {obs} l/s; "
+            f"model ({ref.model_citation}): {mod} l/s. ")
 
 
 def stone_model(scene) -> str:
@@ -108,13 +123,15 @@ def figure(results, path: Path) -> None:
         q = none["last_discharge_lps"].astype(float).to_numpy()
         ax.scatter(q, row + 0.05 * np.arange(q.size) - 0.025 * q.size, marker="x", s=18, color="k",
                    label="no removal (stood to the end)" if row == 0 else None)
-    for q, label in zip(EXPERIMENT, ("experiment: first removals", "experiment: stage 2", "experiment: stage 3")):
+    observed, modelled = reference_lines(results[0][1].reference)
+    for q, _ in observed:
         ax.axvline(q, color="k", lw=1.0, ls="-")
-    for q in MODEL:
+    for q in modelled:
         ax.axvline(q, color="0.5", lw=1.0, ls="--")
     ax.set_yticks(range(len(results)))
     ax.set_yticklabels([f"{stone_model(s)}\n{coupling(s)}" for _, s, _ in results], fontsize=8)
-    ax.set_xlabel("discharge [l/s] (solid: experiment ~14 / 16.5 / 20.4; dashed: the paper's model 17.1 / 19.2)")
+    ax.set_xlabel("discharge [l/s] (solid: observed " + " / ".join(f"{q:g}" for q, _ in observed)
+                  + "; dashed: modelled " + " / ".join(f"{q:g}" for q in modelled) + "; the scenes' [reference])")
     ax.set_xlim(9.5, 25.5)
     ax.invert_yaxis()
     ax.legend(fontsize=8, loc="lower right")
@@ -156,8 +173,7 @@ def main(argv=None) -> Path:
             f"{' --quick' if args.quick else ''}`; the last call took {wall / 60:.1f} min on "
             f"{workers or 1} worker process(es) ({os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} "
             f"at the end). Events as in `vofdem.analysis` (a stage: at least 2 removals with no pause over 3 s). "
-            f"Experiment (Maeno et al. 2002): first removals ~14, second stage 16.5, third 20.4 l/s; the paper's "
-            f"model: second stage 17.1, third 19.2 l/s. Real-time factor: wall time / simulated time per member, "
+            f"{reference_text(results[0][1].reference)}Real-time factor: wall time / simulated time per member, "
             f"on a shared machine.", "",
             "| stones | coupling | members | with a removal | first removal [l/s], median (range) | with a stage | "
             "stage 1 [l/s], median (range) | with 2+ stages | with 3+ stages | crest lowering [mm] | real-time factor |",

@@ -58,7 +58,7 @@ def test_bursts_are_found_with_their_time_discharge_count_and_place():
     assert sorted(a.stages[0].stones) == sorted(down) and sorted(a.stages[1].stones) == sorted(shoulder)
     assert a.isolated == [lone]
     assert a.stages[0].start_time == 40.0 and a.stages[1].start_time == 70.0
-    assert a.stages[0].paper_time == 20.0
+    assert a.stages[0].clock_time == 20.0
     assert a.stages[0].discharge_lps == pytest.approx(10 + 15 * 20 / 120)
     assert a.stages[1].discharge_lps == pytest.approx(10 + 15 * 50 / 120)
     assert a.stages[0].location == "downstream slope" and a.stages[1].location == "shoulder"
@@ -78,7 +78,7 @@ def test_stage_table_is_consistent_with_the_displacements():
     removals = {int(i): float(t) for i, t in zip(chosen, np.sort(rng.choice(np.arange(20, 180) * 0.5, 12, replace=False)))}
     scene, times, pos, d = _synthetic(removals, seed=4)
     h = scene.hydrograph
-    a = analyse(times, pos, d, scene.weir, h.discharge_lps_at, ramp_start=h.ramp_start)
+    a = analyse(times, pos, d, scene.weir, h.discharge_lps_at, ramp_start=h.ramp_start, reference=scene.reference)
     rows = list(csv.DictReader(io.StringIO(a.stage_table_csv())))
     assert len(rows) == len(a.stages)
     for row, s in zip(rows, a.stages):
@@ -97,6 +97,48 @@ def test_stage_table_is_consistent_with_the_displacements():
     assert sorted(in_stages + a.isolated) == sorted(removals)
     md = a.stage_table_markdown()
     assert "| second stage |" in md and "16.5" in md and "17.1 (56.8)" in md and "20.4" in md
+    assert "Compared with observed: experiment of Maeno et al. (2002)" in md
+
+
+def _two_stage_analysis(reference):
+    scene = Scene.maeno2008()
+    p0 = _weir_stones(scene.weir)
+    removals = {3: 40.0, 4: 40.5, 9: 70.0, 10: 71.0}
+    scene, times, pos, d = _synthetic(removals)
+    h = scene.hydrograph
+    return analyse(times, pos, d, scene.weir, h.discharge_lps_at, ramp_start=h.ramp_start, reference=reference), p0
+
+
+def test_stage_table_without_reference_compares_with_nothing():
+    from vofdem.reference import Reference
+
+    for ref in (None, Reference()):
+        a, _ = _two_stage_analysis(ref)
+        md, text = a.stage_table_markdown(), a.stage_table_csv()
+        assert "| 1 | 40.0 | 12.50 | 2 |" in md and "| 2 | 70.0 | 16.25 | 2 |" in md
+        for word in ("paper", "Paper", "Maeno", "experiment", "observed", "model", "clock", "Compared"):
+            assert word not in md and word not in text, word
+        assert text.splitlines()[0] == "stage,start_s,discharge_lps,stones,location"
+
+
+def test_stage_table_shows_only_what_the_reference_gives():
+    from vofdem.reference import Reference
+
+    # observed discharges without times: no clock column, no model column
+    ref = Reference(citation="gauge survey 2031", stage_lps=[15.5], note="read from a video")
+    a, _ = _two_stage_analysis(ref)
+    md, head = a.stage_table_markdown(), a.stage_table_csv().splitlines()[0]
+    assert head == "stage,start_s,discharge_lps,stones,location,observed_lps"
+    assert "Compared with observed: gauge survey 2031." in md and "clock" not in md and "model" not in md
+    assert "| first stage | 12.50 | 15.5 |" in md and "| second stage | 16.25 | - |" in md
+    assert "Observed: read from a video." in md
+    # a model with times: the clock of the rise appears (simulation time - spin-up)
+    ref = Reference(model_citation="a 2D model", model_stage_lps=[16.0, 19.0], model_stage_times=[24.0, 54.0])
+    a, _ = _two_stage_analysis(ref)
+    md, rows = a.stage_table_markdown(), list(csv.DictReader(io.StringIO(a.stage_table_csv())))
+    assert "Clock of the rise = simulation time - 20 s." in md and "observed" not in md
+    assert "| first stage | 12.50 (20.0) | 16 (24) |" in md
+    assert rows[1]["clock_s"] == "50.0" and rows[1]["model_lps"] == "19.0" and rows[1]["model_clock_s"] == "54.0"
 
 
 @settings(max_examples=60, deadline=None)

@@ -55,12 +55,19 @@ def test_fluid_of_the_scene():
     assert (g.nx, g.nz) == (147, 45 + 1)  # 3.681 m / 0.025 m; one 0.5 cm row then 1 cm rows to 0.45 m
     assert g.z_faces[1] == pytest.approx(0.005) and g.z_faces[2] == pytest.approx(0.015)
     p = f.params
-    assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.3, 200.0, 2.8, 0.5)
+    assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.5, 200.0, 2.8, 0.5)
     assert p.outlet == vofdem.OutletBoundary.TAILWATER and p.tailwater_level == 0.1
     assert p.inlet == vofdem.InletBoundary.DISCHARGE
     assert p.pressure_solver == vofdem.PressureSolverKind.EIGEN_DIRECT
     assert not p.flags & int(vofdem.FlowEffect.TURBULENCE)
     assert p.flags & int(vofdem.FlowEffect.POROUS_FORCHHEIMER)
+    # the numerics of the step count: second-order convection, column-implicit k-epsilon
+    assert p.time_scheme == vofdem.MomentumTimeScheme.ADAMS_BASHFORTH2
+    assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.VERTICAL_LINES
+    s.numerics.time_scheme, s.numerics.turbulence_scheme = "euler", "point_implicit"
+    p = build_fluid(s.validate()).params
+    assert p.time_scheme == vofdem.MomentumTimeScheme.EULER
+    assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.POINT_IMPLICIT
     assert f.discharge.at(0.0) == pytest.approx(0.010) and f.discharge.at(140.0) == pytest.approx(0.025)
     # water at rest upstream of the crest up to the critical-depth estimate for 10 l/s over 0.5 m
     assert initial_level(s) == pytest.approx(0.25 + 1.5 * (0.02 ** 2 / 9.81) ** (1 / 3))

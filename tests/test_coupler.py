@@ -121,3 +121,23 @@ def test_initial_mapping_can_keep_the_water_fraction():
             assert sim.water_volume() == pytest.approx(v0, rel=1e-12)
         else:
             assert sim.water_volume() < v0
+
+
+def test_drag_exchange_option_and_step_limits():
+    from vofdem.builder import build_simulation, coupler_params
+    from vofdem.scene import Scene
+
+    s = Scene.maeno2008().quick()
+    assert coupler_params(s.validate()).implicit_drag
+    s.numerics.drag_exchange = "held"
+    assert not coupler_params(s.validate()).implicit_drag
+    # every step of advance() is counted under the limit that bound it, and where
+    sim = build_simulation(Scene.maeno2008().quick())
+    n = sim.advance(0.05)
+    limits = sim.step_limits()
+    assert sum(limits.values()) == n and n > 0
+    cells = sim.step_limit_cells()
+    for term, counts in cells.items():
+        assert counts.shape == (sim.fluid.grid.ncell,) and counts.sum() <= limits[term]
+    sim.clear_step_limits()
+    assert sim.step_limits() == {}

@@ -150,3 +150,44 @@ def test_polygon_output_helpers_by_hand():
     assert po.topology(offset).tolist() == [3, 4, 0, 1, 2, 3, 3, 3, 4, 5, 6]
     with pytest.raises(ValueError, match="offsets"):
         po.check_polygons(vertex, np.array([0, 4]), 2)
+
+
+def test_the_outline_packer_refuses_polygons_naming_the_key():
+    # outline_packing.py places discs only: zones, sieve curves and outlines other than a trapezoid are refused
+    own = load_scene(ROOT / "scenes" / "own_weir.toml")
+    own.stones.rolling_friction = own.stones.rolling_friction_wall = 0.0
+    own.stones.shape = "polygon"
+    graded = load_scene(ROOT / "scenes" / "maeno2008_polygons.toml")
+    graded.stones.d15, graded.stones.d50, graded.stones.d85 = 0.04, 0.048, 0.056
+    berm = load_scene(ROOT / "scenes" / "maeno2008_polygons.toml")
+    berm.weir.outline = [[1.0, 0.0], [1.3, 0.2], [1.5, 0.2], [1.7, 0.1], [1.9, 0.0]]
+    for scene, key in ((own, "zones"), (graded, "d15/d50/d85"), (berm, "weir.outline")):
+        with pytest.raises(ValueError, match=r"stones.shape = 'polygon' is outside the allowed values \['disc'\]") as e:
+            scene.validate()
+        assert key in str(e.value)
+    # an outline that is a trapezoid packs the polygons as the trapezoid's keys do
+    from vofdem.outline import trapezoid_points
+    s = small_polygon_scene()
+    w = s.weir
+    t = s.replace()
+    t.weir.outline = [list(p) for p in trapezoid_points(w.toe_x, w.height, w.crest_length, w.upstream_slope_deg,
+                                                        w.downstream_slope_deg)]
+    a, _ = build_stones(s)
+    b, _ = build_stones(t.validate())
+    assert np.array_equal(a.disc_pos, b.disc_pos) and np.array_equal(a.poly_vertex, b.poly_vertex)
+
+
+def test_packed_polygon_weir_at_rest_keeps_its_energy_at_the_stable_step():
+    # the discs' stable step is bounded by the explicit dashpots of a packed stone (critical damping);
+    # the polygons' bound (the trace of a two-point face contact) holds there without it
+    p = vofdem.DEMParams()
+    p.add_flume(0.0, 1.4, 0.0)
+    p.dt, p.contact_steps = 4e-5, 50.0
+    s, _, _ = vofdem.pack_weir(height=0.15, crest=0.1, slope_up_deg=27, slope_down_deg=27, x_toe=0.4, z_bed=0.0,
+                               d_mean=0.048, d_spread=0.1, density=2650.0, seed=1, params=p, shape="polygon")
+    dt = s.stable_dt()
+    s.step(dt)
+    e0 = s.energy().total
+    for _ in range(int(0.5 / dt)):
+        s.step(dt)
+    assert (s.energy().total - e0) / abs(e0) < 1e-9

@@ -1,10 +1,13 @@
-"""Fuzzing the scene files: 240 seeded mutations of the Maeno 2008 scene (wrong types, NaN, inf, negative,
+"""Fuzzing the scene files: 240 seeded mutations of the Maeno 2008 scene and 60 of scenes/own_weir.toml (an
+outline, sieve curves, a zone, a CSV flood) (wrong types, NaN, inf, negative,
 huge, missing and unknown keys, broken lists, garbage TOML, an empty file). Each must load as a valid
 scene or fail with a ValueError that names the key; through `vofdem check` it must exit 2 with one line
 on stderr. Never a traceback of another type, never a crash."""
 import copy
 import math
+from pathlib import Path
 import random
+import re
 import subprocess
 import sys
 
@@ -14,7 +17,9 @@ from vofdem import cli
 from vofdem.scene import Scene, load_scene
 
 N_VARIANTS = 240
+N_OWN = 60  # more, of the own weir's scene (outline, sieve curves, a zone, a CSV flood held in the scene)
 BASE = Scene.maeno2008().to_dict()
+OWN = load_scene(Path(__file__).resolve().parents[1] / "scenes" / "own_weir.toml").to_dict()
 
 # replacement values, each a kind of wrong a user (or a script) writes
 _WRONG = {
@@ -59,10 +64,15 @@ def _paths(d):
     return out
 
 
-def mutate(rng: random.Random):
+def mutate(rng: random.Random, base=None):
     """One mutated scene: (toml text, the key it names or None for garbage, what was done)."""
-    d = copy.deepcopy(BASE)
+    d = copy.deepcopy(BASE if base is None else base)
     roll = rng.random()
+    if "zones" in d and rng.random() < 0.3:  # a zone's key gone wrong
+        key = rng.choice(list(d["zones"][0]))
+        kind = rng.choice(list(_WRONG))
+        d["zones"][0][key] = _WRONG[kind]
+        return to_toml(d), f"zones[0].{key}", f"zone {kind}"
     if roll < 0.08:  # garbage TOML from a valid text
         text = to_toml(d)
         cut = rng.randrange(len(text))
@@ -108,6 +118,8 @@ VARIANTS = []
 _rng = random.Random(20261124)
 for _j in range(N_VARIANTS):
     VARIANTS.append(mutate(_rng))
+for _j in range(N_OWN):
+    VARIANTS.append(mutate(_rng, OWN))
 VARIANTS.append(("", "empty", "empty file"))
 VARIANTS.append(("# only a comment\n\n", "empty", "comment only"))
 
@@ -122,8 +134,8 @@ def _check_outcome(path, names, what):
     except ValueError as e:
         msg = str(e)
         assert "\n" not in msg.strip(), f"{what}: a multi-line message: {msg!r}"
-        if names is None:
-            assert "not valid TOML" in msg, f"{what}: {msg}"
+        if names is None:  # garbage: broken TOML, or (inside a quoted text) a bad value named by its key
+            assert "not valid TOML" in msg or re.search(r"\b[a-z_]+\.[a-z_]+(\[\d+\])? = ", msg), f"{what}: {msg}"
         else:
             assert names in msg or names.split(".")[-1] in msg, f"{what}: {msg!r} does not name {names!r}"
         return "error"
@@ -172,7 +184,7 @@ def test_the_fuzz_is_large_varied_and_reproducible():
 
 def test_the_console_script_exits_2_with_one_line(tmp_path):
     # the installed entry point (a new process): a few variants of each outcome
-    for k in (0, 1, N_VARIANTS):
+    for k in (0, 1, N_VARIANTS + N_OWN):
         text, _, _ = VARIANTS[k]
         path = tmp_path / f"v{k}.toml"
         path.write_text(text, encoding="utf-8")

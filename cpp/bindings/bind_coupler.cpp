@@ -42,8 +42,11 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("stone_drag", &CouplerParams::stone_drag, "StoneDragModel of the drag on the stones, SPHERE")
       .def_readwrite("max_dt", &CouplerParams::max_dt, "largest exchange step [s], 0.01")
       .def_readwrite("stone_cfl", &CouplerParams::stone_cfl, "cells a stone crosses per step at most [-], 0.5")
+      .def_readwrite("implicit_drag", &CouplerParams::implicit_drag,
+                     "drag linearised in the stone's velocity and integrated implicitly by the DEM, True; "
+                     "False: held over the step (bounded by drag_relaxation)")
       .def_readwrite("drag_relaxation", &CouplerParams::drag_relaxation,
-                     "step at most this fraction of the drag relaxation time [-], 0.5")
+                     "held drag: step at most this fraction of its relaxation time [-], 0.5")
       .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
       .def("validate", &CouplerParams::validate);
 
@@ -62,6 +65,18 @@ void bind_coupler(py::module_& m) {
       .def_property_readonly("time", &Coupler::time)
       .def_property_readonly("step_count", &Coupler::step_count)
       .def("stable_dt", &Coupler::stable_dt, py::call_guard<py::gil_scoped_release>())
+      .def("step_limits", &Coupler::step_limits,
+           "steps of advance() bound by each limit, {term: steps} (a diagnostic, not checkpointed)")
+      .def(
+          "step_limit_cells",
+          [](const Coupler& c) {
+            py::dict d;
+            for (const auto& kv : c.step_limit_cells())
+              d[py::str(kv.first)] = py::array_t<long long>(kv.second.size(), kv.second.data());
+            return d;
+          },
+          "{term: steps bound in each cell (ncell counts, a copy)}")
+      .def("clear_step_limits", &Coupler::clear_step_limits)
       .def("step", py::overload_cast<>(&Coupler::step), py::call_guard<py::gil_scoped_release>())
       .def("step", py::overload_cast<double>(&Coupler::step), py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", [](Coupler& c, double t_end) { return c.advance(t_end); }, py::arg("t_end"),

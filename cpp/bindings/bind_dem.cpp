@@ -146,6 +146,10 @@ void bind_system(py::module_& m) {
       .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); })
       .def_property_readonly("disc_force_ext",
                              [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force_ext, self); })
+      .def_property_readonly("disc_drag_coef",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_drag_coef, self); })
+      .def_property_readonly("disc_drag_vel",
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_drag_vel, self); })
       .def_property_readonly("disc_force", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force, self); })
       .def_property_readonly("disc_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_acc, self); })
       .def_property_readonly("disc_angle", [](py::object self) { return view(self.cast<DEMSystem&>().disc_angle, self); })

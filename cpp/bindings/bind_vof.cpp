@@ -68,6 +68,15 @@ void bind_vof(py::module_& m) {
   py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
       .value("STRAIN", KEpsilonProduction::kStrain)
       .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
+  py::enum_<KEpsilonTimeScheme>(m, "KEpsilonTimeScheme")
+      .value("POINT_IMPLICIT", KEpsilonTimeScheme::kPointImplicit,
+             "predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces")
+      .value("VERTICAL_LINES", KEpsilonTimeScheme::kVerticalLines,
+             "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only");
+  py::enum_<MomentumTimeScheme>(m, "MomentumTimeScheme")
+      .value("EULER", MomentumTimeScheme::kEuler, "forward Euler of the explicit momentum terms (first order)")
+      .value("ADAMS_BASHFORTH2", MomentumTimeScheme::kAdamsBashforth2,
+             "variable-step Adams-Bashforth 2 of the explicit momentum terms (second order)");
   py::enum_<CornerViscosity>(m, "CornerViscosity")
       .value("ARITHMETIC", CornerViscosity::kArithmetic)
       .value("HARMONIC", CornerViscosity::kHarmonic);
@@ -97,6 +106,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("walls", &FlowParams::walls)
       .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme)
       .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
+      .def_readwrite("time_scheme", &FlowParams::time_scheme, "MomentumTimeScheme of the explicit momentum terms")
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
       // the k-epsilon settings most runs touch (the rest keep the model's standard values)
       .def_property(
@@ -107,6 +117,10 @@ void bind_vof(py::module_& m) {
           "turbulence_production_limit", [](const FlowParams& p) { return p.turbulence.production_limit; },
           [](FlowParams& p, double v) { p.turbulence.production_limit = v; },
           "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]")
+      .def_property(
+          "turbulence_time_scheme", [](const FlowParams& p) { return p.turbulence.time_scheme; },
+          [](FlowParams& p, KEpsilonTimeScheme v) { p.turbulence.time_scheme = v; },
+          "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES")
       .def_property(
           "turbulence_bed_roughness", [](const FlowParams& p) { return p.turbulence.bed_roughness; },
           [](FlowParams& p, double v) { p.turbulence.bed_roughness = v; }, "equivalent sand roughness k_s of the bed [m]")
@@ -197,6 +211,10 @@ void bind_vof(py::module_& m) {
       .def_property_readonly("step_count", &VOFGrid::step_count)
       .def_property("last_dt", &VOFGrid::last_dt, &VOFGrid::set_last_dt,
                     "the last step [s] the growth limit starts from (0: none yet, initial_dt applies)")
+      .def_property_readonly("prev_dt", &VOFGrid::prev_dt,
+                             "the last step [s] of the Adams-Bashforth history (0: none, the next step is Euler)")
+      .def("clear_step_history", &VOFGrid::clear_step_history,
+           "forget the last step (the next one is forward Euler): after velocities were set by hand")
       .def("stable_dt", &VOFGrid::stable_dt)
       .def("stable_dt_terms", &VOFGrid::stable_dt_terms)
       .def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
@@ -221,6 +239,9 @@ void bind_vof(py::module_& m) {
       .def_property_readonly("net_inflow_volume", &VOFGrid::net_inflow_volume,
                              "water volume per width [m^2] in through the boundary faces minus out, since "
                              "construction (the VOF advection's fluxes)")
+      .def_property_readonly("dilatation_volume", &VOFGrid::dilatation_volume,
+                             "water volume per width [m^2] made by the advection's divergence correction where "
+                             "the velocity is not divergence-free (the pressure solve's residual), since construction")
       .def_property_readonly("profile", py::overload_cast<>(&VOFGrid::profile),
                              py::return_value_policy::reference_internal)
       .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)

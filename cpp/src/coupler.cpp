@@ -7,6 +7,7 @@
 
 #include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
+#include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
 #include "vofdem/wet_fraction.h"
 
@@ -298,12 +299,15 @@ void Coupler::stage_fluid_forces() {
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
     if ((fl & kCoupleDrag) && !bed && polygons()) {
       // the 3D stone's projected area across the relative velocity
-      const double area = stones_->projected_area(j, s.u - up, s.w_vel - wp);
-      const DragForce f = stone_drag_area(s, up, wp, stones_->nominal_diameter(j), area, rho, nu, params_.drag_law);
+      const double a = stones_->projected_area(j, s.u - up, s.w_vel - wp), d = stones_->nominal_diameter(j);
+      const DragForce f = stone_drag_area(s, up, wp, d, a, rho, nu, params_.drag_law);
       fd[0] = f.fx, fd[1] = f.fz;
+      if (params_.implicit_drag) disc_drag_slope_[j] = stone_drag_slope_area(s, up, wp, d, a, rho, nu, params_.drag_law);
     } else if ((fl & kCoupleDrag) && !bed) {
-      const DragForce f = stone_drag(s, up, wp, 2.0 * stones_->disc_radius[j], rho, nu, params_.drag_law);
+      const double d = 2.0 * stones_->disc_radius[j];
+      const DragForce f = stone_drag(s, up, wp, d, rho, nu, params_.drag_law);
       fd[0] = f.fx, fd[1] = f.fz;
+      if (params_.implicit_drag) disc_drag_slope_[j] = sphere_drag_slope(s, up, wp, d, rho, nu, params_.drag_law);
     } else if (fl & kCoupleDrag) {
       const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
                                    fluid_->cell_porosity.data(), fluid_->cell_stone_diameter.data(), cell_U_.data(),
@@ -316,8 +320,15 @@ void Coupler::stage_fluid_forces() {
     }
     if (fl & kCoupleForces) {
       forces_applied_ = true;
-      stones_->disc_force_ext[2 * j] = fd[0] + fs[0];
-      stones_->disc_force_ext[2 * j + 1] = fd[1] + fs[1];
+      // the drag linearised in the stone's velocity (implicit in the DEM), or held over the step
+      const LinearDrag ld = params_.implicit_drag ? linearise_drag({fd[0], fd[1]}, disc_drag_slope_[j], up, wp)
+                                                  : LinearDrag();
+      const bool held = ld.coef == 0.0;
+      stones_->disc_force_ext[2 * j] = (held ? fd[0] : 0.0) + fs[0];
+      stones_->disc_force_ext[2 * j + 1] = (held ? fd[1] : 0.0) + fs[1];
+      stones_->disc_drag_coef[j] = ld.coef;
+      stones_->disc_drag_vel[2 * j] = ld.vel_x;
+      stones_->disc_drag_vel[2 * j + 1] = ld.vel_z;
     }
     if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1] + s.wet))
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
@@ -340,6 +351,8 @@ void Coupler::clear_fluid_forces() {
   std::fill(disc_force_drag.begin(), disc_force_drag.end(), 0.0);
   std::fill(disc_force_pressure.begin(), disc_force_pressure.end(), 0.0);
   std::fill(stones_->disc_force_ext.begin(), stones_->disc_force_ext.end(), 0.0);
+  std::fill(stones_->disc_drag_coef.begin(), stones_->disc_drag_coef.end(), 0.0);
+  std::fill(stones_->disc_drag_vel.begin(), stones_->disc_drag_vel.end(), 0.0);
   forces_applied_ = false;
 }
 
@@ -376,47 +389,81 @@ void Coupler::stage_checks() {
 // ---------------------------------------------------------------------------------------------
 // stepping
 
-double Coupler::stable_dt() {
+double Coupler::stable_dt() { return stable_dt_limits(nullptr, nullptr); }
+
+double Coupler::stable_dt_limits(const char** term, int* cell) {
   double dt = params_.max_dt;
+  const char* why = "coupler_max_dt";
+  int where = -1;
   const unsigned fl = params_.flags;
-  if (fluid_ && (fl & kCoupleFluid)) dt = std::min(dt, fluid_->stable_dt());
+  if (fluid_ && (fl & kCoupleFluid)) {
+    const FlowStableDt s = fluid_->stable_dt_terms();
+    if (s.min() < dt) dt = s.min(), why = s.binding(&where);
+  }
   if (fluid_ && has_stones() && (fl & kCoupleDEM)) {
     const Grid2D& g = fluid_->grid();
-    const double h = std::min(g.dx(), g.min_dz());
+    const double inv_hx = 1.0 / g.dx(), inv_hz = 1.0 / g.min_dz();
     const DEMParams& dp = stones_->params();
     const bool added = (dp.flags & kDEMAddedMass) && dp.fluid_density > 0.0;
     const double rho = fluid_->params().rho_water, nu = fluid_->params().nu_water;
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
-      // a stone crosses at most stone_cfl of a cell per exchange (smooth porosity changes)
-      const double v = std::hypot(stones_->disc_vel[2 * j], stones_->disc_vel[2 * j + 1]);
-      if (v * dt > params_.stone_cfl * h) dt = params_.stone_cfl * h / v;
-      // explicit drag held over the step: stay below its relaxation time (estimated with eq. 18)
-      if ((fl & kCoupleDrag) && params_.stone_drag == StoneDragModel::kBed) {
+      // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
+      const double rate =
+          std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
+      if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
+      // a drag held over the step (explicit exchange): stay below its relaxation time (estimated with
+      // eq. 18); the implicit exchange needs no such bound (drag_exchange.h)
+      if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
+      if (params_.stone_drag == StoneDragModel::kBed) {
         // bed drag: its slope in the stone's velocity from the last exchange
         const double slope = disc_drag_slope_[j];
         if (slope > 0.0) {
           const double w = stones_->disc_wet[j], vol = stones_->volume(j);
           const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-          dt = std::min(dt, params_.drag_relaxation * mass / slope);
+          if (params_.drag_relaxation * mass / slope < dt)
+            dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
         }
-      } else if ((fl & kCoupleDrag) && stones_->disc_wet[j] > 0.0 && polygons()) {
+      } else if (stones_->disc_wet[j] > 0.0 && polygons()) {
         // polygons: the mean projected area and the nominal diameter
         const double d = stones_->nominal_diameter(j), vol = stones_->volume(j), w = stones_->disc_wet[j];
         const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
         const double slope = w * 0.5 * rho * stones_->projected_area(j) * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
-        dt = std::min(dt, params_.drag_relaxation * mass / slope);
-      } else if ((fl & kCoupleDrag) && stones_->disc_wet[j] > 0.0) {
+        if (params_.drag_relaxation * mass / slope < dt)
+          dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
+      } else if (stones_->disc_wet[j] > 0.0) {
         const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
         const double w = stones_->disc_wet[j];
         const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
         const double slope = w * 0.5 * rho * kPi * r * r * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
         const double tau = mass / slope;
-        dt = std::min(dt, params_.drag_relaxation * tau);
+        if (params_.drag_relaxation * tau < dt)
+          dt = params_.drag_relaxation * tau, why = "drag_relaxation", where = stone_cell(j);
       }
     }
   }
+  if (term) *term = why;
+  if (cell) *cell = where;
   return dt;
+}
+
+int Coupler::stone_cell(int j) const {
+  const Grid2D& g = fluid_->grid();
+  const int i = g.locate_x(stones_->disc_pos[2 * j]), k = g.locate_z(stones_->disc_pos[2 * j + 1]);
+  return i >= 0 && k >= 0 ? g.cell(i, k) : -1;
+}
+
+void Coupler::count_limit(const char* term, int cell) {
+  ++limit_steps_[term];
+  if (!fluid_ || cell < 0) return;
+  std::vector<long long>& c = limit_cells_[term];
+  c.resize(static_cast<std::size_t>(fluid_->grid().ncell()), 0);
+  ++c[static_cast<std::size_t>(cell)];
+}
+
+void Coupler::clear_step_limits() {
+  limit_steps_.clear();
+  limit_cells_.clear();
 }
 
 void Coupler::step() { step(stable_dt()); }
@@ -468,7 +515,9 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
   long long n = 0;
   const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
   while (time_ < t_end - eps) {
-    double dt = stable_dt();
+    const char* term = nullptr;
+    int cell = -1;
+    double dt = stable_dt_limits(&term, &cell);
     if (dt < params_.min_dt) {
       snapshot_valid_ = false;
       fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " +
@@ -479,6 +528,7 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
     if (dt >= left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
     step(dt);
+    count_limit(dt < stable ? "t_end" : term, cell);
     // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
     if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable) fluid_->set_last_dt(stable);
     ++n;
@@ -516,8 +566,12 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["fluid/time"] = {f.time()};
     s["fluid/step_count"] = {static_cast<double>(f.step_count())};
     s["fluid/last_dt"] = {f.last_dt()};
+    s["fluid/prev_dt"] = {f.prev_dt()};
+    s["fluid/face_u_prev"] = f.face_u_prev;
+    s["fluid/face_w_prev"] = f.face_w_prev;
     s["fluid/inlet_volume"] = {f.inlet_volume()};
     s["fluid/net_inflow_volume"] = {f.net_inflow_volume()};
+    s["fluid/dilatation_volume"] = {f.dilatation_volume()};
     s["fluid/discharge_times"] = f.discharge().times;
     s["fluid/discharge_q"] = f.discharge().discharge;
     // the k-epsilon model's own state: the next step reads its k, eps, nu_t and wall shear
@@ -528,6 +582,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["turbulence/cell_u_tau"] = t.cell_u_tau;
     s["turbulence/face_x_wall_shear"] = t.face_x_wall_shear;
     s["turbulence/face_z_wall_shear"] = t.face_z_wall_shear;
+    s["turbulence/cell_role"] = t.cell_roles();  // which cells held water: a cell that fills starts from them
   }
   if (stones_)
     for (auto& kv : stones_->export_state()) s["dem/" + kv.first] = std::move(kv.second);
@@ -557,6 +612,8 @@ void Coupler::import_turbulence(const std::map<std::string, std::vector<double>>
   t.cell_u_tau = s.at("turbulence/cell_u_tau");
   t.face_x_wall_shear = s.at("turbulence/face_x_wall_shear");
   t.face_z_wall_shear = s.at("turbulence/face_z_wall_shear");
+  // older states: the roles as they are (a cell filling in the next step may start differently)
+  if (s.count("turbulence/cell_role")) t.set_cell_roles(s.at("turbulence/cell_role"));
 }
 
 void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
@@ -588,11 +645,16 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     need(s, "fluid/face_w", nfz);
     need(s, "fluid/face_z_solid_w", nfz);
     if (s.count("fluid/last_dt")) require_non_negative("fluid/last_dt", need(s, "fluid/last_dt", 1)[0]);
+    // the step history of AB2 (older states: none, the next step is forward Euler)
+    const bool history = s.count("fluid/prev_dt") && need(s, "fluid/prev_dt", 1)[0] > 0.0;
+    if (history) need(s, "fluid/face_u_prev", nfx), need(s, "fluid/face_w_prev", nfz);
     if (s.count("turbulence/cell_k")) {
       for (const char* k : {"turbulence/cell_k", "turbulence/cell_eps", "turbulence/cell_nut", "turbulence/cell_u_tau"})
         need(s, k, nc);
       need(s, "turbulence/face_x_wall_shear", nfx);
       need(s, "turbulence/face_z_wall_shear", nfz);
+      if (s.count("turbulence/cell_role"))
+        for (double r : need(s, "turbulence/cell_role", nc)) require_in_closed("turbulence/cell_role", r, 0.0, 2.0);
     }
     DischargeTable t;
     t.times = need(s, "fluid/discharge_times", any);
@@ -611,9 +673,17 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
     fluid_->set_step_count(static_cast<long long>(need(s, "fluid/step_count", 1)[0]));
     // older states have no last step: the next one starts from FlowParams::initial_dt
     fluid_->set_last_dt(s.count("fluid/last_dt") ? need(s, "fluid/last_dt", 1)[0] : 0.0);
+    if (history) {
+      fluid_->face_u_prev = s.at("fluid/face_u_prev");
+      fluid_->face_w_prev = s.at("fluid/face_w_prev");
+      fluid_->set_prev_dt(s.at("fluid/prev_dt")[0]);
+    } else {
+      fluid_->clear_step_history();
+    }
     fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
     // older states have no boundary budget: it restarts from 0
     fluid_->set_net_inflow_volume(s.count("fluid/net_inflow_volume") ? need(s, "fluid/net_inflow_volume", 1)[0] : 0.0);
+    fluid_->set_dilatation_volume(s.count("fluid/dilatation_volume") ? need(s, "fluid/dilatation_volume", 1)[0] : 0.0);
     cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
     cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
     fluid_->update_face_porosity();

@@ -45,6 +45,8 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
   s["disc_fixed"] = to_double(disc_fixed);
   s["disc_active"] = to_double(disc_active);
   s["disc_force_ext"] = disc_force_ext;
+  s["disc_drag_coef"] = disc_drag_coef;
+  s["disc_drag_vel"] = disc_drag_vel;
   s["disc_wet"] = disc_wet;
   s["disc_water_level"] = disc_water_level;
   s["disc_force"] = disc_force;
@@ -93,6 +95,14 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
   set(disc_fixed, get(s, "disc_fixed", n));
   set(disc_active, get(s, "disc_active", n));
   set(disc_force_ext, get(s, "disc_force_ext", 2 * n));
+  // older states hold no linear drag
+  if (s.count("disc_drag_coef")) {
+    set(disc_drag_coef, get(s, "disc_drag_coef", n));
+    set(disc_drag_vel, get(s, "disc_drag_vel", 2 * n));
+  } else {
+    disc_drag_coef.assign(n, 0.0);
+    disc_drag_vel.assign(2 * n, 0.0);
+  }
   set(disc_wet, get(s, "disc_wet", n));
   // older states hold no water levels: the wet fractions are then held as set
   if (s.count("disc_water_level")) set(disc_water_level, get(s, "disc_water_level", n));

@@ -72,6 +72,8 @@ void DEMSystem::resize(int n) {
   disc_fixed.assign(un, 0);
   disc_active.assign(un, 1);
   disc_force_ext.assign(2 * un, 0.0);
+  disc_drag_coef.assign(un, 0.0);
+  disc_drag_vel.assign(2 * un, 0.0);
   disc_wet.assign(un, wet);
   disc_water_level.assign(un, std::numeric_limits<double>::quiet_NaN());
   disc_force.assign(2 * un, 0.0);
@@ -149,6 +151,10 @@ void DEMSystem::check_stones() const {
     require_finite("disc_pos", disc_pos[2 * i + 1]);
     require_finite("disc_force_ext", disc_force_ext[2 * i]);
     require_finite("disc_force_ext", disc_force_ext[2 * i + 1]);
+    require_non_negative("disc_drag_coef", disc_drag_coef[i]);
+    require_finite("disc_drag_coef", disc_drag_coef[i]);
+    require_finite("disc_drag_vel", disc_drag_vel[2 * i]);
+    require_finite("disc_drag_vel", disc_drag_vel[2 * i + 1]);
   }
 }
 
@@ -219,10 +225,14 @@ void DEMSystem::set_wet_fraction(int i, double w) {
   if (mass_eff_.size() == static_cast<std::size_t>(n_)) update_stone_properties(i);
 }
 
-// the wet fraction of a stone given a water level follows its height (wet_fraction.h)
+// the wet fraction of a stone given a water level follows its height (wet_fraction.h); within a step
+// the drag's kick scale follows its new mass, so that the next half kicks integrate the linear drag
+// exactly with the added mass the stone now has (set_wet_fraction has kept its momentum)
 void DEMSystem::follow_water_level(int i) {
   const double w = disc_wet_fraction((disc_water_level[i] - disc_pos[2 * i + 1]) / disc_radius[i]);
-  if (w != disc_wet[i]) set_wet_fraction(i, w);
+  if (w == disc_wet[i]) return;
+  set_wet_fraction(i, w);
+  if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);
 }
 
 // reduced mass of two mean mobile stones [kg], for the automatic stiffness
@@ -325,12 +335,28 @@ void DEMSystem::advance_checked(double dt, long long nsub) {
                                 " s exceeds the DEM contact's stable step: allowed range (0, " +
                                 format_value(limit) + "] (stable_dt(); lower dt or stiffness_normal)");
   const auto backup = export_state();
+  update_kick_scale(dt);
   try {
     for (long long s = 0; s < nsub; ++s) substep(dt);
   } catch (const std::runtime_error&) {
     import_state(backup);
     throw;
   }
+}
+
+// phi(x) = (1 - e^-x) / x of each stone's linear drag over a half kick of the substep dt (1 without drag)
+void DEMSystem::update_kick_scale(double dt) {
+  kick_dt_ = dt;
+  kick_scale_.resize(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) kick_scale_[i] = drag_kick_scale(i, dt);
+}
+
+// phi(h c / (M + M')) of stone i for a half kick h = dt / 2, with its present mass
+double DEMSystem::drag_kick_scale(int i, double dt) const {
+  if (!(params_.flags & kDEMExternalForce)) return 1.0;
+  const double x = 0.5 * dt * disc_drag_coef[i] * inv_mass_[i];
+  if (x > 1e-8) return -std::expm1(-x) / x;
+  return x > 0.0 ? 1.0 - 0.5 * x : 1.0;
 }
 
 // body, contact and wall forces at the current positions (dt: step of the history springs)
@@ -415,8 +441,9 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
     double* x = &disc_pos[2 * i];
     if (!disc_asleep[i]) {
       const double* a = &disc_acc[2 * i];
-      v[0] += h * a[0];
-      v[1] += h * a[1];
+      const double s = kick_scale_[i];
+      v[0] += h * a[0] * s;
+      v[1] += h * a[1] * s;
       x[0] += dt * v[0];
       x[1] += dt * v[1];
       disc_omega[i] += h * disc_alpha[i];
@@ -437,9 +464,12 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
     }
     if (ext) {
       const double* fe = &disc_force_ext[2 * i];
-      f[0] += fe[0];
-      f[1] += fe[1];
-      work += fe[0] * v[0] + fe[1] * v[1];
+      double fx = fe[0], fz = fe[1];
+      const double c = disc_drag_coef[i];
+      if (c > 0.0) fx += c * (disc_drag_vel[2 * i] - v[0]), fz += c * (disc_drag_vel[2 * i + 1] - v[1]);
+      f[0] += fx;
+      f[1] += fz;
+      work += fx * v[0] + fz * v[1];
     }
   }
   work_external_ += work * dt;
@@ -449,6 +479,7 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
 // second kick from the new accelerations; a non-finite value aborts the call
 void DEMSystem::integrate_second_half(double dt) {
   const double h = 0.5 * dt;
+  const bool ext = params_.flags & kDEMExternalForce;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0) continue;
     double* a = &disc_acc[2 * i];
@@ -457,9 +488,18 @@ void DEMSystem::integrate_second_half(double dt) {
     disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
     if (disc_asleep[i]) continue;
     double* v = &disc_vel[2 * i];
-    v[0] += h * a[0];
-    v[1] += h * a[1];
+    const double s = kick_scale_[i];
+    const double vx = v[0], vz = v[1];
+    v[0] += h * a[0] * s;
+    v[1] += h * a[1] * s;
     disc_omega[i] += h * disc_alpha[i];
+    // the linear drag of the force evaluation is that of the half-step velocity: brought to the new one
+    const double c = disc_drag_coef[i];
+    if (c > 0.0 && ext) {
+      const double dvx = v[0] - vx, dvz = v[1] - vz;
+      disc_force[2 * i] -= c * dvx, disc_force[2 * i + 1] -= c * dvz;
+      a[0] -= c * inv_mass_[i] * dvx, a[1] -= c * inv_mass_[i] * dvz;
+    }
     if (!std::isfinite(v[0] + v[1] + disc_omega[i] + disc_pos[2 * i] + disc_pos[2 * i + 1]))
       fail("integrate", i, time_, "non-finite position or velocity");
   }
@@ -506,9 +546,12 @@ void DEMSystem::body_forces(double dt) {
     }
     if (ext) {
       const double* fe = &disc_force_ext[2 * i];
-      f[0] += fe[0];
-      f[1] += fe[1];
-      work_external_ += (fe[0] * disc_vel[2 * i] + fe[1] * disc_vel[2 * i + 1]) * dt;
+      const double* v = &disc_vel[2 * i];
+      const double c = disc_drag_coef[i];
+      const double fx = fe[0] + c * (disc_drag_vel[2 * i] - v[0]), fz = fe[1] + c * (disc_drag_vel[2 * i + 1] - v[1]);
+      f[0] += fx;
+      f[1] += fz;
+      work_external_ += (fx * v[0] + fz * v[1]) * dt;
     }
   }
 }

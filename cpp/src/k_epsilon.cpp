@@ -49,6 +49,10 @@ void check_k_epsilon_params(const KEpsilonParams& p) {
     throw std::invalid_argument("sweeps = " + std::to_string(p.sweeps) + " is outside the allowed range [0, 1000]");
   require_in_open_closed("cfl", p.cfl, 0.0, 1.0);
   require_non_negative("production_limit", p.production_limit);
+  const int scheme = static_cast<int>(p.time_scheme);
+  if (scheme < 0 || scheme > 1)
+    throw std::invalid_argument("time_scheme = " + std::to_string(scheme) +
+                                " is outside the allowed values {0 (kPointImplicit), 1 (kVerticalLines)}");
 }
 
 double wall_shear_velocity(double u_t, double y, double nu, double ks, double kappa, double log_law_e) {
@@ -80,12 +84,6 @@ double wall_shear_velocity(double u_t, double y, double nu, double ks, double ka
 // one face of a cell: coefficients a [1/s] per unit volume of advection-in plus diffusion for k
 // (a[0], sigma_k) and eps (a[1], sigma_eps), the neighbour cell, or -1 for a boundary face whose
 // value comes from the inflow pore speed inflow_u [m/s]
-struct KEpsilonModel::FaceCoef {
-  int nb;
-  double a[2];
-  double inflow_u;
-};
-
 KEpsilonModel::KEpsilonModel(const Grid2D& grid, const KEpsilonParams& params, const KEpsilonBoundaries& boundaries)
     : grid_(grid), params_(params), boundaries_(boundaries) {
   check_k_epsilon_params(params_);
@@ -128,6 +126,16 @@ void KEpsilonModel::initialize(double k, double eps, double nu) {
   std::fill(cell_role_prev_.begin(), cell_role_prev_.end(), kSolved);
 }
 
+std::vector<double> KEpsilonModel::cell_roles() const { return std::vector<double>(cell_role_.begin(), cell_role_.end()); }
+
+void KEpsilonModel::set_cell_roles(const std::vector<double>& roles) {
+  if (roles.size() != cell_role_.size())
+    throw std::invalid_argument("cell roles: " + std::to_string(roles.size()) + " values, expected " +
+                                std::to_string(cell_role_.size()) + " (one per cell)");
+  for (double r : roles) require_in_closed("cell role", r, 0.0, 2.0);
+  for (std::size_t c = 0; c < roles.size(); ++c) cell_role_[c] = static_cast<std::uint8_t>(roles[c]);
+}
+
 void KEpsilonModel::set_flags(unsigned flags) {
   params_.flags = flags;
   if (has(flags, kKEpsWallFunctions)) return;
@@ -157,7 +165,7 @@ void KEpsilonModel::check_sizes(const std::vector<double>& face_u, const std::ve
 }
 
 void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                                          const std::vector<double>& cell_nu) const {
+                                          const std::vector<double>& cell_nu, bool x_only) const {
   if (!has(params_.flags, kKEpsDiffusion)) return;
   const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
   const double half_x = 0.5 * grid_.dx();
@@ -170,7 +178,7 @@ void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosi
       for (int e = 0; e < 2; ++e) {
         const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
         half_res_x_[e][c] = half_x / cond;
-        half_res_z_[e][c] = half_z / cond;
+        if (!x_only) half_res_z_[e][c] = half_z / cond;
       }
     }
   }
@@ -305,7 +313,7 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
 void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& face_u,
                                       const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
                                       const std::vector<double>& cell_F, const std::vector<double>& cell_nu,
-                                      FaceCoef* out) const {
+                                      FaceCoef* out, bool x_only) const {
   const unsigned flags = params_.flags;
   const bool adv = has(flags, kKEpsAdvection), dif = has(flags, kKEpsDiffusion);
   const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
@@ -319,7 +327,8 @@ void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& f
   const int nbk[4] = {k, k, k - 1, k + 1};
   const double vin[4] = {u_w, -u_e, w_s, -w_n};
   const double len[4] = {dx, dx, dz, dz};
-  for (int f = 0; f < 4; ++f) {
+  const int nfaces = x_only ? 2 : 4;
+  for (int f = 0; f < nfaces; ++f) {
     FaceCoef& o = out[f];
     o.nb = -1;
     o.a[0] = o.a[1] = 0.0;
@@ -501,7 +510,10 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
   }
   {
     ScopedStage timer(profile_, stage_transport_);
-    solve_transport(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
+    if (params_.time_scheme == KEpsilonTimeScheme::kVerticalLines)
+      solve_transport_lines(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
+    else
+      solve_transport(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
   }
   {
     ScopedStage timer(profile_, stage_viscosity_);
@@ -516,24 +528,31 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
 
 double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::vector<double>& face_w,
                                 const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                                const std::vector<double>& cell_nu) const {
+                                const std::vector<double>& cell_nu, int* cell) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
-  half_cell_resistances(cell_porosity, cell_F, cell_nu);
+  // the column solves take the vertical faces (and the boundary inflow) implicitly
+  const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines;
+  const int nfaces = lines ? 2 : 4;
+  half_cell_resistances(cell_porosity, cell_F, cell_nu, lines);
   double rate_max = 0.0;
+  int worst = -1;
   FaceCoef fc[4];
   for (int k = 0; k < grid_.nz(); ++k) {
     for (int i = 0; i < grid_.nx(); ++i) {
       const int c = grid_.cell(i, k);
       if (!is_active(c, cell_porosity, cell_F)) continue;
-      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc, lines);
       double sum_k = 0.0, sum_eps = 0.0;
-      for (const FaceCoef& f : fc) {
-        sum_k += f.a[0];
-        sum_eps += f.a[1];
+      for (int f = 0; f < nfaces; ++f) {
+        if (lines && fc[f].nb < 0) continue;
+        sum_k += fc[f].a[0];
+        sum_eps += fc[f].a[1];
       }
-      rate_max = std::max(rate_max, std::max(sum_k, sum_eps) / cell_porosity[c]);
+      const double rate = std::max(sum_k, sum_eps) / cell_porosity[c];
+      if (rate > rate_max) rate_max = rate, worst = c;
     }
   }
+  if (cell) *cell = worst;
   return rate_max > 0.0 ? params_.cfl / rate_max : std::numeric_limits<double>::infinity();
 }
 

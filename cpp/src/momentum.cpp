@@ -269,9 +269,13 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
   const double dx = g.dx(), inv_dx = 1.0 / dx;
   u_star.assign(g.nface_x(), 0.0);
   w_star.assign(g.nface_z(), 0.0);
+  // the convective term's velocities (the extrapolated ones of AB2, else the step's start)
+  MomentumFields fc = f;
+  if (f.conv_face_u) fc.face_u = f.conv_face_u;
+  if (f.conv_face_w) fc.face_w = f.conv_face_w;
   if (t.convection) {
-    pore_velocities(g, f, s);
-    convective_fluxes(g, f, bc, s);
+    pore_velocities(g, fc, s);
+    convective_fluxes(g, fc, bc, s);
   }
   const bool implicit = t.viscosity && t.implicit_vertical;
   if (t.viscosity) corner_shear(g, f, bc, s);
@@ -302,7 +306,7 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
     if (bc.right_open && f.face_x_porosity[je] > 0.0) {
       double rhs = f.face_x_porosity[je] * t.gravity_x;
       if (t.convection)
-        rhs -= (f.face_u[je] * s.pore_u[je] - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
+        rhs -= (fc.face_u[je] * s.pore_u[je] - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
                (s.corner_flux_u[nx + sx * (k + 1)] - s.corner_flux_u[nx + sx * k]) * inv_dz;
       u_star[je] = f.face_u[je] + dt * rhs;
     }
@@ -336,7 +340,7 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
       double rhs = f.face_z_porosity[j] * t.gravity_z;
       if (t.convection)
         rhs -= (s.corner_flux_w[i + 1 + sx * nz] - s.corner_flux_w[i + sx * nz]) * inv_dx +
-               (f.face_w[j] * s.pore_w[j] - s.cell_flux_w[j - nx]) * inv_dz;
+               (fc.face_w[j] * s.pore_w[j] - s.cell_flux_w[j - nx]) * inv_dz;
       w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
@@ -371,8 +375,12 @@ void solve_tridiagonal(int m, const double* a, double* b, const double* c, doubl
   for (int k = m - 2; k >= 0; --k) d[k] = (d[k] - c[k] * d[k + 1]) / b[k];
 }
 
-double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical) {
-  const double zf = implicit_vertical ? 0.0 : 1.0;  // the vertical diffusion's share of the explicit operator
+double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical,
+                         int* cell) {
+  // the vertical diffusion's share of the explicit operator (the u-w cross terms stay in: without them
+  // the bound would be the constant-coefficient limit of the scheme, dx^2 / (4 nu), which a step matrix
+  // with eddy-viscosity contrasts of 100 exceeds; test_viscous_implicit.cpp)
+  const double zf = implicit_vertical ? 0.0 : 1.0;
   // forward Euler is stable while dt <= 2 / lambda_max; Gershgorin: lambda_max <= max row sum of |A|,
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
@@ -382,6 +390,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   cm.resize(ncorner + g.ncell());
   corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm.data(), cm.data() + ncorner);
   double worst = 0.0;
+  int where = -1;
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);
     for (int i = 1; i < nx; ++i) {
@@ -391,7 +400,8 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       const double mn = cm[i + sx * (k + 1)], ms = cm[i + sx * k];
       const double diag = 2.0 * (ml + mr) / (dx * dx) + zf * (mn + ms) / (dz * dz);
       const double cross = 2.0 * (mn + ms) / (dx * dz);
-      worst = std::max(worst, (2.0 * diag + cross) / f.face_x_rho[j]);
+      const double rate = (2.0 * diag + cross) / f.face_x_rho[j];
+      if (rate > worst) worst = rate, where = i + nx * k;
     }
   }
   for (int k = 1; k < nz; ++k) {
@@ -404,9 +414,11 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       const double me = cm[i + 1 + sx * k], mw = cm[i + sx * k];
       const double diag = zf * 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
       const double cross = 2.0 * (me + mw) / (dx * hz);
-      worst = std::max(worst, (2.0 * diag + cross) / f.face_z_rho[j]);
+      const double rate = (2.0 * diag + cross) / f.face_z_rho[j];
+      if (rate > worst) worst = rate, where = i + nx * k;
     }
   }
+  if (cell) *cell = where;
   return worst > 0.0 ? 2.0 / worst : std::numeric_limits<double>::infinity();
 }
 

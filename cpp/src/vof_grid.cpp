@@ -38,6 +38,9 @@ void FlowParams::validate() const {
   require_positive("flume_width", flume_width);
   require_positive("pressure_tol", pressure_tol);
   require_finite("tailwater_level", tailwater_level);
+  if (static_cast<int>(time_scheme) < 0 || static_cast<int>(time_scheme) > 1)
+    throw std::invalid_argument("time_scheme = " + std::to_string(static_cast<int>(time_scheme)) +
+                                " is outside the allowed values {0 (kEuler), 1 (kAdamsBashforth2)}");
   if (flags & kFlowTurbulence) check_k_epsilon_params(turbulence);
   if (flags >= (1u << 8))
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
@@ -45,9 +48,29 @@ void FlowParams::validate() const {
 
 double FlowStableDt::min() const { return std::min({advective, viscous, gravity, turbulence, max_dt, growth}); }
 
+const char* FlowStableDt::binding(int* cell) const {
+  const double m = min();
+  if (cell) *cell = -1;
+  if (advective == m) {
+    if (cell) *cell = advective_cell;
+    return "advective";
+  }
+  if (turbulence == m) {
+    if (cell) *cell = turbulence_cell;
+    return "turbulence";
+  }
+  if (viscous == m) {
+    if (cell) *cell = viscous_cell;
+    return "viscous";
+  }
+  if (gravity == m) return "gravity";
+  if (growth == m) return "growth";
+  return "max_dt";
+}
+
 struct VOFGrid::Snapshot {
   std::vector<double> face_u, face_w, cell_p, cell_F, cell_nut, cell_k, cell_eps, cell_porosity_prev;
-  double time = 0.0, inlet_volume = 0.0, net_inflow_volume = 0.0;
+  double time = 0.0, inlet_volume = 0.0, net_inflow_volume = 0.0, dilatation_volume = 0.0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -352,12 +375,17 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
     }
   }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
+  if (index >= 0) {
+    const int nx = grid_.nx(), nz = grid_.nz();
+    s.advective_cell = kind == 1 ? std::min(index % (nx + 1), nx - 1) + nx * (index / (nx + 1))
+                                 : index % nx + nx * std::min(index / nx, nz - 1);
+  }
   s.viscous = kInf;
   // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
   if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
     s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                  params_.viscous_scheme == ViscousScheme::kImplicitVertical);
+                                  params_.viscous_scheme == ViscousScheme::kImplicitVertical, &s.viscous_cell);
   }
   const double g = std::hypot(params_.gravity_x, params_.gravity_z);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0
@@ -365,7 +393,8 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
                   : kInf;
   s.turbulence = kInf;
   if (params_.flags & kFlowTurbulence) {
-    s.turbulence = turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_);
+    s.turbulence =
+        turbulence_->stable_dt(face_u, face_w, cell_porosity, turbulence_cells_F(), cell_nu_, &s.turbulence_cell);
   }
   s.max_dt = params_.max_dt;
   // from rest the velocity terms see no flow yet: the step starts small and grows gradually
@@ -386,6 +415,7 @@ void VOFGrid::save_state() {
   s.time = time_;
   s.inlet_volume = inlet_volume_;
   s.net_inflow_volume = net_inflow_volume_;
+  s.dilatation_volume = dilatation_volume_;
   s.cell_porosity_prev = cell_porosity_prev_;
 }
 
@@ -403,6 +433,7 @@ void VOFGrid::restore_state() {
   time_ = s.time;
   inlet_volume_ = s.inlet_volume;
   net_inflow_volume_ = s.net_inflow_volume;
+  dilatation_volume_ = s.dilatation_volume;
   flux_dt_ = 0.0;  // the fluxes in the scratch are not those of a completed step
   cell_porosity_prev_ = s.cell_porosity_prev;
 }
@@ -505,7 +536,27 @@ void VOFGrid::stage_advect_vof(double dt) {
   for (int k = 0; k < nz; ++k) net += fx[sx * k] - fx[nx + sx * k];
   for (int i = 0; i < nx; ++i) net += fz[i] - fz[i + nx * nz];
   net_inflow_volume_ += net;
+  dilatation_volume_ += dilatation(dt);
   flux_dt_ = dt;
+}
+
+// water made by the two sweeps' divergence correction, dt sum c div(u) V (zero for div u = 0): the
+// rest of the budget, where the pressure solve leaves a residual divergence
+double VOFGrid::dilatation(double dt) const {
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const double dx = grid_.dx();
+  const double* c = vof_scratch_.cell_c.data();
+  double sum = 0.0;
+  for (int k = 0; k < nz; ++k) {
+    const double dz = grid_.dz(k);
+    const double* u = &face_u[sx * k];
+    const double* wb = &face_w[nx * k];
+    const double* wt = &face_w[nx * (k + 1)];
+    const double* n = &cell_porosity[nx * k];
+    for (int i = 0; i < nx; ++i)
+      if (c[nx * k + i] != 0.0 && n[i] > 0.0) sum += (u[i + 1] - u[i]) * dz + (wt[i] - wb[i]) * dx;
+  }
+  return sum * dt;
 }
 
 void VOFGrid::stage_momentum(double dt) {
@@ -515,7 +566,20 @@ void VOFGrid::stage_momentum(double dt) {
   terms.viscosity = params_.flags & kFlowViscosity;
   terms.implicit_vertical = params_.viscous_scheme == ViscousScheme::kImplicitVertical;
   if (params_.flags & kFlowGravity) terms.gravity_x = params_.gravity_x, terms.gravity_z = params_.gravity_z;
-  momentum_explicit(grid_, momentum_fields(), terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);
+  const bool ab2 = params_.time_scheme == MomentumTimeScheme::kAdamsBashforth2 && prev_dt_ > 0.0;
+  if (!ab2) {
+    momentum_explicit(grid_, momentum_fields(), terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);
+  } else {
+    // convection at the velocity extrapolated to the step's middle
+    const double r = 0.5 * dt / prev_dt_;
+    const std::size_t nu = face_u.size(), nw = face_w.size();
+    face_u_ext_.resize(nu), face_w_ext_.resize(nw);
+    for (std::size_t j = 0; j < nu; ++j) face_u_ext_[j] = face_u[j] + r * (face_u[j] - face_u_prev[j]);
+    for (std::size_t j = 0; j < nw; ++j) face_w_ext_[j] = face_w[j] + r * (face_w[j] - face_w_prev[j]);
+    MomentumFields f = momentum_fields();
+    f.conv_face_u = face_u_ext_.data(), f.conv_face_w = face_w_ext_.data();
+    momentum_explicit(grid_, f, terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);
+  }
   // projection coefficients without resistance; the porous stage divides them by 1 + dt n R'
   for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
   for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
@@ -748,9 +812,21 @@ void VOFGrid::step(double dt) {
   if (params_.flags & kFlowFreeSurface) stage_advect_vof(dt);
   stage_checks(dt);
   cell_porosity_prev_ = cell_porosity;
+  // u^n becomes the history of the next step (the snapshot is rewritten at its start)
+  face_u_prev.swap(snapshot_->face_u);
+  face_w_prev.swap(snapshot_->face_w);
+  prev_dt_ = dt;
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;
+}
+
+void VOFGrid::set_prev_dt(double dt) {
+  require_non_negative("prev_dt", dt);
+  require_finite("prev_dt", dt);
+  if (dt > 0.0 && (face_u_prev.size() != face_u.size() || face_w_prev.size() != face_w.size()))
+    throw std::invalid_argument("prev_dt = " + format_value(dt) + " needs face_u_prev and face_w_prev of the face sizes");
+  prev_dt_ = dt;
 }
 
 void VOFGrid::set_last_dt(double dt) {

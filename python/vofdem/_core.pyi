@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -526,6 +526,12 @@ class DEMSystem:
         ...
     @property
     def disc_density(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_drag_coef(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def disc_drag_vel(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
     def disc_fixed(self) -> numpy.typing.NDArray[numpy.uint8]:
@@ -1377,6 +1383,96 @@ class KEpsilonProduction:
     @property
     def value(self) -> int:
         ...
+class KEpsilonTimeScheme:
+    """
+    Members:
+    
+      POINT_IMPLICIT : predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces
+    
+      VERTICAL_LINES : columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only
+    """
+    POINT_IMPLICIT: typing.ClassVar[KEpsilonTimeScheme]
+    VERTICAL_LINES: typing.ClassVar[KEpsilonTimeScheme]
+    __members__: typing.ClassVar[dict[str, KEpsilonTimeScheme]]
+    @typing.overload
+    def __eq__(self, other: KEpsilonTimeScheme) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: KEpsilonTimeScheme) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class MomentumTimeScheme:
+    """
+    Members:
+    
+      EULER : forward Euler of the explicit momentum terms (first order)
+    
+      ADAMS_BASHFORTH2 : variable-step Adams-Bashforth 2 of the explicit momentum terms (second order)
+    """
+    ADAMS_BASHFORTH2: typing.ClassVar[MomentumTimeScheme]
+    EULER: typing.ClassVar[MomentumTimeScheme]
+    __members__: typing.ClassVar[dict[str, MomentumTimeScheme]]
+    @typing.overload
+    def __eq__(self, other: MomentumTimeScheme) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: MomentumTimeScheme) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class CornerViscosity:
     """
     Members:
@@ -1574,6 +1670,14 @@ class FlowParams:
     def tailwater_level(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def time_scheme(self) -> MomentumTimeScheme:
+        """
+        MomentumTimeScheme of the explicit momentum terms
+        """
+    @time_scheme.setter
+    def time_scheme(self, arg0: MomentumTimeScheme) -> None:
+        ...
+    @property
     def turbulence_bed_roughness(self) -> float:
         """
         equivalent sand roughness k_s of the bed [m]
@@ -1612,6 +1716,14 @@ class FlowParams:
         """
     @turbulence_production_limit.setter
     def turbulence_production_limit(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_time_scheme(self) -> KEpsilonTimeScheme:
+        """
+        k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES
+        """
+    @turbulence_time_scheme.setter
+    def turbulence_time_scheme(self, arg1: KEpsilonTimeScheme) -> None:
         ...
     @property
     def turbulence_wall_roughness(self) -> float:
@@ -1679,6 +1791,10 @@ class VOFGrid:
         ...
     def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
         ...
+    def clear_step_history(self) -> None:
+        """
+        forget the last step (the next one is forward Euler): after velocities were set by hand
+        """
     def discharge_through(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         """
         water discharge per width [m^2/s]
@@ -1753,6 +1869,11 @@ class VOFGrid:
         stone diameter D_sp [m]
         """
     @property
+    def dilatation_volume(self) -> float:
+        """
+        water volume per width [m^2] made by the advection's divergence correction where the velocity is not divergence-free (the pressure solve's residual), since construction
+        """
+    @property
     def discharge(self) -> DischargeTable:
         """
         DischargeTable Q(t) [m^3/s]
@@ -1822,6 +1943,11 @@ class VOFGrid:
     def pressure_fallbacks(self) -> int:
         """
         multigrid-CG solves redone by the direct solver (no convergence)
+        """
+    @property
+    def prev_dt(self) -> float:
+        """
+        the last step [s] of the Adams-Bashforth history (0: none, the next step is Euler)
         """
     @property
     def profile(self) -> StageProfile:
@@ -1903,7 +2029,7 @@ class CouplerParams:
     @property
     def drag_relaxation(self) -> float:
         """
-        step at most this fraction of the drag relaxation time [-], 0.5
+        held drag: step at most this fraction of its relaxation time [-], 0.5
         """
     @drag_relaxation.setter
     def drag_relaxation(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1915,6 +2041,14 @@ class CouplerParams:
         """
     @flags.setter
     def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def implicit_drag(self) -> bool:
+        """
+        drag linearised in the stone's velocity and integrated implicitly by the DEM, True; False: held over the step (bounded by drag_relaxation)
+        """
+    @implicit_drag.setter
+    def implicit_drag(self, arg0: bool) -> None:
         ...
     @property
     def lookup_dr(self) -> float:
@@ -1981,6 +2115,8 @@ class Coupler:
         ...
     def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
         ...
+    def clear_step_limits(self) -> None:
+        ...
     def export_state(self) -> dict:
         ...
     def import_state(self, state: dict) -> None:
@@ -1995,6 +2131,14 @@ class Coupler:
     @typing.overload
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def step_limit_cells(self) -> dict:
+        """
+        {term: steps bound in each cell (ncell counts, a copy)}
+        """
+    def step_limits(self) -> dict[str, int]:
+        """
+        steps of advance() bound by each limit, {term: steps} (a diagnostic, not checkpointed)
+        """
     def update_fluid_forces(self) -> None:
         ...
     def update_porosity(self, keep_water_volume: bool = True) -> None:

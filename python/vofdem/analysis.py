@@ -20,10 +20,9 @@ Definitions (all from the recorded snapshots of stone positions):
   highest active stone above the bin's centre is taken; the crest level is their mean, and the crest
   lowering is its drop from the initial snapshot.
 
-Stages are compared by order with the paper (Maeno & Tomita 2008): our stage k against its stage k.
-Experiment (Maeno et al. 2002): first removals ~14 l/s, second stage 16.5 l/s, third 20.4 l/s. The
-paper's model: no first-stage removal (stones vibrated above 15 l/s), second stage 17.1 l/s at
-56.8 s of its clock, third 19.2 l/s 16 s later (72.8 s). Its clock starts at the ramp (10 l/s).
+Stages are compared by order with the scene's reference data (`reference.Reference`), when it has
+any: our stage k against its stage k. The clock of the rise (simulation time minus the spin-up) is
+shown only when the reference gives times on it.
 """
 from __future__ import annotations
 
@@ -34,11 +33,10 @@ from typing import Callable, Dict, List, Optional
 
 import numpy as np
 
-REGIONS = ("upstream slope", "crest", "shoulder", "downstream slope")
+from .reference import Reference, format_lps
 
-# the paper's numbers, stage number -> (discharge [l/s], paper-clock time [s] or None)
-PAPER_EXPERIMENT = {1: (14.0, None), 2: (16.5, None), 3: (20.4, None)}
-PAPER_MODEL = {1: (None, None), 2: (17.1, 56.8), 3: (19.2, 72.8)}
+REGIONS = ("upstream slope", "crest", "shoulder", "downstream slope")
+STAGE_NAMES = {1: "first stage", 2: "second stage", 3: "third stage"}
 
 
 @dataclass
@@ -56,7 +54,7 @@ class Stage:
     number: int
     start_time: float  # simulation time of its first removal [s]
     end_time: float  # simulation time of its last removal [s]
-    paper_time: float  # start on the paper's clock (since the ramp began) [s]
+    clock_time: float  # start on the clock of the rise (simulation time - spin-up) [s]
     discharge_lps: float  # discharge at the start [l/s]
     stones: List[int]  # indices of the stones removed in it
     region_counts: Dict[str, int]
@@ -85,6 +83,7 @@ class FailureAnalysis:
     ramp_start: float = 0.0
     discharge_lps_at: Optional[Callable] = None
     removed_count: np.ndarray = field(default=None)  # (T,) stones removed so far
+    reference: Optional[Reference] = None  # the scene's reference data; None or empty: no comparison
 
     @property
     def crest_lowering(self) -> np.ndarray:
@@ -97,22 +96,37 @@ class FailureAnalysis:
         return float(t.min()) if t.size else None
 
     # ------------------------------------------------------------------ tables
+    @property
+    def _ref(self) -> Optional[Reference]:
+        return self.reference if self.reference is not None and self.reference.given else None
+
     def stage_rows(self) -> List[Dict[str, object]]:
-        """One row per detected stage, with the paper's numbers for the stage of the same order."""
+        """One row per detected stage, with the reference's values for the stage of the same order (only
+        the columns the reference has)."""
+        ref = self._ref
         rows = []
         for s in self.stages:
-            exp_q = PAPER_EXPERIMENT.get(s.number, (None, None))[0]
-            mod_q, mod_t = PAPER_MODEL.get(s.number, (None, None))
-            rows.append({
-                "stage": s.number, "start_s": round(s.start_time, 3), "paper_clock_s": round(s.paper_time, 3),
-                "discharge_lps": round(s.discharge_lps, 3), "stones": s.n_stones, "location": s.location,
-                "experiment_lps": exp_q, "paper_model_lps": mod_q, "paper_model_s": mod_t,
-            })
+            row: Dict[str, object] = {"stage": s.number, "start_s": round(s.start_time, 3)}
+            if ref is not None and ref.has_times:
+                row["clock_s"] = round(s.clock_time, 3)
+            row.update(discharge_lps=round(s.discharge_lps, 3), stones=s.n_stones, location=s.location)
+            for who, model in (("observed", False), ("model", True)):
+                if ref is None or not (ref.has_model if model else ref.has_observed):
+                    continue
+                q, t = ref.stages(model).get(s.number, (None, None))
+                row[f"{who}_lps"] = q
+                if ref.has_times:
+                    row[f"{who}_clock_s"] = t
+            rows.append(row)
         return rows
 
     def stage_table_csv(self) -> str:
-        cols = ["stage", "start_s", "paper_clock_s", "discharge_lps", "stones", "location", "experiment_lps",
-                "paper_model_lps", "paper_model_s"]
+        ref = self._ref
+        cols = ["stage", "start_s"] + (["clock_s"] if ref is not None and ref.has_times else []) + [
+            "discharge_lps", "stones", "location"]
+        for who, has in (("observed", ref is not None and ref.has_observed), ("model", ref is not None and ref.has_model)):
+            if has:
+                cols += [f"{who}_lps"] + ([f"{who}_clock_s"] if ref.has_times else [])
         buf = io.StringIO()
         w = csv.DictWriter(buf, fieldnames=cols, lineterminator="\n")
         w.writeheader()
@@ -121,34 +135,52 @@ class FailureAnalysis:
         return buf.getvalue()
 
     def stage_table_markdown(self) -> str:
-        """Stages found, then a comparison with the paper's experiment and model."""
-        c = self.criterion
-        out = [f"Removal: moved more than {c.removal_factor:g} diameter(s); stage: >= {c.min_stones} removals "
-               f"with pauses <= {c.gap:g} s. Paper clock = simulation time - {self.ramp_start:g} s.", "",
-               "| stage | start [s] | paper clock [s] | Q [l/s] | stones | where |", "|---|---|---|---|---|---|"]
+        """Stages found, then (when the scene has reference data) a comparison with it."""
+        c, ref = self.criterion, self._ref
+        clock = ref is not None and ref.has_times
+        head = (f"Removal: moved more than {c.removal_factor:g} diameter(s); stage: >= {c.min_stones} removals "
+                f"with pauses <= {c.gap:g} s.")
+        if clock:
+            head += f" Clock of the rise = simulation time - {self.ramp_start:g} s."
+        out = [head, "", "| stage | start [s] | " + ("clock [s] | " if clock else "") + "Q [l/s] | stones | where |",
+               "|---|---|" + ("---|" if clock else "") + "---|---|---|"]
         for s in self.stages:
-            out.append(f"| {s.number} | {s.start_time:.1f} | {s.paper_time:.1f} | {s.discharge_lps:.2f} | "
-                       f"{s.n_stones} | {s.location} |")
+            out.append(f"| {s.number} | {s.start_time:.1f} | " + (f"{s.clock_time:.1f} | " if clock else "")
+                       + f"{s.discharge_lps:.2f} | {s.n_stones} | {s.location} |")
         if not self.stages:
-            out.append("| - | no stage | | | 0 | |")
-        n_iso = len(self.isolated)
-        fr = self.first_removal
-        out += ["", f"Isolated removals (not in a stage): {n_iso}. "
+            out.append("| - | no stage | " + ("| " if clock else "") + "| 0 | |")
+        out += ["", f"Isolated removals (not in a stage): {len(self.isolated)}. "
                 f"Stones removed in total: {int(np.isfinite(self.removal_time).sum())} of {self.removal_time.size}. "
                 f"Final crest lowering: {1e3 * float(self.crest_lowering[-1]):.1f} mm.", ""]
-        out += ["| event | this run: Q [l/s] (paper clock [s]) | experiment Q [l/s] | paper's model Q [l/s] (t [s]) |",
-                "|---|---|---|---|"]
-        q_first = f"{self._q(fr):.2f} ({fr - self.ramp_start:.1f})" if fr is not None else "none"
-        out.append(f"| first removal of any stone | {q_first} | ~14 | none (vibration from 15) |")
-        names = {1: "first stage (first removals)", 2: "second stage", 3: "third stage"}
-        for k in (1, 2, 3):
-            ours = next((s for s in self.stages if s.number == k), None)
-            mine = f"{ours.discharge_lps:.2f} ({ours.paper_time:.1f})" if ours else "none"
-            eq = PAPER_EXPERIMENT[k][0]
-            mq, mt = PAPER_MODEL[k]
-            model = "none" if mq is None else f"{mq} ({mt})"
-            out.append(f"| {names[k]} | {mine} | {'~' if k == 1 else ''}{eq} | {model} |")
+        if ref is not None:
+            out += self._comparison_markdown(ref) + [""]
         return "\n".join(out) + "\n"
+
+    def _comparison_markdown(self, ref: Reference) -> List[str]:
+        """The events of this run next to the reference's observed and modelled ones."""
+        clock = ref.has_times
+        sources = [(False, "observed")] if ref.has_observed else []
+        sources += [(True, "model")] if ref.has_model else []
+        unit = "Q [l/s] (clock [s])" if clock else "Q [l/s]"
+        out = ["Compared with " + "; ".join(f"{w}: {ref.model_citation if m else ref.citation}" for m, w in sources)
+               + ".", "", f"| event | this run: {unit} | " + " | ".join(f"{w}: {unit}" for _, w in sources) + " |",
+               "|---|---|" + "---|" * len(sources)]
+        fr = self.first_removal
+        mine = "none" if fr is None else (f"{self._q(fr):.2f}" + (f" ({fr - self.ramp_start:.1f})" if clock else ""))
+        refs = [format_lps(ref.model_first_removal_lps if m else ref.first_removal_lps) for m, _ in sources]
+        out.append(f"| first removal of any stone | {mine} | " + " | ".join(refs) + " |")
+        numbers = [k for m, _ in sources for k in ref.stages(m)]
+        for k in range(1, max(numbers + [len(self.stages), 1]) + 1):
+            ours = next((s for s in self.stages if s.number == k), None)
+            mine = "none" if ours is None else (f"{ours.discharge_lps:.2f}" + (f" ({ours.clock_time:.1f})" if clock
+                                                                              else ""))
+            cells = [format_lps(*ref.stages(m).get(k, (None, None))) for m, _ in sources]
+            out.append(f"| {STAGE_NAMES.get(k, f'stage {k}')} | {mine} | " + " | ".join(cells) + " |")
+        for m, w in sources:
+            note = ref.model_note if m else ref.note
+            if note:
+                out += ["", f"{w.capitalize()}: {note}."]
+        return out
 
     def _q(self, t):
         return float(self.discharge_lps_at(t)) if self.discharge_lps_at is not None else float("nan")
@@ -224,12 +256,13 @@ def crest_level(pos, radius, weir, bin_width: float, active=None) -> np.ndarray:
 
 
 def analyse(times, pos, diameters, weir, discharge_lps_at: Callable, active=None, fixed=None,
-            ramp_start: float = 0.0, criterion: Optional[StageCriterion] = None) -> FailureAnalysis:
+            ramp_start: float = 0.0, criterion: Optional[StageCriterion] = None,
+            reference: Optional[Reference] = None) -> FailureAnalysis:
     """Failure analysis of recorded stone trajectories.
 
     times (T,) [s]; pos (T, n, 2) [m]; diameters (n,) [m]; weir: the initial `scene.Weir`;
     discharge_lps_at: t [s] -> Q [l/s]; active (T, n) bool; fixed (n,) bool; ramp_start [s] is
-    where the paper's clock starts.
+    where the clock of the rise starts; reference: the scene's reference data (compared in the tables).
     """
     c = criterion or StageCriterion()
     times = np.asarray(times, float)
@@ -246,10 +279,10 @@ def analyse(times, pos, diameters, weir, discharge_lps_at: Callable, active=None
     for k, g in enumerate(groups, start=1):
         t0 = float(t_rem[g[0]])
         counts = {r: int(np.sum(region[g] == r)) for r in REGIONS if np.any(region[g] == r)}
-        stages.append(Stage(number=k, start_time=t0, end_time=float(t_rem[g[-1]]), paper_time=t0 - ramp_start,
+        stages.append(Stage(number=k, start_time=t0, end_time=float(t_rem[g[-1]]), clock_time=t0 - ramp_start,
                             discharge_lps=float(discharge_lps_at(t0)), stones=list(g), region_counts=counts))
     crest = crest_level(pos, 0.5 * diameters, weir, float(diameters.mean()), active)
     removed_count = np.array([(t_rem <= t).sum() for t in times])
     return FailureAnalysis(times=times, displacement=disp, removal_time=t_rem, region=region, stages=stages,
                            isolated=isolated, crest_level=crest, criterion=c, ramp_start=ramp_start,
-                           discharge_lps_at=discharge_lps_at, removed_count=removed_count)
+                           discharge_lps_at=discharge_lps_at, removed_count=removed_count, reference=reference)

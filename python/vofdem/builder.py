@@ -5,6 +5,8 @@ C++ core; no physics lives here.
 """
 from __future__ import annotations
 
+from typing import Optional
+
 import numpy as np
 
 from . import _core
@@ -55,7 +57,43 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     if fx.drag or fx.pressure_gradient:
         flags |= _core.DEM_EXTERNAL_FORCE
     p.flags = int(flags)
+    if is_graded(scene):
+        p.stiffness_normal, p.dt = graded_contact(scene, p)
     return p
+
+
+def is_graded(scene: Scene) -> bool:
+    """Whether the packed stones come from sieve curves (the core's or a zone's)."""
+    return not scene.stones.positions and (scene.stones.grading() is not None or bool(scene.zones))
+
+
+def _sources_sizes(scene: Scene):
+    """(d50 [m], smallest d [m]) of each size source of a packed scene: the zones', then the core's."""
+    out = [(zn.grading().d(0.5), zn.grading().d_min) for zn in scene.zones]
+    g, st = scene.stones.grading(), scene.stones
+    out.append((g.d(0.5), g.d_min) if g is not None else (st.diameter, st.diameter * (1.0 - st.diameter_spread)))
+    return out
+
+
+def graded_contact(scene: Scene, params):
+    """(k_n [N/m], DEM step [s]) of a graded scene. The automatic stiffness (dem_contact.h) is tied to the
+    mean stone, and a sieve curve's smallest stones are much lighter than its mean: at the scene's
+    numerics.dem_dt their contacts would be refused as unstable (DEMSystem::stable_dt). So the stiffness is
+    that of `dem_contact_steps` steps of `dem_dt` per contact of two stones of the finest d50 among the
+    core and the zones, k_n = (m50 / 2) (pi / (steps dt))^2 (the paper's rule, on d50), and the DEM step is
+    the scene's dem_dt, lowered where needed to 0.98 of the stable step of the smallest stone the
+    gradings hold (computed by the DEMSystem itself)."""
+    n = scene.numerics
+    sizes = _sources_sizes(scene)
+    d_ref, d_min = min(d50 for d50, _ in sizes), min(dm for _, dm in sizes)
+    m_ref = scene.stones.density * math.pi * d_ref ** 3 / 6.0
+    kn = 0.5 * m_ref * (math.pi / (n.dem_contact_steps * n.dem_dt)) ** 2
+    params.stiffness_normal = kn
+    x, z = 0.5 * scene.flume.length, 0.5 * scene.flume.height  # two stones apart, inside the flume
+    two = _core.DEMSystem(params, np.array([[x, z], [x + 4.0 * d_min, z]]), np.full(2, 0.5 * d_min),
+                          np.full(2, scene.stones.density), [0, 0])
+    stable = float(two.stable_dt())
+    return kn, min(n.dem_dt, 0.98 * stable)
 
 
 def polygon_options(scene: Scene) -> dict:
@@ -112,20 +150,54 @@ def dem_step_hint(message: str) -> str:
             "contacts), or both with their product kept (the same stiffness in more steps)")
 
 
-def build_stones(scene: Scene):
-    """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir), or the
-    scene's explicit stones. `report` is the WeirPackingReport (None for explicit stones)."""
+def packing_route(scene: Scene) -> str:
+    """How the scene's weir is packed: 'explicit' stones, 'trapezoid' (pack_weir: a trapezoid, or an outline
+    that is one, with sizes uniform in d +- spread and no zones) or 'outline' (outline_packing.py)."""
+    from .outline import as_trapezoid
+
     st, w = scene.stones, scene.weir
     if st.positions:
+        return "explicit"
+    if is_graded(scene) or (w.outline and as_trapezoid(w.outline) is None):
+        return "outline"
+    return "trapezoid"
+
+
+def _pack_outline(scene: Scene, params):
+    """(DEMSystem, OutlinePackingReport) of the outline packer (outline_packing.py) for the scene."""
+    from .outline_packing import grading_source, pack_outline, uniform_source
+
+    rng = np.random.default_rng(scene.seed)
+    st = scene.stones
+    sources = [grading_source(zn.grading(), rng) for zn in scene.zones]
+    g = st.grading()
+    sources.append(grading_source(g, rng) if g is not None else uniform_source(st.diameter, st.diameter_spread, rng))
+    return pack_outline(scene.weir.body(), scene.zones, sources, params, st.density)
+
+
+def build_stones(scene: Scene):
+    """(DEMSystem, report): the weir packed under gravity from the scene's seed (pack_weir for a trapezoid
+    of uniform sizes, outline_packing.pack_outline for other outlines, sieve curves and zones), or the
+    scene's explicit stones. `report` is the WeirPackingReport or OutlinePackingReport (None for
+    explicit stones)."""
+    st = scene.stones
+    route = packing_route(scene)
+    if route == "explicit":
         return _explicit_stones(scene), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
     pack = dem_params(scene, fluid_density=0.0)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
+    trap = _trapezoid(scene)
     try:
-        sys_, report, _ = _core.pack_weir(height=w.height, crest=w.crest_length, slope_up_deg=w.upstream_slope_deg,
-                                          slope_down_deg=w.downstream_slope_deg, x_toe=w.toe_x, z_bed=0.0,
-                                          d_mean=st.diameter, d_spread=st.diameter_spread, density=st.density,
-                                          seed=scene.seed, params=pack, **_shape_options(scene))
+        if route == "outline":
+            sys_, report = _pack_outline(scene, pack)
+        else:
+            sys_, report, _ = _core.pack_weir(height=trap["height"], crest=trap["crest_length"],
+                                              slope_up_deg=trap["upstream_slope_deg"],
+                                              slope_down_deg=trap["downstream_slope_deg"], x_toe=trap["toe_x"],
+                                              z_bed=0.0, d_mean=st.diameter, d_spread=st.diameter_spread,
+                                              density=st.density, seed=scene.seed, params=pack,
+                                              **_shape_options(scene))
     except ValueError as e:
         raise ValueError(dem_step_hint(str(e))) from None
     sys_.params = dem_params(scene)
@@ -156,6 +228,10 @@ def flow_params(scene: Scene):
     p.pressure_solver = {"multigrid_cg": _core.PressureSolverKind.MULTIGRID_CG,
                          "direct": _core.PressureSolverKind.EIGEN_DIRECT}[n.pressure_solver]
     p.pressure_tol = n.pressure_tolerance
+    p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
+                     "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
+    p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
+                                "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
     p.inlet = _core.InletBoundary.DISCHARGE
     if f.outflow == "tailwater":
         p.outlet = _core.OutletBoundary.TAILWATER
@@ -196,25 +272,47 @@ def build_fluid(scene: Scene):
     fluid = _core.VOFGrid(build_grid(scene), flow_params(scene))
     t, q = scene.hydrograph.table(scene.duration)
     fluid.discharge = _core.DischargeTable([float(v) for v in t], [float(v) for v in q])
-    fluid.cell_stone_diameter[...] = scene.stones.diameter
+    g = scene.stones.grading()
+    fluid.cell_stone_diameter[...] = g.d(0.5) if g is not None and not scene.stones.positions else scene.stones.diameter
     fluid.fill_water_box(0.0, scene.weir.x_crest_down, 0.0, initial_level(scene))
     fluid.set_hydrostatic_pressure()
     return fluid
 
 
-def weir_spec(scene: Scene):
-    """WeirSpec of the scene's weir outline (the trapezoid on the bed z = 0)."""
+def _trapezoid(scene: Scene) -> dict:
+    """The weir's trapezoid keys (toe_x, height, crest_length, both slopes): the scene's, or its outline's
+    when the outline is a trapezoid."""
+    from .outline import as_trapezoid
+
     w = scene.weir
+    trap = dict(toe_x=w.toe_x, height=w.height, crest_length=w.crest_length, upstream_slope_deg=w.upstream_slope_deg,
+                downstream_slope_deg=w.downstream_slope_deg)
+    if w.outline:  # an outline that is a trapezoid: the same generator as the trapezoid's keys
+        trap = as_trapezoid(w.outline) or trap
+    return trap
+
+
+def weir_spec(scene: Scene):
+    """WeirSpec of the scene's weir trapezoid on the bed z = 0 (_trapezoid)."""
+    t = _trapezoid(scene)
     spec = _core.WeirSpec()
-    spec.height, spec.crest = w.height, w.crest_length
-    spec.slope_up_deg, spec.slope_down_deg = w.upstream_slope_deg, w.downstream_slope_deg
-    spec.x_toe, spec.z_bed = w.toe_x, 0.0
+    spec.height, spec.crest = t["height"], t["crest_length"]
+    spec.slope_up_deg, spec.slope_down_deg = t["upstream_slope_deg"], t["downstream_slope_deg"]
+    spec.x_toe, spec.z_bed = t["toe_x"], 0.0
     return spec
 
 
 def solid_fraction(scene: Scene, stones) -> float:
     """phi [-]: the 2D area fraction of the weir's outline covered by the stones (discs or polygons), 1 minus the
-    packing porosity that pack_weir reports (weir_porosity, sampled every 2 mm)."""
+    packing porosity that pack_weir reports (weir_porosity, sampled every 2 mm; for an outline that is
+    not a trapezoid, outline_packing.body_porosity, the same sampling, of discs; polygons come with a
+    trapezoid only, scene.py)."""
+    if scene.weir.outline and scene.stones.shape != "polygon":
+        from .outline_packing import body_porosity
+
+        act = np.asarray(stones.disc_active, bool)
+        pos = np.asarray(stones.disc_pos, float).reshape(-1, 2)[act]
+        return 1.0 - body_porosity(scene.weir.body(), pos, np.asarray(stones.disc_radius, float)[act])
     return 1.0 - float(_core.weir_porosity(stones, weir_spec(scene)))
 
 
@@ -250,6 +348,7 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.n_exp = scene.stones.n_exp if n_exp is None else float(n_exp)
     p.stone_drag = getattr(_core.StoneDragModel, _STONE_DRAG[scene.stones.drag_model])
     p.max_dt = scene.numerics.max_dt
+    p.implicit_drag = scene.numerics.drag_exchange == "implicit"
     flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
     if fx.dem:
         flags |= _core.COUPLE_DEM
@@ -269,11 +368,14 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     return p
 
 
-def build_simulation(scene: Scene):
+def build_simulation(scene: Scene, packing: Optional[dict] = None):
     """The coupled simulation of a scene: the flow (build_fluid), the packed weir (build_stones) and the
-    Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones."""
+    Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones.
+    packing: a dict that receives the packing's report under 'report' (None for explicit stones)."""
     fluid = build_fluid(scene)
-    stones, _ = build_stones(scene)
+    stones, report = build_stones(scene)
+    if packing is not None:
+        packing["report"] = report
     params = stones.params
     params.fluid_density = fluid.params.rho_water
     stones.params = params

@@ -206,18 +206,25 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
     """Pours setup.n_stones of the scene's stones from a funnel onto a rough base and measures the heap."""
     setup = (setup or ReposeSetup()).validate()
     st = scene.stones
-    d = st.diameter
+    g = st.grading()  # a sieve curve: its d50 and stones drawn from it by mass (grading.py)
+    d = st.diameter if g is None else g.d(0.5)
     rng = np.random.default_rng(seed)
+
+    def sizes(n=None):
+        if g is not None:
+            return g.inverse_number_cdf(rng.random(1 if n is None else n))[0 if n is None else slice(None)]
+        return d * (1.0 + st.diameter_spread * rng.uniform(-1.0, 1.0, n))
+
     half = _heap_half_width(setup.n_stones, d)
     # the rough base: a row of touching stones of the scene's sizes fixed on the bed (random sizes, so
     # that the heap does not grow as a lattice on a regular row)
     db = []
     while sum(db) < 2.0 * half:
-        db.append(d * (1.0 + st.diameter_spread * rng.uniform(-1.0, 1.0)))
+        db.append(float(sizes()))
     db = np.array(db)
     xb = np.cumsum(db) - 0.5 * db - half
     nb = len(xb)
-    diam = np.r_[db, d * (1.0 + st.diameter_spread * rng.uniform(-1.0, 1.0, setup.n_stones))]
+    diam = np.r_[db, sizes(setup.n_stones)]
     pos = np.zeros((nb + setup.n_stones, 2))
     pos[:nb, 0], pos[:nb, 1] = xb, 0.5 * db
     pos[nb:, 1] = 2.0 * d  # parked, inactive until released

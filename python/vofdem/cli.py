@@ -25,6 +25,10 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--resume", type=Path, default=None, metavar="DIR",
                    help="continue the killed run in DIR from its last checkpoint (written after every snapshot)")
     r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes")
+    r.add_argument("--until-failure", action="store_true",
+                   help="raise the discharge slowly (hydrograph.until_failure_rate_lps_per_s) from the scene's start "
+                        "until the first destruction stage and report the critical discharge (with --seeds: its "
+                        "distribution)")
     r.add_argument("--out", type=Path, default=None, help="output directory (default: out/<scene name>)")
     seed = r.add_mutually_exclusive_group()
     seed.add_argument("--seed", type=int, default=None, help="random seed of the packing (overrides the scene)")
@@ -48,6 +52,7 @@ def _parser() -> argparse.ArgumentParser:
     c = sub.add_parser("check", help="validate a scene file and print it as resolved")
     c.add_argument("scene")
     c.add_argument("--quick", action="store_true")
+    c.add_argument("--until-failure", action="store_true")
     a = sub.add_parser("analyse", help="redo the stage tables and figures of a finished run directory")
     a.add_argument("out", type=Path)
     a.add_argument("--no-animation", action="store_true")
@@ -101,8 +106,10 @@ def _calibrate(args, scene) -> int:
     return 0
 
 
-def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, end_time: Optional[float] = None):
-    """A scene from a file path or a ready scene's name; ValueError if neither."""
+def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, end_time: Optional[float] = None,
+                  until_failure: bool = False):
+    """A scene from a file path or a ready scene's name, with the command's options (quick first, then
+    until failure); ValueError if neither."""
     from .scene import Scene, load_scene
 
     path = Path(name)
@@ -114,6 +121,8 @@ def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, en
         raise ValueError(f"scene {name!r} is neither a file nor a ready scene ({', '.join(READY)})")
     if quick:
         scene = scene.quick()
+    if until_failure:
+        scene = scene.until_failure()
     if seed is not None:
         scene = scene.replace(seed=seed)
     if end_time is not None:
@@ -127,13 +136,14 @@ def _scene_of(args):
     if resume is None:
         if args.scene is None:
             raise ValueError("give a SCENE (a scene file or a ready scene) or --resume DIR")
-        return resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None))
+        return resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None),
+                             args.until_failure)
     if getattr(args, "seeds", None) or getattr(args, "vary", None):
         raise ValueError("--resume DIR continues one run; an ensemble (--seeds, --vary) resumes when the same "
                          "command is run again on its output directory")
-    if args.scene is not None or args.quick or args.seed is not None or args.end_time is not None:
+    if args.scene is not None or args.quick or args.seed is not None or args.end_time is not None or args.until_failure:
         raise ValueError("--resume DIR continues the run with its own scene (DIR/scene.toml): give no SCENE, "
-                         "--quick, --seed or --end-time with it")
+                         "--quick, --until-failure, --seed or --end-time with it")
     from .scene import load_scene
 
     if not (resume / "scene.toml").is_file():
@@ -203,6 +213,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
                          retry_failed=args.retry_failed, **opts)
             print()
             print((out / "ensemble.md").read_text(encoding="utf-8").split("\n| member |")[0])
+            if scene.hydrograph.stops_at_first_stage:
+                print((out / "until_failure.md").read_text(encoding="utf-8"))
             print(f"output: {out}/ (ensemble.md/.csv, fragility.csv/.png, one run directory per member)")
             return 0
         res = run_scene(scene, out, resume=args.resume is not None, **opts)
@@ -221,6 +233,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
     print()
     print(res.profile_table)
     print(res.analysis.stage_table_markdown())
+    if scene.hydrograph.stops_at_first_stage:
+        print((out / "until_failure.md").read_text(encoding="utf-8"))
     print(f"output: {out}/ (run.h5 + run.xmf for ParaView, stones.xmf, stage_table.md/.csv, figures/, animation)")
     return 0
 

@@ -317,8 +317,13 @@ def run_ensemble(scene: Scene, seeds: Sequence[int], out_dir, client=None, vary=
         bar.close()
         summary.write()
     frame = summary.frame()
-    frag_md = write_fragility(out, frame, keys, n_boot=n_boot, seed=boot_seed)
+    frag_md = write_fragility(out, frame, keys, n_boot=n_boot, seed=boot_seed, reference=scene.reference)
     _write_atomic(out / "ensemble.md", members_markdown(frame, len(members), frag_md))
+    if scene.hydrograph.stops_at_first_stage and (frame["status"] == "completed").any():
+        from .flood import ensemble_until_failure_markdown
+
+        widths = {m.combination: m.scene(scene).flume.width for m in members}
+        _write_atomic(out / "until_failure.md", ensemble_until_failure_markdown(frame, widths, n_boot, boot_seed))
     return frame
 
 
@@ -334,9 +339,20 @@ def summarise(out_dir, n_boot: int = 1000, boot_seed: int = 0) -> str:
     keys = list(dict.fromkeys(k for r in rows for k in r.get("params", {})))
     frame = outcomes_frame(rows, keys)
     _write_atomic(out / "ensemble.csv", frame.to_csv(index=False, lineterminator="\n"))
-    frag_md = write_fragility(out, frame, keys, n_boot=n_boot, seed=boot_seed)
+    frag_md = write_fragility(out, frame, keys, n_boot=n_boot, seed=boot_seed, reference=_member_reference(out, rows))
     _write_atomic(out / "ensemble.md", members_markdown(frame, None, frag_md))
     return frag_md
+
+
+def _member_reference(out: Path, rows):
+    """The reference data of an ensemble's scene, read from its first member's scene.toml (None if none)."""
+    from .scene import load_scene
+
+    for r in rows:
+        path = out / r["member"] / "scene.toml"
+        if path.is_file():
+            return load_scene(path).reference
+    return None
 
 
 def _run_on_dask(client, scene: Scene, todo: Sequence[Member], out: Path, opts, summary, bar) -> None:

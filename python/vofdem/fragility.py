@@ -35,8 +35,9 @@ without an exact observation in which at least half the members failed at the fi
 its median there or below (-inf); any other resample without a fit is left out of the interval (its
 share is reported).
 
-The experiment's and the paper's model's discharges marked on the figure come from
-`analysis.PAPER_EXPERIMENT` and `analysis.PAPER_MODEL`.
+The table and the figure set the events next to the scene's reference data (`reference.Reference`:
+observed and modelled discharges, with their sources) when the scene has any, and next to nothing
+otherwise.
 """
 from __future__ import annotations
 
@@ -47,15 +48,12 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .analysis import PAPER_EXPERIMENT, PAPER_MODEL
+from .reference import Reference
 
 # event name -> (column of the outcome table, label)
 EVENTS = {"first_removal": ("first_removal_lps", "first removal of any stone"),
           "stage1": ("stage1_lps", "stage 1"), "stage2": ("stage2_lps", "stage 2"),
           "stage3": ("stage3_lps", "stage 3")}
-# the paper's discharges [l/s] for each event: (experiment, paper's model); None where it gives none
-REFERENCE_LPS = {"first_removal": (PAPER_EXPERIMENT[1][0], None),
-                 **{f"stage{k}": (PAPER_EXPERIMENT[k][0], PAPER_MODEL[k][0]) for k in (1, 2, 3)}}
 BAND = (0.16, 0.84)
 
 _LN_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
@@ -344,9 +342,20 @@ def _q(v: Optional[float], end: Optional[float], first: Optional[float] = None) 
     return text + "*" if v is not None and end is not None and math.isfinite(v) and v > end else text
 
 
-def fragility_markdown(by_combo, n_members: Optional[dict] = None) -> str:
-    """Per combination, each event's empirical median, lognormal fit and the paper's discharges."""
+def _given(reference: Optional[Reference]) -> Optional[Reference]:
+    return reference if reference is not None and reference.given else None
+
+
+def fragility_markdown(by_combo, n_members: Optional[dict] = None, reference: Optional[Reference] = None) -> str:
+    """Per combination, each event's empirical median, lognormal fit and (when the scene has reference
+    data) the observed and modelled discharges."""
+    ref = _given(reference)
+    sources = [] if ref is None else ([(False, "observed")] if ref.has_observed else []) + (
+        [(True, "model")] if ref.has_model else [])
     out = []
+    if sources:
+        out += ["Compared with " + "; ".join(f"{w}: {ref.model_citation if m else ref.citation}"
+                                             for m, w in sources) + ".", ""]
     for combo, evs in by_combo.items():
         n_all = (n_members or {}).get(combo)
         n_done = evs[0].q.size if evs else 0
@@ -355,38 +364,38 @@ def fragility_markdown(by_combo, n_members: Optional[dict] = None) -> str:
         out += [f"**{combo or 'all members'}**: {n_done} completed members{extra}; where an event never happened "
                 f"the member is censored at the discharge at its run's end ({_num(cens)} l/s).", "",
                 "| event | happened in (at the first discharge) | empirical median [l/s] | lognormal median "
-                "[16-84 %] [l/s] | median's bootstrap 16-84 % [l/s] | experiment [l/s] | paper's model [l/s] |",
-                "|---|---|---|---|---|---|---|"]
+                "[16-84 %] [l/s] | median's bootstrap 16-84 % [l/s] |" + "".join(f" {w} [l/s] |" for _, w in sources),
+                "|---|---|---|---|---|" + "---|" * len(sources)]
         for e in evs:
             r, end = e.row(), e.censored_at
             fit = "no fit" if e.fit is None else (f"{_q(r['fit_median_lps'], end)} [{_q(r['fit_q16_lps'], end)}-"
                                                   f"{_q(r['fit_q84_lps'], end)}]")
             emp = r["empirical_median_lps"]
-            exp_q, mod_q = REFERENCE_LPS[e.event]
             lo, hi = e.median_band
             first = float(np.max(e.q[e.left])) if e.left.any() else None
             boot = "-" if math.isnan(lo) else (_q(lo, end, first) if lo == hi
                                                else f"{_q(lo, end, first)} to {_q(hi, end, first)}")
+            refs = [] if ref is None else ref.event_lps(e.event)
+            cells = "".join(f" {'-' if refs[m] is None else f'{refs[m]:g}'} |" for m, _ in sources)
             out.append(f"| {EVENTS[e.event][1]} | {r['happened']} of {r['members']} ({r['at_first_discharge']}) | "
-                       f"{'not reached' if emp is None else _num(emp)} | {fit} | {boot} | "
-                       f"{'~' if e.event in ('first_removal', 'stage1') else ''}{exp_q} | "
-                       f"{'none' if mod_q is None else mod_q} |")
+                       f"{'not reached' if emp is None else _num(emp)} | {fit} | {boot} |{cells}")
         out += ["", "(n): members in which it happened at the first discharge at which the run could see it, "
                 "left-censored there. *: beyond the run's end, an extrapolation of the fit. No fit: no member "
                 "in which it happened after the first discharge.", ""]
     return "\n".join(out)
 
 
-def fig_fragility(by_combo):
+def fig_fragility(by_combo, reference: Optional[Reference] = None):
     """Fragility curves: per event, the probability that it has happened by a discharge; the
     empirical distribution (steps), the lognormal fit (dashed) and its median's bootstrap interval,
-    the experiment's (dotted) and the paper's model's (dash-dot) discharges."""
+    and the reference's observed (dotted) and modelled (dash-dot) discharges when the scene has any."""
     from matplotlib.figure import Figure
 
+    ref = _given(reference)
     fig = Figure(figsize=(9.0, 6.4), layout="constrained")
     axes = fig.subplots(2, 2, sharex=True, sharey=True).ravel()
     qs = [e.q for evs in by_combo.values() for e in evs if e.q.size]
-    refs = [v for pair in REFERENCE_LPS.values() for v in pair if v is not None]
+    refs = [] if ref is None else [v for ev in EVENTS for v in ref.event_lps(ev) if v is not None]
     lo = min([float(np.min(q)) for q in qs] + refs) * 0.97
     hi = max([float(np.max(q)) for q in qs] + refs) * 1.02
     colors = [f"C{i % 10}" for i in range(len(by_combo))]
@@ -394,11 +403,12 @@ def fig_fragility(by_combo):
         for color, (combo, evs) in zip(colors, by_combo.items()):
             e = next(x for x in evs if x.event == event)
             _draw_event(ax, e, color, combo or "members", lo)
-        exp_q, mod_q = REFERENCE_LPS[event]
-        ax.axvline(exp_q, color="k", ls=":", lw=1.2, label="experiment (Maeno et al. 2002)")
-        ax.annotate(f"{exp_q:g}", (exp_q, 1.0), textcoords="offset points", xytext=(2, -10), fontsize=8)
+        exp_q, mod_q = (None, None) if ref is None else ref.event_lps(event)
+        if exp_q is not None:
+            ax.axvline(exp_q, color="k", ls=":", lw=1.2, label=f"observed: {ref.short()}")
+            ax.annotate(f"{exp_q:g}", (exp_q, 1.0), textcoords="offset points", xytext=(2, -10), fontsize=8)
         if mod_q is not None:
-            ax.axvline(mod_q, color="0.4", ls="-.", lw=1.2, label="the paper's model")
+            ax.axvline(mod_q, color="0.4", ls="-.", lw=1.2, label=f"model: {ref.short(model=True)}")
             ax.annotate(f"{mod_q:g}", (mod_q, 1.0), textcoords="offset points", xytext=(2, -20), fontsize=8,
                         color="0.4")
         ax.set_title(EVENTS[event][1])
@@ -441,9 +451,10 @@ def _draw_event(ax, e: EventFragility, color: str, label: str, lo: float) -> Non
         ax.plot([e.fit.median], [0.5], marker="o", color=color, ms=4)
 
 
-def write_fragility(out_dir, members, param_keys: Sequence[str] = (), n_boot: int = 1000, seed: int = 0) -> str:
-    """fragility.csv and fragility.png of an outcome table in `out_dir`; returns the markdown tables
-    ('' when no member completed)."""
+def write_fragility(out_dir, members, param_keys: Sequence[str] = (), n_boot: int = 1000, seed: int = 0,
+                    reference: Optional[Reference] = None) -> str:
+    """fragility.csv and fragility.png of an outcome table in `out_dir`, compared with `reference` (the
+    scene's reference data) when given; returns the markdown tables ('' when no member completed)."""
     from pathlib import Path
 
     out = Path(out_dir)
@@ -455,6 +466,6 @@ def write_fragility(out_dir, members, param_keys: Sequence[str] = (), n_boot: in
     params = members[list(param_keys)].assign(combination=combos).drop_duplicates("combination")
     table = params[["combination", *param_keys]].merge(table, on="combination", how="right")
     table.to_csv(out / "fragility.csv", index=False, lineterminator="\n")
-    fig_fragility(by_combo).savefig(out / "fragility.png", dpi=110)
+    fig_fragility(by_combo, reference).savefig(out / "fragility.png", dpi=110)
     counts = {c: combos.count(c) for c in set(combos)}
-    return fragility_markdown(by_combo, counts)
+    return fragility_markdown(by_combo, counts, reference)

@@ -11,6 +11,8 @@ notebooks. Figures:
 * `fig_velocity_distribution` Fig. 10: velocity vectors at several discharges, weir outline in orange
 * `fig_rating_curve`        upstream water level against discharge
 * `fig_timeline`            discharge, stones removed and crest lowering against time, stages shaded
+* `fig_hydrograph`          the flood the run followed (ramp, table or a measured CSV flood) with the
+                            destruction stages marked at their discharges
 * `fig_destruction`         the weir before and after: each stone where it ended, coloured by the
                             stage that removed it, the stones' initial places and surface outlined
 """
@@ -76,7 +78,7 @@ def _surface(ax, data, fields):
 
 
 def _outline(ax, scene):
-    x, z = scene.weir.outline()
+    x, z = scene.weir.outline_xz()
     ax.plot(x, z, color=WEIR_COLOR, lw=1.3, zorder=5)
 
 
@@ -202,9 +204,7 @@ def fig_timeline(analysis, data, scene) -> Figure:
     t = a.times
     axs[0].plot(t, 1e3 * data.discharge, color="tab:blue")
     axs[0].set_ylabel("Q [l/s]")
-    for lps, ls in ((14.0, ":"), (16.5, "--"), (20.4, "-.")):
-        axs[0].axhline(lps, color="0.5", lw=0.8, ls=ls)
-    axs[0].text(t[0], 20.6, "experiment's stages 14 / 16.5 / 20.4 l/s", fontsize=7, color="0.4")
+    _reference_levels(axs[0], getattr(scene, "reference", None), t[0])
     axs[1].step(t, a.removed_count, where="post", color="tab:red")
     axs[1].set_ylabel("stones removed")
     axs[2].plot(t, 1e3 * a.crest_lowering, color="tab:brown")
@@ -222,7 +222,52 @@ def fig_timeline(analysis, data, scene) -> Figure:
     return fig
 
 
+def _reference_levels(ax, ref, x_text: float) -> None:
+    """The reference's observed stage discharges as horizontal lines, when the scene has any."""
+    stages = ref.stages() if ref is not None and ref.has_observed else {}
+    if not stages:
+        return
+    for (k, (q, _)), ls in zip(sorted(stages.items()), (":", "--", "-.", (0, (1, 3)))):
+        ax.axhline(q, color="0.5", lw=0.8, ls=ls)
+    values = " / ".join(f"{q:g}" for _, (q, _) in sorted(stages.items()))
+    ax.text(x_text, max(q for q, _ in stages.values()), f" observed stages {values} l/s ({ref.short()})",
+            fontsize=7, color="0.4", va="bottom")
+
+
 STAGE_COLORS = ("tab:red", "tab:purple", "tab:blue", "tab:green", "tab:brown")
+
+
+def fig_hydrograph(analysis, data, scene) -> Figure:
+    """The scene's hydrograph over the whole flood (the run may stop before its end) with the stages marked
+    where they began, the first removal, the spin-up shaded, and the reference's observed stage discharges
+    when the scene has any."""
+    h, a = scene.hydrograph, analysis
+    fig = Figure(figsize=(8.0, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    t_end = max(scene.duration, float(data.times[-1]))
+    t = np.linspace(0.0, t_end, 600)
+    ax.plot(t, h.discharge_lps_at(t), color="tab:blue", lw=1.4, label="hydrograph")
+    ax.plot(data.times, 1e3 * data.discharge, color="tab:blue", ls="none", marker=".", ms=3,
+            label=f"the run (to t = {data.times[-1]:.1f} s)")
+    if h.ramp_start > 0:
+        ax.axvspan(0.0, h.ramp_start, color="0.9", zorder=0, label="spin-up")
+    fr = a.first_removal
+    if fr is not None:
+        ax.plot([fr], [a.discharge_lps_at(fr)], marker="v", color="gold", mec="0.3", ms=8, ls="none",
+                label=f"first removal: {a.discharge_lps_at(fr):.2f} l/s")
+    for s in a.stages:
+        c = STAGE_COLORS[(s.number - 1) % len(STAGE_COLORS)]
+        ax.axvline(s.start_time, color=c, lw=1.0, ls="--")
+        ax.plot([s.start_time], [s.discharge_lps], marker="o", color=c, ls="none",
+                label=f"stage {s.number}: {s.discharge_lps:.2f} l/s, {s.n_stones} stones")
+    _reference_levels(ax, getattr(scene, "reference", None), 0.0)
+    ax.set_xlabel("simulation time t [s]")
+    ax.set_ylabel("discharge Q [l/s]")
+    ax.set_xlim(0.0, t_end)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(f"Hydrograph: {h.source()}" + ("" if a.stages else " (no destruction stage)"), fontsize=10)
+    return fig
 
 
 def stage_of_stones(analysis) -> np.ndarray:
@@ -278,6 +323,7 @@ def make_figures(data, analysis, scene, out_dir) -> List[Path]:
         files.append(p)
 
     save(fig_timeline(analysis, data, scene), "timeline.png")
+    save(fig_hydrograph(analysis, data, scene), "hydrograph.png")
     save(fig_destruction(analysis, data, scene), "destruction.png")
     save(fig_rating_curve(data, scene), "rating_curve.png")
     if not data.has_fields:

@@ -62,11 +62,11 @@ class RunResult:
         return self.wall_seconds / self.simulated_seconds if self.simulated_seconds > 0 else float("nan")
 
 
-def build_simulation(scene: Scene):
+def build_simulation(scene: Scene, packing: Optional[dict] = None):
     """Builds the coupled simulation of a scene (see builder.build_simulation)."""
     from .builder import build_simulation as build
 
-    return build(scene)
+    return build(scene, packing)
 
 
 def grid_faces(grid):
@@ -101,7 +101,8 @@ def profile_table(profile, wall_seconds: Optional[float] = None, simulated: Opti
 class _Recorder:
     """Reads the simulation's views and appends one snapshot to the writer."""
 
-    def __init__(self, sim, scene: Scene, writer: RunWriter, pos0: Optional[np.ndarray] = None):
+    def __init__(self, sim, scene: Scene, writer: RunWriter, pos0: Optional[np.ndarray] = None,
+                 fixed0: Optional[np.ndarray] = None):
         self.sim, self.scene, self.writer = sim, scene, writer
         g = sim.fluid.grid
         self.nx, self.nz = g.nx, g.nz
@@ -111,6 +112,8 @@ class _Recorder:
         self.pos0 = np.array(start, float).reshape(-1, 2).copy()
         self.diameter = stone_diameters(sim.stones)
         self.polygons = stone_polygons(sim.stones) is not None
+        self.fixed0 = np.zeros(len(self.diameter), bool) if fixed0 is None else np.asarray(fixed0, bool)
+        self.removal_t = np.full(len(self.diameter), np.nan)  # first snapshot of each removal (analysis.py)
         self.moved = 0
 
     def record(self) -> None:
@@ -129,7 +132,9 @@ class _Recorder:
             stones["angle"] = np.array(st.disc_angle, float)
         t = float(sim.time)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
-        self.moved = int(np.sum((disp > self.diameter) | ~stones["active"]))
+        removed = (disp > self.diameter) | ~stones["active"]
+        self.moved = int(np.sum(removed))
+        self.removal_t[removed & ~self.fixed0 & np.isnan(self.removal_t)] = t
         self.writer.write_snapshot(t, self.scene.hydrograph.discharge(t), water_level(F, self.z_faces, self.gauge_i),
                                    fields if self.writer.write_fields else None, stones)
 
@@ -159,8 +164,13 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         raise ValueError(str(e)) from e
     if ck is None:
         (out / "scene.toml").write_text(scene.to_toml(), encoding="utf-8")
+    packing: dict = {}
+    if ck is None:  # a grading report of an earlier run in this directory is not this one's
+        (out / "grading.md").unlink(missing_ok=True)
     if sim is None:
-        sim = (build or build_simulation)(scene)
+        sim = build(scene) if build is not None else build_simulation(scene, packing)
+    if ck is None and getattr(packing.get("report"), "zone", None) is not None:
+        _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table(np.asarray(t_tab, float), np.asarray(q_tab, float))
     loop = _Loop(sim, scene, out, __version__, ck)
@@ -172,6 +182,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         for t_next in loop.remaining():
             if _stop_requested:
                 raise KeyboardInterrupt
+            if loop.first_stage_reached():
+                break
             sim.advance(t_next)
             loop.after_advance()
             loop.snapshot()
@@ -201,7 +213,10 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     simulated = float(sim.time) - loop.t_start
     table = profile_table(loop.profile(), wall, simulated)
     writer = loop.writer
-    loop.close("completed", {"wall_seconds": wall, "simulated_seconds": simulated})
+    extra = {"wall_seconds": wall, "simulated_seconds": simulated}
+    if loop.first_stage_reached():
+        extra["stopped"] = "at the first destruction stage"
+    loop.close("completed", extra)
     (out / "profile.md").write_text(table, encoding="utf-8")
     result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
                        [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"])
@@ -241,7 +256,21 @@ class _Loop:
             self.fixed0, pos0 = data.fixed, data.pos[0]
             self.t_start = float(data.times[0])
             self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
-        self.rec = _Recorder(sim, scene, self.writer, pos0)
+        self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
+        if ck is not None and scene.hydrograph.stops_at_first_stage:  # the removals before the kill
+            from .analysis import removal_times
+
+            self.rec.removal_t = removal_times(data.times, data.pos, data.diameter, data.active, data.fixed)
+
+    def first_stage_reached(self) -> bool:
+        """Whether the run stops here: a scene that stops at the first stage (until failure) once the
+        snapshots so far hold a destruction stage (analysis.find_bursts, its default criterion)."""
+        if not self.scene.hydrograph.stops_at_first_stage:
+            return False
+        from .analysis import StageCriterion, find_bursts
+
+        c = StageCriterion()
+        return bool(find_bursts(self.rec.removal_t, c.gap, c.min_stones)[0])
 
     def remaining(self):
         """The snapshot times still to run."""
@@ -305,7 +334,8 @@ def _model_attrs(sim, scene: Scene) -> dict:
 def analyse_run(data: RunData, scene: Scene) -> FailureAnalysis:
     """Failure analysis of a written run."""
     return analyse(data.times, data.pos, data.diameter, scene.weir, scene.hydrograph.discharge_lps_at,
-                   active=data.active, fixed=data.fixed, ramp_start=scene.hydrograph.ramp_start)
+                   active=data.active, fixed=data.fixed, ramp_start=scene.hydrograph.ramp_start,
+                   reference=scene.reference)
 
 
 def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, animation: bool = True,
@@ -323,6 +353,12 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
                delimiter=",", header="time_s,discharge_lps,crest_level_m,crest_lowering_m,stones_removed",
                comments="", fmt="%.6g")
     files += [out / "stage_table.md", out / "stage_table.csv", out / "crest_lowering.csv"]
+    files += _grading_files(out, scene, data, figures)
+    if scene.hydrograph.stops_at_first_stage:
+        from .flood import until_failure_markdown
+
+        (out / "until_failure.md").write_text(until_failure_markdown(a, scene), encoding="utf-8")
+        files.append(out / "until_failure.md")
     if figures or animation:
         from . import plots
 
@@ -331,6 +367,42 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
         if animation and data.has_fields and data.times.size > 1:
             files.append(plots.animate(data, scene, out / "animation", analysis=a))
     return a
+
+
+def _write_grading(out: Path, scene: Scene, stones, zone, figures: bool) -> None:
+    """grading.md (and figures/grading.png) of a weir the outline packer built: each stone in the zone it
+    was drawn for (grading.packed_report)."""
+    from .grading import packed_report
+
+    pos = np.asarray(stones.disc_pos, float).reshape(-1, 2)
+    md, fig = packed_report(scene, pos, 2.0 * np.asarray(stones.disc_radius, float), zone)
+    if md is None:
+        return
+    (out / "grading.md").write_text(md, encoding="utf-8")
+    if figures is not False and scene.output.figures:
+        (out / "figures").mkdir(parents=True, exist_ok=True)
+        fig.savefig(out / "figures" / "grading.png", dpi=110)
+
+
+def _grading_files(out: Path, scene: Scene, data: RunData, figures: bool) -> list:
+    """grading.md (and figures/grading.png) of a graded scene: the packed weir's grading against the
+    requested one (grading.packed_report). Written when the weir was built (the stones' zones as
+    drawn); a weir from elsewhere (a test double) counts each stone in the zone of its first place."""
+    from .grading import packed_report
+
+    if (out / "grading.md").exists():
+        return [out / "grading.md"] + ([out / "figures" / "grading.png"] if (out / "figures" / "grading.png").exists()
+                                       else [])
+    md, fig = packed_report(scene, data.pos[0], data.diameter)
+    if md is None:
+        return []
+    (out / "grading.md").write_text(md, encoding="utf-8")
+    files = [out / "grading.md"]
+    if figures:
+        (out / "figures").mkdir(parents=True, exist_ok=True)
+        fig.savefig(out / "figures" / "grading.png", dpi=110)
+        files.append(out / "figures" / "grading.png")
+    return files
 
 
 def _targets(t0: float, duration: float, dt: float, release: Optional[float]):

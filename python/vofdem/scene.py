@@ -17,126 +17,14 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import difflib
 import math
-import re
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
-try:  # Python >= 3.11
-    import tomllib as _toml
-except ModuleNotFoundError:  # pragma: no cover - Python 3.9/3.10
-    import tomli as _toml  # type: ignore[no-redef]
-
-# units a value given as a string may carry, by kind, as factors to the SI unit of that kind
-_UNITS: Dict[str, Dict[str, float]] = {
-    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "km": 1e3},
-    "angle": {"deg": 1.0, "degree": 1.0, "degrees": 1.0, "rad": 180.0 / math.pi},  # to degrees
-    "discharge": {"l/s": 1.0, "lps": 1.0, "m3/s": 1e3, "m^3/s": 1e3},  # to l/s
-    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0},
-    "density": {"kg/m3": 1.0, "kg/m^3": 1.0, "g/cm3": 1e3, "g/cm^3": 1e3},
-}
-# the unit a field of each kind is stored in
-_BASE_UNIT = {"length": "m", "angle": "deg", "discharge": "l/s", "time": "s", "density": "kg/m3"}
-
-
-def _p(default, kind: Optional[str], lo: float, hi: float, doc: str, closed: str = "[]"):
-    """A numeric parameter: unit kind, allowed range [lo, hi] (closed='()' etc. for open ends)."""
-    return field(default=default, metadata=dict(kind=kind, lo=lo, hi=hi, closed=closed, doc=doc))
-
-
-def _choice(default, choices: Sequence[str], doc: str):
-    return field(default=default, metadata=dict(choices=tuple(choices), doc=doc))
-
-
-def _flag(default: bool, doc: str):
-    return field(default=default, metadata=dict(flag=True, doc=doc))
-
-
-def _fmt(v: float) -> str:
-    return repr(float(v)) if isinstance(v, float) else str(v)
-
-
-def _range_text(md) -> str:
-    lo, hi, c = md["lo"], md["hi"], md["closed"]
-    unit = _BASE_UNIT.get(md["kind"], "")
-    return f"{c[0]}{_fmt(lo)}, {_fmt(hi)}{c[1]}" + (f" {unit}" if unit else "")
-
-
-def _check_number(name: str, value, md) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{name} = {value!r} must be a number in {_range_text(md)}")
-    v = float(value)
-    lo, hi, c = md["lo"], md["hi"], md["closed"]
-    ok = math.isfinite(v) and (v >= lo if c[0] == "[" else v > lo) and (v <= hi if c[1] == "]" else v < hi)
-    if not ok:
-        hint = ""
-        if md["kind"] == "discharge" and v > hi:
-            hint = " (discharges ending in _lps are in l/s; write e.g. \"0.01 m3/s\" to give m3/s)"
-        elif md["kind"] == "discharge" and 0 < v < 0.5:
-            hint = " (looks like m3/s; this field is in l/s)"
-        elif md["kind"] == "length" and v > hi:
-            hint = " (lengths are in metres; write e.g. \"4.8 cm\" to give another unit)"
-        elif md["kind"] == "angle" and 0 < v < 1.6 and lo > 1.6:
-            hint = " (angles ending in _deg are in degrees; this looks like radians)"
-        raise ValueError(f"{name} = {_fmt(value)} is outside the allowed range {_range_text(md)}{hint}")
-    return v
-
-
-def _check_list(name: str, value, md: Optional[dict] = None) -> None:
-    """A list field: a list (a TOML array) whose entries are numbers, in md's range if given. Checked
-    whatever the section's kind, so a key the kind ignores is still refused when it is malformed."""
-    if not isinstance(value, (list, tuple)):
-        raise ValueError(f"{name} = {value!r} must be a list of numbers")
-    for j, v in enumerate(value):
-        if md is None:
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise ValueError(f"{name}[{j}] = {v!r} must be a finite number")
-        else:
-            _check_number(f"{name}[{j}]", v, md)
-
-
-def _parse_quantity(name: str, value, kind: Optional[str]):
-    """Converts '4.8 cm' to the field's unit; numbers pass unchanged."""
-    if not isinstance(value, str):
-        return value
-    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([A-Za-z/^0-9]*)\s*", value)
-    if m is None:
-        raise ValueError(f"{name} = {value!r} is not a number or a number with a unit")
-    number, unit = float(m.group(1)), m.group(2)
-    if kind is None:
-        if unit:
-            raise ValueError(f"{name} = {value!r}: this parameter is dimensionless, it takes no unit")
-        return number
-    if unit == "":
-        return number
-    table = _UNITS[kind]
-    if unit not in table:
-        other = [k for k, t in _UNITS.items() if unit in t]
-        what = f"'{unit}' is a unit of {other[0]}" if other else f"unknown unit '{unit}'"
-        raise ValueError(f"{name} = {value!r}: {what}; {name.split('.')[-1]} is a {kind} "
-                         f"(use one of {', '.join(table)})")
-    return number * table[unit]
-
-
-class _Section:
-    """Field-by-field validation shared by the scene's sections."""
-
-    def _validate_fields(self, prefix: str) -> None:
-        for f in dataclasses.fields(self):
-            md = f.metadata
-            name = f"{prefix}.{f.name}"
-            value = getattr(self, f.name)
-            if "lo" in md:
-                if value is None and f.default is None:
-                    continue
-                setattr(self, f.name, _check_number(name, value, md))
-            elif "choices" in md:
-                if value not in md["choices"]:
-                    raise ValueError(f"{name} = {value!r} is not one of {', '.join(map(repr, md['choices']))}")
-            elif "flag" in md:
-                if not isinstance(value, bool):
-                    raise ValueError(f"{name} = {value!r} must be true or false")
+from .flood import Hydrograph
+from .reference import Reference, maeno2008_reference
+from .params import (_BASE_UNIT, _UNITS, _Section, _check_list, _check_number, _choice, _flag, _fmt,  # noqa: F401
+                     _p, _parse_quantity, _range_text, _toml, _toml_value, _unknown)
 
 
 @dataclass
@@ -164,7 +52,10 @@ class Flume(_Section):
 
 @dataclass
 class Weir(_Section):
-    """A trapezoidal rubble mound weir standing on the bed.
+    """The rubble mound weir standing on the bed: a trapezoid (height, crest, two slopes, toe), or any
+    stone body given by `outline`, the points of its upper boundary from the upstream toe to the
+    downstream toe (outline.py: any crest, berms, several slopes). With an outline, height, toe_x and
+    crest_length are derived from it (and the slopes unused); a scene file gives one or the other.
 
     The paper gives the downstream slope (27 deg) only; height 0.25 m, crest 0.20 m and a 27 deg
     upstream slope are assumed defaults.
@@ -175,41 +66,98 @@ class Weir(_Section):
     upstream_slope_deg: float = _p(27.0, "angle", 5.0, 60.0, "upstream face angle to the bed [deg]")
     downstream_slope_deg: float = _p(27.0, "angle", 5.0, 60.0, "downstream face angle to the bed [deg]")
     toe_x: float = _p(1.0, "length", 0.0, 100.0, "x of the upstream toe [m]", "(]")
+    outline: List[List[float]] = field(default_factory=list, metadata=dict(
+        doc="the stone body's upper boundary [[x m, z m], ...] from toe (z = 0) to toe (z = 0), x increasing; "
+            "empty: the trapezoid"))
 
     def validate(self, prefix: str = "weir") -> None:
         self._validate_fields(prefix)
+        if not isinstance(self.outline, (list, tuple)):
+            raise ValueError(f"{prefix}.outline = {self.outline!r} must be a list of points [x m, z m]")
+        if self.outline:
+            from .outline import check_outline
+
+            check_outline(self.outline, f"{prefix}.outline")
+            self.outline = [[float(x), float(z)] for x, z in self.outline]
+            body = self.body()
+            up, down = body.crest()
+            self.height, self.toe_x, self.crest_length = body.height, body.x_toe_up, down - up
+            _check_number(f"{prefix}.outline (its height)", self.height, {"lo": 0.0, "hi": 5.0, "closed": "(]",
+                                                                           "kind": "length"})
+
+    def body(self):
+        """The stone body as an outline.Outline (the trapezoid's four points without an outline)."""
+        from .outline import Outline, trapezoid_points
+
+        if self.outline:
+            return Outline(self.outline)
+        return Outline(trapezoid_points(self.toe_x, self.height, self.crest_length, self.upstream_slope_deg,
+                                        self.downstream_slope_deg))
 
     @property
     def x_crest_up(self) -> float:
         """x of the upstream end of the crest [m]."""
+        if self.outline:
+            return self.body().crest()[0]
         return self.toe_x + self.height / math.tan(math.radians(self.upstream_slope_deg))
 
     @property
     def x_crest_down(self) -> float:
         """x of the downstream end of the crest (the shoulder) [m]."""
+        if self.outline:
+            return self.body().crest()[1]
         return self.x_crest_up + self.crest_length
 
     @property
     def x_toe_down(self) -> float:
         """x of the downstream toe [m]."""
+        if self.outline:
+            return float(self.outline[-1][0])
         return self.x_crest_down + self.height / math.tan(math.radians(self.downstream_slope_deg))
 
     @property
     def base_length(self) -> float:
         return self.x_toe_down - self.toe_x
 
-    def outline(self) -> Tuple[List[float], List[float]]:
-        """The trapezoid's corners (x [m], z [m]) from the upstream toe to the downstream toe."""
-        return ([self.toe_x, self.x_crest_up, self.x_crest_down, self.x_toe_down], [0.0, self.height, self.height, 0.0])
+    def outline_xz(self) -> Tuple[List[float], List[float]]:
+        """The upper boundary's points (x [m], z [m]) from the upstream toe to the downstream toe."""
+        p = self.body().points
+        return list(p[:, 0]), list(p[:, 1])
 
     def surface(self, x):
         """Height of the weir's surface above x [m] (0 outside the weir); x may be an array."""
         import numpy as np
 
+        if self.outline:
+            return self.body().surface(x)
         x = np.asarray(x, dtype=float)
         up = (x - self.toe_x) * math.tan(math.radians(self.upstream_slope_deg))
         down = (self.x_toe_down - x) * math.tan(math.radians(self.downstream_slope_deg))
         return np.clip(np.minimum(np.minimum(up, down), self.height), 0.0, None)
+
+
+# the weir's keys that an outline replaces
+TRAPEZOID_KEYS = ("height", "crest_length", "upstream_slope_deg", "downstream_slope_deg", "toe_x")
+
+
+def _grading_field(name: str, whose: str):
+    """A fresh field of the grading keys shared by [stones] and a zone (grading.py)."""
+    if name == "grading_diameters":
+        return field(default_factory=list, metadata=dict(doc=f"{whose} sieve curve: sizes [m], increasing (with "
+                                                             f"grading_passing); empty: no sieve curve"))
+    if name == "grading_passing":
+        return field(default_factory=list, metadata=dict(doc=f"{whose} sieve curve: mass fraction passing each "
+                                                             f"size [-], 0 first, 1 last"))
+    return _p(None, "length", 0.001, 0.5, f"{whose} grading by sizes: {name} [m] (d15, d50, d85 together)", "[]")
+
+
+def _validate_grading(sec, prefix: str) -> None:
+    _check_list(f"{prefix}.grading_diameters", sec.grading_diameters,
+                {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"})
+    _check_list(f"{prefix}.grading_passing", sec.grading_passing, {"lo": 0.0, "hi": 1.0, "closed": "[]", "kind": None})
+    from .grading import grading_of
+
+    grading_of(sec, prefix)
 
 
 @dataclass
@@ -253,10 +201,16 @@ class Stones(_Section):
         doc="explicit stone centres [[x m, z m], ...] instead of packing the weir; empty = pack"))
     diameters: List[float] = field(default_factory=list, metadata=dict(
         doc="diameters [m] of the explicit stones (same length as positions); empty = all `diameter`"))
+    grading_diameters: List[float] = _grading_field("grading_diameters", "the stones'")
+    grading_passing: List[float] = _grading_field("grading_passing", "the stones'")
+    d15: Optional[float] = _grading_field("d15", "the stones'")
+    d50: Optional[float] = _grading_field("d50", "the stones'")
+    d85: Optional[float] = _grading_field("d85", "the stones'")
 
     def validate(self, prefix: str = "stones") -> None:
         self._validate_fields(prefix)
         self._validate_polygon(prefix)
+        _validate_grading(self, prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
         if not isinstance(self.positions, (list, tuple)):
             raise ValueError(f"{prefix}.positions = {self.positions!r} must be a list of pairs [x m, z m]")
@@ -288,107 +242,67 @@ class Stones(_Section):
                                  f"with {prefix}.shape = 'polygon': the rolling resistance is a law for disc stones "
                                  "(polygon stones resist rolling by their shape)")
 
+    def grading(self):
+        """The sieve curve of the stones (grading.Grading) when one is given (grading_diameters and
+        grading_passing, or d15 / d50 / d85; `diameter` and `diameter_spread` are then not used for the
+        packing), else None (sizes uniform in diameter +- spread)."""
+        from .grading import grading_of
+
+        return grading_of(self, "stones")
+
     def mean_diameter(self) -> float:
-        """Number-weighted mean diameter [m] of the grading (or `diameter`)."""
+        """Number-weighted mean diameter [m] of the explicit stones, the grading, or `diameter`."""
         if self.diameters:
             return float(sum(self.diameters) / len(self.diameters))
-        return self.diameter
+        g = self.grading()
+        return g.mean_number_diameter() if g is not None else self.diameter
 
     def max_diameter(self) -> float:
         if self.diameters:
             return float(max(self.diameters))
-        return self.diameter * (1.0 + self.diameter_spread)
+        g = self.grading()
+        return g.d_max if g is not None else self.diameter * (1.0 + self.diameter_spread)
 
 
 @dataclass
-class Hydrograph(_Section):
-    """Inflow discharge Q(t) at x = 0.
+class Zone(_Section):
+    """A part of the packed weir with its own grading (outline.py): a layer `thickness` [m] thick under
+    the weir's upper boundary (an armour layer), or the inside of the closed polygon `outline`. A stone
+    placed in the first zone holding its place takes that zone's grading; the rest (the core) [stones]'."""
 
-    kind 'ramp' (the paper's): a spin-up at `discharge_start_lps` for `spin_up_duration` seconds (the
-    flow settles to a steady state over the weir, stones held in place if `hold_stones_during_spin_up`),
-    then a linear rise to `discharge_end_lps` over `ramp_duration`. The paper's clock starts at the
-    ramp: paper time = simulation time - spin_up_duration.
-    kind 'table': piecewise-linear through (`times` [s], `discharge_lps` [l/s]), spin-up included.
-    From Python, `function` (a callable t [s] -> Q [m3/s]) overrides both; it is sampled into a
-    table every `table_interval` seconds for the solver.
-    """
+    name: str = field(default="", metadata=dict(text=True, doc="the zone's name (e.g. 'armour')"))
+    thickness: Optional[float] = _p(None, "length", 0.0, 5.0, "a layer this thick under the weir's surface [m]",
+                                    "(]")
+    outline: List[List[float]] = field(default_factory=list, metadata=dict(
+        doc="or a closed polygon [[x m, z m], ...] (three points at least)"))
+    grading_diameters: List[float] = _grading_field("grading_diameters", "the zone's")
+    grading_passing: List[float] = _grading_field("grading_passing", "the zone's")
+    d15: Optional[float] = _grading_field("d15", "the zone's")
+    d50: Optional[float] = _grading_field("d50", "the zone's")
+    d85: Optional[float] = _grading_field("d85", "the zone's")
 
-    kind: str = _choice("ramp", ("ramp", "table"), "'ramp' (spin-up then linear rise) or 'table'")
-    discharge_start_lps: float = _p(10.0, "discharge", 0.1, 1000.0, "spin-up and ramp start discharge [l/s]")
-    discharge_end_lps: float = _p(25.0, "discharge", 0.1, 1000.0, "discharge at the end of the ramp [l/s]")
-    ramp_duration: float = _p(120.0, "time", 0.0, 1e5, "duration of the linear rise [s]; paper 120", "(]")
-    spin_up_duration: float = _p(20.0, "time", 0.0, 1e4, "time at the start discharge before the ramp [s]")
-    hold_stones_during_spin_up: bool = _flag(True, "stones do not move during the spin-up")
-    times: List[float] = field(default_factory=list, metadata=dict(doc="table times [s] (kind = 'table')"))
-    discharge_lps: List[float] = field(default_factory=list, metadata=dict(doc="table discharges [l/s]"))
-    table_interval: float = _p(0.5, "time", 0.0, 100.0, "sampling step of `function` into a table [s]", "(]")
-    function: Optional[Callable[[float], float]] = field(default=None, metadata=dict(
-        doc="Python only: Q(t) in m3/s, overrides kind", python_only=True))
-
-    def validate(self, prefix: str = "hydrograph") -> None:
+    def validate(self, prefix: str = "zones[0]") -> None:
         self._validate_fields(prefix)
-        # the table's lists are checked under any kind: a malformed key is an error even where it is ignored
-        q_md = {"lo": 0.0, "hi": 1000.0, "closed": "[]", "kind": "discharge"}
-        t_md = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}
-        _check_list(f"{prefix}.times", self.times, t_md)
-        _check_list(f"{prefix}.discharge_lps", self.discharge_lps, q_md)
-        if self.function is not None:
-            if not callable(self.function):
-                raise ValueError(f"{prefix}.function must be a callable t [s] -> Q [m3/s]")
-            return
-        if self.kind == "table":
-            if len(self.times) < 2 or len(self.times) != len(self.discharge_lps):
-                raise ValueError(f"{prefix}.times and {prefix}.discharge_lps must be lists of the same "
-                                 f"length >= 2 (got {len(self.times)} and {len(self.discharge_lps)})")
-            if any(b <= a for a, b in zip(self.times, self.times[1:])):
-                raise ValueError(f"{prefix}.times must be strictly increasing")
+        if not isinstance(self.name, str) or not self.name.strip() or "\n" in self.name:
+            raise ValueError(f"{prefix}.name = {self.name!r} must be a non-empty name of one line")
+        if not isinstance(self.outline, (list, tuple)):
+            raise ValueError(f"{prefix}.outline = {self.outline!r} must be a list of points [x m, z m]")
+        if (self.thickness is None) == (not self.outline):
+            raise ValueError(f"{prefix}.thickness: give a zone either a thickness (a layer under the surface) or an "
+                             f"outline (a polygon), one of the two")
+        if self.outline:
+            from .outline import check_polygon
 
-    @property
-    def ramp_start(self) -> float:
-        """Simulation time [s] at which the paper's clock starts (end of the spin-up)."""
-        return self.spin_up_duration if self.kind == "ramp" and self.function is None else 0.0
+            check_polygon(self.outline, f"{prefix}.outline")
+        _validate_grading(self, prefix)
+        if self.grading() is None:
+            raise ValueError(f"{prefix}.d50: a zone needs its grading (grading_diameters and grading_passing, or "
+                             f"d15, d50 and d85)")
 
-    @property
-    def end_time(self) -> float:
-        """Simulation time [s] at the end of the hydrograph."""
-        if self.function is None and self.kind == "table":
-            return float(self.times[-1])
-        return self.spin_up_duration + self.ramp_duration
+    def grading(self, prefix: str = "zone"):
+        from .grading import grading_of
 
-    def discharge(self, t):
-        """Q [m3/s] at simulation time t [s] (scalar or array)."""
-        import numpy as np
-
-        if self.function is not None:
-            return np.vectorize(lambda s: float(self.function(s)))(t) if np.ndim(t) else float(self.function(t))
-        if self.kind == "table":
-            q = np.interp(t, self.times, self.discharge_lps) * 1e-3
-        else:
-            s = np.clip((np.asarray(t, float) - self.spin_up_duration) / self.ramp_duration, 0.0, 1.0)
-            q = (self.discharge_start_lps + (self.discharge_end_lps - self.discharge_start_lps) * s) * 1e-3
-        return float(q) if np.ndim(q) == 0 else q
-
-    def discharge_lps_at(self, t):
-        """Q [l/s] at simulation time t [s]."""
-        return self.discharge(t) * 1e3
-
-    def table(self, t_end: Optional[float] = None):
-        """(times [s], Q [m3/s]) describing Q(t) exactly for a piecewise-linear solver input."""
-        import numpy as np
-
-        t_end = self.end_time if t_end is None else t_end
-        if self.function is not None:
-            n = max(2, int(math.ceil(t_end / self.table_interval)) + 1)
-            t = np.linspace(0.0, t_end, n)
-        elif self.kind == "table":
-            t = np.asarray(self.times, float)
-        else:
-            t = np.array([0.0, self.spin_up_duration, self.spin_up_duration + self.ramp_duration])
-            if self.spin_up_duration == 0.0:
-                t = t[1:]
-            if t_end > t[-1]:
-                t = np.append(t, t_end)
-        return t, np.asarray(self.discharge(t), float)
+        return grading_of(self, prefix)
 
 
 @dataclass
@@ -406,7 +320,8 @@ class GridSpec(_Section):
 
 @dataclass
 class Numerics(_Section):
-    cfl: float = _p(0.3, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.3", "(]")
+    cfl: float = _p(0.5, None, 0.0, 1.0, "Courant number of the fluid step [-]; usual 0.5 with adams_bashforth2 "
+                    "(0.3 with euler)", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
     dem_contact_steps: float = _p(20.0, None, 5.0, 1e6, "automatic contact stiffness: DEM steps of dem_dt per "
                                   "contact of two mean stones [-]; 20 (polygons: 50 at dem_dt 4e-5 s, the same "
@@ -419,7 +334,16 @@ class Numerics(_Section):
                                    "disc-cell overlap: exact areas or the paper's lookup table")
     pressure_solver: str = _choice("multigrid_cg", ("multigrid_cg", "direct"),
                                    "multigrid-preconditioned CG (fast) or Eigen's direct solver (reference)")
-    pressure_tolerance: float = _p(1e-8, None, 0.0, 1e-2, "relative residual of the pressure solve [-]", "(]")
+    pressure_tolerance: float = _p(1e-5, None, 0.0, 1e-2, "relative residual of the pressure solve [-]; 1e-5 "
+                                   "(water volume drift about 1e-11 per step)", "(]")
+    time_scheme: str = _choice("adams_bashforth2", ("adams_bashforth2", "euler"),
+                               "momentum convection: Adams-Bashforth 2 (second order) or forward Euler")
+    turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
+                                     "k-epsilon transport: columns implicit (step bounded by the horizontal "
+                                     "faces) or point-implicit (bounded by all faces)")
+    drag_exchange: str = _choice("implicit", ("implicit", "held"),
+                                 "stone drag: linearised in the stone's velocity, implicit in the DEM, or held "
+                                 "over the step (bounded by its relaxation time)")
 
     def validate(self, prefix: str = "numerics") -> None:
         self._validate_fields(prefix)
@@ -461,7 +385,13 @@ class Output(_Section):
 
 
 _SECTIONS = {"flume": Flume, "weir": Weir, "stones": Stones, "hydrograph": Hydrograph, "grid": GridSpec,
-             "numerics": Numerics, "effects": Effects, "output": Output}
+             "numerics": Numerics, "effects": Effects, "output": Output, "reference": Reference}
+# sections written to a scene file only when they differ from their defaults
+_OPTIONAL_SECTIONS = ("reference",)
+# list keys whose entries may carry a unit, and the kind of that unit
+_LIST_KINDS = {"positions": None, "grading_diameters": "length", "grading_passing": None, "times": "time", "discharge_lps": "discharge", "diameters": "length",
+               "stage_lps": "discharge", "stage_times": "time", "model_stage_lps": "discharge",
+               "model_stage_times": "time"}
 _TOP_KEYS = ("name", "seed", "end_time")
 
 
@@ -478,6 +408,8 @@ class Scene:
     numerics: Numerics = field(default_factory=Numerics)
     effects: Effects = field(default_factory=Effects)
     output: Output = field(default_factory=Output)
+    reference: Reference = field(default_factory=Reference)
+    zones: List[Zone] = field(default_factory=list)
     seed: int = 0
     end_time: Optional[float] = None  # [s]; default: the hydrograph's end
 
@@ -503,7 +435,7 @@ class Scene:
         """
         weir = Weir()
         flume = Flume(length=round(weir.x_toe_down + 1.5, 6))
-        return cls(name="maeno2008", flume=flume, weir=weir)
+        return cls(name="maeno2008", flume=flume, weir=weir, reference=maeno2008_reference())
 
     def quick(self) -> "Scene":
         """A shorter, coarser copy that runs in a few minutes on one core.
@@ -512,23 +444,50 @@ class Scene:
         reaches are shortened to 0.6 m upstream and 0.8 m downstream, the spin-up lasts 5 s and the
         ramp 10 -> 25 l/s lasts 30 s (four times faster than the paper's), snapshots every 0.5 s.
         Stage discharges of a quick run are not comparable with the paper: the discharge rises four
-        times faster than the stones' response time allows for.
+        times faster than the stones' response time allows for. The reference's stage times are
+        dropped (another clock); its discharges are kept for orientation. A measured (CSV) flood runs
+        four times faster as well (time_scale x 0.25, spin-up at most 5 s), and --until-failure's rate is
+        four times the scene's.
         """
         s = copy.deepcopy(self)
         s.name = self.name + "_quick"
         shift = s.weir.toe_x - 0.6
         s.weir.toe_x = 0.6
+        if s.weir.outline:
+            s.weir.outline = [[x - shift, z] for x, z in s.weir.outline]
+        for zn in s.zones:
+            zn.outline = [[x - shift, z] for x, z in zn.outline]
         if s.stones.positions:
             s.stones.positions = [[x - shift, z] for x, z in s.stones.positions]
         s.flume.length = round(s.weir.x_toe_down + 0.8, 6)
         s.grid = GridSpec(dx=0.05, dz=0.02, dz_bed=0.01, bed_layer_height=0.01)
-        if s.hydrograph.kind == "ramp" and s.hydrograph.function is None:
-            s.hydrograph.spin_up_duration = 5.0
-            s.hydrograph.ramp_duration = 30.0
+        h = s.hydrograph
+        if h.function is None and h.kind in ("ramp", "csv", "until_failure"):
+            h.spin_up_duration = min(h.spin_up_duration, 5.0)
+        if h.kind == "ramp" and h.function is None:
+            h.ramp_duration = 30.0
+        elif h.kind == "csv":  # the measured flood four times faster, as the ramp
+            h.time_scale *= 0.25
+        h.until_failure_rate_lps_per_s *= 4.0
         s.end_time = None
         s.output.snapshot_interval = 0.5
+        s.reference = s.reference.without_times()
         s.validate()
         return s
+
+    def until_failure(self) -> "Scene":
+        """A copy whose discharge rises slowly until the weir fails (``vofdem run --until-failure``):
+        held at the first discharge of the scene's rise for its spin-up, then raised linearly at
+        `hydrograph.until_failure_rate_lps_per_s` up to the scene's largest discharge; the run stops at
+        the first destruction stage (flood.py). The reference's stage times are dropped (another clock)."""
+        from .flood import until_failure_hydrograph
+
+        s = copy.deepcopy(self)
+        s.name = self.name + "_until_failure"
+        s.hydrograph = until_failure_hydrograph(self.hydrograph)
+        s.end_time = None
+        s.reference = s.reference.without_times()
+        return s.validate()
 
     # ---------------------------------------------------------------- validation
     @property
@@ -554,8 +513,46 @@ class Scene:
             raise ValueError(f"seed = {self.seed!r} must be an integer in [0, 2^63)")
         if self.end_time is not None:
             _check_number("end_time", self.end_time, {"lo": 0.0, "hi": 1e6, "closed": "(]", "kind": "time"})
+        self._validate_zones()
         self._validate_geometry()
+        self._validate_polygon_packing()
         return self
+
+    def _validate_polygon_packing(self) -> None:
+        # polygon stones are packed by pack_weir (a trapezoid of uniform sizes) or given explicitly; the
+        # outline packer (outline_packing.py) places discs only
+        s, w = self.stones, self.weir
+        if s.shape != "polygon" or s.positions:
+            return
+        from .outline import as_trapezoid
+
+        why = ("zones (zones[0])" if self.zones else
+               "a sieve curve (stones.grading_diameters/grading_passing or d15/d50/d85)" if s.grading() is not None else
+               f"weir.outline = {w.outline!r}, not a trapezoid" if w.outline and as_trapezoid(w.outline) is None else "")
+        if why:
+            raise ValueError(f"stones.shape = 'polygon' is outside the allowed values ['disc'] with {why}: the outline "
+                             "packer places disc stones only; polygons need a trapezoid weir of sizes uniform in "
+                             "stones.diameter +- diameter_spread, or explicit stones.positions")
+
+    def _validate_zones(self) -> None:
+        if not isinstance(self.zones, (list, tuple)):
+            raise ValueError(f"zones = {self.zones!r} must be a list of zones ([[zones]] tables)")
+        names = []
+        for j, zn in enumerate(self.zones):
+            if not isinstance(zn, Zone):
+                raise ValueError(f"zones[{j}] must be a Zone, got {type(zn).__name__}")
+            zn.validate(f"zones[{j}]")
+            if zn.name in names:
+                raise ValueError(f"zones[{j}].name = {zn.name!r} is taken by zones[{names.index(zn.name)}]")
+            names.append(zn.name)
+        if self.zones and self.stones.positions:
+            raise ValueError("zones: zones are packed by the generator; they cannot be used with explicit "
+                             "stones.positions")
+
+    def largest_diameter(self) -> float:
+        """The largest stone the scene can hold [m]: explicit, of the core's grading or of a zone's."""
+        d = [self.stones.max_diameter()] + [zn.grading().d_max for zn in self.zones]
+        return max(d)
 
     def _validate_geometry(self) -> None:
         f, w, s, g = self.flume, self.weir, self.stones, self.grid
@@ -569,8 +566,8 @@ class Scene:
         if w.toe_x < 2 * g.dx:
             raise ValueError(f"weir.toe_x = {w.toe_x:.4g} m leaves less than two cells (grid.dx = {g.dx:.4g} m) "
                              f"of flume upstream of the weir for the inflow")
-        if s.max_diameter() >= w.height and not s.positions:
-            raise ValueError(f"stones.diameter = {s.max_diameter():.4g} m must be smaller than "
+        if self.largest_diameter() >= w.height and not s.positions:
+            raise ValueError(f"stones.diameter = {self.largest_diameter():.4g} m (the largest stone) must be smaller than "
                              f"weir.height = {w.height:.4g} m to build the weir")
         if g.dx >= f.length / 4 or g.dz >= f.height / 4:
             raise ValueError(f"grid.dx = {g.dx:.4g} m / grid.dz = {g.dz:.4g} m is too coarse: the flume needs at "
@@ -599,13 +596,14 @@ class Scene:
             out["end_time"] = self.end_time
         for key in _SECTIONS:
             sec = getattr(self, key)
-            d = {}
-            for f in dataclasses.fields(sec):
-                v = getattr(sec, f.name)
-                if f.metadata.get("python_only") or v is None:
-                    continue
-                d[f.name] = copy.deepcopy(v)
-            out[key] = d
+            if key in _OPTIONAL_SECTIONS and sec == type(sec)():
+                continue
+            out[key] = _section_dict(sec)
+            if key == "weir" and sec.outline:  # the outline replaces the trapezoid's keys
+                for k in TRAPEZOID_KEYS:
+                    out[key].pop(k)
+        if self.zones:
+            out["zones"] = [_section_dict(zn) for zn in self.zones]
         h = self.hydrograph
         if h.function is not None:
             t, q = h.table(self.duration)
@@ -614,11 +612,12 @@ class Scene:
         return out
 
     @classmethod
-    def from_dict(cls, data: Dict[str, Any], source: str = "scene") -> "Scene":
-        """Builds and validates a scene from a (TOML-like) dict; ValueError on any problem."""
+    def from_dict(cls, data: Dict[str, Any], source: str = "scene", base_dir: Optional[str] = None) -> "Scene":
+        """Builds and validates a scene from a (TOML-like) dict; ValueError on any problem. base_dir: the
+        directory files named in the scene (a CSV flood) are relative to (default the working one)."""
         if not isinstance(data, dict):
             raise ValueError(f"{source}: a scene must be a table of sections")
-        valid_top = set(_TOP_KEYS) | set(_SECTIONS)
+        valid_top = set(_TOP_KEYS) | set(_SECTIONS) | {"zones"}
         for key in data:
             if key not in valid_top:
                 raise ValueError(_unknown(key, valid_top, "top level"))
@@ -631,19 +630,20 @@ class Scene:
             table = data[key]
             if not isinstance(table, dict):
                 raise ValueError(f"[{key}] must be a table of parameters, got {table!r}")
-            fields = {f.name: f for f in dataclasses.fields(sec_cls) if not f.metadata.get("python_only")}
-            args = {}
-            for k, v in table.items():
-                if k not in fields:
-                    raise ValueError(_unknown(k, fields, f"[{key}]", prefix=key))
-                md = fields[k].metadata
-                args[k] = _parse_quantity(f"{key}.{k}", v, md.get("kind")) if "lo" in md else v
-            for k in ("positions", "discharge_lps", "times", "diameters"):
-                if k in args and isinstance(args[k], list):
-                    kind = {"times": "time", "discharge_lps": "discharge", "diameters": "length"}.get(k)
-                    args[k] = [_parse_quantity(f"{key}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
-                               for j, v in enumerate(args[k])]
+            args = _section_args(sec_cls, table, key)
+            if key == "hydrograph":
+                args["base_dir"] = base_dir
+            if key == "weir" and args.get("outline"):
+                both = [k for k in TRAPEZOID_KEYS if k in table]
+                if both:
+                    raise ValueError(f"weir.{both[0]}: the weir is given by weir.outline; its height, crest, slopes "
+                                     f"and toe come from the outline (give one or the other)")
             kwargs[key] = sec_cls(**args)
+        if "zones" in data:
+            zones = data["zones"]
+            if not isinstance(zones, list) or not all(isinstance(z, dict) for z in zones):
+                raise ValueError(f"zones = {zones!r} must be a list of tables ([[zones]] in a scene file)")
+            kwargs["zones"] = [Zone(**_section_args(Zone, z, f"zones[{j}]")) for j, z in enumerate(zones)]
         return cls(**kwargs)
 
     def to_toml(self) -> str:
@@ -654,14 +654,18 @@ class Scene:
             if k in d:
                 lines.append(f"{k} = {_toml_value(d[k])}")
         for key in _SECTIONS:
+            if key not in d:
+                continue
             lines.append("")
             lines.append(f"[{key}]")
             for k, v in d[key].items():
                 lines.append(f"{k} = {_toml_value(v)}")
+        for zone in d.get("zones", []):
+            lines += ["", "[[zones]]"] + [f"{k} = {_toml_value(v)}" for k, v in zone.items()]
         return "\n".join(lines) + "\n"
 
     @classmethod
-    def from_toml(cls, text: str, source: str = "scene") -> "Scene":
+    def from_toml(cls, text: str, source: str = "scene", base_dir: Optional[str] = None) -> "Scene":
         try:
             data = _toml.loads(text)
         except _toml.TOMLDecodeError as e:
@@ -669,7 +673,7 @@ class Scene:
         if not data:
             raise ValueError(f"{source}: the scene is empty (no keys, no sections); write at least the sections "
                              f"that differ from the defaults, e.g. [flume], or run the ready scene 'maeno2008'")
-        return cls.from_dict(data, source)
+        return cls.from_dict(data, source, base_dir)
 
     def replace(self, **changes) -> "Scene":
         """A validated copy with top-level fields replaced (e.g. seed=3)."""
@@ -696,13 +700,44 @@ class Scene:
         if name not in fields:
             raise ValueError(_unknown(name, fields, f"[{section}]", prefix=section))
         md = fields[name].metadata
+        if section == "weir" and name in TRAPEZOID_KEYS and s.weir.outline:
+            raise ValueError(f"{key}: the weir is given by weir.outline; its {name} comes from the outline")
         setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
+        if key == "hydrograph.file":  # another flood: read it
+            s.hydrograph.times, s.hydrograph.discharge_lps = [], []
         return s.validate()
 
     def value_of(self, key: str):
         """The value of a parameter by its dotted name (see `with_value`)."""
         section, _, name = key.rpartition(".")
         return getattr(getattr(self, section), name) if section else getattr(self, key)
+
+
+def _section_dict(sec) -> Dict[str, Any]:
+    """A section's keys and values (TOML-ready), without the Python-only fields and unset optional ones."""
+    d = {}
+    for f in dataclasses.fields(sec):
+        v = getattr(sec, f.name)
+        if f.metadata.get("python_only") or v is None:
+            continue
+        d[f.name] = copy.deepcopy(v)
+    return d
+
+
+def _section_args(sec_cls, table: Dict[str, Any], where: str) -> Dict[str, Any]:
+    """A section's constructor arguments from a TOML table: unknown keys refused, units converted."""
+    fields = {f.name: f for f in dataclasses.fields(sec_cls) if not f.metadata.get("python_only")}
+    args = {}
+    for k, v in table.items():
+        if k not in fields:
+            raise ValueError(_unknown(k, fields, f"[{where}]", prefix=where))
+        md = fields[k].metadata
+        args[k] = _parse_quantity(f"{where}.{k}", v, md.get("kind")) if "lo" in md else v
+    for k, kind in _LIST_KINDS.items():
+        if k in args and isinstance(args[k], list):
+            args[k] = [_parse_quantity(f"{where}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
+                       for j, v in enumerate(args[k])]
+    return args
 
 
 def load_scene(path) -> Scene:
@@ -713,43 +748,23 @@ def load_scene(path) -> Scene:
     if not p.is_file():
         raise ValueError(f"scene file {str(p)!r} does not exist")
     try:
-        return Scene.from_toml(p.read_text(encoding="utf-8"), source=str(p))
+        return Scene.from_toml(p.read_text(encoding="utf-8"), source=str(p), base_dir=str(p.parent))
     except ValueError as e:
         msg = str(e)
         raise ValueError(msg if msg.startswith(str(p)) else f"{p}: {msg}") from None
 
 
-def _unknown(key: str, valid, where: str, prefix: Optional[str] = None) -> str:
-    close = difflib.get_close_matches(key, list(valid), n=1, cutoff=0.5)
-    name = f"{prefix}.{key}" if prefix else key
-    hint = f"; did you mean '{close[0]}'?" if close else f"; valid keys: {', '.join(sorted(valid))}"
-    return f"unknown key '{name}' in {where}{hint}"
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        return repr(v) if math.isfinite(v) else ("inf" if v > 0 else "-inf" if v < 0 else "nan")
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    raise TypeError(f"cannot write {type(v).__name__} to TOML")
-
-
 def describe_parameters() -> str:
     """A markdown table of every scene parameter: section, name, default, range, meaning."""
     rows = ["| parameter | default | allowed | meaning |", "|---|---|---|---|"]
-    for key, cls in _SECTIONS.items():
+    for key, cls in [*_SECTIONS.items(), ("zones[]", Zone)]:
         for f in dataclasses.fields(cls):
             md = f.metadata
             if md.get("python_only"):
                 continue
             default = f.default if f.default is not dataclasses.MISSING else f.default_factory()
             allowed = _range_text(md) if "lo" in md else (" / ".join(md["choices"]) if "choices" in md
-                                                            else ("true / false" if "flag" in md else "list"))
+                                                            else ("true / false" if "flag" in md else
+                                                                  ("text" if "text" in md else "list")))
             rows.append(f"| {key}.{f.name} | {default!r} | {allowed} | {md.get('doc', '')} |")
     return "\n".join(rows)

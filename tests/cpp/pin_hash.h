@@ -11,13 +11,19 @@ namespace vofdem::test {
 
 // arrays that joined export_state() after the pins were taken: the rolling springs (contact_mr,
 // wall_mr), the k-epsilon model's state (turbulence/...), the water level each stone's wet fraction
-// follows (disc_water_level) and the fluid's boundary budget (fluid/net_inflow_volume). They are left
-// out of the hash, so that it covers the same arrays as when the pins were taken; rolling_springs_zero()
-// checks the springs.
+// follows (disc_water_level), the linearised drag handed to the DEM (disc_drag_coef, disc_drag_vel), and
+// the fluid's boundary budget and time-scheme history (fluid/net_inflow_volume, prev_dt, face_u_prev,
+// face_w_prev, dilatation_volume). They are left out of the hash, so that it covers the same arrays as
+// when the pins were taken; rolling_springs_zero() checks the springs.
 inline bool added_after_pins(const std::string& key) {
+  static const char* const kAdded[] = {"contact_mr",          "wall_mr",           "disc_water_level",
+                                       "disc_drag_coef",      "disc_drag_vel",     "fluid/net_inflow_volume",
+                                       "fluid/prev_dt",       "fluid/face_u_prev", "fluid/face_w_prev",
+                                       "fluid/dilatation_volume"};
   const std::string k = key.rfind("dem/", 0) == 0 ? key.substr(4) : key;
-  return k == "contact_mr" || k == "wall_mr" || k == "disc_water_level" || key == "fluid/net_inflow_volume" ||
-         key.rfind("turbulence/", 0) == 0;
+  for (const char* a : kAdded)
+    if (k == a) return true;
+  return key.rfind("turbulence/", 0) == 0;
 }
 
 // true if the rolling springs hold only zeros (the rolling resistance off, as before it existed)

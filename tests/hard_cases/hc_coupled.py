@@ -6,7 +6,7 @@ import numpy as np
 from vofdem import _core
 from vofdem.scene import Scene
 
-from hc_harness import (D, RHO_W, assert_budget, build, case, couple, dem_params, fields_bounded, fmt,
+from hc_harness import (D, RHO_W, assert_budget, budget_text, build, case, couple, dem_params, fields_bounded, fmt,
                         release_after, stones, stones_accounted, tank)
 
 
@@ -36,7 +36,7 @@ def run_weir(scene: Scene, hold: float, duration: float, speed_limit: float, bud
     err = assert_budget(sim.fluid, v0, budget_tol)
     L, H = scene.flume.length, scene.flume.height
     counts = stones_accounted(sim.stones, (-0.5 * L, L), (-0.5 * H, 4 * H), margin=scene.stones.max_diameter())
-    return sim, {"max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2),
+    return sim, {"max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err),
                  "stones removed": f"{counts['removed']} of {sim.stones.n}"}
 
 
@@ -79,15 +79,20 @@ def floating_stone():
 
 @case("floating_stone_comes_to_rest", "coupled",
       "the same stone after 8 s: at rest only if the water it disturbed comes to rest too",
-      "speed below 2 cm/s at 8 s",
-      xfail="it keeps moving at 2-9 cm/s with the water, which still moves at 0.11-0.27 m/s at 8-12 s under a "
-            "+-4 mm seiche whose own orbital speed is ~0.04 m/s: the surface the stone broke keeps "
-            "films of water in nearly empty cells (flow case `film_on_a_surface_at_a_cell_face`)")
+      "speed below 2 cm/s all through 8-9 s (sampled every 0.05 s: one instant can fall below it by chance)",
+      xfail="it keeps moving with the water at 1.7-8.5 cm/s (median 5.4) over 8-12 s, the water at 0.09-0.19 m/s "
+            "(faces with F > 0.5) under a +-4 mm seiche whose own orbital speed is ~0.04 m/s: the surface the stone "
+            "broke keeps films of water in nearly empty cells (flow case `film_on_a_surface_at_a_cell_face`). "
+            "Judged at the instant 8 s alone it passed once by chance (1.7 cm/s there)")
 def floating_at_rest():
     sim, *_ = released_float()
-    speed = float(np.hypot(*sim.stones.disc_vel[0]))
-    assert speed < 0.02, f"speed {speed:.3f} m/s at 8 s"
-    return {"speed": f"{fmt(speed, 2)} m/s"}
+    speeds = [float(np.hypot(*sim.stones.disc_vel[0]))]
+    while sim.time < 9.0 - 1e-9:
+        sim.advance(sim.time + 0.05)
+        speeds.append(float(np.hypot(*sim.stones.disc_vel[0])))
+    top = max(speeds)
+    assert top < 0.02, f"speed up to {top:.3f} m/s over 8-9 s (at 8 s {speeds[0]:.3f} m/s)"
+    return {"largest speed 8-9 s": f"{fmt(top, 2)} m/s"}
 
 
 @case("stone_resting_across_the_free_surface", "coupled",
@@ -155,7 +160,8 @@ def washed_out():
     stones_accounted(sim.stones, (0.0, 1.6), (0.0, 1.2))
     assert t_all is not None and t_all < 6.0, f"removed {sim.stones.removed_count} of 12 by 6 s"
     assert np.all(np.asarray(sim.stones.disc_pos)[:, 0] > 1.6), "a stone left elsewhere than the outflow end"
-    return {"all out at": f"{fmt(t_all, 2)} s", "max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2)}
+    return {"all out at": f"{fmt(t_all, 2)} s", "max speed": f"{fmt(out['umax'])} m/s",
+            "budget error": budget_text(err)}
 
 
 def one_stone_in_flow(pos, vel, duration):
@@ -178,7 +184,7 @@ def one_stone_in_flow(pos, vel, duration):
 def leaves_outflow():
     sim, err, counts = one_stone_in_flow((1.5, 0.1), (5.0, 0.0), 0.5)
     assert counts["removed"] == 1
-    return {"removed": str(counts["removed"]), "budget error": fmt(err, 2)}
+    return {"removed": str(counts["removed"]), "budget error": budget_text(err)}
 
 
 @case("stone_thrown_against_the_upstream_end_wall", "coupled",
@@ -189,7 +195,7 @@ def thrown_upstream():
     sim, err, counts = one_stone_in_flow((0.1, 0.05), (-10.0, 0.0), 0.3)
     x = float(sim.stones.disc_pos[0, 0])
     assert counts["removed"] == 0 and x > 0.015, f"x = {x}"
-    return {"x after": f"{fmt(x)} m", "budget error": fmt(err, 2)}
+    return {"x after": f"{fmt(x)} m", "budget error": budget_text(err)}
 
 
 @case("stone_thrown_above_the_domain_top", "coupled",
@@ -200,7 +206,7 @@ def thrown_upstream():
 def thrown_up():
     sim, err, counts = one_stone_in_flow((0.8, 0.2), (0.0, 10.0), 1.0)
     assert counts["removed"] == 1
-    return {"removed": str(counts["removed"]), "budget error": fmt(err, 2)}
+    return {"removed": str(counts["removed"]), "budget error": budget_text(err)}
 
 
 @case("stone_driven_into_the_bed", "coupled",
@@ -220,7 +226,7 @@ def into_bed():
     err = assert_budget(sim.fluid, v0, 1e-9)
     assert lowest > 0.25 * 0.015, f"centre reached z = {lowest}"
     assert sim.stones.removed_count == 0
-    return {"lowest centre": f"{fmt(lowest)} m (r = 0.015)", "budget error": fmt(err, 2)}
+    return {"lowest centre": f"{fmt(lowest)} m (r = 0.015)", "budget error": budget_text(err)}
 
 
 @case("stones_of_5mm_on_the_papers_grid", "coupled",
@@ -306,8 +312,8 @@ def dam_break_weir():
     err = assert_budget(sim.fluid, v0, 1e-9)
     counts = stones_accounted(sim.stones, (-0.8, 1.6), (-0.15, 1.2), margin=0.03)
     moved = float(np.hypot(*(np.asarray(sim.stones.disc_pos) - pos0).T).max())
-    return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2), "largest stone move": f"{fmt(moved)} m",
-            "removed": str(counts["removed"])}
+    return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err),
+            "largest stone move": f"{fmt(moved)} m", "removed": str(counts["removed"])}
 
 
 @case("tailwater_outlet_over_a_whole_weir_run", "coupled",
@@ -325,7 +331,8 @@ def tailwater_run():
       "the option COUPLE_DISPLACE_FLOW: a falling column of stones changes the porosity and the change "
       "drives the flow (dn/dt + div u = 0) instead of moving water by volume",
       "water volume to 1e-9",
-      xfail="loses 6e-4 of the water here (3.1e-3 on the coupler's column-of-stones test): the source dn/dt "
+      xfail="loses 1.6e-3 of the water here (6.2e-4 with forward-Euler convection and the held drag, which "
+            "change how the stones fall; 7.5e-4 on the coupler's column-of-stones test): the source dn/dt "
             "acts on the mixture's volume, so a cell with partial F gives away water it does not hold; the "
             "default volume redistribution keeps it to 1e-12, so the option stays off by default")
 def displace_flow():
@@ -351,14 +358,12 @@ def discharge_jump():
     sim = build(s)
     sim.fluid.cell_F[...] = 0.0
     sim.fluid.set_hydrostatic_pressure()
-    v0 = 1e-12  # no water at the start: the budget is taken relative to the water that came in
     release_after(sim, 1.0)
     sim.advance(4.0)
     out = fields_bounded(sim.fluid, 4.0)
-    err = abs(sim.fluid.water_volume() - sim.fluid.net_inflow_volume) / max(v0, sim.fluid.inlet_volume)
-    assert err < 1e-9, f"water budget off by {err:.2e}"
+    err = assert_budget(sim.fluid, 0.0, 1e-9)  # no water at the start: relative to the water that came in
     counts = stones_accounted(sim.stones, (-1.3, 2.6), (-0.25, 1.8), margin=0.06)
-    return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2),
+    return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err),
             "stones removed": f"{counts['removed']} of {sim.stones.n}"}
 
 

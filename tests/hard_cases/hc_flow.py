@@ -3,7 +3,7 @@ import numpy as np
 
 from vofdem import _core
 
-from hc_harness import assert_budget, case, fields_bounded, fmt, tank
+from hc_harness import assert_budget, budget_text, case, fields_bounded, fmt, tank
 
 IN = _core.InletBoundary
 OUT = _core.OutletBoundary
@@ -35,7 +35,7 @@ def porosity_floor_next_to_fast_flow():
     assert upore < 5.0, f"pore velocity {upore} m/s in the n = 1e-6 block"
     err = assert_budget(fluid, v0, 1e-9)
     return {"max speed": f"{fmt(out['umax'])} m/s", "max pore speed in block": f"{fmt(upore)} m/s",
-            "budget error": fmt(err, 2)}
+            "budget error": budget_text(err)}
 
 
 @case("thin_film_over_dry_bed", "flow",
@@ -53,7 +53,7 @@ def thin_film():
     front = (wet.max() + 1) * fluid.grid.dx
     assert front > 0.3, f"film front at {front} m"
     err = assert_budget(fluid, v0, 1e-9)
-    return {"front": f"{fmt(front)} m", "max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2)}
+    return {"front": f"{fmt(front)} m", "max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err)}
 
 
 @case("film_on_a_surface_at_a_cell_face", "flow",
@@ -103,7 +103,7 @@ def high_froude():
     assert froude > 3, f"Froude {froude} at the brink"
     err = assert_budget(fluid, v0, 1e-9)
     return {"Froude at the brink": fmt(froude, 2), "outflow / inflow": fmt(q_out / q, 4),
-            "max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2)}
+            "max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err)}
 
 
 @case("overfall_discharge_diagnostic", "flow",
@@ -141,7 +141,7 @@ def plunging_jet():
     fluid.advance(2.0)
     out = fields_bounded(fluid, 5.0)
     err = assert_budget(fluid, v0, 1e-9)
-    return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2)}
+    return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err)}
 
 
 @case("air_trapped_in_the_weir", "flow",
@@ -162,7 +162,7 @@ def trapped_air():
     wet = float(np.asarray(fluid.cell_F)[weir].mean())
     assert wet > 0.9, f"weir only {wet:.2f} water after 3 s"
     err = assert_budget(fluid, v0, 1e-9)
-    return {"water in the weir": fmt(wet, 3), "max speed": f"{fmt(out['umax'])} m/s", "budget error": fmt(err, 2)}
+    return {"water in the weir": fmt(wet, 3), "max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err)}
 
 
 @case("flow_cfl_at_its_limit", "flow",
@@ -183,7 +183,7 @@ def cfl_limit():
     out = fields_bounded(fluid, 4.0)
     err = assert_budget(fluid, v0, 1e-9)
     return {"stopped": stopped, "steps": str(fluid.step_count), "max speed": f"{fmt(out['umax'])} m/s",
-            "budget error": fmt(err, 2)}
+            "budget error": budget_text(err)}
 
 
 def scattered_near_solid(fraction):

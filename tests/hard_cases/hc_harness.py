@@ -135,17 +135,44 @@ def fields_bounded(fluid, speed_limit: float) -> Dict[str, float]:
     return {"umax": float(umax), "F_excess": float(max(-F.min(), F.max() - 1.0, 0.0))}
 
 
+def _budget_scale(fluid, v0: float) -> float:
+    return max(v0, fluid.inlet_volume, abs(fluid.net_inflow_volume))
+
+
 def budget_error(fluid, v0: float) -> float:
-    """Relative error of the water budget: stored water against start + net boundary inflow, relative to
-    the larger of the start volume and the water that came in."""
-    scale = max(v0, fluid.inlet_volume, abs(fluid.net_inflow_volume))
-    return abs(fluid.water_volume() - (v0 + fluid.net_inflow_volume)) / scale
+    """Relative error of the water budget: stored water against start + net boundary inflow + the water the
+    advection's divergence correction made where the pressure solve left a residual divergence, relative
+    to the larger of the start volume and the water that came in."""
+    expected = v0 + fluid.net_inflow_volume + fluid.dilatation_volume
+    return abs(fluid.water_volume() - expected) / _budget_scale(fluid, v0)
 
 
-def assert_budget(fluid, v0: float, tol: float) -> float:
-    err = budget_error(fluid, v0)
+# the water the pressure solve's residual divergence may make over a case, as a share of the volume per
+# unit of its relative tolerance: measured at most 0.06 over the catalogue at 1e-5 (the scenes'), 0.02-0.03
+# at 1e-6 to 1e-8, scaling with the tolerance
+RESIDUAL_WATER_PER_TOLERANCE = 0.1
+
+
+class Budget(float):
+    """A budget error that also carries the residual divergence's share of the water (`dilatation`)."""
+    dilatation: float = 0.0
+
+
+def assert_budget(fluid, v0: float, tol: float) -> Budget:
+    """Asserts the water budget closed to tol, and the water made by the pressure solve's residual
+    divergence below RESIDUAL_WATER_PER_TOLERANCE x its relative tolerance."""
+    err = Budget(budget_error(fluid, v0))
     assert err <= tol, f"water budget off by {err:.3g} of the water volume (allowed {tol:g})"
+    err.dilatation = abs(fluid.dilatation_volume) / _budget_scale(fluid, v0)
+    bound = RESIDUAL_WATER_PER_TOLERANCE * fluid.params.pressure_tol
+    assert err.dilatation <= bound, (f"the pressure solve's residual divergence made {err.dilatation:.3g} of the "
+                                     f"water volume (allowed {bound:g}, tolerance {fluid.params.pressure_tol:g})")
     return err
+
+
+def budget_text(err: Budget) -> str:
+    """The budget error for the table, with the residual divergence's water."""
+    return f"{fmt(err, 2)} (residual divergence's water {fmt(err.dilatation, 2)})"
 
 
 def stones_accounted(dem, x_range, z_range, margin: float = 0.0) -> Dict[str, int]:

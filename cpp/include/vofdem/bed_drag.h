@@ -27,8 +27,8 @@
 // Guards: the expanded form (*) has no 1/(1 - n): a cell without porous medium (n_c >= 1) gives
 // nothing, and A_c, B_c stay finite as n_c -> 1 (omega_c bounds the share of a nearly empty cell);
 // a solid cell (n_c <= 0, walls) or a cell without stone diameter (D_c <= 0) gives nothing; as
-// n_c -> 0 the coefficients grow like 1/n_c^2, as the flow's resistance does: the exchange step is
-// bounded by the drag's relaxation time (slope below), never by a cut-off.
+// n_c -> 0 the coefficients grow like 1/n_c^2, as the flow's resistance does: the stones take the
+// drag implicitly through its slope (below, drag_exchange.h), never through a cut-off.
 //
 // References: S. Maeno and A. Tomita (2008), ICHE 2008, Nagoya (eqs. 5-7); H. P. Zhu, Z. Y. Zhou,
 // R. Y. Yang and A. B. Yu (2007), Discrete particle simulation of particulate systems: theoretical
@@ -55,7 +55,8 @@ struct BedDragParams {
 // bed drag (*) on a stone of volume V [m^3] moving at (up, wp) [m/s] over count cells (indices cells,
 // disc areas in them areas [m^2]); cell fields: water fraction F [-], porosity n [-], stone diameter
 // D [m], pore velocity U, W [m/s]. slope (optional) receives |dF_bed / du_p| [N s/m], the stiffness of
-// the explicit force in the stone's velocity (0 without the relative velocity) for the time step.
+// the force in the stone's velocity (0 without the relative velocity): the implicit drag exchange's
+// coefficient (drag_exchange.h), or the relaxation limit of a held drag.
 DragForce bed_drag(int count, const int* cells, const double* areas, const double* F, const double* n,
                    const double* D, const double* U, const double* W, double up, double wp, double volume,
                    const BedDragParams& p, double* slope = nullptr);

@@ -20,11 +20,14 @@
 //   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
 //   5. "checks"        non-finite forces or stone state -> std::runtime_error
 // and before them "snapshot", the copy of the state that a failing stage restores (coupled scenes only).
-// The forces are held over the DEM substeps of a step (explicit exchange once per fluid step).
+// The pressure-gradient force is held over the DEM substeps of a step (exchange once per fluid step);
+// the drag is linearised in the stone's velocity at the exchange and integrated implicitly by the DEM
+// (drag_exchange.h), or held too (CouplerParams::implicit_drag = false).
 //
-// Time step: stable_dt() = min(fluid's stable step, max_dt, a stone crossing at most stone_cfl of the
-// smallest cell, drag_relaxation x the drag relaxation time of the lightest stone). The DEM's own
-// stable step bounds its substeps, not the exchange step.
+// Time step: stable_dt() = min(fluid's stable step, max_dt, a stone crossing at most stone_cfl of a cell
+// in each direction (dx along x, the smallest row height along z); a held drag also drag_relaxation x
+// the drag relaxation time of the lightest stone).
+// The DEM's own stable step bounds its substeps, not the exchange step.
 //
 // Guards: a failure in any stage (non-finite value, CFL breach, ...) restores the state of the start of
 // the step (fluid, stones, porosity, forces) and throws std::runtime_error naming the stage, the stone
@@ -86,8 +89,12 @@ struct CouplerParams {
   DragLaw drag_law = DragLaw::kPaper;     // C_D = 0.4 + 24/Re (paper) or Schiller-Naumann (sphere drag)
   StoneDragModel stone_drag = StoneDragModel::kSphere;  // drag model of kCoupleDrag; kSphere (paper)
   double max_dt = 0.01;                   // largest exchange step [s]; 0.01 (sets the step without water)
-  double stone_cfl = 0.5;                 // a stone moves at most this fraction of the smallest cell per step [-]; 0.5
-  double drag_relaxation = 0.5;           // step at most this fraction of the drag relaxation time [-]; 0.5
+  // a stone moves at most this fraction of a cell per step, along x of dx, along z of the smallest dz [-]; 0.5
+  double stone_cfl = 0.5;
+  // the drag linearised in each stone's velocity and integrated implicitly by the DEM (drag_exchange.h):
+  // stable for any exchange step; false: held over the step, bounded by drag_relaxation
+  bool implicit_drag = true;
+  double drag_relaxation = 0.5;           // held drag: step at most this fraction of its relaxation time [-]; 0.5
   double min_dt = 1e-7;                   // a stable step below this is a failure [s]; 1e-7
 
   // throws std::invalid_argument naming the first bad parameter
@@ -114,6 +121,15 @@ class Coupler {
   double time() const { return time_; }
   long long step_count() const { return steps_; }
   double stable_dt();
+  // steps of advance() bound by each limit: the fluid's terms ("advective", "viscous", "gravity",
+  // "turbulence", "max_dt", "growth"), "stone_cfl", "drag_relaxation", "coupler_max_dt", "t_end" (a step
+  // cut to reach the end time); and per term
+  // the steps bound in each cell (ncell counts; the cell of the binding face, k-epsilon cell or stone
+  // centre; empty without a fluid). A diagnostic: not part of the checkpoint, cleared by
+  // clear_step_limits()
+  const std::map<std::string, long long>& step_limits() const { return limit_steps_; }
+  const std::map<std::string, std::vector<long long>>& step_limit_cells() const { return limit_cells_; }
+  void clear_step_limits();
   // one coupling step of stable_dt() / of dt [s]
   void step();
   void step(double dt);
@@ -148,6 +164,10 @@ class Coupler {
 
  private:
   void check_scene() const;
+  // stable_dt() and which limit binds (term, cell: -1 where it has no place)
+  double stable_dt_limits(const char** term, int* cell);
+  void count_limit(const char* term, int cell);
+  int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
   void apply_flow_flags();
   void make_mapper();
   void import_turbulence(const std::map<std::string, std::vector<double>>& state);
@@ -188,8 +208,11 @@ class Coupler {
   std::vector<double> n_old_, n_new_;
   std::vector<double> cell_U_, cell_W_, cell_dpdx_, cell_dpdz_;
   std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
-  std::vector<double> disc_drag_slope_;  // |dF_bed / du_p| of each stone at the last exchange [N s/m] (bed drag)
+  std::vector<double> disc_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]
   std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
+
+  std::map<std::string, long long> limit_steps_;
+  std::map<std::string, std::vector<long long>> limit_cells_;
 
   StageProfile profile_;
   int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_;

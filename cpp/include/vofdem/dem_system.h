@@ -12,17 +12,25 @@
 // the water; as it leaves, v_i is kept and the water left behind takes its momentum with it), so a
 // change of w_i never adds kinetic energy. Contacts: dem_contact.h; rolling resistance (a moment added
 // to eq. 10, effect kDEMRollingResistance): rolling_resistance.h.
-// F_x, F_z: disc_force_ext, set by the coupler (the fluid's drag and pressure-gradient forces).
+// F_x, F_z: disc_force_ext, set by the coupler (the fluid's pressure-gradient force, and the drag when it
+// is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (disc_drag_coef c_i, disc_drag_vel
+// U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
 //
 // Stone shape: discs (the default) or convex polygons (set_polygons(); polygon.h gives the matching 3D
 // stone's V and I, polygon_contact.h the contact manifolds). For polygons disc_radius is the bounding
 // radius (neighbour search), disc_angle the orientation of the body-frame vertices poly_vertex.
 //
 // Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
-// evaluation per step. Walls are half-planes (the flume bed, its end walls); fixed stones are discs
-// that never move. Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept
-// sorted by (i, j) so that contact histories and force sums are evaluated in one fixed order: runs are
-// bit-for-bit reproducible, and export_state()/import_state() restart them bit-for-bit.
+// evaluation per step. The linear drag is integrated exactly in each half kick (exponential integrator):
+// a half kick of h with the total acceleration a (drag included) adds h a phi(h k), k = c / (M + M'),
+// phi(x) = (1 - e^-x) / x, which is the exact solution of dv/dt = a_other + k (U - v) over h for a_other
+// held; so the drag never overshoots U, at any step and any c (phi = 1 without drag: plain Verlet). A
+// wet fraction that follows a water level changes M' within a step: k follows it at once (the momentum
+// kept as above), so the kicks after the change integrate the drag with the mass the stone has.
+// Walls are half-planes (the flume bed, its end walls); fixed stones are discs that never move.
+// Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept sorted by (i, j) so
+// that contact histories and force sums are evaluated in one fixed order: runs are bit-for-bit
+// reproducible, and export_state()/import_state() restart them bit-for-bit.
 //
 // References: Maeno, S. & Tomita, A. (2008), ICHE 2008, Nagoya. Gotoh, H. & Sakai, T. (1997), J. Waterway
 // Port Coastal Ocean Eng. 123(6), 329-336. Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29, 47-65.
@@ -199,6 +207,8 @@ class DEMSystem {
   std::vector<std::uint8_t> disc_fixed;     // 1: never moves (bed layer), n
   std::vector<std::uint8_t> disc_active;    // 0: left the domain (kept, not integrated), n
   std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
+  std::vector<double> disc_drag_coef;       // linear drag coefficient c >= 0 [N s/m], n; 0 (with kDEMExternalForce)
+  std::vector<double> disc_drag_vel;        // velocity U the linear drag c (U - v) pulls towards [m/s], 2n
   std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
                                             // when fluid_density > 0, else 0 (set_params keeps it)
   std::vector<double> disc_water_level;     // free-surface level at each stone [m], n; NaN (default): disc_wet
@@ -248,6 +258,8 @@ class DEMSystem {
   };
   FirstHalf integrate_first_half(double dt);
   void integrate_second_half(double dt);
+  void update_kick_scale(double dt);
+  double drag_kick_scale(int i, double dt) const;
   void remove_escaped();
   void body_forces(double dt);
   void contact_forces(double dt);
@@ -298,6 +310,8 @@ class DEMSystem {
   std::vector<double> inv_mass_;     // 1 / (M + M'), 0 if fixed or inactive [1/kg]
   std::vector<double> inv_inertia_;  // 1 / I [1/(kg m^2)]
   std::vector<double> weight_;       // (M - rho_w V w) [kg]: multiplies g
+  std::vector<double> kick_scale_;   // phi(h c / (M + M')) of the linear drag for the substep in use [-]
+  double kick_dt_ = 0.0;             // the substep kick_scale_ was computed for [s]
   std::vector<double> inv_roll_inertia_;  // 1 / (I + (M + M') r^2), 0 if it does not turn [1/(kg m^2)]
   std::vector<double> wall_roll_c_;       // 2 r sqrt(I + (M + M') r^2) per stone: roll_c of its wall contacts
   double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off

@@ -87,6 +87,17 @@ struct KEpsilonBoundaries {
   KEpsilonBoundary top = KEpsilonBoundary::kZeroGradient;
 };
 
+// time stepping of the transport (KEpsilonParams::time_scheme)
+enum class KEpsilonTimeScheme {
+  // predictor (explicit transport where dt sum(a) <= n) and `sweeps` Jacobi sweeps of the backward-Euler
+  // system; stable_dt() is the explicit limit of all four faces
+  kPointImplicit = 0,
+  // backward Euler along each column (vertical advection and diffusion, sinks) by one tridiagonal solve
+  // per column, the horizontal faces explicit (lagged-implicit in a cell above their own limit);
+  // stable_dt() is the explicit limit of the horizontal faces only (k_epsilon_lines.cpp)
+  kVerticalLines = 1,
+};
+
 // production term of k (and through C1 P of eps)
 enum class KEpsilonProduction {
   kStrain = 0,       // P = nu_t S^2 (standard)
@@ -115,6 +126,7 @@ struct KEpsilonParams {
   double water_fraction_min = 0.1;  // [-] cells with F below this are air (not solved), usual 0.1
   int sweeps = 1;                   // [-] Jacobi sweeps after the predictor, in [0, 1000], usual 0-4
   double cfl = 0.5;                 // [-] safety factor of stable_dt(), in (0, 1], usual 0.5
+  KEpsilonTimeScheme time_scheme = KEpsilonTimeScheme::kPointImplicit;  // kVerticalLines: columns implicit
   unsigned flags = kKEpsAll;        // effect flags (KEpsilonFlag)
   KEpsilonProduction production = KEpsilonProduction::kStrain;  // kKatoLaunder: Kato & Launder (1993)
   double production_limit = 0.0;  // [-] P <= production_limit * eps, 0 = off; Menter (1994): 10
@@ -145,10 +157,11 @@ class KEpsilonModel {
             const std::vector<double>& cell_nu);
 
   // the explicit advection-diffusion limit [s] times params.cfl for these fields and the current
-  // nu_t; dt above it stays positive and bounded but transports k, eps less accurately
+  // nu_t (kVerticalLines: of the horizontal faces only); dt above it stays positive and bounded but
+  // transports k, eps less accurately. cell (optional) receives the binding cell (-1: none)
   double stable_dt(const std::vector<double>& face_u, const std::vector<double>& face_w,
                    const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                   const std::vector<double>& cell_nu) const;
+                   const std::vector<double>& cell_nu, int* cell = nullptr) const;
 
   // k, eps of an inflow face with pore speed u_in [m/s] (floored)
   double inflow_k(double u_in) const;
@@ -159,6 +172,11 @@ class KEpsilonModel {
   const KEpsilonBoundaries& boundaries() const { return boundaries_; }
   // switches effects on/off (KEpsilonFlag bits); switching wall functions off zeroes the wall outputs
   void set_flags(unsigned flags);
+  // the role of each cell in the last step [-] (0 inactive, 1 solved, 2 wall-fixed), ncell: a checkpoint
+  // holds it, since the next step starts a cell that has just filled from its neighbours
+  std::vector<double> cell_roles() const;
+  // sets those roles (values 0, 1, 2; ncell of them), as cell_roles() gave them
+  void set_cell_roles(const std::vector<double>& roles);
   const StageProfile& profile() const { return profile_; }
   StageProfile& profile() { return profile_; }
 
@@ -177,7 +195,13 @@ class KEpsilonModel {
  private:
   // per-cell role of the last step
   enum : std::uint8_t { kInactive = 0, kSolved = 1, kWallFixed = 2 };
-  struct FaceCoef;
+  // one face of a solved cell: neighbour (-1: a boundary), coefficients per unit volume for k and eps
+  // [1/s] (upwind inflow + diffusion), pore speed of an inflow boundary face [m/s]
+  struct FaceCoef {
+    int nb;
+    double a[2];
+    double inflow_u;
+  };
   // one row of the backward-Euler system: x_c = (num + sum a x_nb) / den (a = 0, nb = c on closed faces)
   struct JacobiRow {
     int c;
@@ -197,17 +221,24 @@ class KEpsilonModel {
   bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const {
     return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
   }
-  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond)
+  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond;
+  // x_only: the first alone)
   void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                             const std::vector<double>& cell_nu) const;
+                             const std::vector<double>& cell_nu, bool x_only = false) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
-  // coefficients (per unit volume) of the 4 faces of cell (i, k), for k and for eps
+  // coefficients (per unit volume) of the 4 faces of cell (i, k) (west, east, south, north), for k and
+  // for eps; x_only: the first two alone
   void face_coefficients(int i, int k, const std::vector<double>& face_u,
                          const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
-                         const std::vector<double>& cell_F, const std::vector<double>& cell_nu, FaceCoef* out) const;
+                         const std::vector<double>& cell_F, const std::vector<double>& cell_nu, FaceCoef* out,
+                         bool x_only = false) const;
   void solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                        const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                        const std::vector<double>& cell_nu);
+  // kVerticalLines: the column systems of k and eps, solved by the Thomas algorithm
+  void solve_transport_lines(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
+                             const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                             const std::vector<double>& cell_nu);
   // passes 1..sweeps of the Jacobi iteration; the last pass writes target
   void jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
                      std::vector<double>& scratch) const;
@@ -227,6 +258,7 @@ class KEpsilonModel {
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
   std::vector<JacobiRow> rows_k_, rows_eps_;   // the systems of the solved cells, reused by the sweeps
+  std::vector<double> tri_[2][4];              // kVerticalLines: sub, diagonal, super, rhs of k and eps
   // half a cell over its conductance n (nu + nu_t / sigma) [s/m], along x and along z, for k and for eps
   mutable std::vector<double> half_res_x_[2], half_res_z_[2];
 };

@@ -54,6 +54,10 @@ struct MomentumFields {
   // cells' molecular part plus the harmonic mean of their eddy part (0 if any cell has none); else the
   // arithmetic mean of cell_mu
   const double* cell_mu_eddy = nullptr;
+  // velocities of the convective term (carrying and carried, [m/s]), or null for face_u, face_w: the
+  // Adams-Bashforth 2 step evaluates convection at the extrapolated velocity, the rest at face_u, face_w
+  const double* conv_face_u = nullptr;
+  const double* conv_face_w = nullptr;
 };
 
 struct MomentumTerms {
@@ -94,9 +98,10 @@ inline double muscl_value(double far, double up, double down) {
 
 // largest stable explicit viscous step [s] (Gershgorin bound of the stress operator, face by face);
 // corner_mu: work array (resized on first use). implicit_vertical: the bound of the explicit part
-// only (x-diffusion and cross terms), the vertical diffusion being backward Euler
+// only (x-diffusion and cross terms), the vertical diffusion being backward Euler; cell (optional)
+// receives the cell beside the binding face (-1: none)
 double viscous_stable_dt(const Grid2D& grid, const MomentumFields& fields, std::vector<double>& corner_mu,
-                         bool implicit_vertical = false);
+                         bool implicit_vertical = false, int* cell = nullptr);
 
 // solves a x = d in place (d becomes x) for a tridiagonal matrix: sub-diagonal a, diagonal b,
 // super-diagonal c, rows [0, m); Thomas algorithm, stable for the diagonally dominant rows used here

@@ -93,6 +93,14 @@ enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1 };
 // zero when a cell carries none (air, solid): the water's eddy viscosity does not act on the air faces
 // above it, whose density is the air's. Laminar flow is the same under both.
 enum class CornerViscosity { kArithmetic = 0, kHarmonic = 1 };
+// time integration of the convective term: forward Euler, or the variable-step Adams-Bashforth 2, the
+// term evaluated at the velocity extrapolated to the middle of the step, u^n + dt_n / (2 dt_{n-1})
+// (u^n - u^{n-1}) (for a linear operator exactly AB2: (1 + r/2) C u^n - (r/2) C u^{n-1},
+// r = dt_n / dt_{n-1}). The viscous stresses stay forward Euler (explicit part) and backward Euler
+// (vertical part): AB2's real-axis stability is half Euler's and would halve the viscous limit. The
+// projection and the semi-implicit porous resistance are kept. The first step (and one after
+// clear_step_history()) is forward Euler
+enum class MomentumTimeScheme { kEuler = 0, kAdamsBashforth2 = 1 };
 
 // parameters of the flow, constant while stepping (SI units)
 struct FlowParams {
@@ -122,6 +130,7 @@ struct FlowParams {
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
   ViscousScheme viscous_scheme = ViscousScheme::kImplicitVertical;  // kExplicit: the forward-Euler reference
   CornerViscosity corner_viscosity = CornerViscosity::kHarmonic;    // kArithmetic: the plain mean
+  MomentumTimeScheme time_scheme = MomentumTimeScheme::kAdamsBashforth2;  // convection; kEuler: first order
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
   KEpsilonParams turbulence;  // k-epsilon constants, wall roughness, inflow turbulence (kFlowTurbulence)
 
@@ -138,7 +147,13 @@ struct FlowStableDt {
   double turbulence = 0;  // from the k-epsilon model when on
   double max_dt = 0;      // FlowParams::max_dt
   double growth = 0;      // initial_dt before the first step, then max_dt_growth * the last step
+  int advective_cell = -1;   // the cell beside the face that binds the advective limit (-1: none)
+  int turbulence_cell = -1;  // the cell that binds the k-epsilon limit (-1: none)
+  int viscous_cell = -1;     // the cell beside the face that binds the viscous limit (-1: none)
   double min() const;
+  // the name of the binding term ("advective", "viscous", "gravity", "turbulence", "max_dt", "growth")
+  // and its cell (-1 where the term has no place)
+  const char* binding(int* cell = nullptr) const;
 };
 
 class VOFGrid {
@@ -170,6 +185,13 @@ class VOFGrid {
   const KEpsilonModel& turbulence() const { return *turbulence_; }
   std::vector<double> face_x_solid_u;       // stones' x-velocity at x-faces [m/s], 0
   std::vector<double> face_z_solid_w;       // stones' z-velocity at z-faces [m/s], 0
+  // the last step's start velocities u^{n-1}, w^{n-1} [m/s] and its length [s] (0: no history, the next
+  // step is forward Euler), read by MomentumTimeScheme::kAdamsBashforth2; part of the state (checkpoints)
+  std::vector<double> face_u_prev, face_w_prev;
+  double prev_dt() const { return prev_dt_; }
+  void set_prev_dt(double dt);
+  // forgets the last step (the next one is forward Euler): after velocities were set by hand
+  void clear_step_history() { prev_dt_ = 0.0; }
 
   // sets cell_porosity (size ncell, values in [0, 1]) and recomputes the face porosities.
   // displace = false (scene building): the new field is the reference, nothing flows.
@@ -233,6 +255,14 @@ class VOFGrid {
   double net_inflow_volume() const { return net_inflow_volume_; }
   // restores the net inflow counter (restart only)
   void set_net_inflow_volume(double v) { net_inflow_volume_ = v; }
+  // water volume per metre of width [m^2] made by the advection's divergence correction since
+  // construction: dt sum c div(u) V over the steps (vof_advection.h), zero for a divergence-free
+  // velocity; with an iterative pressure solve, the water its residual divergence makes. With it the
+  // budget closes to round-off while the porosity is fixed: water_volume() - start = net_inflow_volume()
+  // + dilatation_volume()
+  double dilatation_volume() const { return dilatation_volume_; }
+  // restores the dilatation counter (restart only)
+  void set_dilatation_volume(double v) { dilatation_volume_ = v; }
   // inlet discharge per unit width now [m^2/s]
   double inlet_discharge_per_width() const;
 
@@ -247,6 +277,7 @@ class VOFGrid {
   void check_sizes() const;
   void update_phase_properties() const;
   void stage_advect_vof(double dt);
+  double dilatation(double dt) const;  // the water of the last advection's divergence correction [m^2]
   void stage_momentum(double dt);
   void stage_porous_resistance(double dt);
   void stage_turbulence(double dt);
@@ -273,8 +304,11 @@ class VOFGrid {
   double time_ = 0.0;
   long long step_count_ = 0;
   double last_dt_ = 0.0;  // see last_dt()
+  double prev_dt_ = 0.0;  // see prev_dt()
+  std::vector<double> face_u_ext_, face_w_ext_;  // the extrapolated velocities of AB2
   double inlet_volume_ = 0.0;
   double net_inflow_volume_ = 0.0;
+  double dilatation_volume_ = 0.0;
   double flux_dt_ = 0.0;  // the step whose VOF fluxes vof_scratch_ holds [s] (0: none)
 
   // derived per step
