@@ -11,6 +11,7 @@ members' table, the wall time, workers and cores) and the figure docs/figures/<n
     PYTHONPATH=python python3 benchmarks/maeno2008_fragility.py --quick --seeds 0-19   # the quick variant
 """
 import argparse
+import json
 import os
 import shutil
 import time
@@ -21,6 +22,12 @@ from vofdem.ensemble import parse_seeds, run_ensemble
 from vofdem.scene import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def _completed(out: Path) -> int:
+    """members already completed in the ensemble directory `out`"""
+    files = out.glob("**/outcome.json") if out.exists() else []
+    return sum(json.loads(f.read_text(encoding="utf-8")).get("status") == "completed" for f in files)
 
 
 def main(argv=None) -> Path:
@@ -34,6 +41,7 @@ def main(argv=None) -> Path:
     p.add_argument("--out", type=Path, default=None, help="ensemble directory (default out/<name>_fragility)")
     p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
     p.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
+    p.add_argument("--retry-failed", action="store_true", help="run the members that failed before again")
     args = p.parse_args(argv)
     scene = load_scene(args.scene)
     if args.quick:
@@ -43,10 +51,10 @@ def main(argv=None) -> Path:
     seeds = parse_seeds(args.seeds)
     out = args.out or ROOT / "out" / f"{scene.name}_fragility"
     workers = args.workers if args.workers is not None else default_workers()
-    before = len(list(out.glob("**/outcome.json"))) if out.exists() else 0
+    before = _completed(out)
     t0 = time.perf_counter()
     df = run_ensemble(scene, seeds, out, workers=workers, scheduler=args.scheduler, figures=False,
-                      animation=False)
+                      animation=False, retry_failed=args.retry_failed)
     wall = time.perf_counter() - t0
     args.figures.mkdir(parents=True, exist_ok=True)
     figure = args.figures / f"{scene.name}_fragility.png"
@@ -57,7 +65,7 @@ def main(argv=None) -> Path:
     member_wall = done["wall_seconds"].sum()
     text = [f"# Fragility of {scene.name} over {len(seeds)} packings (seeds {args.seeds})", "",
             f"Scene `{args.scene.name}`{' (quick variant)' if args.quick else ''}, {scene.duration:g} s simulated per "
-            f"member. The last call ran {len(seeds) - before} members (found {before} finished) in {wall / 60:.1f} min "
+            f"member. The last call ran {len(seeds) - before} members (found {before} completed) in {wall / 60:.1f} min "
             f"{where} ({os.cpu_count()} cores on this machine, load average {os.getloadavg()[0]:.1f} at the end). "
             f"The {len(done)} completed members cost {member_wall / 3600:.2f} core-hours in all "
             f"({member_wall / max(len(done), 1):.0f} s each on average).",

@@ -153,6 +153,7 @@ def main(argv=None) -> Path:
     p.add_argument("--out", type=Path, default=ROOT / "out" / "stone_models")
     p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
     p.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
+    p.add_argument("--retry-failed", action="store_true", help="run the members that failed before again")
     args = p.parse_args(argv)
     seeds = parse_seeds(args.seeds)
     workers = args.workers if args.workers is not None else default_workers()
@@ -164,7 +165,7 @@ def main(argv=None) -> Path:
         if args.end_time is not None:
             scene = scene.replace(end_time=args.end_time)
         run_ensemble(scene, seeds, args.out / name, workers=workers, scheduler=args.scheduler, figures=False,
-                     animation=False)
+                     animation=False, retry_failed=args.retry_failed)
         results.append((name, scene, outcomes_frame(collect_outcomes(args.out / name))))
     wall = time.perf_counter() - t0
     variant = " (quick variants)" if args.quick else ""

@@ -211,6 +211,8 @@ void bind_vof(py::module_& m) {
       .def_property_readonly("step_count", &VOFGrid::step_count)
       .def_property("last_dt", &VOFGrid::last_dt, &VOFGrid::set_last_dt,
                     "the last step [s] the growth limit starts from (0: none yet, initial_dt applies)")
+      .def_property_readonly("retried_steps", &VOFGrid::retried_steps,
+                             "steps advance() took again, shorter, after a CFL breach")
       .def_property_readonly("prev_dt", &VOFGrid::prev_dt,
                              "the last step [s] of the Adams-Bashforth history (0: none, the next step is Euler)")
       .def("clear_step_history", &VOFGrid::clear_step_history,

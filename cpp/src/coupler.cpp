@@ -9,6 +9,7 @@
 #include "vofdem/check.h"
 #include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
+#include "vofdem/step_retry.h"
 #include "vofdem/wet_fraction.h"
 
 namespace vofdem {
@@ -369,6 +370,8 @@ void Coupler::stage_fluid(double dt) {
   ScopedStage timer(profile_, st_fluid_);
   try {
     fluid_->step(dt);
+  } catch (const CflBreach& e) {
+    fail("fluid", e.what(), e.courant());
   } catch (const std::runtime_error& e) {
     fail("fluid", e.what());
   }
@@ -480,12 +483,13 @@ void Coupler::restore() {
   if (snapshot_valid_) import_state(snapshot_);
 }
 
-void Coupler::fail(const std::string& stage, const std::string& what) {
+void Coupler::fail(const std::string& stage, const std::string& what, double courant) {
   const double t = time_;
   restore();
   std::ostringstream os;
   os << "Coupler stage '" << stage << "' at t = " << format_value(t) << " s (step " << steps_ << "): " << what
      << "; coupled state restored to t = " << format_value(time_) << " s";
+  if (courant > 0.0) throw CflBreach(os.str(), courant);
   throw std::runtime_error(os.str());
 }
 
@@ -527,10 +531,13 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
     const double left = t_end - time_, stable = dt;
     if (dt >= left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
-    step(dt);
-    count_limit(dt < stable ? "t_end" : term, cell);
+    bool retried = false;
+    const double cfl = fluid_ ? fluid_->params().cfl : 1.0;
+    step_with_retries(dt, cfl, params_.min_dt, [this](double h) { step(h); }, [&retried](double) { retried = true; });
+    if (retried) count_limit("cfl_retry", -1);
+    else count_limit(dt < stable ? "t_end" : term, cell);
     // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
-    if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable) fluid_->set_last_dt(stable);
+    if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable && !retried) fluid_->set_last_dt(stable);
     ++n;
     if (progress) progress(time_);
   }

@@ -447,8 +447,9 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
       int worst = -1;
       const double cfl = max_cfl(grid, cell_porosity, dir == 0 ? face_u : face_w, dir, dt, &worst);
       if (cfl > 1.0)
-        throw std::runtime_error("vof advection: CFL number " + format_value(cfl) + " > 1 on " +
-                                 face_name(grid, dir, worst) + " at dt = " + format_value(dt) + " s");
+        throw CflBreach("vof advection: CFL number " + format_value(cfl) + " > 1 on " + face_name(grid, dir, worst) +
+                            " at dt = " + format_value(dt) + " s",
+                        cfl);
     }
   }
   const int ncell = grid.ncell();

@@ -9,6 +9,7 @@
 
 #include "vofdem/check.h"
 #include "vofdem/porous_resistance.h"
+#include "vofdem/step_retry.h"
 
 namespace vofdem {
 
@@ -438,7 +439,7 @@ void VOFGrid::restore_state() {
   cell_porosity_prev_ = s.cell_porosity_prev;
 }
 
-void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, int index) {
+void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, int index, double courant) {
   restore_state();
   const int nx = grid_.nx();
   int i = 0, k = 0;
@@ -463,6 +464,7 @@ void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, 
        << " m)";
   os << ", t = " << format_value(time_) << " s (step " << step_count_ << "); state restored to t = "
      << format_value(time_) << " s";
+  if (courant > 0.0) throw CflBreach(os.str(), courant);
   throw std::runtime_error(os.str());
 }
 
@@ -524,6 +526,8 @@ void VOFGrid::stage_advect_vof(double dt) {
     for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[(grid_.nx() + 1) * k], 0.0) * grid_.dz(k) * dt;
   try {
     advect_vof(grid_, cell_porosity, face_u, face_w, vof_inflow_, dt, step_count_ % 2 == 0, cell_F, vof_scratch_);
+  } catch (const CflBreach& e) {
+    fail("advect_vof", e.what(), 0, -1, e.courant());
   } catch (const std::runtime_error& e) {
     fail("advect_vof", e.what(), 0, -1);
   }
@@ -784,7 +788,7 @@ void VOFGrid::stage_checks(double dt) {
   if (cfl > 1.0)
     fail("checks", "CFL breach: the new velocity crosses " + format_value(cfl) + " cells in dt = " + format_value(dt) +
                        " s",
-         kind, index);
+         kind, index, cfl);
 }
 
 void VOFGrid::step(double dt) {
@@ -799,7 +803,7 @@ void VOFGrid::step(double dt) {
   if (cfl > 1.0)
     fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
                      " (pore velocity)",
-         kind, index);
+         kind, index, cfl);
   update_phase_properties();
   stage_momentum(dt);
   if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);
@@ -856,9 +860,10 @@ long long VOFGrid::advance(double t_end) {
     const double stable = dt;
     if (dt >= left) dt = left;
     else if (dt > 0.5 * left) dt = 0.5 * left;
-    step(dt);
+    const double taken =
+        step_with_retries(dt, params_.cfl, params_.min_dt, [this](double h) { step(h); }, [this](double) { ++retried_steps_; });
     // a step cut to reach t_end is no stability decision: the growth goes on from the stable step
-    last_dt_ = std::max(dt, stable);
+    last_dt_ = taken < dt ? taken : std::max(dt, stable);
     ++n;
   }
   return n;

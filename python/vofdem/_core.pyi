@@ -1953,6 +1953,11 @@ class VOFGrid:
     def profile(self) -> StageProfile:
         ...
     @property
+    def retried_steps(self) -> int:
+        """
+        steps advance() took again, shorter, after a CFL breach
+        """
+    @property
     def step_count(self) -> int:
         ...
     @property

@@ -1,9 +1,14 @@
-// The flow's time step from rest: FlowParams::initial_dt, then at most max_dt_growth times the last step.
+// The flow's time step from rest: FlowParams::initial_dt, then at most max_dt_growth times the last step;
+// a step that breaches the CFL taken again, shorter (step_retry.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "vofdem/coupler.h"
+#include "vofdem/step_retry.h"
 #include "vofdem/vof_grid.h"
 
 using namespace vofdem;
@@ -34,8 +39,102 @@ TEST(VOFTimeStep, FirstStepOfMaxDtFromRestBreachesTheCfl) {
   VOFGrid flow(wall_grid(), p);
   column_against_wall(flow);
   EXPECT_DOUBLE_EQ(flow.stable_dt(), 0.01);
-  EXPECT_THROW(flow.step(flow.stable_dt()), std::runtime_error);
+  try {
+    flow.step(flow.stable_dt());
+    FAIL() << "no exception";
+  } catch (const CflBreach& e) {
+    EXPECT_GT(e.courant(), 1.0);
+    EXPECT_NE(std::string(e.what()).find("CFL"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(flow.time(), 0.0);
+}
+
+TEST(VOFTimeStep, RetriesShortenTheStepByTheCourantNumberReached) {
+  // dt 1, target 0.5: Courant 1.25 -> dt 0.4 (0.5 / 1.25); 3 -> 0.4 / 6; then it passes
+  std::vector<double> courants = {1.25, 3.0}, tried, retried;
+  auto step = [&](double dt) {
+    tried.push_back(dt);
+    if (tried.size() <= courants.size()) throw CflBreach("breach", courants[tried.size() - 1]);
+  };
+  const double taken = step_with_retries(1.0, 0.5, 1e-9, step, [&](double dt) { retried.push_back(dt); });
+  EXPECT_DOUBLE_EQ(taken, 0.4 / 6.0);
+  EXPECT_EQ(tried, (std::vector<double>{1.0, 0.4, 0.4 / 6.0}));
+  EXPECT_EQ(retried, (std::vector<double>{0.4, 0.4 / 6.0}));
+  // a breach just above 1 still halves the step at least
+  tried.clear();
+  courants = {1.01};
+  EXPECT_DOUBLE_EQ(step_with_retries(1.0, 0.9, 1e-9, step, [](double) {}), 0.5);
+}
+
+TEST(VOFTimeStep, RetriesGiveUpWithTheLastBreachAndTheirCount) {
+  int calls = 0;
+  auto always = [&](double) {
+    ++calls;
+    throw CflBreach("vof advection: CFL number 2 > 1", 2.0);
+  };
+  try {
+    step_with_retries(1.0, 0.5, 1e-9, always, [](double) {});
+    FAIL() << "no exception";
+  } catch (const CflBreach& e) {
+    EXPECT_NE(std::string(e.what()).find("after 4 retries"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(calls, kMaxStepRetries + 1);
+  calls = 0;
+  EXPECT_THROW(step_with_retries(1.0, 0.5, 0.3, always, [](double) {}), CflBreach);  // 0.25 < min_dt
+  EXPECT_EQ(calls, 1);
+  // other failures are not retried
+  calls = 0;
+  auto broken = [&](double) {
+    ++calls;
+    throw std::runtime_error("not finite");
+  };
+  EXPECT_THROW(step_with_retries(1.0, 0.5, 1e-9, broken, [](double) {}), std::runtime_error);
+  EXPECT_EQ(calls, 1);
+}
+
+TEST(VOFTimeStep, AdvanceRetriesABreachingStepShorterAndStaysBounded) {
+  // the first step of max_dt that breaches the CFL above: advance takes it again, shorter
+  FlowParams p;
+  p.initial_dt = p.max_dt;
+  p.max_dt_growth = 10.0;
+  VOFGrid flow(wall_grid(), p);
+  column_against_wall(flow);
+  const double v0 = flow.water_volume();
+  flow.advance(0.05);
+  EXPECT_GE(flow.retried_steps(), 1);
+  EXPECT_DOUBLE_EQ(flow.time(), 0.05);
+  EXPECT_NEAR(flow.water_volume(), v0, 1e-10 * v0);
+  for (double F : flow.cell_F) {
+    EXPECT_GE(F, -1e-9);
+    EXPECT_LE(F, 1.0 + 1e-9);
+  }
+  // the default start needs none: the retry costs nothing where the step holds
+  VOFGrid calm(wall_grid(), FlowParams{});
+  column_against_wall(calm);
+  calm.advance(0.05);
+  EXPECT_EQ(calm.retried_steps(), 0);
+}
+
+TEST(VOFTimeStep, CouplerRetriesABreachingStepAndCountsIt) {
+  FlowParams p;
+  p.initial_dt = p.max_dt;
+  p.max_dt_growth = 10.0;
+  VOFGrid flow(wall_grid(), p);
+  column_against_wall(flow);
+  DEMParams dp;
+  dp.fluid_density = p.rho_water;
+  dp.add_flume(0.0, 0.5, 0.0);
+  DEMSystem stones(dp, {0.4, 0.02}, {0.02}, {2650.0});  // a stone on the dry bed behind the wall
+  CouplerParams cp;
+  cp.flags = kCoupleTwoWay;
+  Coupler sim(&flow, &stones, cp);
+  const double v0 = sim.water_volume();
+  sim.advance(0.05);
+  const auto& limits = sim.step_limits();
+  ASSERT_EQ(limits.count("cfl_retry"), 1u);
+  EXPECT_GE(limits.at("cfl_retry"), 1);
+  EXPECT_DOUBLE_EQ(sim.time(), 0.05);
+  EXPECT_NEAR(sim.water_volume(), v0, 1e-10 * v0);
 }
 
 TEST(VOFTimeStep, StartsAtInitialDtAndGrowsByAtMostTheFactor) {

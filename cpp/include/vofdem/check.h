@@ -4,6 +4,7 @@
 // parameter, the value given and the allowed range, so a user can fix the call without reading code.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 namespace vofdem {
@@ -21,5 +22,17 @@ void require_non_negative(const char* name, double value);
 void require_in_open_closed(const char* name, double value, double lo, double hi);
 // value must lie in [lo, hi]
 void require_in_closed(const char* name, double value, double lo, double hi);
+
+// A step whose velocities carry a cell's content further than one cell (Courant number > 1). The
+// velocities a step creates (a stone moving into a pore, a jet leaving the crest) are not known when its
+// length is chosen, so a caller that chooses the step may take it again, shorter.
+class CflBreach : public std::runtime_error {
+ public:
+  CflBreach(const std::string& what, double courant) : std::runtime_error(what), courant_(courant) {}
+  double courant() const { return courant_; }  // the Courant number reached [-]
+
+ private:
+  double courant_;
+};
 
 }  // namespace vofdem

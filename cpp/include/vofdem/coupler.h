@@ -31,7 +31,7 @@
 //
 // Guards: a failure in any stage (non-finite value, CFL breach, ...) restores the state of the start of
 // the step (fluid, stones, porosity, forces) and throws std::runtime_error naming the stage, the stone
-// or cell and the time. The snapshot is taken only when both modules are stepped; a scene with one
+// or cell and the time. advance() takes a step whose flow breaches the CFL again, shorter (step_retry.h). The snapshot is taken only when both modules are stepped; a scene with one
 // module relies on that module's own restore and pays nothing extra.
 //
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using a
@@ -123,7 +123,7 @@ class Coupler {
   double stable_dt();
   // steps of advance() bound by each limit: the fluid's terms ("advective", "viscous", "gravity",
   // "turbulence", "max_dt", "growth"), "stone_cfl", "drag_relaxation", "coupler_max_dt", "t_end" (a step
-  // cut to reach the end time); and per term
+  // cut to reach the end time), "cfl_retry" (a step taken again, shorter: step_retry.h); and per term
   // the steps bound in each cell (ncell counts; the cell of the binding face, k-epsilon cell or stone
   // centre; empty without a fluid). A diagnostic: not part of the checkpoint, cleared by
   // clear_step_limits()
@@ -183,7 +183,8 @@ class Coupler {
   void map_stones();
   void save();
   void restore();
-  [[noreturn]] void fail(const std::string& stage, const std::string& what);
+  // courant > 0: a CFL breach, thrown as CflBreach (a shorter step may pass)
+  [[noreturn]] void fail(const std::string& stage, const std::string& what, double courant = 0.0);
   bool has_fluid() const { return fluid_ != nullptr; }
   bool has_stones() const { return stones_ != nullptr && n_ > 0; }
   bool polygons() const { return stones_ != nullptr && stones_->shape() == StoneShape::kPolygon; }

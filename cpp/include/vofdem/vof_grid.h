@@ -230,8 +230,11 @@ class VOFGrid {
   // one step of dt [s] (stages: see the top of this file); throws std::runtime_error naming the stage,
   // the cell and the time after restoring the state of the step's start
   void step(double dt);
-  // steps of stable_dt() until time() reaches t_end [s]; returns the number of steps
+  // steps of stable_dt() until time() reaches t_end [s], a step that breaches the CFL taken again
+  // shorter (step_retry.h); returns the number of steps
   long long advance(double t_end);
+  // steps advance() took again, shorter, since construction
+  long long retried_steps() const { return retried_steps_; }
 
   // ---- diagnostics and coupling helpers ----
   // pore velocity U = u/n, W = w/n at cell centres [m/s] (0 in solid cells); sizes ncell
@@ -292,7 +295,8 @@ class VOFGrid {
   double outlet_pressure(int k) const;
   // kind: 0 = cell, 1 = x-face, 2 = z-face
   void check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind);
-  [[noreturn]] void fail(const std::string& stage, const std::string& what, int kind, int index);
+  // courant > 0: a CFL breach, thrown as CflBreach (a shorter step may pass)
+  [[noreturn]] void fail(const std::string& stage, const std::string& what, int kind, int index, double courant = 0.0);
   void save_state();
   void restore_state();
   // largest directional Courant number |u| dt / (n_f h) and where it is (kind 1 = x-face, 2 = z-face)
@@ -304,6 +308,7 @@ class VOFGrid {
   double time_ = 0.0;
   long long step_count_ = 0;
   double last_dt_ = 0.0;  // see last_dt()
+  long long retried_steps_ = 0;  // see retried_steps()
   double prev_dt_ = 0.0;  // see prev_dt()
   std::vector<double> face_u_ext_, face_w_ext_;  // the extrapolated velocities of AB2
   double inlet_volume_ = 0.0;
