@@ -22,4 +22,18 @@ if [ -n "$missing" ]; then
 fi
 
 EXTRAS=${1:-test}
-"$PY" -m pip install --quiet --disable-pip-version-check ".[${EXTRAS}]"
+# the test install (make test, CI) builds the extension with warnings as errors; a user's install does not
+WERROR=OFF; [ "$EXTRAS" = "test" ] && WERROR=ON
+# the package is rebuilt only when a file it is built from changed since this script last installed it
+# into this Python (the stamp keeps the hash of those files, the interpreter and the options)
+stamp=build/install-${EXTRAS}.stamp
+key=$( { "$PY" -c 'import sys; print(sys.executable, sys.version)'; echo "$EXTRAS $WERROR"
+         find CMakeLists.txt pyproject.toml cpp python -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' \
+           -o -name '*.pyi' -o -name '*.txt' -o -name '*.toml' -o -name '*.typed' \) -print0 | sort -z | xargs -0 sha256sum
+       } | sha256sum | cut -d' ' -f1)
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$key" ] && (cd / && "$PY" -c 'import vofdem' 2>/dev/null); then
+  echo "vofdem is installed from these sources already (${stamp}); not rebuilt"
+  exit 0
+fi
+"$PY" -m pip install --quiet --disable-pip-version-check -C cmake.define.VOFDEM_WERROR=$WERROR ".[${EXTRAS}]"
+mkdir -p build && echo "$key" > "$stamp"
