@@ -4,8 +4,9 @@ XDMF readers and saves every time step's arrays to an .npz for the test to compa
     pvbatch paraview_dump.py RUN.xmf OUT_PREFIX READER [READER ...]
 
 READER: XDMFReader (XDMF 2 library), Xdmf3ReaderS or Xdmf3ReaderT; each writes OUT_PREFIX<READER>.npz
-with the keys 'times', '<block>/<step>/<cell|point>/<array>' and '<block>/<step>/points' for each block
-of each step (block: 'fields' or 'stones')."""
+with the keys 'times', '<block>/<step>/<cell|point>/<array>', '<block>/<step>/points' and (polygons)
+'<block>/<step>/cell_types', '.../offsets', '.../connectivity' for each block of each step (block:
+'fields', 'stones' or 'stone_polygons')."""
 import sys
 
 import numpy as np
@@ -28,8 +29,19 @@ def blocks(data):
 
 
 def name_of(ds):
-    """'fields' for the grid (its cells carry the water fraction F), 'stones' for the point cloud."""
-    return "fields" if ds.GetCellData().GetArray("F") is not None else "stones"
+    """'fields' for the grid (its cells carry the water fraction F), 'stone_polygons' for the polygon
+    stones (their cells carry the angle), 'stones' for the point cloud."""
+    if ds.GetCellData().GetArray("F") is not None:
+        return "fields"
+    return "stone_polygons" if ds.GetCellData().GetArray("angle") is not None else "stones"
+
+
+def cells_of(ds, b, k, saved):
+    """The polygons as ParaView holds them: VTK cell types, offsets and connectivity."""
+    cells = ds.GetCells()
+    saved[f"{b}/{k}/cell_types"] = np.array([ds.GetCellType(c) for c in range(ds.GetNumberOfCells())])
+    saved[f"{b}/{k}/offsets"] = vtk_to_numpy(cells.GetOffsetsArray()).copy()
+    saved[f"{b}/{k}/connectivity"] = vtk_to_numpy(cells.GetConnectivityArray()).copy()
 
 
 def main(xmf, reader, out):
@@ -44,6 +56,8 @@ def main(xmf, reader, out):
         for ds in blocks(sm.Fetch(r)):
             b = name_of(ds)
             saved[f"{b}/{k}/points"] = vtk_to_numpy(ds.GetPoints().GetData()).copy()
+            if b == "stone_polygons":
+                cells_of(ds, b, k, saved)
             for kind, arrays in (("cell", ds.GetCellData()), ("point", ds.GetPointData())):
                 for i in range(arrays.GetNumberOfArrays()):
                     a = arrays.GetArray(i)

@@ -131,3 +131,56 @@ def test_calibrate_command(tmp_path, capsys):
     assert (out / "pull.md").exists() and (out / "pull.png").exists()
     assert cli.main(["calibrate", "repose", "maeno2008", "--seeds", "2-1"]) == 2
     assert "seeds" in capsys.readouterr().err
+
+
+def polygon_scene():
+    s = Scene.maeno2008()
+    s.stones.shape = "polygon"
+    s.numerics.dem_dt, s.numerics.dem_contact_steps = 4e-5, 50.0
+    return s.validate()
+
+
+def test_polygon_stones_are_measured_by_their_vertices():
+    # a 6 x 2 cm box: its top is its highest vertex, whatever its bounding disc
+    s = polygon_scene()
+    box = (np.array([[-0.03, -0.01], [0.03, -0.01], [0.03, 0.01], [-0.03, 0.01]]), np.array([0, 4]))
+    sys_ = builder.stone_system(s, builder.dem_params(s, 0.0), [[0.5, 0.2]], [0.04], [0], shapes=box)
+    assert sys_.shape == "polygon" and sys_.disc_radius[0] == pytest.approx(math.hypot(0.03, 0.01))
+    assert cal.stone_tops(sys_)[0] == pytest.approx(0.21, abs=1e-15)
+    sys_.disc_angle[0] = math.pi / 2
+    assert cal.stone_tops(sys_)[0] == pytest.approx(0.23, abs=1e-15)
+    assert np.allclose(cal.stone_outlines(sys_)[0], [[0.51, 0.17], [0.51, 0.23], [0.49, 0.23], [0.49, 0.17]])
+
+
+def test_small_heap_of_polygons():
+    setup = cal.ReposeSetup(n_stones=30)
+    r = cal.pour_heap(polygon_scene(), 0, False, setup)
+    assert r.settled and r.max_speed < setup.rest_speed and 5.0 < r.angle < 70.0
+    assert len(r.outlines) == len(r.pos) and (~r.fixed).sum() == 30
+    # the base: fixed polygons standing on the bed by their lowest vertex, in random orientations; the
+    # envelope is made of the polygons' highest vertices
+    base = [w for w, f in zip(r.outlines, r.fixed) if f]
+    assert max(abs(w[:, 1].min()) for w in base) < 1e-12
+    assert r.base_top == pytest.approx(max(w[:, 1].max() for w in base), abs=1e-15)
+    tops = np.array([w[:, 1].max() for w in r.outlines])
+    assert r.envelope[:, 1].max() == pytest.approx(tops[~r.fixed].max(), abs=1e-15)
+    again = cal.pour_heap(polygon_scene(), 0, False, setup)
+    assert again.angle == r.angle and np.array_equal(again.pos, r.pos)
+    fig = cal.fig_heap(r)
+    assert len(fig.axes[0].collections) == 2  # fixed and free polygons
+
+
+def test_pull_of_a_lone_polygon_on_the_bed_by_hand():
+    # a box lying on the bed pulled up at its centre: it lifts at M g, then lags the anchor by v / omega
+    s = polygon_scene()
+    setup = cal.PullSetup(spring=50.0, speed=0.02, max_travel=0.12)
+    g, k, v = builder.GRAVITY, setup.spring, setup.speed
+    p = builder.dem_params(s, fluid_density=0.0)
+    p.flags = int(p.flags | vofdem.DEM_EXTERNAL_FORCE)
+    box = (np.array([[-0.03, -0.015], [0.03, -0.015], [0.03, 0.015], [-0.03, 0.015]]), np.array([0, 4]))
+    sys_ = builder.stone_system(s, p, [[0.5, 0.015]], [0.048], [0], shapes=box)
+    sys_.advance(0.2)
+    m = sys_.mass(0)
+    r = cal.pull_stone(sys_, sys_.export_state(), 0, np.array([0.0, 1.0]), setup)
+    assert r.weight == pytest.approx(m * g)
+    assert r.peak == pytest.approx(m * g + v * math.sqrt(k * m), rel=0.01)

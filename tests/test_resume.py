@@ -1,5 +1,6 @@
 """A run killed with SIGKILL at a random snapshot: its file opens in plain h5py, `vofdem run --resume`
-continues it from its checkpoint, and it ends bit for bit as a run that was never stopped."""
+continues it from its checkpoint, and it ends bit for bit as a run that was never stopped; with disc
+stones and with polygon stones (their shapes, orientations and per-point contact springs)."""
 import os
 import signal
 import subprocess
@@ -17,8 +18,11 @@ from vofdem.io import completed_snapshots
 
 ENV = dict(os.environ, PYTHONPATH=str(Path(vofdem.__file__).resolve().parents[1]) + os.pathsep
            + os.environ.get("PYTHONPATH", ""))
-# the quick scene to 8 s: 17 snapshots, the stones held during the 5 s spin-up and released
-RUN = ["run", "maeno2008", "--quick", "--end-time", "8", "--no-figures", "--no-animation", "--no-progress"]
+ROOT = Path(__file__).resolve().parents[1]
+# a scene's quick variant to 8 s: 17 snapshots, the stones held during the 5 s spin-up and released
+OPTIONS = ["--quick", "--end-time", "8", "--no-figures", "--no-animation", "--no-progress"]
+RUN = ["run", "maeno2008", *OPTIONS]
+SCENES = {"discs": "maeno2008", "polygons": str(ROOT / "scenes" / "maeno2008_polygons.toml")}
 SNAPSHOTS = 17
 
 
@@ -56,19 +60,24 @@ def _datasets(path, prefix=""):
 
 
 @pytest.mark.slow
-def test_killed_run_resumes_bit_for_bit(tmp_path):
-    ref = _vofdem(*RUN, "--out", str(tmp_path / "ref"))
+@pytest.mark.parametrize("stones", sorted(SCENES))
+def test_killed_run_resumes_bit_for_bit(tmp_path, stones):
+    run = ["run", SCENES[stones], *OPTIONS]
+    ref = _vofdem(*run, "--out", str(tmp_path / "ref"))
     assert ref.wait(timeout=600) == 0, ref.stderr.read()
     ref.stderr.close()
     k = int(np.random.default_rng().integers(2, SNAPSHOTS - 2))
     out = tmp_path / "killed"
-    kill_at_snapshot(out, k)
+    kill_at_snapshot(out, k, run)
     # plain h5py, default mode: every completed snapshot equals the uninterrupted run's
+    series = ["time", "fields/F", "fields/p", "stones/pos", "stones/force_pressure"]
+    if stones == "polygons":
+        series += ["stones/angle", "stones/poly_world"]
     with h5py.File(out / "run.h5", "r") as f, h5py.File(tmp_path / "ref" / "run.h5", "r") as g:
         assert f.attrs["status"] == "running"
         T = completed_snapshots(f["time"][()])
         assert k <= T < SNAPSHOTS, (k, T)
-        for name in ("time", "fields/F", "fields/p", "stones/pos", "stones/force_pressure"):
+        for name in series:
             assert np.array_equal(f[name][:T], g[name][:T]), name
     r = _vofdem("run", "--resume", str(out))
     assert r.wait(timeout=600) == 0, r.stderr.read()
@@ -85,6 +94,10 @@ def test_killed_run_resumes_bit_for_bit(tmp_path):
         assert (out / table).read_text() == (tmp_path / "ref" / table).read_text(), table
     sa, sb = load_checkpoint(tmp_path / "ref" / "checkpoint.h5"), load_checkpoint(out / "checkpoint.h5")
     assert sa.state.keys() == sb.state.keys() and len(sa.state) > 30 and sa.snapshots == sb.snapshots == SNAPSHOTS
+    # polygon runs carry the shapes and the contact points' springs (some of them loaded) in the state
+    assert ("dem/poly_vertex" in sa.state) == (stones == "polygons")
+    if stones == "polygons":
+        assert "stones/poly_world" in a and np.count_nonzero(sa.state["dem/poly_contact_xi"]) > 0
     for name in sa.state:
         assert np.array_equal(sa.state[name], sb.state[name]), name
     # the stage profile adds up the killed part and the resumed part

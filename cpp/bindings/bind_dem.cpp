@@ -17,6 +17,14 @@ namespace vofdem::bind {
 
 namespace {
 
+const char* shape_name(StoneShape s) { return s == StoneShape::kPolygon ? "polygon" : "disc"; }
+
+StoneShape shape_from_name(const std::string& name) {
+  if (name == "disc") return StoneShape::kDisc;
+  if (name == "polygon") return StoneShape::kPolygon;
+  throw py::value_error("shape = '" + name + "' is not one of 'disc', 'polygon'");
+}
+
 std::vector<double> flat_pos(const py::array_t<double, py::array::c_style | py::array::forcecast>& pos) {
   return std::vector<double>(pos.data(), pos.data() + pos.size());
 }
@@ -113,7 +121,21 @@ void bind_system(py::module_& m) {
       .def("set_wet_fraction", &DEMSystem::set_wet_fraction, py::arg("i"), py::arg("w"),
            "wet fraction of stone i; when it grows, (M + M') v is kept")
       .def("volume", &DEMSystem::volume, py::arg("i"))
-      .def("projected_area", &DEMSystem::projected_area, py::arg("i"))
+      .def("projected_area", py::overload_cast<int>(&DEMSystem::projected_area, py::const_), py::arg("i"))
+      .def("projected_area", py::overload_cast<int, double, double>(&DEMSystem::projected_area, py::const_),
+           py::arg("i"), py::arg("ux"), py::arg("uz"))
+      .def("nominal_diameter", &DEMSystem::nominal_diameter, py::arg("i"))
+      .def("inertia", &DEMSystem::inertia, py::arg("i"))
+      .def_property_readonly("shape", [](const DEMSystem& s) { return shape_name(s.shape()); })
+      .def("set_polygons",
+           [](DEMSystem& s, const A& vertex, const std::vector<int>& offset) { s.set_polygons(flat_pos(vertex), offset); },
+           py::arg("vertex"), py::arg("offset"),
+           "Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; "
+           "stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.")
+      .def_property_readonly("poly_vertex",
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().poly_vertex, self); })
+      .def_property_readonly("poly_offset",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().poly_offset, self); })
       .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
       .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
       .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)
@@ -151,6 +173,7 @@ void bind_system(py::module_& m) {
 }
 
 void bind_packing(py::module_& m) {
+  using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
   py::class_<WeirSpec>(m, "WeirSpec", "Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).")
       .def(py::init<>())
       .def_readwrite("height", &WeirSpec::height)
@@ -165,6 +188,21 @@ void bind_packing(py::module_& m) {
       .def_readwrite("seed", &WeirSpec::seed)
       .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
       .def_readwrite("rest_speed", &WeirSpec::rest_speed)
+      .def_property(
+          "shape", [](const WeirSpec& w) { return shape_name(w.shape); },
+          [](WeirSpec& w, const std::string& name) { w.shape = shape_from_name(name); })
+      .def_property(
+          "polygon_vertices_min", [](const WeirSpec& w) { return w.polygon.vertices_min; },
+          [](WeirSpec& w, int v) { w.polygon.vertices_min = v; })
+      .def_property(
+          "polygon_vertices_max", [](const WeirSpec& w) { return w.polygon.vertices_max; },
+          [](WeirSpec& w, int v) { w.polygon.vertices_max = v; })
+      .def_property(
+          "aspect_ratio", [](const WeirSpec& w) { return w.polygon.aspect_ratio; },
+          [](WeirSpec& w, double v) { w.polygon.aspect_ratio = v; })
+      .def_property(
+          "radial_jitter", [](const WeirSpec& w) { return w.polygon.radial_jitter; },
+          [](WeirSpec& w, double v) { w.polygon.radial_jitter = v; })
       .def("x_end", &WeirSpec::x_end)
       .def("top", &WeirSpec::top, py::arg("x"))
       .def("area", &WeirSpec::area);
@@ -185,8 +223,14 @@ void bind_packing(py::module_& m) {
       "pack_weir",
       [](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
          double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
-         double rest_speed, const DEMParams& params) {
+         double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
+         double aspect_ratio, double radial_jitter) {
         WeirSpec spec;
+        spec.shape = shape_from_name(shape);
+        spec.polygon.vertices_min = vertices_min;
+        spec.polygon.vertices_max = vertices_max;
+        spec.polygon.aspect_ratio = aspect_ratio;
+        spec.polygon.radial_jitter = radial_jitter;
         spec.height = height;
         spec.crest = crest;
         spec.slope_up_deg = slope_up_deg;
@@ -211,7 +255,29 @@ void bind_packing(py::module_& m) {
       py::arg("height") = 0.25, py::arg("crest") = 0.20, py::arg("slope_up_deg") = 27.0,
       py::arg("slope_down_deg") = 27.0, py::arg("x_toe") = 1.0, py::arg("z_bed") = 0.0, py::arg("d_mean") = 0.048,
       py::arg("d_spread") = 0.1, py::arg("density") = 2650.0, py::arg("seed") = 0, py::arg("settle_time_max") = 6.0,
-      py::arg("rest_speed") = 1e-3, py::arg("params") = DEMParams());
+      py::arg("rest_speed") = 1e-3, py::arg("params") = DEMParams(), py::arg("shape") = "disc",
+      py::arg("polygon_vertices_min") = 5, py::arg("polygon_vertices_max") = 8, py::arg("aspect_ratio") = 1.5,
+      py::arg("radial_jitter") = 0.2);
+  m.def(
+      "random_polygons",
+      [](const A& diameters, std::uint64_t seed, int vertices_min, int vertices_max, double aspect_ratio,
+         double radial_jitter) {
+        PolygonSpec spec;
+        spec.vertices_min = vertices_min;
+        spec.vertices_max = vertices_max;
+        spec.aspect_ratio = aspect_ratio;
+        spec.radial_jitter = radial_jitter;
+        std::vector<double> vertex;
+        std::vector<int> offset;
+        random_polygon_set(seed, spec, flat_pos(diameters), vertex, offset);
+        py::array_t<double> v({static_cast<py::ssize_t>(vertex.size() / 2), py::ssize_t{2}});
+        if (!vertex.empty()) std::memcpy(v.mutable_data(), vertex.data(), vertex.size() * sizeof(double));
+        return py::make_tuple(v, offset);
+      },
+      "Random convex polygon stones of the given nominal diameters [m] (equal-area discs) from one seed: "
+      "(vertices (m, 2) body frame [m], offsets (n + 1)). See polygon.h.",
+      py::arg("diameters"), py::arg("seed") = 0, py::arg("vertices_min") = 5, py::arg("vertices_max") = 8,
+      py::arg("aspect_ratio") = 1.5, py::arg("radial_jitter") = 0.2);
   m.def("weir_porosity", &weir_porosity, py::arg("system"), py::arg("spec"), py::arg("h") = 0.002);
   m.def("weir_outline_error", &weir_outline_error, py::arg("system"), py::arg("spec"));
 }

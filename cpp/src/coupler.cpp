@@ -101,6 +101,9 @@ void Coupler::make_mapper() {
     if (r > 0.0) rmin = std::min(rmin, r), rmax = std::max(rmax, r);
   }
   if (!(rmax > 0.0)) return;
+  if (polygons() && (params_.flags & kCoupleLookupPorosity))
+    throw std::invalid_argument("CouplerParams.flags: the lookup porosity (kCoupleLookupPorosity, the paper's table of "
+                                "disc areas) is for disc stones; polygon stones need the exact mapping (clear the flag)");
   PorosityParams p;
   p.method = (params_.flags & kCoupleLookupPorosity) ? PorosityMethod::kLookup : PorosityMethod::kExact;
   p.m = params_.lookup_m;
@@ -154,7 +157,11 @@ void Coupler::map_stones() {
     disc_x_[j] = stones_->disc_pos[2 * j];
     disc_z_[j] = stones_->disc_pos[2 * j + 1];
   }
-  mapper_->map(n_, disc_x_.data(), disc_z_.data(), stones_->disc_radius.data(), stones_->disc_active.data());
+  if (polygons())
+    mapper_->map_polygons(n_, disc_x_.data(), disc_z_.data(), stones_->disc_angle.data(), stones_->poly_vertex.data(),
+                          stones_->poly_offset.data(), stones_->disc_active.data());
+  else
+    mapper_->map(n_, disc_x_.data(), disc_z_.data(), stones_->disc_radius.data(), stones_->disc_active.data());
   csr_current_ = true;
 }
 
@@ -175,8 +182,9 @@ void Coupler::stage_porosity(bool keep_water_volume) {
   const std::vector<int>& off = mapper_->disc_cell_offsets();
   const std::vector<int>& idx = mapper_->disc_cell_index();
   const std::vector<double>& area = mapper_->disc_cell_area();
+  const bool poly = polygons();
   for (int j = 0; j < n_; ++j) {
-    const double d = 2.0 * stones_->disc_radius[j];
+    const double d = poly ? stones_->nominal_diameter(j) : 2.0 * stones_->disc_radius[j];
     const double u = stones_->disc_vel[2 * j], w = stones_->disc_vel[2 * j + 1];
     for (int p = off[j]; p < off[j + 1]; ++p) {
       const int c = idx[p];
@@ -290,7 +298,13 @@ void Coupler::stage_fluid_forces() {
                                                    cell_dpdz_.data(), rho, fp.gravity_x, fp.gravity_z);
     const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
-    if ((fl & kCoupleDrag) && !bed) {
+    if ((fl & kCoupleDrag) && !bed && polygons()) {
+      // the 3D stone's projected area across the relative velocity
+      const double a = stones_->projected_area(j, s.u - up, s.w_vel - wp), d = stones_->nominal_diameter(j);
+      const DragForce f = stone_drag_area(s, up, wp, d, a, rho, nu, params_.drag_law);
+      fd[0] = f.fx, fd[1] = f.fz;
+      if (params_.implicit_drag) disc_drag_slope_[j] = stone_drag_slope_area(s, up, wp, d, a, rho, nu, params_.drag_law);
+    } else if ((fl & kCoupleDrag) && !bed) {
       const double d = 2.0 * stones_->disc_radius[j];
       const DragForce f = stone_drag(s, up, wp, d, rho, nu, params_.drag_law);
       fd[0] = f.fx, fd[1] = f.fz;
@@ -413,6 +427,13 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
           if (params_.drag_relaxation * mass / slope < dt)
             dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
         }
+      } else if (stones_->disc_wet[j] > 0.0 && polygons()) {
+        // polygons: the mean projected area and the nominal diameter
+        const double d = stones_->nominal_diameter(j), vol = stones_->volume(j), w = stones_->disc_wet[j];
+        const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
+        const double slope = w * 0.5 * rho * stones_->projected_area(j) * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
+        if (params_.drag_relaxation * mass / slope < dt)
+          dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
       } else if (stones_->disc_wet[j] > 0.0) {
         const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
         const double w = stones_->disc_wet[j];
@@ -568,6 +589,7 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
     s["turbulence/cell_u_tau"] = t.cell_u_tau;
     s["turbulence/face_x_wall_shear"] = t.face_x_wall_shear;
     s["turbulence/face_z_wall_shear"] = t.face_z_wall_shear;
+    s["turbulence/cell_role"] = t.cell_roles();  // which cells held water: a cell that fills starts from them
   }
   if (stones_)
     for (auto& kv : stones_->export_state()) s["dem/" + kv.first] = std::move(kv.second);
@@ -597,6 +619,8 @@ void Coupler::import_turbulence(const std::map<std::string, std::vector<double>>
   t.cell_u_tau = s.at("turbulence/cell_u_tau");
   t.face_x_wall_shear = s.at("turbulence/face_x_wall_shear");
   t.face_z_wall_shear = s.at("turbulence/face_z_wall_shear");
+  // older states: the roles as they are (a cell filling in the next step may start differently)
+  if (s.count("turbulence/cell_role")) t.set_cell_roles(s.at("turbulence/cell_role"));
 }
 
 void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
@@ -636,6 +660,8 @@ void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) 
         need(s, k, nc);
       need(s, "turbulence/face_x_wall_shear", nfx);
       need(s, "turbulence/face_z_wall_shear", nfz);
+      if (s.count("turbulence/cell_role"))
+        for (double r : need(s, "turbulence/cell_role", nc)) require_in_closed("turbulence/cell_role", r, 0.0, 2.0);
     }
     DischargeTable t;
     t.times = need(s, "fluid/discharge_times", any);

@@ -35,10 +35,12 @@ void DEMSystem::build_wall_candidates() {
     for (int i = 0; i < n_; ++i) {
       if (!disc_active[i] || disc_fixed[i]) continue;
       const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
-      if (s < disc_radius[i] + skin_)
+      if (s < disc_radius[i] + skin_) {
         wall_cand_.push_back(i);
-      else
+      } else {
         wall_xi_[static_cast<std::size_t>(i) * nw + w] = wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
+        if (!poly_wall_hist_.empty()) poly_wall_hist_[static_cast<std::size_t>(i) * nw + w] = PolygonHistory{};
+      }
     }
     wall_cand_start_[w + 1] = static_cast<int>(wall_cand_.size());
   }
@@ -124,6 +126,7 @@ void DEMSystem::build_neighbours() {
     if (k < pairs_.size() && pairs_[k].i == p.i && pairs_[k].j == p.j) {
       p.xi = pairs_[k].xi;
       p.mr = pairs_[k].mr;
+      p.poly = pairs_[k].poly;
     }
   }
   pairs_.swap(new_pairs_);

@@ -8,6 +8,9 @@
 // over the neighbour-list rebuilds, zeroed when a contact opens and part of export_state().
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "vofdem/check.h"
 #include "vofdem/dem_system.h"
@@ -27,6 +30,20 @@ void DEMSystem::check_rolling_params() const {
   require_non_negative("rolling_friction_stone", params_.rolling_friction_stone);
   require_non_negative("rolling_friction_wall", params_.rolling_friction_wall);
   require_in_closed("rolling_damping", params_.rolling_damping, 0.0, 1.0);
+  check_rolling_shape(shape_);
+}
+
+// the law is a disc's: a polygon resists rolling by its shape, and a moment capped on its bounding
+// radius would have no physical basis, so polygon stones refuse mu_r > 0
+void DEMSystem::check_rolling_shape(StoneShape shape) const {
+  if (shape != StoneShape::kPolygon) return;
+  for (const auto& [name, value] : {std::pair<const char*, double>{"rolling_friction_stone", params_.rolling_friction_stone},
+                                    {"rolling_friction_wall", params_.rolling_friction_wall}}) {
+    if (value > 0.0)
+      throw std::invalid_argument(std::string(name) + " = " + std::to_string(value) +
+                                  " is outside the allowed range [0, 0] for polygon stones (the rolling resistance "
+                                  "is a law for discs; polygons resist rolling by their shape)");
+  }
 }
 
 // omega^2 [1/s^2] the rolling springs add to a stone's spin: k_r / I <= k_t r^2 / (f M r^2) per contact

@@ -79,6 +79,7 @@ std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
                   static_cast<double>(ncontact_),
                   static_cast<double>(nwall_contact_),
                   forces_valid_ ? 1.0 : 0.0};
+  if (shape_ == StoneShape::kPolygon) export_polygons(s);
   return s;
 }
 
@@ -132,6 +133,7 @@ void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s
     set(wall_mr_, get(s, "wall_mr", n * params_.walls.size()));
   else
     wall_mr_.assign(wall_xi_.size(), 0.0);
+  import_polygons(s);  // the shape: polygons if the state has them, else discs
   const auto& sc = get(s, "scalars", 9);
   time_ = sc[0];
   steps_ = static_cast<long long>(sc[1]);

@@ -82,6 +82,11 @@ void DEMSystem::resize(int n) {
   disc_alpha.assign(un, 0.0);
   disc_asleep.assign(un, 0);
   disc_sleep_timer.assign(un, 0.0);
+  // back to discs: a polygon system is made again with set_polygons()
+  shape_ = StoneShape::kDisc;
+  poly_vertex.clear();
+  poly_offset.clear();
+  poly_wall_hist_.clear();
   pairs_.clear();
   wall_xi_.assign(un * params_.walls.size(), 0.0);
   wall_mr_.assign(un * params_.walls.size(), 0.0);
@@ -98,6 +103,8 @@ void DEMSystem::set_params(const DEMParams& p) {
   if (params_.walls.size() != old_walls) {
     wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
     wall_mr_.assign(wall_xi_.size(), 0.0);
+    if (shape_ == StoneShape::kPolygon)
+      poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
   }
   rebuild_ = true;
   prepared_ = false;
@@ -151,9 +158,22 @@ void DEMSystem::check_stones() const {
   }
 }
 
-double DEMSystem::mass(int i) const { return disc_density[i] * sphere_volume(disc_radius[i]); }
-double DEMSystem::volume(int i) const { return sphere_volume(disc_radius[i]); }
-double DEMSystem::projected_area(int i) const { return kPi * disc_radius[i] * disc_radius[i]; }
+double DEMSystem::mass(int i) const {
+  if (shape_ == StoneShape::kPolygon) return disc_density[i] * polygon_stone_volume(poly_area_[i]);
+  return disc_density[i] * sphere_volume(disc_radius[i]);
+}
+double DEMSystem::volume(int i) const {
+  if (shape_ == StoneShape::kPolygon) return polygon_stone_volume(poly_area_[i]);
+  return sphere_volume(disc_radius[i]);
+}
+double DEMSystem::projected_area(int i) const {
+  if (shape_ == StoneShape::kPolygon) {
+    const int o = poly_offset[i];
+    const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], poly_offset[i + 1] - o);
+    return 0.25 * polygon_nominal_diameter(poly_area_[i]) * q.perimeter;
+  }
+  return kPi * disc_radius[i] * disc_radius[i];
+}
 
 // derived masses (eqs. 8-9): M + M', buoyant weight, inertia; fixed or inactive stones get 1/M = 0
 void DEMSystem::update_properties() {
@@ -170,14 +190,16 @@ void DEMSystem::update_stone_properties(int i) {
   const DEMParams& p = params_;
   const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
   const bool buoy = (p.flags & kDEMBuoyancy) && p.fluid_density > 0.0;
-  const double v = sphere_volume(disc_radius[i]);
+  const bool poly = shape_ == StoneShape::kPolygon;
+  const double v = volume(i);  // the matching 3D stone's for a polygon
   const double m = disc_density[i] * v;
   const double wv = v * disc_wet[i];
   mass_eff_[i] = m + (added ? p.fluid_density * p.added_mass_coefficient * wv : 0.0);
   weight_[i] = m - (buoy ? p.fluid_density * wv : 0.0);
   const bool mobile = disc_active[i] && !disc_fixed[i];
   inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
-  const double inertia = p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+  const double inertia =
+      poly ? 2.0 * p.inertia_factor * m * poly_jratio_[i] : p.inertia_factor * m * disc_radius[i] * disc_radius[i];
   inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
 }
 
@@ -190,7 +212,7 @@ void DEMSystem::set_wet_fraction(int i, double w) {
   const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
   if (added && w > w_old && disc_active[i] && !disc_fixed[i]) {
     // the water taken on starts at rest: (M + M') v kept, the kinetic energy that costs dissipated
-    const double v_i = sphere_volume(disc_radius[i]), m = disc_density[i] * v_i;
+    const double v_i = volume(i), m = disc_density[i] * v_i;
     const double c = p.fluid_density * p.added_mass_coefficient * v_i;
     const double m_old = m + c * w_old, r = m_old / (m + c * w);
     double* v = &disc_vel[2 * i];
@@ -230,6 +252,8 @@ double DEMSystem::reduced_stiffness_mass() const {
 
 void DEMSystem::prepare() {
   check_params();  // the parameters may have been edited in place (Python: system.params.x = ...)
+  // polygon vertices may have been edited through the views: their sections are derived again
+  if (shape_ == StoneShape::kPolygon && cached_poly_vertex_ != poly_vertex) update_polygon_properties();
   check_stones();
   const DEMParams& p = params_;
   if (p.stiffness_normal > 0.0) {
@@ -249,6 +273,8 @@ void DEMSystem::prepare() {
   if (wall_xi_.size() != static_cast<std::size_t>(n_) * p.walls.size())
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
   if (wall_mr_.size() != wall_xi_.size()) wall_mr_.assign(wall_xi_.size(), 0.0);
+  if (shape_ == StoneShape::kPolygon && poly_wall_hist_.size() != static_cast<std::size_t>(n_) * p.walls.size())
+    poly_wall_hist_.assign(static_cast<std::size_t>(n_) * p.walls.size(), PolygonHistory{});
   if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
   update_properties();
   update_rolling_inertia();
@@ -272,6 +298,7 @@ void DEMSystem::prepare() {
 
 double DEMSystem::stable_dt() {
   prepare();
+  if (shape_ == StoneShape::kPolygon) return polygon_stable_dt();
   double m_min = INFINITY;
   for (int i = 0; i < n_; ++i)
     if (disc_active[i] && !disc_fixed[i]) m_min = std::min(m_min, mass(i));
@@ -338,13 +365,16 @@ void DEMSystem::evaluate_forces(double dt, bool body) {
     ScopedStage s(profile_, kStageBodyForces);
     body_forces(dt);
   }
+  const bool poly = shape_ == StoneShape::kPolygon;
   {
     ScopedStage s(profile_, kStageContacts);
-    contact_forces(dt);
+    if (poly) polygon_contact_forces(dt);
+    else contact_forces(dt);
   }
   if (!params_.walls.empty()) {
     ScopedStage s(profile_, kStageWalls);
-    wall_forces(dt);
+    if (poly) polygon_wall_forces(dt);
+    else wall_forces(dt);
   }
 }
 
@@ -494,6 +524,8 @@ void DEMSystem::remove_escaped() {
       wall_xi_[i * p.walls.size() + w] = 0.0;
       wall_mr_[i * p.walls.size() + w] = 0.0;
     }
+    if (shape_ == StoneShape::kPolygon)
+      for (std::size_t w = 0; w < p.walls.size(); ++w) poly_wall_hist_[i * p.walls.size() + w] = PolygonHistory{};
     ++removed_;
     rebuild_ = true;
   }
@@ -664,6 +696,13 @@ void DEMSystem::sleep_update(double dt) {
   }
 }
 
+double DEMSystem::inertia(int i) const { return inertia_of(i, mass(i)); }
+
+double DEMSystem::inertia_of(int i, double m) const {
+  if (shape_ == StoneShape::kPolygon) return 2.0 * params_.inertia_factor * m * poly_jratio_[i];
+  return params_.inertia_factor * m * disc_radius[i] * disc_radius[i];
+}
+
 DEMEnergy DEMSystem::energy() const {
   const DEMParams& p = params_;
   DEMEnergy e;
@@ -672,12 +711,12 @@ DEMEnergy DEMSystem::energy() const {
   const bool grav = p.flags & kDEMGravity;
   for (int i = 0; i < n_; ++i) {
     if (!disc_active[i] || disc_fixed[i]) continue;
-    const double v = sphere_volume(disc_radius[i]);
+    const double v = volume(i);
     const double m = disc_density[i] * v;
     const double wv = v * disc_wet[i];
     const double me = m + (added ? p.fluid_density * p.added_mass_coefficient * wv : 0.0);
     const double mw = m - (buoy ? p.fluid_density * wv : 0.0);
-    const double inertia = p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+    const double inertia = inertia_of(i, m);
     const double* u = &disc_vel[2 * i];
     e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * disc_omega[i] * disc_omega[i];
     if (grav) e.potential -= mw * (p.gravity[0] * disc_pos[2 * i] + p.gravity[1] * disc_pos[2 * i + 1]);

@@ -29,9 +29,13 @@ double drag_coefficient(double re, DragLaw law) {
 
 DragForce drag_force_unchecked(double u, double w, double up, double wp, double d, double rho, double nu,
                                DragLaw law) {
+  return drag_force_area_unchecked(u, w, up, wp, d, 0.25 * kPi * d * d, rho, nu, law);
+}
+
+DragForce drag_force_area_unchecked(double u, double w, double up, double wp, double d, double area, double rho,
+                                    double nu, DragLaw law) {
   const double vx = u - up, vz = w - wp;
   const double speed = std::hypot(vx, vz);
-  const double area = 0.25 * kPi * d * d;
   // 1/2 rho A C_D |v| = 1/2 rho A (24 nu / d) (C_D Re / 24): finite as |v| -> 0
   double coef;
   if (law == DragLaw::kPaper) {

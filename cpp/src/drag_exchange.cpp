@@ -9,12 +9,11 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSchillerNaumannReMax = 1000.0;
 }  // namespace
 
-double sphere_drag_slope(const StoneFlowSample& s, double up, double wp, double d, double rho_w, double nu_w,
-                         DragLaw law) {
-  if (s.wet <= 0.0) return 0.0;
+namespace {
+// d(c(|r|) |r|) / d|r| of F = c(|r|) r for c = half_rho_a (...) [N s/m], scaled by the wet fraction
+double drag_slope(const StoneFlowSample& s, double up, double wp, double d, double half_rho_a, double nu_w,
+                  DragLaw law) {
   const double speed = std::hypot(s.u - up, s.w_vel - wp);
-  const double half_rho_a = 0.5 * rho_w * 0.25 * kPi * d * d;
-  // d(c(|r|) |r|) / d|r| of F = c(|r|) r
   double slope;
   if (law == DragLaw::kPaper) {
     slope = half_rho_a * (0.8 * speed + 24.0 * nu_w / d);  // c = 1/2 rho A (0.4 |r| + 24 nu / d)
@@ -25,6 +24,19 @@ double sphere_drag_slope(const StoneFlowSample& s, double up, double wp, double 
                                        : half_rho_a * 0.88 * speed;
   }
   return s.wet * slope;
+}
+}  // namespace
+
+double sphere_drag_slope(const StoneFlowSample& s, double up, double wp, double d, double rho_w, double nu_w,
+                         DragLaw law) {
+  if (s.wet <= 0.0) return 0.0;
+  return drag_slope(s, up, wp, d, 0.5 * rho_w * 0.25 * kPi * d * d, nu_w, law);
+}
+
+double stone_drag_slope_area(const StoneFlowSample& s, double up, double wp, double d, double area, double rho_w,
+                             double nu_w, DragLaw law) {
+  if (s.wet <= 0.0) return 0.0;
+  return drag_slope(s, up, wp, d, 0.5 * rho_w * area, nu_w, law);
 }
 
 LinearDrag linearise_drag(const DragForce& f, double slope, double up, double wp) {

@@ -39,6 +39,15 @@ DragForce stone_drag(const StoneFlowSample& s, double up, double wp, double d, d
   return f;
 }
 
+DragForce stone_drag_area(const StoneFlowSample& s, double up, double wp, double d, double area, double rho_w,
+                          double nu_w, DragLaw law) {
+  if (s.wet <= 0.0) return {0.0, 0.0};
+  DragForce f = drag_force_area_unchecked(s.u, s.w_vel, up, wp, d, area, rho_w, nu_w, law);
+  f.fx *= s.wet;
+  f.fz *= s.wet;
+  return f;
+}
+
 std::array<double, 2> stone_pressure_force(const StoneFlowSample& s, double volume) {
   return {-volume * s.gx, -volume * s.gz};
 }

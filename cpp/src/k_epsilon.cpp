@@ -126,6 +126,16 @@ void KEpsilonModel::initialize(double k, double eps, double nu) {
   std::fill(cell_role_prev_.begin(), cell_role_prev_.end(), kSolved);
 }
 
+std::vector<double> KEpsilonModel::cell_roles() const { return std::vector<double>(cell_role_.begin(), cell_role_.end()); }
+
+void KEpsilonModel::set_cell_roles(const std::vector<double>& roles) {
+  if (roles.size() != cell_role_.size())
+    throw std::invalid_argument("cell roles: " + std::to_string(roles.size()) + " values, expected " +
+                                std::to_string(cell_role_.size()) + " (one per cell)");
+  for (double r : roles) require_in_closed("cell role", r, 0.0, 2.0);
+  for (std::size_t c = 0; c < roles.size(); ++c) cell_role_[c] = static_cast<std::uint8_t>(roles[c]);
+}
+
 void KEpsilonModel::set_flags(unsigned flags) {
   params_.flags = flags;
   if (has(flags, kKEpsWallFunctions)) return;

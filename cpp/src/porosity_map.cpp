@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vofdem/check.h"
+#include "vofdem/polygon.h"
 
 namespace vofdem {
 
@@ -94,6 +95,7 @@ PorosityMapper::PorosityMapper(const Grid2D& grid, const PorosityParams& params)
   disc_cell_offsets_.assign(static_cast<std::size_t>(params_.max_discs) + 1, 0);
   disc_cell_index_.assign(static_cast<std::size_t>(params_.max_discs) * max_cells_per_disc_, 0);
   disc_cell_area_.assign(disc_cell_index_.size(), 0.0);
+  poly_scratch_.assign(16 * kPolygonMaxVertices + 64, 0.0);
   stage_map_ = profile_.add_stage("porosity_map");
 }
 
@@ -274,7 +276,11 @@ void PorosityMapper::map(int n, const double* disc_x, const double* disc_z, cons
   }
   disc_cell_offsets_[n] = p;
   ndisc_ = n;
-  // eq. (11) with A_s capped at the cell area
+  apply_eq11();
+}
+
+// eq. (11) with A_s capped at the cell area
+void PorosityMapper::apply_eq11() {
   for (int k = 0; k < grid_.nz(); ++k) {
     const double ac = grid_.cell_area(k);
     for (int i = 0; i < grid_.nx(); ++i) {

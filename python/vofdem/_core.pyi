@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -469,18 +469,30 @@ class DEMSystem:
         ...
     def import_state(self, state: dict) -> None:
         ...
+    def inertia(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
     def mass(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         ...
     def neighbour_pairs(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
+        ...
+    def nominal_diameter(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         ...
     def overlapping_pairs(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
         ...
     def overlapping_pairs_reference(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
         ...
+    @typing.overload
     def projected_area(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
+        ...
+    @typing.overload
+    def projected_area(self, i: typing.SupportsInt | typing.SupportsIndex, ux: typing.SupportsFloat | typing.SupportsIndex, uz: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    def set_polygons(self, vertex: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], offset: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
+        """
+        Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.
+        """
     def set_wet_fraction(self, i: typing.SupportsInt | typing.SupportsIndex, w: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
         wet fraction of stone i; when it grows, (M + M') v is kept
@@ -560,10 +572,19 @@ class DEMSystem:
     def neighbour_builds(self) -> int:
         ...
     @property
+    def poly_offset(self) -> numpy.typing.NDArray[numpy.int32]:
+        ...
+    @property
+    def poly_vertex(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
     def profile(self) -> StageProfile:
         ...
     @property
     def removed_count(self) -> int:
+        ...
+    @property
+    def shape(self) -> str:
         ...
     @property
     def steps(self) -> int:
@@ -584,6 +605,7 @@ class WeirSpec:
     """
     Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).
     """
+    shape: str
     def __init__(self) -> None:
         ...
     def area(self) -> float:
@@ -591,6 +613,12 @@ class WeirSpec:
     def top(self, x: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
     def x_end(self) -> float:
+        ...
+    @property
+    def aspect_ratio(self) -> float:
+        ...
+    @aspect_ratio.setter
+    def aspect_ratio(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def crest(self) -> float:
@@ -621,6 +649,24 @@ class WeirSpec:
         ...
     @height.setter
     def height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def polygon_vertices_max(self) -> int:
+        ...
+    @polygon_vertices_max.setter
+    def polygon_vertices_max(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def polygon_vertices_min(self) -> int:
+        ...
+    @polygon_vertices_min.setter
+    def polygon_vertices_min(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def radial_jitter(self) -> float:
+        ...
+    @radial_jitter.setter
+    def radial_jitter(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def rest_speed(self) -> float:
@@ -2165,7 +2211,7 @@ def forchheimer_coefficient(n: typing.Annotated[numpy.typing.ArrayLike, numpy.fl
     """
     Forchheimer coefficient C = k2 / sqrt(k1 n^3) [-] (seed eq. 7).
     """
-def pack_weir(height: typing.SupportsFloat | typing.SupportsIndex = 0.25, crest: typing.SupportsFloat | typing.SupportsIndex = 0.2, slope_up_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, slope_down_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, x_toe: typing.SupportsFloat | typing.SupportsIndex = 1.0, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, d_mean: typing.SupportsFloat | typing.SupportsIndex = 0.048, d_spread: typing.SupportsFloat | typing.SupportsIndex = 0.1, density: typing.SupportsFloat | typing.SupportsIndex = 2650.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, settle_time_max: typing.SupportsFloat | typing.SupportsIndex = 6.0, rest_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, params: DEMParams = ...) -> tuple[typing.Any, WeirPackingReport, WeirSpec]:
+def pack_weir(height: typing.SupportsFloat | typing.SupportsIndex = 0.25, crest: typing.SupportsFloat | typing.SupportsIndex = 0.2, slope_up_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, slope_down_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, x_toe: typing.SupportsFloat | typing.SupportsIndex = 1.0, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, d_mean: typing.SupportsFloat | typing.SupportsIndex = 0.048, d_spread: typing.SupportsFloat | typing.SupportsIndex = 0.1, density: typing.SupportsFloat | typing.SupportsIndex = 2650.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, settle_time_max: typing.SupportsFloat | typing.SupportsIndex = 6.0, rest_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, params: DEMParams = ..., shape: str = 'disc', polygon_vertices_min: typing.SupportsInt | typing.SupportsIndex = 5, polygon_vertices_max: typing.SupportsInt | typing.SupportsIndex = 8, aspect_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.5, radial_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.2) -> tuple[typing.Any, WeirPackingReport, WeirSpec]:
     """
     Packs a trapezoidal rubble mound weir; returns (DEMSystem, WeirPackingReport, WeirSpec).
     """
@@ -2188,6 +2234,10 @@ def porosity_eq11(a_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], 
 def pressure_residual(grid: Grid2D, problem: PressureProblem, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], p: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
     """
     b - A p on active cells (0 elsewhere)
+    """
+def random_polygons(diameters: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], seed: typing.SupportsInt | typing.SupportsIndex = 0, vertices_min: typing.SupportsInt | typing.SupportsIndex = 5, vertices_max: typing.SupportsInt | typing.SupportsIndex = 8, aspect_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.5, radial_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.2) -> tuple[numpy.typing.NDArray[numpy.float64], list[int]]:
+    """
+    Random convex polygon stones of the given nominal diameters [m] (equal-area discs) from one seed: (vertices (m, 2) body frame [m], offsets (n + 1)). See polygon.h.
     """
 def restitution_from_damping_ratio(zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...

@@ -96,13 +96,50 @@ def graded_contact(scene: Scene, params):
     return kn, min(n.dem_dt, 0.98 * stable)
 
 
-def stone_system(scene: Scene, params, pos, diameters, fixed):
-    """A DEMSystem of the scene's stone model at centres pos (n, 2) [m] with diameters [m] and fixed flags;
-    the one place that turns positions and sizes into stones (discs today), so that every experiment on
-    the stones (calibration.py) builds them the way the weir is built."""
+def polygon_options(scene: Scene) -> dict:
+    """The scene's polygon-shape parameters as keyword arguments of pack_weir / random_polygons."""
+    st = scene.stones
+    return dict(polygon_vertices_min=st.polygon_vertices_min, polygon_vertices_max=st.polygon_vertices_max,
+                aspect_ratio=st.aspect_ratio, radial_jitter=st.polygon_radial_jitter)
+
+
+def stone_shapes(scene: Scene, diameters, seed=None):
+    """(body-frame vertices (m, 2) [m], offsets (n + 1)) of polygon stones of these nominal diameters [m],
+    drawn from `seed` (default the scene's) with the scene's shape parameters; None for disc stones."""
+    if scene.stones.shape != "polygon":
+        return None
+    o = polygon_options(scene)
+    return _core.random_polygons(np.asarray(diameters, float), seed=scene.seed if seed is None else int(seed),
+                                 vertices_min=o["polygon_vertices_min"], vertices_max=o["polygon_vertices_max"],
+                                 aspect_ratio=o["aspect_ratio"], radial_jitter=o["radial_jitter"])
+
+
+def stone_system(scene: Scene, params, pos, diameters, fixed, shapes=None):
+    """A DEMSystem of the scene's stone model at centres pos (n, 2) [m] with (nominal) diameters [m] and
+    fixed flags; the one place that turns positions and sizes into stones, so that every experiment on
+    the stones (calibration.py) builds them the way the weir is built. Polygon stones take `shapes`
+    (stone_shapes' (vertex, offset)) or are drawn from the scene's seed, unrotated."""
     pos = np.asarray(pos, float).reshape(-1, 2)
     d = np.asarray(diameters, float)
-    return _core.DEMSystem(params, pos, 0.5 * d, np.full(len(d), scene.stones.density), [int(f) for f in fixed])
+    sys_ = _core.DEMSystem(params, pos, 0.5 * d, np.full(len(d), scene.stones.density), [int(f) for f in fixed])
+    if scene.stones.shape == "polygon":
+        sys_.set_polygons(*(shapes if shapes is not None else stone_shapes(scene, d)))
+    return sys_
+
+
+def _explicit_stones(scene: Scene):
+    """DEMSystem of the scene's explicit stones (discs or polygons of those nominal diameters, unrotated);
+    the fixed ones are those whose lowest point touches the bed."""
+    st = scene.stones
+    pos = np.asarray(st.positions, float)
+    d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
+    shapes = stone_shapes(scene, d)
+    low = pos[:, 1] - 0.5 * d
+    if shapes is not None:
+        vertex, offset = shapes
+        low = pos[:, 1] + np.array([vertex[offset[i]:offset[i + 1], 1].min() for i in range(len(pos))])
+    fixed = (low <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
+    return stone_system(scene, dem_params(scene), pos, d, fixed, shapes)
 
 
 def dem_step_hint(message: str) -> str:
@@ -143,22 +180,14 @@ def build_stones(scene: Scene):
     of uniform sizes, outline_packing.pack_outline for other outlines, sieve curves and zones), or the
     scene's explicit stones. `report` is the WeirPackingReport or OutlinePackingReport (None for
     explicit stones)."""
-    from .outline import as_trapezoid
-
-    st, w = scene.stones, scene.weir
+    st = scene.stones
     route = packing_route(scene)
     if route == "explicit":
-        pos = np.asarray(st.positions, float)
-        d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
-        fixed = (pos[:, 1] - 0.5 * d <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
-        return stone_system(scene, dem_params(scene), pos, d, fixed), None
+        return _explicit_stones(scene), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
     pack = dem_params(scene, fluid_density=0.0)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
-    trap = dict(toe_x=w.toe_x, height=w.height, crest_length=w.crest_length, upstream_slope_deg=w.upstream_slope_deg,
-                downstream_slope_deg=w.downstream_slope_deg)
-    if w.outline:  # an outline that is a trapezoid: the same generator as the trapezoid's keys
-        trap = as_trapezoid(w.outline) or trap
+    trap = _trapezoid(scene)
     try:
         if route == "outline":
             sys_, report = _pack_outline(scene, pack)
@@ -167,13 +196,21 @@ def build_stones(scene: Scene):
                                               slope_up_deg=trap["upstream_slope_deg"],
                                               slope_down_deg=trap["downstream_slope_deg"], x_toe=trap["toe_x"],
                                               z_bed=0.0, d_mean=st.diameter, d_spread=st.diameter_spread,
-                                              density=st.density, seed=scene.seed, params=pack)
+                                              density=st.density, seed=scene.seed, params=pack,
+                                              **_shape_options(scene))
     except ValueError as e:
         raise ValueError(dem_step_hint(str(e))) from None
     sys_.params = dem_params(scene)
     if not st.fix_bottom_layer:
         sys_.disc_fixed[:] = 0
     return sys_, report
+
+
+def _shape_options(scene: Scene) -> dict:
+    """pack_weir's stone-shape arguments: none for discs (its defaults), the shape and its parameters for polygons."""
+    if scene.stones.shape == "disc":
+        return {}
+    return dict(shape="polygon", **polygon_options(scene))
 
 
 def flow_params(scene: Scene):
@@ -242,21 +279,35 @@ def build_fluid(scene: Scene):
     return fluid
 
 
-def weir_spec(scene: Scene):
-    """WeirSpec of the scene's weir outline (the trapezoid on the bed z = 0)."""
+def _trapezoid(scene: Scene) -> dict:
+    """The weir's trapezoid keys (toe_x, height, crest_length, both slopes): the scene's, or its outline's
+    when the outline is a trapezoid."""
+    from .outline import as_trapezoid
+
     w = scene.weir
+    trap = dict(toe_x=w.toe_x, height=w.height, crest_length=w.crest_length, upstream_slope_deg=w.upstream_slope_deg,
+                downstream_slope_deg=w.downstream_slope_deg)
+    if w.outline:  # an outline that is a trapezoid: the same generator as the trapezoid's keys
+        trap = as_trapezoid(w.outline) or trap
+    return trap
+
+
+def weir_spec(scene: Scene):
+    """WeirSpec of the scene's weir trapezoid on the bed z = 0 (_trapezoid)."""
+    t = _trapezoid(scene)
     spec = _core.WeirSpec()
-    spec.height, spec.crest = w.height, w.crest_length
-    spec.slope_up_deg, spec.slope_down_deg = w.upstream_slope_deg, w.downstream_slope_deg
-    spec.x_toe, spec.z_bed = w.toe_x, 0.0
+    spec.height, spec.crest = t["height"], t["crest_length"]
+    spec.slope_up_deg, spec.slope_down_deg = t["upstream_slope_deg"], t["downstream_slope_deg"]
+    spec.x_toe, spec.z_bed = t["toe_x"], 0.0
     return spec
 
 
 def solid_fraction(scene: Scene, stones) -> float:
-    """phi [-]: the 2D area fraction of the weir's outline covered by the stones' discs, 1 minus the
+    """phi [-]: the 2D area fraction of the weir's outline covered by the stones (discs or polygons), 1 minus the
     packing porosity that pack_weir reports (weir_porosity, sampled every 2 mm; for an outline that is
-    not a trapezoid, outline_packing.body_porosity, the same sampling)."""
-    if scene.weir.outline:
+    not a trapezoid, outline_packing.body_porosity, the same sampling, of discs; polygons come with a
+    trapezoid only, scene.py)."""
+    if scene.weir.outline and scene.stones.shape != "polygon":
         from .outline_packing import body_porosity
 
         act = np.asarray(stones.disc_active, bool)

@@ -14,10 +14,12 @@
   vertically, normal to the slope (outwards) and horizontally downstream. The result of a pull is the
   peak spring force. The paper's stones are 3D; these are the scene's 2D stones.
 
-Both take a Scene and use only its stone model: stones.* (sizes, density, friction, rolling friction),
-the DEM's effect flags and numerics.dem_dt, through builder.dem_params with builder.stone_system (the
-heap) or builder.build_stones (the weir). Any stone model the scene can express is therefore measured
-the same way; only `stone_tops` and the figures' drawing know that today's stones are discs.
+Both take a Scene and use only its stone model: stones.* (shape, sizes, density, friction, rolling
+friction, polygon shape parameters), the DEM's effect flags and numerics.dem_dt, through
+builder.dem_params with builder.stone_system (the heap) or builder.build_stones (the weir). Any stone
+model the scene can express is therefore measured the same way. Polygon stones are measured by their
+vertices: a stone's top is its highest vertex, its size its nominal diameter, and the figures draw its
+outline; their shapes and their orientations as they leave the funnel come from the heap's seed.
 """
 from __future__ import annotations
 
@@ -29,6 +31,7 @@ import numpy as np
 
 from . import _core
 from . import builder
+from .polygon_output import is_polygon_system, outlines, stone_diameters, world_polygon_vertices
 from .scene import Scene
 
 # the seed paper's Table 1: mean pull-out force of a slope stone in each direction, dry [N]
@@ -98,6 +101,7 @@ class ReposeResult:
     radius: np.ndarray = field(repr=False)   # [m]
     fixed: np.ndarray = field(repr=False)
     envelope: np.ndarray = field(repr=False)  # (bins, 2): bin centre x, highest stone top [m]
+    outlines: Optional[List[np.ndarray]] = field(default=None, repr=False)  # polygon stones' world outlines
 
     @property
     def angle(self) -> float:
@@ -106,8 +110,20 @@ class ReposeResult:
 
 
 def stone_tops(system) -> np.ndarray:
-    """Height of each stone's highest point [m] (discs: centre + radius)."""
+    """Height of each stone's highest point [m]: a disc's centre + radius, a polygon's highest vertex."""
+    if is_polygon_system(system):
+        offset = np.asarray(system.poly_offset)
+        w = world_polygon_vertices(system.poly_vertex, offset, system.disc_pos, system.disc_angle)
+        return np.maximum.reduceat(w[:, 1], offset[:-1])
     return np.asarray(system.disc_pos)[:, 1] + np.asarray(system.disc_radius)
+
+
+def stone_outlines(system) -> Optional[List[np.ndarray]]:
+    """The world outline (v, 2) [m] of every polygon stone; None for discs."""
+    if not is_polygon_system(system):
+        return None
+    return outlines(np.asarray(system.poly_vertex), np.asarray(system.poly_offset), system.disc_pos,
+                    system.disc_angle)
 
 
 def _speeds(system) -> np.ndarray:
@@ -213,9 +229,11 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
     pos[:nb, 0], pos[:nb, 1] = xb, 0.5 * db
     pos[nb:, 1] = 2.0 * d  # parked, inactive until released
     fixed = np.r_[np.ones(nb, bool), np.zeros(setup.n_stones, bool)]
-    sys_ = builder.stone_system(scene, repose_params(scene, submerged, xb[-1] + db[-1]), pos, diam, fixed)
+    shapes = builder.stone_shapes(scene, diam, seed)
+    sys_ = builder.stone_system(scene, repose_params(scene, submerged, xb[-1] + db[-1]), pos, diam, fixed, shapes)
+    turn = _orientations(sys_, seed, nb)
     sys_.disc_active[nb:] = 0
-    base_top = float(db.max())
+    base_top = float(stone_tops(sys_)[:nb].max())
     dt_release = setup.release_interval
     for k in range(nb, nb + setup.n_stones):
         x = setup.funnel_jitter * d * rng.uniform(-1.0, 1.0)
@@ -231,6 +249,8 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
         sys_.disc_pos[k] = (x, z)
         sys_.disc_vel[k] = (0.0, 0.0)
         sys_.disc_omega[k] = 0.0
+        if turn is not None:
+            sys_.disc_angle[k] = turn[k]
         sys_.disc_active[k] = 1
         sys_.advance(dt_release)
         if log and (k - nb + 1) % 100 == 0:
@@ -247,7 +267,22 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
     return ReposeResult(seed=seed, submerged=submerged, left=left, right=right, height=float(height),
                         base_top=base_top, settled=settled, max_speed=float(_speeds(sys_)[nb:].max()),
                         time=float(sys_.time), pos=P.copy(), radius=np.asarray(sys_.disc_radius).copy(),
-                        fixed=fixed, envelope=env)
+                        fixed=fixed, envelope=env, outlines=stone_outlines(sys_))
+
+
+def _orientations(system, seed: int, nb: int) -> Optional[np.ndarray]:
+    """Polygon stones: a random orientation per stone [rad] from the heap's seed (a generator of its own,
+    so the discs' draws stay as they were); the nb stones of the base are turned at once and set on the
+    bed by their lowest vertex, the others take theirs as they leave the funnel. None for discs."""
+    if not is_polygon_system(system):
+        return None
+    turn = np.random.default_rng([seed, 1]).uniform(0.0, 2.0 * math.pi, system.n)
+    offset = np.asarray(system.poly_offset)
+    low = np.minimum.reduceat(world_polygon_vertices(system.poly_vertex, offset, np.zeros((system.n, 2)), turn)[:, 1],
+                              offset[:-1])
+    system.disc_angle[:nb] = turn[:nb]
+    system.disc_pos[:nb, 1] = -low[:nb]
+    return turn
 
 
 def repose_test(scene: Scene, seeds: Sequence[int] = (0, 1, 2), submerged: bool = False,
@@ -343,7 +378,7 @@ def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None
     a = math.radians(w.downstream_slope_deg)
     n = np.array([math.sin(a), math.cos(a)])   # outward normal of the downstream slope
     t = np.array([-math.cos(a), math.sin(a)])  # up the slope
-    P, R = np.asarray(system.disc_pos), np.asarray(system.disc_radius)
+    P, R = np.asarray(system.disc_pos), 0.5 * stone_diameters(system)  # polygons: nominal radii
     on = np.asarray(system.disc_active).astype(bool)
     free = on & (np.asarray(system.disc_fixed) == 0)
     s = (P - [w.x_toe_down, 0.0]) @ n
@@ -386,7 +421,7 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
     system.import_state(state)
     e = np.asarray(direction, float) / np.linalg.norm(direction)
     x0 = np.array(system.disc_pos[stone])
-    d = 2.0 * float(system.disc_radius[stone])
+    d = float(system.nominal_diameter(stone))
     weight = float(system.mass(stone)) * builder.GRAVITY
     steps = int(round(setup.max_travel / setup.speed / setup.update))
     travel, force = np.zeros(steps), np.zeros(steps)
@@ -459,11 +494,17 @@ def pull_markdown(results: Sequence[PullResult]) -> str:
 PULL_COLORS = {"vertical": "tab:blue", "normal": "tab:green", "horizontal": "tab:red"}
 
 
-def _discs(ax, pos, radius, fixed):
-    from matplotlib.collections import EllipseCollection
+def _discs(ax, pos, radius, fixed, polygons=None):
+    """The stones: discs of their radius, or the polygons' outlines; fixed ones grey."""
+    from matplotlib.collections import EllipseCollection, PolyCollection
 
     from .plots import _MPL_36
 
+    if polygons is not None:
+        for sel, face in ((fixed, "0.55"), (~fixed, "tan")):
+            ax.add_collection(PolyCollection([polygons[i] for i in np.flatnonzero(sel)], facecolors=face,
+                                             edgecolors="0.25", linewidths=0.3))
+        return
     for sel, face in ((fixed, "0.55"), (~fixed, "tan")):
         d = 2.0 * radius[sel]
         ax.add_collection(EllipseCollection(d, d, np.zeros(sel.sum()), units="xy", offsets=pos[sel],
@@ -477,7 +518,7 @@ def fig_heap(result: ReposeResult, title: str = ""):
 
     fig = Figure(figsize=(8.0, 3.4), layout="constrained")
     ax = fig.add_subplot()
-    _discs(ax, result.pos, result.radius, result.fixed)
+    _discs(ax, result.pos, result.radius, result.fixed, result.outlines)
     env = result.envelope
     ax.plot(env[:, 0], env[:, 1], ".", color="0.3", ms=3, label="envelope (highest top per bin)")
     for fit, side in ((result.left, "left"), (result.right, "right")):

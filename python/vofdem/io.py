@@ -20,6 +20,7 @@ Layout of ``run.h5`` (SI units; a capacity of T snapshots, a grid of nx x nz cel
     /stones/pos, vel    (T,n,2)   [m], [m/s]
     /stones/active      (T,n)     uint8   0 once a stone has left the domain
     /stones/force_drag, force_pressure (T,n,2) [N]   fluid forces on each stone
+    /stones/poly_*, /stones/angle        polygon stones only: see polygon_output.py
     /snapshots/000042/<name>      snapshot 42 of each series above as a dataset of its own (an HDF5
                                   virtual dataset, no copy): for readers that take whole datasets only
     /profile/names, seconds, calls        the solver's per-stage cost (written at the end)
@@ -34,8 +35,9 @@ the one flushed when the file was made. A snapshot is complete when its time is 
 written last, after the other values were flushed. The end of a run (status, profile) is written into
 a copy that replaces the file atomically. The XDMF files are rewritten after each snapshot (write,
 then rename) and list exactly the completed snapshots: ``run.xmf`` (the fields on the quadrilateral
-mesh, cell-centred, and the stones as a point cloud; open it in ParaView) and ``stones.xmf`` (the
-stones alone, for meshio, whose time-series reader takes one collection per file).
+mesh, cell-centred, the stones as a point cloud and, for polygon stones, their outlines as polygons;
+open it in ParaView) and ``stones.xmf`` (the stones alone, for meshio, whose time-series reader takes
+one collection per file: the last one, so the fields come last in ``run.xmf``).
 """
 from __future__ import annotations
 
@@ -50,6 +52,8 @@ from typing import Dict, List, Optional, Sequence
 
 import h5py
 import numpy as np
+
+from . import polygon_output
 
 # the HDF5 format written: the oldest object versions ('earliest': superblock 0, which has no
 # open-for-write flag), and nothing newer than HDF5 1.10 reads (virtual datasets need 1.10)
@@ -127,16 +131,17 @@ class RunWriter:
     XDMF files beside it. Use as a context manager, or reopen a killed run's file with `reopen`.
 
     capacity: the number of snapshots the file holds (the run's snapshot times are known in advance);
-    a snapshot beyond it raises ValueError."""
+    a snapshot beyond it raises ValueError. polygons: (body-frame vertices (m, 2) [m], offsets (n + 1))
+    of polygon stones (polygon_output.py), None for discs; each snapshot then needs stones["angle"]."""
 
     def __init__(self, path, x_faces: Sequence[float], z_faces: Sequence[float], diameters: Sequence[float],
                  fixed: Sequence[bool], capacity: int, scene_toml: str = "", seed: int = 0, version: str = "",
-                 write_fields: bool = True):
+                 write_fields: bool = True, polygons=None):
         if not int(capacity) >= 1:
             raise ValueError(f"capacity = {capacity} snapshots is out of range (allowed: >= 1)")
         self.path = Path(path)
         self._geometry(np.asarray(x_faces, float), np.asarray(z_faces, float), len(diameters), write_fields,
-                       int(capacity))
+                       int(capacity), polygons)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.file = None
         try:
@@ -163,7 +168,7 @@ class RunWriter:
             f.close()
             raise ValueError(f"count = {count} snapshots is out of range for {self.path} (allowed: 1 .. {T})")
         self._geometry(f["grid/x_faces"][()], f["grid/z_faces"][()], f["stones/diameter"].shape[0],
-                       "fields" in f, T)
+                       "fields" in f, T, polygon_output.reopen(f))
         f["time"][count:] = np.nan
         f.flush()
         self.count = count
@@ -180,9 +185,12 @@ class RunWriter:
         except (OSError, ValueError, RuntimeError):
             pass
 
-    def _geometry(self, x_faces, z_faces, n, write_fields, capacity):
+    def _geometry(self, x_faces, z_faces, n, write_fields, capacity, polygons=None):
         self.xmf_path = self.path.with_suffix(".xmf")
         self.stones_xmf_path = self.path.with_name("stones.xmf")
+        # polygon stones: (body-frame vertices (m, 2), offsets (n + 1)); None for discs
+        self.polygons = None if polygons is None or not n else (np.asarray(polygons[0], float).reshape(-1, 2),
+                                                                 np.asarray(polygons[1], np.int64))
         self.x_faces, self.z_faces = x_faces, z_faces
         self.nx, self.nz = x_faces.size - 1, z_faces.size - 1
         self.n = n
@@ -190,7 +198,7 @@ class RunWriter:
         self.capacity = capacity
         self.count = 0
         self._times: List[float] = []
-        self._xdmf_steps: Dict[str, List[str]] = {"fields": [], "stones": []}
+        self._xdmf_steps: Dict[str, List[str]] = {"fields": [], "stones": [], "stone_polygons": []}
 
     def _series(self, f, name, tail, dtype, fill):
         """A time series (capacity, *tail), contiguous, allocated and filled at once, with a virtual
@@ -228,6 +236,8 @@ class RunWriter:
             for name in STONE_VECTORS:
                 self._series(f, f"stones/{name}", (self.n, 2), "f8", np.nan)
             self._series(f, "stones/active", (self.n,), "u1", 0)
+        if self.polygons is not None:
+            polygon_output.create_datasets(f, *self.polygons, self.n, self._series)
 
     def __enter__(self):
         return self
@@ -253,6 +263,8 @@ class RunWriter:
                 for name in STONE_VECTORS:
                     f[f"stones/{name}"][k] = np.asarray(stones[name]).reshape(self.n, 2)
                 f["stones/active"][k] = np.asarray(stones["active"]).astype(np.uint8)
+            if self.polygons is not None:
+                polygon_output.write_snapshot(f, k, *self.polygons, stones["pos"], stones["angle"])
             f.flush()
             f["time"][k] = t
             f.flush()
@@ -273,7 +285,12 @@ class RunWriter:
                                        self.write_fields)
             steps["fields"].append(fields)
             steps["stones"].append(stones)
-        both = ([("stones", steps["stones"])] if self.n else []) + (
+            if self.polygons is not None:
+                steps["stone_polygons"].append(polygon_output.xdmf_grid(
+                    self.path.name, k, self._times[k], self.n, len(self.polygons[0]), _item, _attribute))
+        # meshio reads the last collection of a file: the fields
+        polygons = [("stone_polygons", steps["stone_polygons"])] if self.polygons is not None else []
+        both = ([("stones", steps["stones"])] if self.n else []) + polygons + (
             [("fields", steps["fields"])] if self.write_fields else [])
         _replace_text(self.xmf_path, xdmf_document(both))
         if self.n:
@@ -393,6 +410,7 @@ class RunData:
             for name in STONE_VECTORS:
                 setattr(self, name, f[f"stones/{name}"][:T] if n else np.zeros((T, 0, 2)))
             self.active = f["stones/active"][:T].astype(bool) if n else np.zeros((T, 0), bool)
+            self.poly_vertex, self.poly_offset, self.angle = polygon_output.read(f, T)  # None for discs
             self.has_fields = "fields" in f
             self.profile = None
             if "profile" in f:
@@ -423,6 +441,12 @@ class RunData:
             raise IndexError(f"snapshot {k} is out of range (the run has {T} completed snapshots)")
         with open_run(self.path) as f:
             return {name: f[f"fields/{name}"][k % T].astype(float) for name in FIELD_NAMES}
+
+    def stone_outlines(self, k: int):
+        """Polygon stones: the world outline (v, 2) [m] of every stone at snapshot k; None for discs."""
+        if self.poly_vertex is None:
+            return None
+        return polygon_output.outlines(self.poly_vertex, self.poly_offset, self.pos[k], self.angle[k])
 
     def index_at(self, t: float) -> int:
         """Snapshot nearest to time t [s]."""

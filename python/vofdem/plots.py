@@ -23,7 +23,7 @@ from typing import List, Optional, Sequence
 
 import matplotlib
 import numpy as np
-from matplotlib.collections import EllipseCollection
+from matplotlib.collections import EllipseCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
@@ -57,6 +57,12 @@ def _stones(ax, data, k, colors=None, alpha=1.0):
     if colors is None:
         colors = np.where(data.fixed, "0.45", "tan")
     face = "none" if isinstance(colors, str) else list(np.asarray(colors)[keep])
+    outlines = data.stone_outlines(k) if hasattr(data, "stone_outlines") else None
+    if outlines is not None:  # polygon stones
+        col = PolyCollection([o for o, a in zip(outlines, keep) if a], facecolors=face, edgecolors="0.2",
+                             linewidths=0.4, alpha=alpha, zorder=3)
+        ax.add_collection(col)
+        return col
     col = EllipseCollection(data.diameter[keep], data.diameter[keep], np.zeros(keep.sum()), units="xy",
                             offsets=pos[keep], facecolors=face,
                             edgecolors="0.2", linewidths=0.4, alpha=alpha, zorder=3,

@@ -26,6 +26,7 @@ import numpy as np
 from .analysis import FailureAnalysis, analyse
 from .checkpoint import CHECKPOINT_EVERY, CHECKPOINT_NAME, Checkpoint, load_checkpoint, save_checkpoint
 from .io import OutputError, RunData, RunWriter, cell_velocities, check_writable
+from .polygon_output import stone_diameters, stone_polygons
 from .scene import Scene
 
 
@@ -109,7 +110,8 @@ class _Recorder:
         self.gauge_i = int(np.clip(np.searchsorted(self.x_faces, scene.gauge_x) - 1, 0, self.nx - 1))
         start = sim.stones.disc_pos if pos0 is None else pos0
         self.pos0 = np.array(start, float).reshape(-1, 2).copy()
-        self.diameter = 2.0 * np.asarray(sim.stones.disc_radius, float)
+        self.diameter = stone_diameters(sim.stones)
+        self.polygons = stone_polygons(sim.stones) is not None
         self.fixed0 = np.zeros(len(self.diameter), bool) if fixed0 is None else np.asarray(fixed0, bool)
         self.removal_t = np.full(len(self.diameter), np.nan)  # first snapshot of each removal (analysis.py)
         self.moved = 0
@@ -126,6 +128,8 @@ class _Recorder:
                   "force_drag": np.asarray(sim.disc_force_drag).reshape(-1, 2),
                   "force_pressure": np.asarray(sim.disc_force_pressure).reshape(-1, 2),
                   "active": np.asarray(st.disc_active).astype(bool)}
+        if self.polygons:
+            stones["angle"] = np.array(st.disc_angle, float)
         t = float(sim.time)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
         removed = (disp > self.diameter) | ~stones["active"]
@@ -238,9 +242,9 @@ class _Loop:
             self.targets = _targets(self.t_start, scene.duration, scene.output.snapshot_interval,
                                     ramp if self.hold else None)
             x_faces, z_faces = grid_faces(sim.fluid.grid)
-            self.writer = RunWriter(out / "run.h5", x_faces, z_faces, 2.0 * np.asarray(st.disc_radius, float),
-                                    self.fixed0, capacity=1 + len(self.targets), scene_toml=scene.to_toml(),
-                                    seed=scene.seed, version=version)
+            self.writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), self.fixed0,
+                                    capacity=1 + len(self.targets), scene_toml=scene.to_toml(), seed=scene.seed,
+                                    version=version, polygons=stone_polygons(st))
             if self.hold:
                 st.disc_fixed[:] = True
             self.base_profile, self.base_wall, pos0 = {}, 0.0, None
@@ -319,7 +323,8 @@ class _Loop:
 def _model_attrs(sim, scene: Scene) -> dict:
     """The model options of the run: the drag model, the porosity mapping and the porosity n_s inside
     each disc that eq. (11) used (n_exp, or the bulk-consistent value computed at build)."""
-    out = {"drag_model": scene.stones.drag_model, "porosity_mapping": scene.stones.porosity_mapping}
+    out = {"drag_model": scene.stones.drag_model, "porosity_mapping": scene.stones.porosity_mapping,
+           "stone_shape": scene.stones.shape}
     params = getattr(sim, "params", None)
     if params is not None and hasattr(params, "n_exp"):
         out["disc_porosity"] = float(params.n_exp)

@@ -162,7 +162,10 @@ def _validate_grading(sec, prefix: str) -> None:
 
 @dataclass
 class Stones(_Section):
-    """The weir's stones (discs in the x-z plane with the mass and area of spheres)."""
+    """The weir's stones: discs in the x-z plane with the mass and area of spheres (``shape = 'disc'``), or
+    convex polygons of quarried-stone form with the mass, inertia and projected area of the matching 3D
+    stone (``shape = 'polygon'``; polygon.h). A polygon's ``diameter`` is its nominal diameter, that of the
+    disc of equal area (the matching stone has the mass of the sphere of that diameter)."""
 
     diameter: float = _p(0.048, "length", 0.001, 0.5, "mean stone diameter [m]; the paper's 0.048", "[]")
     diameter_spread: float = _p(0.1, None, 0.0, 0.5, "diameters uniform in d (1 +- spread) [-]; 0 = one size")
@@ -186,6 +189,14 @@ class Stones(_Section):
                                     "1 - (1 - n_exp) / phi that makes the weir's mean porosity n_exp ('bulk'; phi: the "
                                     "packing's 2D solid fraction)")
     fix_bottom_layer: bool = _flag(True, "stones touching the bed are fixed to it (as in the paper)")
+    shape: str = _choice("disc", ("disc", "polygon"),
+                         "stone shape: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
+                         "form, one per stone from the seed)")
+    polygon_vertices_min: int = _p(5, None, 3, 16, "fewest vertices of a polygon stone [-]; usual 5")
+    polygon_vertices_max: int = _p(8, None, 3, 16, "most vertices of a polygon stone [-]; usual 8")
+    aspect_ratio: float = _p(1.5, None, 1.0, 3.0, "length / thickness of a polygon stone's section [-]; usual 1.5")
+    polygon_radial_jitter: float = _p(0.2, None, 0.0, 0.5, "polygon vertex radii 1 +- jitter before the hull [-]; "
+                                      "usual 0.2")
     positions: List[List[float]] = field(default_factory=list, metadata=dict(
         doc="explicit stone centres [[x m, z m], ...] instead of packing the weir; empty = pack"))
     diameters: List[float] = field(default_factory=list, metadata=dict(
@@ -198,6 +209,7 @@ class Stones(_Section):
 
     def validate(self, prefix: str = "stones") -> None:
         self._validate_fields(prefix)
+        self._validate_polygon(prefix)
         _validate_grading(self, prefix)
         size = {"lo": 0.001, "hi": 0.5, "closed": "[]", "kind": "length"}
         if not isinstance(self.positions, (list, tuple)):
@@ -213,6 +225,22 @@ class Stones(_Section):
                                  f"{prefix}.positions has {len(self.positions)}: they must match")
             for j, d in enumerate(self.diameters):
                 _check_number(f"{prefix}.diameters[{j}]", d, size)
+
+    def _validate_polygon(self, prefix: str) -> None:
+        for name in ("polygon_vertices_min", "polygon_vertices_max"):
+            v = getattr(self, name)
+            if v != int(v):
+                raise ValueError(f"{prefix}.{name} = {_fmt(v)} must be a whole number in [3, 16]")
+            setattr(self, name, int(v))
+        if self.polygon_vertices_max < self.polygon_vertices_min:
+            raise ValueError(f"{prefix}.polygon_vertices_max = {self.polygon_vertices_max} is outside the allowed "
+                             f"range [{self.polygon_vertices_min}, 16] (at least {prefix}.polygon_vertices_min)")
+        # a polygon resists rolling by its shape; the disc law on its bounding radius has no physical basis
+        for name in ("rolling_friction", "rolling_friction_wall"):
+            if self.shape == "polygon" and getattr(self, name) > 0.0:
+                raise ValueError(f"{prefix}.{name} = {_fmt(getattr(self, name))} is outside the allowed range [0, 0] "
+                                 f"with {prefix}.shape = 'polygon': the rolling resistance is a law for disc stones "
+                                 "(polygon stones resist rolling by their shape)")
 
     def grading(self):
         """The sieve curve of the stones (grading.Grading) when one is given (grading_diameters and
@@ -487,7 +515,24 @@ class Scene:
             _check_number("end_time", self.end_time, {"lo": 0.0, "hi": 1e6, "closed": "(]", "kind": "time"})
         self._validate_zones()
         self._validate_geometry()
+        self._validate_polygon_packing()
         return self
+
+    def _validate_polygon_packing(self) -> None:
+        # polygon stones are packed by pack_weir (a trapezoid of uniform sizes) or given explicitly; the
+        # outline packer (outline_packing.py) places discs only
+        s, w = self.stones, self.weir
+        if s.shape != "polygon" or s.positions:
+            return
+        from .outline import as_trapezoid
+
+        why = ("zones (zones[0])" if self.zones else
+               "a sieve curve (stones.grading_diameters/grading_passing or d15/d50/d85)" if s.grading() is not None else
+               f"weir.outline = {w.outline!r}, not a trapezoid" if w.outline and as_trapezoid(w.outline) is None else "")
+        if why:
+            raise ValueError(f"stones.shape = 'polygon' is outside the allowed values ['disc'] with {why}: the outline "
+                             "packer places disc stones only; polygons need a trapezoid weir of sizes uniform in "
+                             "stones.diameter +- diameter_spread, or explicit stones.positions")
 
     def _validate_zones(self) -> None:
         if not isinstance(self.zones, (list, tuple)):
@@ -527,6 +572,9 @@ class Scene:
         if g.dx >= f.length / 4 or g.dz >= f.height / 4:
             raise ValueError(f"grid.dx = {g.dx:.4g} m / grid.dz = {g.dz:.4g} m is too coarse: the flume needs at "
                              f"least 4 cells each way (length {f.length:.4g} m, height {f.height:.4g} m)")
+        if s.shape == "polygon" and self.numerics.porosity_method == "lookup":
+            raise ValueError("numerics.porosity_method = 'lookup' (the paper's table of disc areas) is for disc "
+                             "stones; stones.shape = 'polygon' needs porosity_method = 'exact'")
         if g.bed_layer_height >= f.height / 2:
             raise ValueError(f"grid.bed_layer_height = {g.bed_layer_height:.4g} m is outside the allowed range "
                              f"[0, {f.height / 2:.4g}) m (half the domain height)")

@@ -46,6 +46,27 @@ TEST(DragExchange, SphereDragSlopeIsTheDerivativeAlongTheRelativeVelocity) {
   EXPECT_EQ(sphere_drag_slope(sample(0.5, 0.0, 0.0), 0.0, 0.0, 0.048, 998.2, 1.004e-6, DragLaw::kPaper), 0.0);
 }
 
+TEST(DragExchange, AreaDragSlopeIsTheDerivativeAlongTheRelativeVelocity) {
+  // a polygon stone's drag: its projected area held, the nominal diameter in Re and the Stokes term
+  const double d = 0.048, area = 1.7e-3, rho = 998.2, nu = 1.004e-6;
+  for (DragLaw law : {DragLaw::kPaper, DragLaw::kSchillerNaumann}) {
+    for (double speed : {4e-6, 0.05, 0.3, 1.2}) {
+      const StoneFlowSample s = sample(0.6 * speed, 0.8 * speed, 0.75);
+      const double r = speed, h = 1e-5 * r;
+      const DragForce a = stone_drag_area(s, 0.6 * h, 0.8 * h, d, area, rho, nu, law);
+      const DragForce b = stone_drag_area(s, -0.6 * h, -0.8 * h, d, area, rho, nu, law);
+      const double numeric = -((a.fx - b.fx) * 0.6 + (a.fz - b.fz) * 0.8) / (2.0 * h);
+      const double slope = stone_drag_slope_area(s, 0.0, 0.0, d, area, rho, nu, law);
+      EXPECT_NEAR(slope, numeric, 1e-6 * slope) << "speed " << speed;
+    }
+  }
+  // the sphere's area gives the sphere's slope; dry: none
+  const StoneFlowSample s = sample(0.3, -0.1, 1.0);
+  EXPECT_NEAR(stone_drag_slope_area(s, 0.0, 0.0, d, M_PI * d * d / 4.0, rho, nu, DragLaw::kPaper),
+              sphere_drag_slope(s, 0.0, 0.0, d, rho, nu, DragLaw::kPaper), 1e-15);
+  EXPECT_EQ(stone_drag_slope_area(sample(0.3, 0.0, 0.0), 0.0, 0.0, d, area, rho, nu, DragLaw::kPaper), 0.0);
+}
+
 TEST(DragExchange, LinearisationKeepsTheForceAndPointsBetweenStoneAndFlow) {
   // quadratic drag 2 (U - v)|U - v| with U = (1, 0), v = (0.2, 0): F = 1.28, slope 4 |r| = 3.2
   const LinearDrag l = linearise_drag({1.28, 0.0}, 3.2, 0.2, 0.0);

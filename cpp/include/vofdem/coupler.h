@@ -10,7 +10,8 @@
 //
 // One coupling step of dt [s] runs these stages in this order, each timed into profile() and each
 // skipped when its effect is off or has nothing to act on:
-//   1. "porosity"      stones -> cell and face porosity (exact disc areas or the paper's lookup table),
+//   1. "porosity"      stones -> cell and face porosity (exact disc or polygon areas, or the paper's lookup
+//                      table for discs),
 //                      water volume n F V kept per cell (water_redistribution.h), stones' velocity at
 //                      the faces for the relative-velocity resistance
 //   2. "fluid_forces"  pore velocity and pressure gradient averaged over each stone's cells
@@ -186,6 +187,7 @@ class Coupler {
   [[noreturn]] void fail(const std::string& stage, const std::string& what, double courant = 0.0);
   bool has_fluid() const { return fluid_ != nullptr; }
   bool has_stones() const { return stones_ != nullptr && n_ > 0; }
+  bool polygons() const { return stones_ != nullptr && stones_->shape() == StoneShape::kPolygon; }
 
   VOFGrid* fluid_;
   DEMSystem* stones_;

@@ -16,6 +16,10 @@
 // is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (disc_drag_coef c_i, disc_drag_vel
 // U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
 //
+// Stone shape: discs (the default) or convex polygons (set_polygons(); polygon.h gives the matching 3D
+// stone's V and I, polygon_contact.h the contact manifolds). For polygons disc_radius is the bounding
+// radius (neighbour search), disc_angle the orientation of the body-frame vertices poly_vertex.
+//
 // Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
 // evaluation per step. The linear drag is integrated exactly in each half kick (exponential integrator):
 // a half kick of h with the total acceleration a (drag included) adds h a phi(h k), k = c / (M + M'),
@@ -39,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "vofdem/polygon.h"
 #include "vofdem/profile.h"
 
 namespace vofdem {
@@ -79,8 +84,8 @@ struct DEMParams {
   double friction_stone = 0.577;              // stone-stone Coulomb coefficient [-] (paper 0.577)
   double inertia_factor = 0.4;                // I = factor M r^2 [-]; 0.4 sphere, 0.5 disc
   // rolling resistance (rolling_resistance.h; only with kDEMRollingResistance): M_r <= mu_r R* f_n
-  double rolling_friction_stone = 0.0;        // mu_r stone-stone [-], >= 0; 0 = none
-  double rolling_friction_wall = 0.0;         // mu_r stone-wall [-], >= 0; 0 = none
+  double rolling_friction_stone = 0.0;        // mu_r stone-stone [-], >= 0; 0 = none (discs only: polygons refuse > 0)
+  double rolling_friction_wall = 0.0;         // mu_r stone-wall [-], >= 0; 0 = none (discs only)
   double rolling_damping = 0.3;               // eta_r = C_r / (2 sqrt(I_r k_r)) [-] in [0, 1]; off at full mobilisation
   std::array<double, 2> domain_min{-1e30, -1e30};  // removal box, lower corner (x, z) [m]
   std::array<double, 2> domain_max{1e30, 1e30};    // removal box, upper corner (x, z) [m]
@@ -159,13 +164,28 @@ class DEMSystem {
   int neighbour_builds() const { return nbuilds_; }
   DEMEnergy energy() const;
 
-  // derived per-stone properties of the sphere of the disc's diameter (read-only for users)
+  // derived per-stone properties of the sphere of the disc's diameter, or of the matching 3D stone of
+  // a polygon (polygon.h) (read-only for users)
   double mass(int i) const;    // M_i [kg]
   double volume(int i) const;  // V_i [m^3]
-  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]
+  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]; polygons: mean over directions, r_A P / 2
+  // ---- stone shape ----
+  StoneShape shape() const { return shape_; }
+  // makes every stone a convex polygon: body-frame vertices (x, z pairs, counter-clockwise, centroid at
+  // the origin) [m], stone i owning vertices offset[i] .. offset[i+1]-1 (3 to 16 each); sets disc_radius
+  // to each bounding radius. Throws std::invalid_argument for a bad polygon (naming the stone).
+  void set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset);
+  // nominal diameter [m]: 2 r for a disc, the equal-area disc's diameter for a polygon
+  double nominal_diameter(int i) const;
+  // projected area [m^2] of the 3D stone seen along the direction (ux, uz) in the flume's plane: pi r^2
+  // for a disc; (pi / 2) r_A W for a polygon, W its width across the direction (an ellipsoid's exact rule)
+  double projected_area(int i, double ux, double uz) const;
+  // moment of inertia I_i [kg m^2] about the axis normal to the flume's plane
+  double inertia(int i) const;
   // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
   std::vector<std::array<int, 2>> neighbour_pairs() const;
-  // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests)
+  // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests; for polygon stones,
+  // pairs whose bounding discs overlap)
   std::vector<std::array<int, 2>> overlapping_pairs_reference() const;
   // pairs that overlap now, from the fast neighbour search
   std::vector<std::array<int, 2>> overlapping_pairs();
@@ -200,14 +220,25 @@ class DEMSystem {
   std::vector<double> disc_alpha;           // angular acceleration of the last evaluation [rad/s^2], n
   std::vector<std::uint8_t> disc_asleep;    // 1: sleeping (not integrated), n
   std::vector<double> disc_sleep_timer;     // time spent below the sleep speed [s], n
+  // polygon stones only (empty for discs): body-frame vertices (x, z pairs, CCW) [m] and the index of
+  // each stone's first vertex, n + 1 (set_polygons)
+  std::vector<double> poly_vertex;
+  std::vector<int> poly_offset;
 
  private:
+  // tangential springs of up to two manifold points of a polygon contact, by feature id (-1: empty)
+  struct PolygonHistory {
+    int id[2] = {-1, -1};
+    double xi[2] = {0.0, 0.0};
+    double spring(int feature) const { return id[0] == feature ? xi[0] : (id[1] == feature ? xi[1] : 0.0); }
+  };
   struct Pair {
     int i, j;
     double xi;         // tangential spring [m]
     double sqrt_m;     // sqrt of the pair's reduced mass [kg^0.5], set at each build
     double mr = 0.0;   // rolling spring moment M_r^k on i [N m] (rolling resistance only)
     double roll_c = 0.0;  // 2 R* sqrt(I_r) [kg^0.5 m^2]: C_r = eta_r sqrt(k_t) roll_c (rolling resistance only)
+    PolygonHistory poly{};  // polygon stones: the springs of the manifold points
   };
   void prepare();
   void check_params() const;
@@ -239,6 +270,7 @@ class DEMSystem {
   bool rolling_stones() const;
   bool rolling_walls() const;
   void check_rolling_params() const;
+  void check_rolling_shape(StoneShape shape) const;  // refuses mu_r > 0 for polygon stones
   double rolling_spin_stiffness(double m_min) const;
   void update_rolling_inertia();
   void update_pair_rolling();  // Pair::roll_c of every listed pair
@@ -249,6 +281,18 @@ class DEMSystem {
   RollingEnergy rolling_wall(int i, double& mr, double fn, double dt);
   void sleep_update(double dt);
   double reduced_stiffness_mass() const;
+  // polygon stones (dem_polygon.cpp)
+  void update_polygon_properties();
+  void polygon_world(int i);
+  struct SatCache;
+  bool polygon_reference(SatCache& cache, int i, int j, double dx, double dz, int& flip, int& edge);
+  int polygon_incident(SatCache& cache, int i, int j, int flip, int edge);
+  void polygon_contact_forces(double dt);
+  void polygon_wall_forces(double dt);
+  double polygon_stable_dt() const;
+  double inertia_of(int i, double mass) const;
+  void export_polygons(std::map<std::string, std::vector<double>>& s) const;
+  void import_polygons(const std::map<std::string, std::vector<double>>& s);
 
   DEMParams params_;
   int n_ = 0;
@@ -291,6 +335,30 @@ class DEMSystem {
   std::vector<Pair> new_pairs_;
   std::vector<double> cached_radius_;
   std::vector<std::uint8_t> cached_active_, cached_fixed_;
+
+  // polygon stones: shape, derived section properties and per-evaluation world geometry
+  StoneShape shape_ = StoneShape::kDisc;
+  std::vector<double> poly_area_;     // section area A [m^2], n
+  std::vector<double> poly_jratio_;   // J_A / A [m^2], n
+  std::vector<double> poly_normal_;   // body-frame edge normals, as poly_vertex
+  std::vector<double> poly_world_, poly_world_normal_;  // world-frame vertices and normals
+  std::vector<long long> poly_world_stamp_;  // the force evaluation whose world geometry a stone holds
+  long long poly_eval_ = 0;                  // force evaluations so far (a cache key, not state)
+  // separating-axis cache of each polygon pair (dem_polygon.cpp): saves the full test while the pose has
+  // not moved enough to change its answer; never changes a result, so it is no part of the state
+  struct SatCache {
+    int flip = -1, edge = 0;  // the axis (flip -1: none)
+    double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
+    double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
+    // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
+    // its lead over the next edge (in n . u) [-]; inc -1: none
+    int inc = -1, inc_flip = 0, inc_edge = 0;
+    double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
+  };
+  std::vector<SatCache> poly_sat_cache_;
+  int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to
+  std::vector<double> cached_poly_vertex_;
+  std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
 
   StageProfile profile_;
 };

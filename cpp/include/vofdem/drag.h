@@ -35,5 +35,8 @@ DragForce drag_force(double u, double w, double up, double wp, double d, double 
 // the same without argument checks, for inner loops whose inputs were checked once
 DragForce drag_force_unchecked(double u, double w, double up, double wp, double d, double rho, double nu,
                                DragLaw law);
+// the same with the projected area A_p [m^2] given apart from the diameter d of Re (non-spherical stones)
+DragForce drag_force_area_unchecked(double u, double w, double up, double wp, double d, double area, double rho,
+                                    double nu, DragLaw law);
 
 }  // namespace vofdem

@@ -39,6 +39,10 @@ struct LinearDrag {
 // |dF/du_p| [N s/m] of the sphere drag (16)-(18) along the relative velocity, scaled by the wet fraction
 double sphere_drag_slope(const StoneFlowSample& s, double up, double wp, double d, double rho_w, double nu_w,
                          DragLaw law);
+// the same for a stone of projected area `area` [m^2] across the relative velocity and nominal diameter d
+// [m] (polygon stones, stone_drag_area); its area is held along the relative velocity
+double stone_drag_slope_area(const StoneFlowSample& s, double up, double wp, double d, double area, double rho_w,
+                             double nu_w, DragLaw law);
 
 // the drag force f [N] at the stone velocity (up, wp) [m/s] with slope [N s/m] as beta (U* - v); no
 // drag (slope <= 0) gives coef 0

@@ -9,6 +9,9 @@
 // a_c [m^2] is the area of the disc inside cell c (PorosityMapper's per-disc lists), F_c the water
 // fraction, n_c the porosity, u_c the superficial velocity at the cell centre, p the pressure [Pa],
 // g the gravity vector [m/s^2], V the stone's (sphere) volume [m^3] and A_p = pi d^2 / 4.
+// Polygon stones: V is the matching 3D stone's volume (polygon.h) and A_p the projected area of that
+// stone across the relative velocity, (pi / 2) r_A W (W: the polygon's width across U - u_p, r_A its
+// equal-area radius; exact for an ellipsoid, pi r^2 for a disc), d in Re its nominal diameter 2 r_A.
 //
 // Buoyancy is not counted twice: the DEM's eq. (9) already carries (M - rho_w V w) g, the buoyancy of
 // the hydrostatic pressure, so F_S uses the pressure gradient in excess of the hydrostatic one,
@@ -44,6 +47,11 @@ StoneFlowSample sample_flow_at_stone(int count, const int* cells, const double* 
 // drag (16)-(18) on a stone of diameter d [m] moving at (up, wp) [m/s], scaled by the wet fraction [N]
 DragForce stone_drag(const StoneFlowSample& s, double up, double wp, double d, double rho_w, double nu_w,
                      DragLaw law);
+
+// the same for a stone of projected area `area` [m^2] across the relative velocity and nominal diameter
+// d [m] in Re (polygon stones: DEMSystem::projected_area(i, U - u_p, W - w_p), nominal_diameter(i))
+DragForce stone_drag_area(const StoneFlowSample& s, double up, double wp, double d, double area, double rho_w,
+                          double nu_w, DragLaw law);
 
 // F_S [N] on a stone of volume V [m^3]
 std::array<double, 2> stone_pressure_force(const StoneFlowSample& s, double volume);

@@ -27,6 +27,11 @@
 //    Discs whose centre lies outside the grid use the exact method. Measured costs and errors:
 //    docs/porosity.md and benchmarks/results/porosity_lookup_cost.md.
 //
+// Polygon stones (map_polygons, polygon_porosity.cpp): each convex polygon is clipped to the columns of
+// its bounding box and each column strip to the rows (Sutherland-Hodgman against axis-aligned lines),
+// so the areas are exact up to round-off and sum to the polygon's area; they feed the same per-stone
+// cell lists and eq. (11). The lookup table is built for discs and is refused for polygons.
+//
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using
 // VOF-DEM coupled model, ICHE 2008, Nagoya, section 2.4 and Fig. 3.
 #pragma once
@@ -91,6 +96,13 @@ class PorosityMapper {
   void map(int n, const double* disc_x, const double* disc_z, const double* disc_r,
            const std::uint8_t* disc_active = nullptr);
   void map(const std::vector<double>& disc_x, const std::vector<double>& disc_z, const std::vector<double>& disc_r);
+  // maps n convex polygon stones (centres (x, z) [m], angles [rad] counter-clockwise, body-frame vertices
+  // poly_vertex (x, z pairs) [m] of stone j from poly_offset[j] to poly_offset[j+1]-1, as DEMSystem holds
+  // them) onto the same outputs as map(), with exact polygon-cell areas. Throws std::invalid_argument
+  // for the lookup method, n > max_discs, a non-finite centre, 3 > vertices > 16 or a polygon reaching
+  // farther than r_max from its centre. Allocates nothing.
+  void map_polygons(int n, const double* x, const double* z, const double* angle, const double* poly_vertex,
+                    const int* poly_offset, const std::uint8_t* active = nullptr);
 
   const Grid2D& grid() const { return grid_; }
   const PorosityParams& params() const { return params_; }
@@ -125,6 +137,8 @@ class PorosityMapper {
   void build_tables();
   int add_exact(int j, double x, double z, double r, int p);
   int add_lookup(int j, double x, double z, double r, int p);
+  int add_polygon(const double* world, int count, int p);
+  void apply_eq11();
 
   Grid2D grid_;
   PorosityParams params_;
@@ -142,6 +156,7 @@ class PorosityMapper {
   std::vector<double> disc_cell_area_;
   std::vector<double> node_phi_;  // scratch of the exact method: node values, then 3 lines of scratch_line_
   int scratch_line_ = 0;
+  std::vector<double> poly_scratch_;  // scratch of map_polygons: world vertices, a strip, clip buffers
   int ndisc_ = 0;
 
   StageProfile profile_;

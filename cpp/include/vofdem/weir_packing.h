@@ -11,6 +11,12 @@
 // removed; (4) the slope walls removed and the mound settled until every stone moves slower than
 // rest_speed. Diameters are d_mean (1 + d_spread (2u - 1)), u uniform in [0, 1) from std::mt19937_64
 // with our own conversion (so a seed gives the same weir with any standard library).
+//
+// Polygon stones (shape = kPolygon): the same steps with convex polygons of nominal diameter d (the
+// equal-area disc's, polygon.h), their shapes and orientations from a second generator seeded from
+// `seed` (the diameters follow the same draws as for discs). The bottom row lies on its longest edges,
+// touching; the free stones take random orientations; the lattice pitch and the free-site tests use the
+// bounding radii, so no two polygons are placed overlapping.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +38,8 @@ struct WeirSpec {
   std::uint64_t seed = 0;       // random seed of the diameters and lattice jitter
   double settle_time_max = 6.0; // simulated time allowed for each settling phase [s]
   double rest_speed = 1e-3;     // packing is at rest when every stone is slower [m/s]
+  StoneShape shape = StoneShape::kDisc;  // discs (default) or convex polygons
+  PolygonSpec polygon;          // how polygon stones are drawn (shape = kPolygon)
 
   double x_end() const;                 // downstream toe [m]
   double top(double x) const;           // trapezoid's height above the bed at x [m] (0 outside)
@@ -52,12 +60,12 @@ struct WeirPackingReport {
 // is added); returns the DEM system, at rest, and fills `report`
 DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report);
 
-// largest deviation [m] of the packing from the trapezoid: the larger of (a) how far any disc reaches
+// largest deviation [m] of the packing from the trapezoid: the larger of (a) how far any stone reaches
 // outside the trapezoid and (b) how far any point of the trapezoid's slopes and crest lies from the
-// nearest disc
+// nearest stone (discs or polygons)
 double weir_outline_error(const DEMSystem& system, const WeirSpec& spec);
 
-// 2D porosity of the trapezoid filled by the discs, sampled on a grid of spacing h [m]
+// 2D porosity of the trapezoid filled by the stones (discs or polygons), sampled on a grid of spacing h [m]
 double weir_porosity(const DEMSystem& system, const WeirSpec& spec, double h = 0.002);
 
 }  // namespace vofdem

@@ -1,0 +1,389 @@
+// Polygon stones in DEMSystem: their shape, contact forces, stable step and checkpoint.
+//
+// Each manifold point of polygon_contact.h carries the disc's contact law (dem_contact.h) with the
+// point's depth delta_p and the relative velocity of the two bodies at the point:
+//
+//   v_rel = (v_i + omega_i x r_i) - (v_j + omega_j x r_j),   r = p - x (lever arm to the centre)
+//   f_n,p = k_n delta_p + c_n,p d(delta_p)/dt,   f_s,p = -k_t xi_p - c_t,p v_t,p,  |f_s,p| <= mu max(f_n,p, 0)
+//   c_n,p = 2 zeta sqrt(m* k_n / N)   (N points: each carries its share of the pair's mass, so a flat face
+//                                      striking flat on N points has the restitution e of the disc)
+//
+// and the force -f_n n + f_s t at p acts on i (its opposite on j), with the torque r x F. Each point's
+// tangential spring xi_p is kept from step to step by its feature id; a point that is new starts at 0.
+// k_n is the disc's (the same automatic stiffness from the mean stone's mass): a vertex touching a
+// face has the disc's stiffness, a face lying on a face twice (two points).
+//
+// Stable step: the largest eigenvalue of one pair's two points is bounded by the trace,
+//   omega^2 <= 2 N k (1/m + R^2 / I)  with N = 2 points and two equal stones,
+// R the bounding radius (the largest lever arm); the step is pi / (10 omega) as for discs.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "vofdem/check.h"
+#include "vofdem/dem_contact.h"
+#include "vofdem/dem_system.h"
+#include "vofdem/polygon_contact.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSqrtHalf = 0.70710678118654752440;  // a point's share of the pair's mass: sqrt(1 / N), N = 2
+
+// checks the polygon arrays of n stones; throws std::invalid_argument naming the stone
+void check_polygons(const std::vector<double>& vertex, const std::vector<int>& offset, int n) {
+  if (offset.size() != static_cast<std::size_t>(n) + 1)
+    throw std::invalid_argument("poly_offset has " + std::to_string(offset.size()) + " entries, expected n + 1 = " +
+                                std::to_string(n + 1));
+  if (offset[0] != 0) throw std::invalid_argument("poly_offset[0] = " + std::to_string(offset[0]) + ", expected 0");
+  for (int i = 0; i < n; ++i) {
+    const int c = offset[i + 1] - offset[i];
+    if (c < 3 || c > kPolygonMaxVertices)
+      throw std::invalid_argument("stone " + std::to_string(i) + " has " + std::to_string(c) +
+                                  " vertices: allowed range [3, " + std::to_string(kPolygonMaxVertices) + "]");
+  }
+  if (vertex.size() != 2 * static_cast<std::size_t>(offset[n]))
+    throw std::invalid_argument("poly_vertex has " + std::to_string(vertex.size()) + " values, expected 2 x " +
+                                std::to_string(offset[n]) + " (x, z pairs)");
+  for (int i = 0; i < n; ++i) {
+    const double* v = &vertex[2 * static_cast<std::size_t>(offset[i])];
+    const int c = offset[i + 1] - offset[i];
+    for (int k = 0; k < 2 * c; ++k) require_finite("poly_vertex", v[k]);
+    if (!polygon_is_convex_ccw(v, c))
+      throw std::invalid_argument("stone " + std::to_string(i) +
+                                  ": its polygon is not strictly convex and counter-clockwise");
+    const PolygonProperties q = polygon_properties(v, c);
+    if (std::hypot(q.centroid[0], q.centroid[1]) > 1e-6 * q.bounding_radius)
+      throw std::invalid_argument("stone " + std::to_string(i) + ": its polygon's centroid (" +
+                                  format_value(q.centroid[0]) + ", " + format_value(q.centroid[1]) +
+                                  ") m is not at the body origin (allowed |c| <= 1e-6 R)");
+  }
+}
+
+// cross product of 2D vectors: the torque of force (fx, fz) at lever (rx, rz)
+inline double cross(double rx, double rz, double fx, double fz) { return rx * fz - rz * fx; }
+}  // namespace
+
+void DEMSystem::set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset) {
+  check_polygons(vertex, offset, n_);
+  check_rolling_shape(StoneShape::kPolygon);
+  poly_vertex = vertex;
+  poly_offset = offset;
+  shape_ = StoneShape::kPolygon;
+  update_polygon_properties();
+  pairs_.clear();
+  poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
+  rebuild_ = true;
+  prepared_ = false;
+  forces_valid_ = false;
+}
+
+// section area, J/A, edge normals and bounding radius (disc_radius) of every polygon
+void DEMSystem::update_polygon_properties() {
+  check_polygons(poly_vertex, poly_offset, n_);
+  const std::size_t un = static_cast<std::size_t>(n_);
+  poly_area_.assign(un, 0.0);
+  poly_jratio_.assign(un, 0.0);
+  poly_normal_.assign(poly_vertex.size(), 0.0);
+  poly_world_.assign(poly_vertex.size(), 0.0);
+  poly_world_normal_.assign(poly_vertex.size(), 0.0);
+  poly_world_stamp_.assign(un, -1);
+  poly_sat_cache_.clear();  // its axes belong to the old shapes
+  for (int i = 0; i < n_; ++i) {
+    const int o = poly_offset[i], c = poly_offset[i + 1] - o;
+    const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], c);
+    poly_area_[i] = q.area;
+    poly_jratio_[i] = q.polar_moment / q.area;
+    disc_radius[i] = q.bounding_radius;
+    polygon_edge_normals(&poly_vertex[2 * o], c, &poly_normal_[2 * o]);
+  }
+  cached_poly_vertex_ = poly_vertex;
+}
+
+double DEMSystem::nominal_diameter(int i) const {
+  if (shape_ == StoneShape::kPolygon) return polygon_nominal_diameter(poly_area_[i]);
+  return 2.0 * disc_radius[i];
+}
+
+double DEMSystem::projected_area(int i, double ux, double uz) const {
+  if (shape_ != StoneShape::kPolygon || (ux == 0.0 && uz == 0.0)) return projected_area(i);
+  const int o = poly_offset[i];
+  const double w = polygon_width_across(&poly_vertex[2 * o], poly_offset[i + 1] - o, disc_angle[i], ux, uz);
+  return 0.25 * kPi * polygon_nominal_diameter(poly_area_[i]) * w;
+}
+
+double DEMSystem::polygon_stable_dt() const {
+  const bool rot = params_.flags & kDEMRotation;
+  double lam = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i] || disc_fixed[i]) continue;
+    const double m = mass(i), r = disc_radius[i];
+    lam = std::max(lam, 1.0 / m + (rot ? r * r / inertia_of(i, m) : 0.0));
+  }
+  if (!(lam > 0.0) || kn_ <= 0.0) return INFINITY;
+  const double w = std::sqrt(4.0 * std::max(kn_, kt_) * lam);
+  return kPi / (10.0 * w);
+}
+
+// world-frame vertices and edge normals of stone i, computed once per force evaluation and only for
+// the stones whose bounding disc touches another's or a wall (free-flying stones cost nothing)
+void DEMSystem::polygon_world(int i) {
+  if (poly_world_stamp_[i] == poly_eval_) return;
+  poly_world_stamp_[i] = poly_eval_;
+  const int o = poly_offset[i], n = poly_offset[i + 1] - o;
+  const double c = std::cos(disc_angle[i]), s = std::sin(disc_angle[i]);
+  polygon_to_world(&poly_vertex[2 * o], n, disc_pos[2 * i], disc_pos[2 * i + 1], c, s, &poly_world_[2 * o]);
+  polygon_to_world(&poly_normal_[2 * o], n, 0.0, 0.0, c, s, &poly_world_normal_[2 * o]);
+}
+
+// the reference face (flip, edge) of pair (i, j), centre offset (dx, dz), and whether the two overlap.
+// The cache answers when it can prove the full separating-axis test would give the same: a cached
+// separating axis that still separates; or a cached reference axis that led every other by `margin`,
+// while no separation can have changed by more than
+//   b = |d - d0| + 2 (|theta_i - theta_i0| + |theta_j - theta_j0|) (R_i + R_j)
+// (a vertex moves relative to the other body's frame by at most that), with 2 b < margin. Otherwise the
+// full test runs and refreshes the cache. Either way the same axis and the same arithmetic: bit-identical.
+bool DEMSystem::polygon_reference(SatCache& sc, int i, int j, double dx, double dz, int& flip, int& edge) {
+  const int oi = poly_offset[i], oj = poly_offset[j], ni = poly_offset[i + 1] - oi, nj = poly_offset[j + 1] - oj;
+  const double *va = &poly_world_[2 * oi], *ua = &poly_world_normal_[2 * oi];
+  const double *vb = &poly_world_[2 * oj], *ub = &poly_world_normal_[2 * oj];
+  if (sc.flip >= 0) {
+    const double s = sc.flip ? polygon_axis_separation(vb, ub, sc.edge, va, ni)
+                             : polygon_axis_separation(va, ua, sc.edge, vb, nj);
+    if (sc.margin <= 0.0 && s > 0.0) return false;  // still apart
+    if (sc.margin > 0.0) {
+      const double reach = disc_radius[i] + disc_radius[j];
+      const double ex = dx - sc.dx, ez = dz - sc.dz;  // sqrt, not hypot: no overflow here, and 5x cheaper
+      const double b = std::sqrt(ex * ex + ez * ez) +
+                       2.0 * (std::fabs(disc_angle[i] - sc.ai) + std::fabs(disc_angle[j] - sc.aj)) * reach;
+      if (2.0 * b < sc.margin - 1e-12 * reach) {
+        flip = sc.flip;
+        edge = sc.edge;
+        return s < 0.0;
+      }
+    }
+  }
+  const SatResult r = polygon_sat(va, ua, ni, vb, ub, nj);
+  sc.flip = r.flip;
+  sc.edge = r.edge;
+  sc.margin = r.value < 0.0 ? r.margin : 0.0;
+  sc.dx = dx;
+  sc.dz = dz;
+  sc.ai = disc_angle[i];
+  sc.aj = disc_angle[j];
+  flip = r.flip;
+  edge = r.edge;
+  return r.value < 0.0;
+}
+
+// the incident edge of pair (i, j) for the reference face (flip, edge), from the cache while no edge normal
+// can have turned enough to change the choice: n . u_k changes by at most |dtheta_i| + |dtheta_j| (both
+// unit normals turn with their stones), so the choice holds while 2 (|dtheta_i| + |dtheta_j|) stays below
+// the lead it had. The same edge either way, so the same arithmetic follows: bit-identical.
+int DEMSystem::polygon_incident(SatCache& sc, int i, int j, int flip, int edge) {
+  if (sc.inc >= 0 && sc.inc_flip == flip && sc.inc_edge == edge &&
+      2.0 * (std::fabs(disc_angle[i] - sc.inc_ai) + std::fabs(disc_angle[j] - sc.inc_aj)) < sc.inc_margin - 1e-12)
+    return sc.inc;
+  const int ref = flip ? j : i, other = flip ? i : j;
+  const double* u = &poly_world_normal_[2 * (poly_offset[ref] + edge)];
+  const int o = poly_offset[other];
+  sc.inc = polygon_incident_edge(&poly_world_normal_[2 * o], poly_offset[other + 1] - o, u[0], u[1], &sc.inc_margin);
+  sc.inc_flip = flip;
+  sc.inc_edge = edge;
+  sc.inc_ai = disc_angle[i];
+  sc.inc_aj = disc_angle[j];
+  return sc.inc;
+}
+
+void DEMSystem::polygon_contact_forces(double dt) {
+  ++poly_eval_;  // the world geometry of the last evaluation is stale
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double ct_factor = p.tangential_damping_factor;
+  const double kt = friction ? kt_ : 0.0;
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  if (poly_sat_builds_ != nbuilds_ || poly_sat_cache_.size() != pairs_.size()) {
+    poly_sat_cache_.assign(pairs_.size(), SatCache{});  // a new list: new pairs
+    poly_sat_builds_ = nbuilds_;
+  }
+  for (std::size_t pc = 0; pc < pairs_.size(); ++pc) {
+    Pair& c = pairs_[pc];
+    SatCache& cache = poly_sat_cache_[pc];
+    const int i = c.i, j = c.j;
+    const double xi0 = disc_pos[2 * i], zi0 = disc_pos[2 * i + 1], xj0 = disc_pos[2 * j], zj0 = disc_pos[2 * j + 1];
+    const double dx = xj0 - xi0, dz = zj0 - zi0, rs = disc_radius[i] + disc_radius[j];
+    if (dx * dx + dz * dz >= rs * rs) {  // bounding discs apart
+      c.poly = PolygonHistory{};
+      cache.flip = -1;
+      continue;
+    }
+    polygon_world(i);
+    polygon_world(j);
+    const int oi = poly_offset[i], oj = poly_offset[j];
+    int flip = 0, edge = 0;
+    if (!polygon_reference(cache, i, j, dx, dz, flip, edge)) {  // apart: cleared in place, no manifold
+      c.poly = PolygonHistory{};
+      continue;
+    }
+    const ContactManifold m =
+        polygon_manifold(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi, &poly_world_[2 * oj],
+                         &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj, flip, edge,
+                         polygon_incident(cache, i, j, flip, edge));
+    PolygonHistory next;
+    if (m.count > 0) ++ncontact;
+    const double nx = m.normal[0], nz = m.normal[1];
+    const double cn = m.count == 2 ? damp * c.sqrt_m * kSqrtHalf : damp * c.sqrt_m;
+    for (int k = 0; k < m.count; ++k) {
+      const ContactManifold::Point& q = m.point[k];
+      const double rix = q.x - xi0, riz = q.z - zi0, rjx = q.x - xj0, rjz = q.z - zj0;
+      const double vrx = disc_vel[2 * i] - disc_omega[i] * riz - disc_vel[2 * j] + disc_omega[j] * rjz;
+      const double vrz = disc_vel[2 * i + 1] + disc_omega[i] * rix - disc_vel[2 * j + 1] - disc_omega[j] * rjx;
+      const double vn = vrx * nx + vrz * nz;
+      const double vt = -vrx * nz + vrz * nx;
+      double xi = c.poly.spring(q.id);
+      const ContactForce f = friction ? linear_contact(q.depth, vn, vt, xi, dt, kn_, kt, cn, ct_factor * cn,
+                                                       p.friction_stone, true)
+                                      : linear_contact(q.depth, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+      // force on i: -f_n n + f_s t, with t = (-n_z, n_x); its opposite on j
+      const double fx = -f.fn * nx - f.ft * nz, fz = -f.fn * nz + f.ft * nx;
+      disc_force[2 * i] += fx;
+      disc_force[2 * i + 1] += fz;
+      disc_force[2 * j] -= fx;
+      disc_force[2 * j + 1] -= fz;
+      disc_torque[i] += cross(rix, riz, fx, fz);
+      disc_torque[j] -= cross(rjx, rjz, fx, fz);
+      next.id[k] = q.id;
+      next.xi[k] = xi;
+      elastic += f.energy_spring;
+      dissipated += f.power_damp * dt + f.energy_slip;
+    }
+    c.poly = next;
+  }
+  elastic_ = elastic;
+  dissipated_ += dissipated;
+  ncontact_ = ncontact;
+}
+
+void DEMSystem::polygon_wall_forces(double dt) {
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double kt = friction ? kt_ : 0.0;
+  const std::size_t nw = p.walls.size();
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (std::size_t w = 0; w < nw; ++w) {
+    const DEMWall& wall = p.walls[w];
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
+      const int i = wall_cand_[c];
+      if (inv_mass_[i] == 0.0) continue;
+      PolygonHistory& hist = poly_wall_hist_[static_cast<std::size_t>(i) * nw + w];
+      const double x0 = disc_pos[2 * i], z0 = disc_pos[2 * i + 1];
+      const double s = (x0 - wall.point[0]) * wx + (z0 - wall.point[1]) * wz;
+      const int o = poly_offset[i];
+      if (s < disc_radius[i]) polygon_world(i);
+      const ContactManifold m =
+          s >= disc_radius[i] ? ContactManifold{}
+                              : collide_polygon_wall(&poly_world_[2 * o], &poly_world_normal_[2 * o],
+                                                     poly_offset[i + 1] - o, wall.point[0], wall.point[1], wx, wz);
+      PolygonHistory next;
+      if (m.count > 0) ++ncontact;
+      const double nx = m.normal[0], nz = m.normal[1];
+      const double cn = m.count == 2 ? damp * std::sqrt(mass_eff_[i]) * kSqrtHalf : damp * std::sqrt(mass_eff_[i]);
+      for (int k = 0; k < m.count; ++k) {
+        const ContactManifold::Point& q = m.point[k];
+        const double rx = q.x - x0, rz = q.z - z0;
+        const double vx = disc_vel[2 * i] - disc_omega[i] * rz, vz = disc_vel[2 * i + 1] + disc_omega[i] * rx;
+        const double vn = vx * nx + vz * nz;
+        const double vt = -vx * nz + vz * nx;
+        double xi = hist.spring(q.id);
+        const ContactForce f = friction ? linear_contact(q.depth, vn, vt, xi, dt, kn_, kt, cn,
+                                                         p.tangential_damping_factor * cn, wall.friction, true)
+                                        : linear_contact(q.depth, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+        const double fx = -f.fn * nx - f.ft * nz, fz = -f.fn * nz + f.ft * nx;
+        disc_force[2 * i] += fx;
+        disc_force[2 * i + 1] += fz;
+        disc_torque[i] += cross(rx, rz, fx, fz);
+        next.id[k] = q.id;
+        next.xi[k] = xi;
+        elastic += f.energy_spring;
+        dissipated += f.power_damp * dt + f.energy_slip;
+      }
+      hist = next;
+    }
+  }
+  elastic_ += elastic;
+  dissipated_ += dissipated;
+  nwall_contact_ = ncontact;
+}
+
+// ---- checkpoint: the shape and the manifold points' springs (polygon systems only)
+
+void DEMSystem::export_polygons(std::map<std::string, std::vector<double>>& s) const {
+  s["poly_vertex"] = poly_vertex;
+  s["poly_offset"] = std::vector<double>(poly_offset.begin(), poly_offset.end());
+  std::vector<double> ci, cj, cid, cxi;
+  for (const Pair& c : pairs_) {
+    if (c.poly.id[0] < 0 && c.poly.id[1] < 0) continue;
+    ci.push_back(c.i);
+    cj.push_back(c.j);
+    for (int k = 0; k < 2; ++k) cid.push_back(c.poly.id[k]), cxi.push_back(c.poly.xi[k]);
+  }
+  s["poly_contact_i"] = ci;
+  s["poly_contact_j"] = cj;
+  s["poly_contact_id"] = cid;
+  s["poly_contact_xi"] = cxi;
+  std::vector<double> wid, wxi;
+  for (const PolygonHistory& h : poly_wall_hist_)
+    for (int k = 0; k < 2; ++k) wid.push_back(h.id[k]), wxi.push_back(h.xi[k]);
+  s["poly_wall_id"] = wid;
+  s["poly_wall_xi"] = wxi;
+}
+
+void DEMSystem::import_polygons(const std::map<std::string, std::vector<double>>& s) {
+  const auto it = s.find("poly_vertex");
+  if (it == s.end()) {  // a disc state
+    shape_ = StoneShape::kDisc;
+    poly_vertex.clear();
+    poly_offset.clear();
+    poly_wall_hist_.clear();
+    return;
+  }
+  auto need = [&s](const char* key, std::size_t size) -> const std::vector<double>& {
+    const auto f = s.find(key);
+    if (f == s.end()) throw std::invalid_argument(std::string("import_state: missing array '") + key + "'");
+    if (size != static_cast<std::size_t>(-1) && f->second.size() != size)
+      throw std::invalid_argument(std::string("import_state: array '") + key + "' has size " +
+                                  std::to_string(f->second.size()) + ", expected " + std::to_string(size));
+    return f->second;
+  };
+  const auto& off = need("poly_offset", static_cast<std::size_t>(n_) + 1);
+  set_polygons(it->second, std::vector<int>(off.begin(), off.end()));
+  const auto& ci = need("poly_contact_i", static_cast<std::size_t>(-1));
+  const auto& cj = need("poly_contact_j", ci.size());
+  const auto& cid = need("poly_contact_id", 2 * ci.size());
+  const auto& cxi = need("poly_contact_xi", 2 * ci.size());
+  for (std::size_t k = 0; k < ci.size(); ++k) {
+    Pair c{static_cast<int>(ci[k]), static_cast<int>(cj[k]), 0.0, 0.0};
+    if (!(c.i >= 0 && c.i < c.j && c.j < n_) ||
+        (!pairs_.empty() && !(pairs_.back().i < c.i || (pairs_.back().i == c.i && pairs_.back().j < c.j))))
+      throw std::invalid_argument("import_state: polygon contact pair (" + std::to_string(c.i) + ", " +
+                                  std::to_string(c.j) + ") is outside 0 <= i < j < n or not sorted by (i, j)");
+    for (int q = 0; q < 2; ++q) c.poly.id[q] = static_cast<int>(cid[2 * k + q]), c.poly.xi[q] = cxi[2 * k + q];
+    pairs_.push_back(c);
+  }
+  const std::size_t nwh = static_cast<std::size_t>(n_) * params_.walls.size();
+  const auto& wid = need("poly_wall_id", 2 * nwh);
+  const auto& wxi = need("poly_wall_xi", 2 * nwh);
+  for (std::size_t k = 0; k < nwh; ++k)
+    for (int q = 0; q < 2; ++q)
+      poly_wall_hist_[k].id[q] = static_cast<int>(wid[2 * k + q]), poly_wall_hist_[k].xi[q] = wxi[2 * k + q];
+}
+
+}  // namespace vofdem
