@@ -46,7 +46,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENES = ("maeno2008_rolling", "maeno2008_rolling_consistent")
 # per size: seeds, the scenes' quick variant, the end time [s] (None: the hydrograph's end), widths [m]
 SIZES = {"full": dict(seeds="0-29", quick=False, end_time=None, widths=(0.3, 0.4, 0.5)),
-         "small": dict(seeds="0-3", quick=True, end_time=None, widths=(0.3, 0.5)),
+         "small": dict(seeds="0-5", quick=True, end_time=None, widths=(0.3, 0.4, 0.5)),
          "tiny": dict(seeds="0-1", quick=True, end_time=3.0, widths=(0.4, 0.5))}
 SUFFIX = {"full": "", "small": "_small", "tiny": "_tiny"}
 
@@ -54,7 +54,7 @@ SUFFIX = {"full": "", "small": "_small", "tiny": "_tiny"}
 def _parser():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     size = p.add_mutually_exclusive_group()
-    size.add_argument("--small", action="store_true", help="the small version: 4 seeds of the quick scenes, "
+    size.add_argument("--small", action="store_true", help="the small version: 6 seeds of the quick scenes, "
                       "one setting per knob (minutes on 2 cores)")
     size.add_argument("--tiny", action="store_true", help="the test suite's size: 2 seeds, 3 s, two knobs")
     p.add_argument("--scenes", nargs="+", default=list(SCENES), help="configurations: scene names in scenes/")
@@ -62,7 +62,7 @@ def _parser():
     p.add_argument("--cost-scene", default=None, help="the reference of accuracy against cost (default the first)")
     p.add_argument("--widths", type=float, nargs="+", default=None, help="flume widths [m] of the sweep")
     p.add_argument("--knobs", nargs="+", default=None, choices=KNOBS, help="knobs of the cost part (default all)")
-    p.add_argument("--seeds", default=None, help="packings (default 0-29; --small 0-3; --tiny 0-1)")
+    p.add_argument("--seeds", default=None, help="packings (default 0-29; --small 0-5; --tiny 0-1)")
     p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s]")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default one per core; 0: "
                    "in this process, no Dask)")
