@@ -39,8 +39,9 @@ from vofdem.cluster import default_workers, ensemble_client
 from vofdem.ensemble import parse_seeds, run_ensemble
 from vofdem.fragility import EVENTS, fig_fragility, fragility_of
 from vofdem.scene import load_scene
-from vofdem.study import (KNOBS, coupling, event_summary, knob_settings, median_shift, spread, stage_fractions,
-                          stone_model)
+from vofdem.fidelity import PRESETS
+from vofdem.study import (KNOBS, coupling, event_summary, knob_settings, median_shift, preset_of, spread,
+                          stage_fractions, stone_model)
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ("maeno2008_rolling", "maeno2008_rolling_consistent")
@@ -194,7 +195,7 @@ def _width_md(res) -> list:
         rs = [r for r in rows if r["width_m"] == w]
         cells = [_band(r["km_q16_lps"], r["km_median_lps"], r["km_q84_lps"], r["censored_at_lps"]) for r in rs]
         lines.append(f"| {w:g} | " + " | ".join(cells) + f" | {rs[0]['stages_2plus']:.0%} | "
-                     f"{_q(rs[0]['crest_lowering_mm_median'], '{:.1f}')} |")
+                     f"{_q(rs[0]['crest_lowering_mm_median'], '{:.2f}')} |")
     return lines + [""]
 
 
@@ -246,20 +247,46 @@ def _shift_cell(r) -> str:
     return f"{r['shift_lps']:+.2f}{band}"
 
 
+def _ref_cell(r) -> str:
+    m = r["reference_median_lps"]
+    return "median not reached" if m is None else f"median {m:.2f}"
+
+
 def _cost_md(rows) -> list:
     lines = ["| setting | members | CPU s per member (x reference) | " + " | ".join(
         f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|" + "---|" * len(EVENTS)]
     for name in dict.fromkeys(r["setting"] for r in rows):
         rs = [r for r in rows if r["setting"] == name]
         r0 = rs[0]
+        cell = _ref_cell if name == "reference" else _shift_cell
         lines.append(f"| {name if name == 'reference' else r0['knob'] + ': ' + r0['label']} | {r0['completed']} of "
                      f"{r0['members']} | {_q(r0['cpu_s_per_member'], '{:.1f}')} (x{_q(r0['cost_ratio'], '{:.2f}')}) | "
-                     + " | ".join(_shift_cell(r) for r in rs) + " |")
+                     + " | ".join(cell(r) for r in rs) + " |")
     ref = [r for r in rows if r["setting"] == "reference"]
+    nr = "not reached"
     lines += ["", "The packings' own spread (the reference's Kaplan-Meier 16-84 % band about its median): "
-              + "; ".join(f"{EVENTS[r['event']][1]} {_q(r['spread_lo_lps'], '{:+.2f}')} to "
-                          f"{_q(r['spread_hi_lps'], '{:+.2f}')} l/s" for r in ref) + ".", ""]
+              + "; ".join(f"{EVENTS[r['event']][1]} " + (nr if r["spread_lo_lps"] is None else
+                          f"{r['spread_lo_lps']:+.2f}") + " to " + (nr if r["spread_hi_lps"] is None else
+                          f"{r['spread_hi_lps']:+.2f} l/s") for r in ref) + ".", ""]
     return lines
+
+
+def _presets_md(res, rows) -> list:
+    """The fidelity presets among the reference and the settings: their cost and shifts."""
+    ref = res["scenes"][res["cost_scene"]]
+    scenes = {"reference": ref, **{st.name: st.scene(ref) for st in res["settings"]}}
+    found = {preset_of(s): n for n, s in scenes.items() if preset_of(s) is not None}
+    lines = ["| preset | run as | CPU s per member (x reference) | " + " | ".join(
+        f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|" + "---|" * len(EVENTS)]
+    for name in PRESETS:
+        if name not in found:
+            lines.append(f"| {name} | not in this study's settings | - |" + " - |" * len(EVENTS))
+            continue
+        rs = [r for r in rows if r["setting"] == found[name]]
+        cell = _ref_cell if found[name] == "reference" else _shift_cell
+        lines.append(f"| {name} | {found[name]} | {_q(rs[0]['cpu_s_per_member'], '{:.1f}')} "
+                     f"(x{_q(rs[0]['cost_ratio'], '{:.2f}')}) | " + " | ".join(cell(r) for r in rs) + " |")
+    return lines + [""]
 
 
 def fig_cost(rows, path: Path) -> None:
@@ -272,20 +299,21 @@ def fig_cost(rows, path: Path) -> None:
     knobs = list(dict.fromkeys(r["knob"] for r in rows))
     for ax, ev in zip(axes, EVENTS):
         rs = [r for r in rows if r["event"] == ev]
-        ref = next(r for r in rs if r["setting"] == "reference")
-        if ref["spread_lo_lps"] is not None and ref["spread_hi_lps"] is not None:
-            ax.axhspan(ref["spread_lo_lps"], ref["spread_hi_lps"], color="0.85", label="packings' spread (16-84 %)")
-        ax.axhline(0.0, color="0.5", lw=0.8)
-        for r in rs:
-            if r["shift_lps"] is None or not math.isfinite(r["cpu_s_per_member"]):
-                continue
+        shown = [r for r in rs if r["shift_lps"] is not None and math.isfinite(r["cpu_s_per_member"])]
+        for r in shown:
             c = f"C{knobs.index(r['knob']) % 10}"
             lo, hi = r["shift_lo_lps"], r["shift_hi_lps"]
             err = None if math.isnan(lo) else [[r["shift_lps"] - lo], [hi - r["shift_lps"]]]
             ax.errorbar([r["cpu_s_per_member"]], [r["shift_lps"]], yerr=err, fmt="o", color=c, capsize=3,
-                        label=r["knob"])
+                        label="reference" if r["setting"] == "reference" else r["knob"])
             ax.annotate(r["setting"], (r["cpu_s_per_member"], r["shift_lps"]), textcoords="offset points",
                         xytext=(4, 3), fontsize=7)
+        ax.axhline(0.0, color="0.5", lw=0.8)
+        _spread_band(ax, next(r for r in rs if r["setting"] == "reference"))
+        missing = [r["setting"] for r in rs if r not in shown]
+        if missing:  # a median not reached (in the setting or the reference) has no shift
+            ax.text(0.02, 0.02, "median not reached: " + ", ".join(missing), transform=ax.transAxes, fontsize=7,
+                    va="bottom", wrap=True)
         ax.set_title(EVENTS[ev][1])
         ax.set_xscale("log")
         ax.grid(alpha=0.3)
@@ -302,6 +330,18 @@ def fig_cost(rows, path: Path) -> None:
     fig.legend(handles, labels, loc="outside lower center", ncols=min(4, len(labels)), fontsize=8)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=90)
+
+
+def _spread_band(ax, ref) -> None:
+    """The reference's 16-84 % band about its median, open-ended where a quantile is not reached."""
+    lo, hi = ref["spread_lo_lps"], ref["spread_hi_lps"]
+    if lo is None and hi is None:
+        return
+    y0, y1 = ax.get_ylim()
+    span = max(y1 - y0, 1.0)
+    ax.axhspan(y0 - 10 * span if lo is None else lo, y1 + 10 * span if hi is None else hi, color="0.85", zorder=0,
+               label="packings' spread (16-84 %)" + (" (open: not reached)" if lo is None or hi is None else ""))
+    ax.set_ylim(min(y0, lo if lo is not None else y0) - 0.1 * span, max(y1, hi if hi is not None else y1) + 0.1 * span)
 
 
 def write_results(res, args, wall: float) -> Path:
@@ -350,6 +390,9 @@ def write_results(res, args, wall: float) -> Path:
              "One knob at a time over the same seeds: the shift of each event's Kaplan-Meier median from the "
              "reference's [l/s], with its paired bootstrap 16-84 % interval over the seeds, and the median CPU time "
              "per member (its ratio to the reference's, measured in the same run).", ""] + _cost_md(crows)
+    text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "
+             "vofdem/fidelity.py) that the reference or a setting of this study ran, with their measured cost and "
+             "shift from the reference:", ""] + _presets_md(res, crows)
     md = Path(f"{base}.md")
     md.write_text("\n".join(text), encoding="utf-8")
     return md

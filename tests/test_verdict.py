@@ -118,6 +118,9 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     assert "with a removal 67%, failing in 2+ separate stages 67%, 3+ 0%" in text
     assert "| stage 1 | 2 of 3 (0) | 14.25 [12.25 to > 25.00] |" in text
     assert "| cfl: 0.25 | 3 of 3 |" in text and "| +1.00 [+1.00 to +1.00] |" in text
+    # the quick reference holds the draft preset's values; no setting here is another preset
+    assert "| draft | reference |" in text and "| median 14.25 |" in text
+    assert "| standard | not in this study's settings |" in text
     assert (tmp_path / "maeno2008_verdict_tiny_cost.png").stat().st_size > 0
     assert (tmp_path / "maeno2008_verdict_tiny_fragility.png").stat().st_size > 0
     # resumable: a second call finds every member finished and runs none

@@ -185,7 +185,7 @@ KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up")
 SIZES = {
     "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25, 0.35], "porosity": ["lookup"],
              "dem_steps": [24.0, 64.0], "spin_up": [0.5, 2.0]},
-    "small": {"grid": [2.0], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
+    "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
               "spin_up": [0.5]},
     "tiny": {"cfl": [0.25], "porosity": ["lookup"]},
 }
@@ -218,6 +218,16 @@ def setting(ref, knob: str, value) -> Setting:
         t = round(h.spin_up_duration * float(value), 9)
         return Setting("spin_up", f"{t:g}", f"{t:g} s", {"hydrograph.spin_up_duration": t})
     raise ValueError(f"knob = {knob!r} is not one of {', '.join(KNOBS)}")
+
+
+def preset_of(scene) -> Optional[str]:
+    """The fidelity preset whose knob values the scene holds (set or not), else None."""
+    from .fidelity import PRESETS
+
+    for name, vals in PRESETS.items():
+        if all(scene.value_of(k) == v for k, v in vals.items()):
+            return name
+    return None
 
 
 def knob_settings(ref, size: str = "full", knobs: Optional[Sequence[str]] = None) -> List[Setting]:
