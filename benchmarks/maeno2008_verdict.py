@@ -69,7 +69,8 @@ def _parser():
                    "in this process, no Dask)")
     p.add_argument("--scheduler", default=None, help="an existing Dask cluster's address instead")
     p.add_argument("--n-boot", type=int, default=1000, help="bootstrap resamples (default 1000)")
-    p.add_argument("--out", type=Path, default=None, help="ensembles' directory (default out/maeno2008_verdict<suffix>)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="ensembles' directory (default out/maeno2008_verdict<suffix>)")
     p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results")
     p.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
     return p
@@ -110,7 +111,7 @@ def run_study(args, build=None, log=print):
     widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
     res = {"size": size, "seeds": seeds, "scenes": scenes, "width_scene": width_name, "cost_scene": cost_name,
-           "settings": settings, "base_width": base_width, "out": out}
+           "settings": settings, "base_width": base_width, "out": out, "found": _finished(out)}
     with _client(args.workers, args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
                   progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
@@ -120,6 +121,11 @@ def run_study(args, build=None, log=print):
         ref = scenes[cost_name]
         res["cost"] = {st.name: run_ensemble(st.scene(ref), seeds, out / "cost" / st.name, **kw) for st in settings}
     return res
+
+
+def _finished(out: Path) -> int:
+    """Members finished in the study's directory (an outcome file each)."""
+    return len(list(Path(out).glob("**/outcome.json"))) if Path(out).exists() else 0
 
 
 # ---------------------------------------------------------------------------- tables
@@ -160,9 +166,10 @@ def _config_md(name, scene, df) -> list:
              "median [16-84 %] [l/s] | observed [l/s] | paper's model [l/s] |", "|---|---|---|---|---|---|"]
     for r in verdict_rows(name, scene, df):
         cens = r["censored_at_lps"]
+        fit = ("no fit" if r["fit_median_lps"] is None
+               else _band(r["fit_q16_lps"], r["fit_median_lps"], r["fit_q84_lps"]))
         lines.append(f"| {EVENTS[r['event']][1]} | {r['happened']} of {r['members']} ({r['at_first_discharge']}) | "
-                     f"{_band(r['km_q16_lps'], r['km_median_lps'], r['km_q84_lps'], cens)} | "
-                     f"{'no fit' if r['fit_median_lps'] is None else _band(r['fit_q16_lps'], r['fit_median_lps'], r['fit_q84_lps'])} | "
+                     f"{_band(r['km_q16_lps'], r['km_median_lps'], r['km_q84_lps'], cens)} | {fit} | "
                      f"{_q(r['observed_lps'], '{:g}')} | {_q(r['model_lps'], '{:g}')} |")
     return lines + [""]
 
@@ -275,7 +282,10 @@ def _presets_md(res, rows) -> list:
     """The fidelity presets among the reference and the settings: their cost and shifts."""
     ref = res["scenes"][res["cost_scene"]]
     scenes = {"reference": ref, **{st.name: st.scene(ref) for st in res["settings"]}}
-    found = {preset_of(s): n for n, s in scenes.items() if preset_of(s) is not None}
+    found = {}
+    for n, s in scenes.items():  # the first that holds a preset's values: the reference before the settings
+        if preset_of(s) is not None:
+            found.setdefault(preset_of(s), n)
     lines = ["| preset | run as | CPU s per member (x reference) | " + " | ".join(
         f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|" + "---|" * len(EVENTS)]
     for name in PRESETS:
@@ -310,12 +320,8 @@ def fig_cost(rows, path: Path) -> None:
                         xytext=(4, 3), fontsize=7)
         ax.axhline(0.0, color="0.5", lw=0.8)
         _spread_band(ax, next(r for r in rs if r["setting"] == "reference"))
-        missing = [r["setting"] for r in rs if r not in shown]
-        if missing:  # a median not reached (in the setting or the reference) has no shift
-            ax.text(0.02, 0.02, "median not reached: " + ", ".join(missing), transform=ax.transAxes, fontsize=7,
-                    va="bottom", wrap=True)
+        _not_reached(ax, rs, shown)
         ax.set_title(EVENTS[ev][1])
-        ax.set_xscale("log")
         ax.grid(alpha=0.3)
     for ax in axes[2:]:
         ax.set_xlabel("CPU time per member [s]")
@@ -330,6 +336,20 @@ def fig_cost(rows, path: Path) -> None:
     fig.legend(handles, labels, loc="outside lower center", ncols=min(4, len(labels)), fontsize=8)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=90)
+
+
+def _not_reached(ax, rows, shown) -> None:
+    """Names the settings without a shift: their median (or the reference's) lies beyond the runs' end."""
+    if not shown:
+        ax.text(0.5, 0.5, "the reference's median is not reached\n(beyond the runs' end): no shift",
+                transform=ax.transAxes, ha="center", va="center", fontsize=8)
+        ax.set_yticks([])
+        return
+    missing = [r["setting"] for r in rows if r not in shown]
+    if missing:
+        lines = [", ".join(missing[i:i + 3]) for i in range(0, len(missing), 3)]
+        ax.text(0.02, 0.02, "median not reached: " + "\n".join(lines), transform=ax.transAxes, fontsize=7,
+                va="bottom")
 
 
 def _spread_band(ax, ref) -> None:
@@ -359,8 +379,10 @@ def write_results(res, args, wall: float) -> Path:
     fig_cost(crows, cost_png)
     by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
     fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
-    n_members = sum(len(df) for df in res["verdict"].values()) + sum(len(df) for df in res["cost"].values()) + (
-        0 if res["width"] is None else len(res["width"]))
+    frames = [*res["verdict"].values(), *res["cost"].values()] + ([] if res["width"] is None else [res["width"]])
+    n_members = sum(len(df) for df in frames)
+    cpu = sum(float(df.loc[df["status"] == "completed", "cpu_seconds"].astype(float).sum()) for df in frames)
+    ran = _finished(res["out"]) - res["found"]
     where = (f"on the cluster at {args.scheduler}" if args.scheduler else "in this process" if args.workers == 0
              else f"on {args.workers or default_workers()} local worker process(es)")
     flag = {"full": "", "small": " --small", "tiny": " --tiny"}[size]
@@ -369,9 +391,11 @@ def write_results(res, args, wall: float) -> Path:
             f"Written by `PYTHONPATH=python python3 benchmarks/maeno2008_verdict.py{flag}`: {len(res['seeds'])} "
             f"seeds ({res['seeds'][0]}-{res['seeds'][-1]}), {n_members} members, "
             f"{'the quick variants of ' if size != 'full' else ''}scenes {', '.join(res['scenes'])}, "
-            f"{scene0.duration:g} s simulated per member. The last call took {wall / 60:.1f} min {where} "
-            f"({os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at the end). Ensembles in "
-            f"`{_shown(res['out'])}/` (resumable). Figures: `docs/figures/{cost_png.name}`, `docs/figures/{frag_png.name}`.",
+            f"{scene0.duration:g} s simulated per member, {cpu / 60:.1f} CPU-minutes in all. The last call ran {ran} "
+            f"members (found {res['found']} finished) in {wall / 60:.1f} min {where} ({os.cpu_count()} cores, load "
+            f"average {os.getloadavg()[0]:.1f} at the end). Ensembles in "
+            f"`{_shown(res['out'])}/` (resumable). Figures: `docs/figures/{cost_png.name}`, "
+            f"`docs/figures/{frag_png.name}`.",
             "", "## The verdict", "",
             "Per event: members in which it happened (in brackets those in which it happened at the first discharge "
             "a run could see it, when the stones were released), the Kaplan-Meier median and 16-84 % band (members "
