@@ -4,7 +4,7 @@
 PY ?= python3
 OUT ?= out
 
-.PHONY: demo full ensemble-demo maeno-fragility test test-fast install test-cpp test-py bench
+.PHONY: demo full ensemble-demo maeno-fragility verdict verdict-small test test-fast install test-cpp test-py bench
 
 install:
 	bash scripts/install_deps.sh test
@@ -24,6 +24,14 @@ ensemble-demo: install
 # the whole scene over 30 packings (about 46 CPU-seconds per member: 12 minutes on 2 free cores; resumes where it stopped)
 maeno-fragility: install
 	$(PY) benchmarks/maeno2008_fragility.py --seeds 0-29
+
+# the prediction study: the verdict over 30 packings, the width sweep and accuracy against cost (hours; resumes)
+verdict: install
+	$(PY) benchmarks/maeno2008_verdict.py
+
+# its small version: the quick scenes over 6 packings, one or two settings per knob (minutes on 2 cores)
+verdict-small: install
+	$(PY) benchmarks/maeno2008_verdict.py --small
 
 test: install test-cpp test-py
 

@@ -22,6 +22,7 @@ import numpy as np
 from vofdem.cluster import default_workers
 from vofdem.ensemble import collect_outcomes, outcomes_frame, parse_seeds, run_ensemble
 from vofdem.scene import load_scene
+from vofdem.study import coupling, stone_model
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ("maeno2008", "maeno2008_consistent", "maeno2008_rolling", "maeno2008_rolling_consistent",
@@ -43,23 +44,6 @@ def reference_text(ref) -> str:
     mod = ", ".join(f"stage {k} {q:g}" for k, (q, _) in sorted(ref.stages(model=True).items()))
     return (f"Observed ({ref.citation}): first removal {ref.first_removal_lps:g}, stages {obs} l/s; "
             f"model ({ref.model_citation}): {mod} l/s. ")
-
-
-def stone_model(scene) -> str:
-    st = scene.stones
-    shape = getattr(st, "shape", "disc")
-    if shape != "disc":
-        return f"{shape}s"
-    return f"discs, mu_r = {st.rolling_friction:g}" if st.rolling_friction > 0 else "discs"
-
-
-def coupling(scene) -> str:
-    st = scene.stones
-    if st.drag_model == "sphere" and st.porosity_mapping == "paper":
-        return "paper's"
-    if st.drag_model == "bed" and st.porosity_mapping == "bulk":
-        return "consistent"
-    return f"{st.drag_model} drag, {st.porosity_mapping} mapping"
 
 
 def _q(v) -> str:

@@ -24,7 +24,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("scene", nargs="?", help="TOML scene file, or a ready scene: " + ", ".join(READY))
     r.add_argument("--resume", type=Path, default=None, metavar="DIR",
                    help="continue the killed run in DIR from its last checkpoint (written after every snapshot)")
-    r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes")
+    r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes: the "
+                   "draft grid on a shortened flume under a hydrograph four times faster")
+    _fidelity_argument(r)
     r.add_argument("--until-failure", action="store_true",
                    help="raise the discharge slowly (hydrograph.until_failure_rate_lps_per_s) from the scene's start "
                         "until the first destruction stage and report the critical discharge (with --seeds: its "
@@ -52,6 +54,7 @@ def _parser() -> argparse.ArgumentParser:
     c = sub.add_parser("check", help="validate a scene file and print it as resolved")
     c.add_argument("scene")
     c.add_argument("--quick", action="store_true")
+    _fidelity_argument(c)
     c.add_argument("--until-failure", action="store_true")
     a = sub.add_parser("analyse", help="redo the stage tables and figures of a finished run directory")
     a.add_argument("out", type=Path)
@@ -59,6 +62,12 @@ def _parser() -> argparse.ArgumentParser:
     sub.add_parser("params", help="print every scene parameter with its default and allowed range")
     _calibrate_parser(sub)
     return p
+
+
+def _fidelity_argument(p) -> None:
+    p.add_argument("--fidelity", default=None, metavar="PRESET",
+                   help="numerical preset: draft (grid twice as coarse as the paper's), standard (the paper's grid), "
+                        "fine (twice as fine); sets numerics.fidelity and its knobs (docs/verdict.md)")
 
 
 def _calibrate_parser(sub) -> None:
@@ -107,9 +116,9 @@ def _calibrate(args, scene) -> int:
 
 
 def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, end_time: Optional[float] = None,
-                  until_failure: bool = False):
+                  until_failure: bool = False, fidelity: Optional[str] = None):
     """A scene from a file path or a ready scene's name, with the command's options (quick first, then
-    until failure); ValueError if neither."""
+    the fidelity preset, then until failure); ValueError if neither."""
     from .scene import Scene, load_scene
 
     path = Path(name)
@@ -121,6 +130,8 @@ def resolve_scene(name: str, quick: bool = False, seed: Optional[int] = None, en
         raise ValueError(f"scene {name!r} is neither a file nor a ready scene ({', '.join(READY)})")
     if quick:
         scene = scene.quick()
+    if fidelity is not None:
+        scene = scene.with_value("numerics.fidelity", fidelity)
     if until_failure:
         scene = scene.until_failure()
     if seed is not None:
@@ -137,13 +148,14 @@ def _scene_of(args):
         if args.scene is None:
             raise ValueError("give a SCENE (a scene file or a ready scene) or --resume DIR")
         return resolve_scene(args.scene, args.quick, getattr(args, "seed", None), getattr(args, "end_time", None),
-                             args.until_failure)
+                             args.until_failure, args.fidelity)
     if getattr(args, "seeds", None) or getattr(args, "vary", None):
         raise ValueError("--resume DIR continues one run; an ensemble (--seeds, --vary) resumes when the same "
                          "command is run again on its output directory")
-    if args.scene is not None or args.quick or args.seed is not None or args.end_time is not None or args.until_failure:
+    if (args.scene is not None or args.quick or args.seed is not None or args.end_time is not None or args.until_failure
+            or args.fidelity is not None):
         raise ValueError("--resume DIR continues the run with its own scene (DIR/scene.toml): give no SCENE, "
-                         "--quick, --until-failure, --seed or --end-time with it")
+                         "--quick, --fidelity, --until-failure, --seed or --end-time with it")
     from .scene import load_scene
 
     if not (resume / "scene.toml").is_file():

@@ -215,11 +215,17 @@ def kaplan_meier(q, observed) -> Tuple[np.ndarray, np.ndarray]:
     return qs, np.asarray(F, float)
 
 
+def empirical_quantile(q, observed, p: float) -> Optional[float]:
+    """The smallest discharge by which the Kaplan-Meier F reaches p; None if it never does (the
+    censored members leave it unknown, above their censoring discharge)."""
+    qs, F = kaplan_meier(q, observed)
+    hit = np.flatnonzero(F >= p - 1e-12)
+    return float(qs[hit[0]]) if hit.size else None
+
+
 def empirical_median(q, observed) -> Optional[float]:
     """The smallest discharge by which the Kaplan-Meier F reaches 1/2; None if it never does."""
-    qs, F = kaplan_meier(q, observed)
-    hit = np.flatnonzero(F >= 0.5 - 1e-12)
-    return float(qs[hit[0]]) if hit.size else None
+    return empirical_quantile(q, observed, 0.5)
 
 
 def bootstrap_median(q, observed, left=None, n_boot: int = 1000, seed: int = 0,

@@ -123,6 +123,8 @@ class _Section:
                     continue
                 setattr(self, f.name, _check_number(name, value, md))
             elif "choices" in md:
+                if value is None and f.default is None:  # an optional choice left unset
+                    continue
                 if value not in md["choices"]:
                     raise ValueError(f"{name} = {value!r} is not one of {', '.join(map(repr, md['choices']))}")
             elif "flag" in md:

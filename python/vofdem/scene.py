@@ -344,6 +344,9 @@ class Numerics(_Section):
     drag_exchange: str = _choice("implicit", ("implicit", "held"),
                                  "stone drag: linearised in the stone's velocity, implicit in the DEM, or held "
                                  "over the step (bounded by its relaxation time)")
+    fidelity: Optional[str] = _choice(None, ("draft", "standard", "fine"),
+                                      "a preset of the grid, CFL and porosity method (fidelity.py; the scene must "
+                                      "hold its values); unset: the scene's own values")
 
     def validate(self, prefix: str = "numerics") -> None:
         self._validate_fields(prefix)
@@ -440,7 +443,8 @@ class Scene:
     def quick(self) -> "Scene":
         """A shorter, coarser copy that runs in a few minutes on one core.
 
-        Same weir and stones; the grid is twice as coarse (5 cm x 2 cm, 1 cm at the bed), the flume's
+        Same weir and stones; the grid is twice as coarse (5 cm x 2 cm, 1 cm at the bed: the draft
+        preset's grid, fidelity.py; a scene at a preset becomes 'draft'), the flume's
         reaches are shortened to 0.6 m upstream and 0.8 m downstream, the spin-up lasts 5 s and the
         ramp 10 -> 25 l/s lasts 30 s (four times faster than the paper's), snapshots every 0.5 s.
         Stage discharges of a quick run are not comparable with the paper: the discharge rises four
@@ -461,6 +465,8 @@ class Scene:
             s.stones.positions = [[x - shift, z] for x, z in s.stones.positions]
         s.flume.length = round(s.weir.x_toe_down + 0.8, 6)
         s.grid = GridSpec(dx=0.05, dz=0.02, dz_bed=0.01, bed_layer_height=0.01)
+        if s.numerics.fidelity is not None:  # the grid is the draft preset's
+            s.numerics.fidelity = "draft"
         h = s.hydrograph
         if h.function is None and h.kind in ("ramp", "csv", "until_failure"):
             h.spin_up_duration = min(h.spin_up_duration, 5.0)
@@ -516,6 +522,9 @@ class Scene:
         self._validate_zones()
         self._validate_geometry()
         self._validate_polygon_packing()
+        from .fidelity import check
+
+        check(self)
         return self
 
     def _validate_polygon_packing(self) -> None:
@@ -617,6 +626,10 @@ class Scene:
         directory files named in the scene (a CSV flood) are relative to (default the working one)."""
         if not isinstance(data, dict):
             raise ValueError(f"{source}: a scene must be a table of sections")
+        from .fidelity import fill_table
+
+        data = copy.deepcopy(data)
+        fill_table(data)  # a preset's values where the file does not give them
         valid_top = set(_TOP_KEYS) | set(_SECTIONS) | {"zones"}
         for key in data:
             if key not in valid_top:
@@ -705,6 +718,10 @@ class Scene:
         setattr(getattr(s, section), name, _parse_quantity(key, value, md.get("kind")) if "lo" in md else value)
         if key == "hydrograph.file":  # another flood: read it
             s.hydrograph.times, s.hydrograph.discharge_lps = [], []
+        if key == "numerics.fidelity":  # a preset sets its knobs
+            from .fidelity import apply
+
+            apply(s, value)
         return s.validate()
 
     def value_of(self, key: str):

@@ -1,0 +1,249 @@
+"""The prediction study's pieces: what an ensemble says about each failure event, how far a numerical
+setting moves the ensemble's medians from a reference and what it costs, and the knob settings.
+
+**Event discharges with censoring.** Per member and event (first removal, stage 1, 2, 3; see
+`fragility.EVENTS`) the discharge at which it happened, or, where it never did, the discharge at the
+run's end (right-censored). The ensemble's median and 16-84 % band are the Kaplan-Meier quantiles
+(`fragility.empirical_quantile`): the smallest discharge by which the censored empirical distribution
+reaches 0.5 (0.16, 0.84). Where the censored members keep it below that level, the quantile is
+unknown ("not reached": it lies above the runs' last discharge), never a median of the members that
+failed alone. The lognormal fit of `fragility` is reported beside it.
+
+**Shift of a median.** A setting run over the same seeds (packings) as the reference: the shift is
+``m_setting - m_reference`` of the Kaplan-Meier medians [l/s]. Its uncertainty: a paired bootstrap
+over the seeds both ran (`n_boot` resamples of the seeds with replacement, numpy's default generator
+seeded; each resample takes a seed's member from both), the 16-84 % interval of the resampled shifts;
+a resample in which either median is not reached is left out (its share is reported). The packings'
+own spread, against which a shift is judged, is the reference's 16-84 % band.
+
+**Knob settings** (`knob_settings`): one knob at a time from the reference scene, each a set of scene
+keys (docs/verdict.md): the grid twice as coarse or as fine, the ramp's duration, the fluid's CFL, the
+porosity by the paper's lookup table instead of exact areas (its sub-areas per side m are not a scene
+key: the table's m = 8 alone), the DEM steps per contact at the same contact stiffness (dem_dt and
+dem_contact_steps together), and the spin-up's length.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from .fragility import BAND, EVENTS, empirical_quantile, event_fragility
+
+
+def stone_model(scene) -> str:
+    """The stone model in words: 'discs', 'discs, mu_r = 0.4', or the shape's name."""
+    st = scene.stones
+    shape = getattr(st, "shape", "disc")
+    if shape != "disc":
+        return f"{shape}s"
+    return f"discs, mu_r = {st.rolling_friction:g}" if st.rolling_friction > 0 else "discs"
+
+
+def coupling(scene) -> str:
+    """The coupling in words: the paper's (sphere drag, eq. 11 with n_exp) or the consistent one."""
+    st = scene.stones
+    if st.drag_model == "sphere" and st.porosity_mapping == "paper":
+        return "paper's"
+    if st.drag_model == "bed" and st.porosity_mapping == "bulk":
+        return "consistent"
+    return f"{st.drag_model} drag, {st.porosity_mapping} mapping"
+
+
+# ---------------------------------------------------------------------------- statistics
+def event_arrays(members, event: str) -> Tuple[np.ndarray, np.ndarray]:
+    """(q [l/s], observed) of one event over completed members: the event's discharge where it
+    happened, else the discharge at the run's end (right-censored)."""
+    col = EVENTS[event][0]
+    qe = members[col].astype(float).to_numpy()
+    observed = np.isfinite(qe)
+    return np.where(observed, qe, members["last_discharge_lps"].astype(float).to_numpy()), observed
+
+
+def km_quantiles(q, observed, probs=(BAND[0], 0.5, BAND[1])) -> List[Optional[float]]:
+    """Kaplan-Meier quantiles [l/s] (None: not reached)."""
+    if len(q) == 0:
+        return [None] * len(probs)
+    return [empirical_quantile(q, observed, p) for p in probs]
+
+
+def event_summary(members, event: str) -> Dict[str, Any]:
+    """One event over the completed members of an outcome table: counts, Kaplan-Meier median and
+    16-84 % band, the lognormal fit's median and band, the censoring discharge."""
+    done = members[members["status"] == "completed"]
+    q, obs = event_arrays(done, event)
+    lo, med, hi = km_quantiles(q, obs)
+    first = done["first_discharge_lps"].astype(float) if "first_discharge_lps" in done else None
+    ef = event_fragility(event, done[EVENTS[event][0]].astype(float), done["last_discharge_lps"].astype(float),
+                         first, n_boot=0) if len(done) else None
+    fit = None if ef is None else ef.fit
+    return {"event": event, "members": int(q.size), "happened": int(obs.sum()),
+            "at_first_discharge": 0 if ef is None else int(ef.left.sum()),
+            "censored_at_lps": float(q[~obs].max()) if (~obs).any() else None,
+            "km_median_lps": med, "km_q16_lps": lo, "km_q84_lps": hi,
+            "fit_median_lps": None if fit is None else fit.median,
+            "fit_q16_lps": None if fit is None else fit.quantile(BAND[0]),
+            "fit_q84_lps": None if fit is None else fit.quantile(BAND[1])}
+
+
+def stage_fractions(members) -> Dict[str, float]:
+    """Shares of the completed members with a removal, with 1+, 2+ (failing in separate stages: two
+    stages apart by a stable period) and 3+ stages."""
+    done = members[members["status"] == "completed"]
+    n = max(len(done), 1)
+    stages = done["stages"].fillna(0).astype(int).to_numpy()
+    removed = np.isfinite(done["first_removal_lps"].astype(float).to_numpy())
+    return {"with_removal": removed.sum() / n, "stages_1plus": (stages >= 1).sum() / n,
+            "stages_2plus": (stages >= 2).sum() / n, "stages_3plus": (stages >= 3).sum() / n}
+
+
+def spread(values) -> Tuple[Optional[float], Optional[float], Optional[float]]:
+    """(16 %, median, 84 %) of finite values (plain quantiles: no censoring, e.g. a crest lowering)."""
+    v = np.asarray([x for x in values if x is not None and np.isfinite(x)], float)
+    if v.size == 0:
+        return None, None, None
+    lo, med, hi = np.quantile(v, [BAND[0], 0.5, BAND[1]])
+    return float(lo), float(med), float(hi)
+
+
+def _by_seed(members, event: str) -> Dict[int, Tuple[float, bool]]:
+    done = members[members["status"] == "completed"]
+    q, obs = event_arrays(done, event)
+    return {int(s): (float(v), bool(o)) for s, v, o in zip(done["seed"], q, obs)}
+
+
+def _km_median(pairs) -> Optional[float]:
+    q = np.array([p[0] for p in pairs], float)
+    return empirical_quantile(q, np.array([p[1] for p in pairs], bool), 0.5) if q.size else None
+
+
+@dataclass
+class Shift:
+    """The shift of an event's median from the reference's [l/s], with its bootstrap interval."""
+
+    event: str
+    reference: Optional[float]  # Kaplan-Meier median of the reference [l/s]
+    setting: Optional[float]  # of the setting
+    shift: Optional[float]  # setting - reference; None where either is not reached
+    lo: float = math.nan  # bootstrap 16 % [l/s]
+    hi: float = math.nan  # 84 %
+    left_out: float = math.nan  # share of resamples with a median not reached
+    seeds: int = 0  # seeds both ran (completed)
+
+
+def median_shift(reference, setting, event: str, n_boot: int = 1000, seed: int = 0, band=BAND) -> Shift:
+    """The shift of the Kaplan-Meier median of `event` from `reference` to `setting` (two outcome
+    tables over the same seeds), with its paired bootstrap over the seeds both completed."""
+    a, b = _by_seed(reference, event), _by_seed(setting, event)
+    common = sorted(set(a) & set(b))
+    ma, mb = _km_median([a[s] for s in common]), _km_median([b[s] for s in common])
+    out = Shift(event, ma, mb, None if ma is None or mb is None else mb - ma, seeds=len(common))
+    if not common or n_boot <= 0:
+        return out
+    rng = np.random.default_rng(seed)
+    shifts = np.full(n_boot, np.nan)
+    for k in range(n_boot):
+        pick = [common[i] for i in rng.integers(0, len(common), len(common))]
+        ra, rb = _km_median([a[s] for s in pick]), _km_median([b[s] for s in pick])
+        if ra is not None and rb is not None:
+            shifts[k] = rb - ra
+    kept = shifts[np.isfinite(shifts)]
+    out.left_out = float(1.0 - kept.size / n_boot)
+    if kept.size:
+        out.lo, out.hi = (float(v) for v in np.quantile(kept, band, method="inverted_cdf"))
+    return out
+
+
+# ---------------------------------------------------------------------------- knob settings
+@dataclass
+class Setting:
+    """One knob's value: the scene keys it sets (dotted key -> value, SI)."""
+
+    knob: str
+    value: str  # short, for the directory's name
+    label: str  # for the tables
+    values: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        """The setting's directory name, e.g. 'cfl=0.25'."""
+        return f"{self.knob}={self.value}"
+
+    def scene(self, reference):
+        s = reference
+        if s.numerics.fidelity is not None:  # a knob moved from a preset: the scene's own values then
+            s = s.with_value("numerics.fidelity", None)
+        for k, v in self.values.items():
+            s = s.with_value(k, v)
+        return s
+
+
+# the knobs and their settings by study size: (knob, factor or value), relative to the reference
+KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up")
+SIZES = {
+    "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25, 0.35], "porosity": ["lookup"],
+             "dem_steps": [24.0, 64.0], "spin_up": [0.5, 2.0]},
+    "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
+              "spin_up": [0.5]},
+    "tiny": {"cfl": [0.25], "porosity": ["lookup"]},
+}
+
+
+def _grid_setting(ref, factor: float) -> Setting:
+    g = ref.grid
+    vals = {f"grid.{k}": round(getattr(g, k) * factor, 9) for k in ("dx", "dz", "dz_bed", "bed_layer_height")}
+    return Setting("grid", f"x{factor:g}", f"{'coarser' if factor > 1 else 'finer'}: dx {vals['grid.dx'] * 100:g} cm, "
+                   f"dz {vals['grid.dz'] * 100:g} cm", vals)
+
+
+def setting(ref, knob: str, value) -> Setting:
+    """The setting of `knob` at `value` from the reference scene `ref` (see SIZES for the values)."""
+    n, h = ref.numerics, ref.hydrograph
+    if knob == "grid":
+        return _grid_setting(ref, float(value))
+    if knob == "ramp":
+        t = round(h.ramp_duration * float(value), 9)
+        return Setting("ramp", f"{t:g}", f"{t:g} s", {"hydrograph.ramp_duration": t})
+    if knob == "cfl":
+        return Setting("cfl", f"{float(value):g}", f"{float(value):g}", {"numerics.cfl": float(value)})
+    if knob == "porosity":
+        return Setting("porosity", str(value), "lookup table, m = 8", {"numerics.porosity_method": value})
+    if knob == "dem_steps":  # the same contact stiffness: the contact lasts steps x dem_dt
+        steps, dt = float(value), n.dem_dt * n.dem_contact_steps / float(value)
+        return Setting("dem_steps", f"{steps:g}", f"{steps:g} (dem_dt {dt:.3g} s)",
+                       {"numerics.dem_dt": dt, "numerics.dem_contact_steps": steps})
+    if knob == "spin_up":
+        t = round(h.spin_up_duration * float(value), 9)
+        return Setting("spin_up", f"{t:g}", f"{t:g} s", {"hydrograph.spin_up_duration": t})
+    raise ValueError(f"knob = {knob!r} is not one of {', '.join(KNOBS)}")
+
+
+def preset_of(scene) -> Optional[str]:
+    """The fidelity preset whose knob values the scene holds (set or not), else None."""
+    from .fidelity import PRESETS
+
+    for name, vals in PRESETS.items():
+        if all(scene.value_of(k) == v for k, v in vals.items()):
+            return name
+    return None
+
+
+def knob_settings(ref, size: str = "full", knobs: Optional[Sequence[str]] = None) -> List[Setting]:
+    """The settings of a study size ('full', 'small', 'tiny'), of the `knobs` named (default all of
+    that size), each validated on the reference scene (ValueError naming the key)."""
+    if size not in SIZES:
+        raise ValueError(f"size = {size!r} is not one of {', '.join(SIZES)}")
+    for k in knobs or ():
+        if k not in KNOBS:
+            raise ValueError(f"knobs: {k!r} is not one of {', '.join(KNOBS)}")
+    out = []
+    for knob, values in SIZES[size].items():
+        if knobs is not None and knob not in knobs:
+            continue
+        for v in values:
+            st = setting(ref, knob, v)
+            st.scene(ref)  # validate now, before anything runs
+            out.append(st)
+    return out

@@ -1,0 +1,177 @@
+"""The prediction study (benchmarks/maeno2008_verdict.py, vofdem.study): the censored statistics and the
+paired bootstrap of a shift against hand values, the study end to end in this process with a test
+double whose stones go at known discharges (its tables against a hand computation; a second call runs
+nothing), the study with the real solver at a tiny size, and the fidelity presets."""
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from fake_sim import FakeSimulation
+
+from vofdem.cli import main as cli_main
+from vofdem.fragility import empirical_quantile
+from vofdem.scene import Scene, load_scene
+from vofdem.study import event_summary, knob_settings, km_quantiles, median_shift, stage_fractions
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _script():
+    path = ROOT / "benchmarks" / "maeno2008_verdict.py"
+    spec = importlib.util.spec_from_file_location("maeno2008_verdict", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _frame(seeds, first, last=25.0, stages=None):
+    """An outcome table by hand: first removal [l/s] per seed (None: never), censored at `last`."""
+    n = len(seeds)
+    return pd.DataFrame({"member": [f"seed{s}" for s in seeds], "seed": seeds, "status": ["completed"] * n,
+                         "first_removal_lps": [np.nan if v is None else v for v in first],
+                         "stage1_lps": [np.nan] * n, "stage2_lps": [np.nan] * n, "stage3_lps": [np.nan] * n,
+                         "stages": stages or [0] * n, "last_discharge_lps": [last] * n,
+                         "first_discharge_lps": [10.06] * n})
+
+
+def test_kaplan_meier_quantiles_with_censoring_by_hand():
+    # 12 and 14 l/s, one member standing to 25 l/s: F = 1/3 after 12, 2/3 after 14, never 1
+    q, obs = np.array([12.0, 14.0, 25.0]), np.array([True, True, False])
+    assert km_quantiles(q, obs) == [12.0, 14.0, None]
+    # the naive median of the two that failed would be 13; the censored one counts
+    assert empirical_quantile(q, obs, 0.5) == 14.0
+    s = event_summary(_frame([0, 1, 2], [12.0, 14.0, None]), "first_removal")
+    assert (s["members"], s["happened"], s["censored_at_lps"]) == (3, 2, 25.0)
+    assert (s["km_q16_lps"], s["km_median_lps"], s["km_q84_lps"]) == (12.0, 14.0, None)
+    fr = stage_fractions(_frame([0, 1, 2, 3], [12.0, 14.0, None, 11.0], stages=[2, 1, 0, 3]))
+    assert fr == {"with_removal": 0.75, "stages_1plus": 0.75, "stages_2plus": 0.5, "stages_3plus": 0.25}
+
+
+def test_the_paired_bootstrap_of_a_shift_against_its_exact_distribution():
+    ref = _frame([0, 1, 2], [12.0, 14.0, None])
+    setting = _frame([0, 1, 2], [13.0, 16.0, None])
+    sh = median_shift(ref, setting, "first_removal", n_boot=4000, seed=1)
+    assert (sh.reference, sh.setting, sh.shift, sh.seeds) == (14.0, 16.0, 2.0, 3)
+    # resamples of 3 seeds: a median is not reached when seed 2 is drawn twice or more, P = 7/27; of the
+    # others, seed 0 drawn twice or more (P = 7/27) gives the shift +1, the rest (13/27) +2
+    assert sh.left_out == pytest.approx(7 / 27, abs=0.02)
+    assert (sh.lo, sh.hi) == (1.0, 2.0)
+    # a constant shift of every seed is the shift of every resample
+    same = median_shift(ref, _frame([0, 1, 2], [12.5, 14.5, None]), "first_removal", n_boot=200)
+    assert (same.shift, same.lo, same.hi) == (0.5, 0.5, 0.5)
+    # a median not reached has no shift; only the seeds both completed are paired
+    none = median_shift(ref, _frame([0, 1, 2], [None, None, 13.0]), "first_removal", n_boot=50)
+    assert none.setting is None and none.shift is None
+    part = median_shift(ref, _frame([0, 1], [12.0, 14.0]), "first_removal", n_boot=0)
+    assert part.seeds == 2 and (part.reference, part.setting) == (12.0, 12.0)
+
+
+def test_knob_settings_are_scene_keys_relative_to_the_reference():
+    ref = load_scene(ROOT / "scenes" / "maeno2008_rolling.toml")
+    by = {s.name: s for s in knob_settings(ref, "full")}
+    assert by["grid=x2"].values == {"grid.dx": 0.05, "grid.dz": 0.02, "grid.dz_bed": 0.01,
+                                    "grid.bed_layer_height": 0.01}
+    assert by["ramp=30"].values == {"hydrograph.ramp_duration": 30.0}
+    # the same contact stiffness: 64 steps of half the reference's step (32 of 6.25e-5 s)
+    assert by["dem_steps=64"].values == {"numerics.dem_dt": 3.125e-05, "numerics.dem_contact_steps": 64.0}
+    assert by["porosity=lookup"].scene(ref).numerics.porosity_method == "lookup"
+    with pytest.raises(ValueError, match="knobs: 'mesh' is not one of grid"):
+        knob_settings(ref, "small", ["mesh"])
+
+
+def _build(scene):
+    """Stones of the downstream face go at known discharges per seed; a CFL of 0.25 delays each by
+    1 l/s (2 s of the quick scene's ramp, four snapshots), the porosity table changes nothing."""
+    base = {0: [12.1, 12.3, 18.1, 18.2, 18.4], 1: [14.1, 14.3, 22.1, 22.2, 22.4], 2: [40.0] * 5}[scene.seed]
+    delay = 1.0 if scene.numerics.cfl == 0.25 else 0.0
+    return FakeSimulation(scene, thresholds_lps=[q + delay for q in base])
+
+
+def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
+    mod = _script()
+    args = ["--tiny", "--scenes", "maeno2008_rolling", "--seeds", "0-2", "--end-time", "36", "--widths", "0.5",
+            "--workers", "0", "--n-boot", "200", "--out", str(tmp_path / "ens"), "--results", str(tmp_path),
+            "--figures", str(tmp_path)]
+    md = mod.main(args, build=_build, log=lambda *a: None)
+    cost = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_cost.csv")
+    first = cost[cost["event"] == "first_removal"].set_index("setting")
+    # the quick ramp: 10 -> 25 l/s over 30 s after 5 s; a stone going at 12.1 l/s (t = 9.2 s) is seen
+    # removed at the next snapshot, 9.5 s (12.25 l/s); at 14.1 l/s at 13.5 s (14.25 l/s); seed 2 never
+    # (censored at 25 l/s): the Kaplan-Meier median is the second of three, 14.25 l/s
+    assert first.loc["reference", "median_lps"] == pytest.approx(14.25, abs=1e-9)
+    assert first.loc["cfl=0.25", "median_lps"] == pytest.approx(15.25, abs=1e-9)
+    assert first.loc["cfl=0.25", "shift_lps"] == pytest.approx(1.0, abs=1e-9)
+    assert first.loc["cfl=0.25", ["shift_lo_lps", "shift_hi_lps"]].tolist() == pytest.approx([1.0, 1.0], abs=1e-9)
+    assert first.loc["porosity=lookup", "shift_lps"] == pytest.approx(0.0, abs=1e-12)
+    # the packings' spread: 16 % at 12.25, 84 % not reached
+    assert first.loc["reference", "spread_lo_lps"] == pytest.approx(-2.0, abs=1e-9)
+    assert np.isnan(first.loc["reference", "spread_hi_lps"])
+    # stage 2 (three stones at 18.1-18.4 l/s for seed 0, 22.1-22.4 for seed 1): median 22.25
+    st2 = cost[(cost["event"] == "stage2")].set_index("setting")
+    assert st2.loc["reference", "median_lps"] == pytest.approx(22.25, abs=1e-9)
+    verdict = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_verdict.csv").set_index("event")
+    assert verdict.loc["stage1", ["km_q16_lps", "km_median_lps"]].tolist() == pytest.approx([12.25, 14.25])
+    assert np.isnan(verdict.loc["stage1", "km_q84_lps"]) and verdict.loc["stage2", "observed_lps"] == 16.5
+    text = md.read_text()
+    assert "with a removal 67%, failing in 2+ separate stages 67%, 3+ 0%" in text
+    assert "| stage 1 | 2 of 3 (0) | 14.25 [12.25 to > 25.00] |" in text
+    assert "| cfl: 0.25 | 3 of 3 |" in text and "| +1.00 [+1.00 to +1.00] |" in text
+    # the quick reference holds the draft preset's values; no setting here is another preset
+    assert "| draft | reference |" in text and "| median 14.25 |" in text
+    assert "| standard | not in this study's settings |" in text
+    assert (tmp_path / "maeno2008_verdict_tiny_cost.png").stat().st_size > 0
+    assert (tmp_path / "maeno2008_verdict_tiny_fragility.png").stat().st_size > 0
+    # resumable: a second call finds every member finished and runs none
+    logs = []
+    mod.run_study(mod._parser().parse_args(args), build=_build, log=logs.append)
+    assert [m for m in logs if "ensemble of" in m] == [
+        f"vofdem: ensemble of 3 members (3 already finished in {tmp_path / 'ens' / d})"
+        for d in ("verdict/maeno2008_rolling", "cost/cfl=0.25", "cost/porosity=lookup")]
+
+
+def test_the_study_with_the_solver_at_a_tiny_size(tmp_path):
+    """The script with the real solver: one seed of the quick scene for 2 s, the width sweep and one knob."""
+    md = _script().main(["--tiny", "--scenes", "maeno2008_rolling", "--seeds", "0", "--end-time", "2",
+                         "--knobs", "porosity", "--workers", "0", "--n-boot", "20", "--out", str(tmp_path / "ens"),
+                         "--results", str(tmp_path), "--figures", str(tmp_path)], log=lambda *a: None)
+    text = md.read_text()
+    assert "| 0.4 | > 10.00 [> 10.00 to > 10.00] |" in text and "| 0.5 | > 10.00" in text
+    assert "| porosity: lookup table, m = 8 | 1 of 1 |" in text
+    width = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_width.csv")
+    assert sorted(set(width["width_m"])) == [0.4, 0.5] and (width["happened"] == 0).all()
+    cost = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_cost.csv")
+    assert (cost["cpu_s_per_member"] > 0).all() and set(cost["setting"]) == {"reference", "porosity=lookup"}
+
+
+# ---------------------------------------------------------------------------- fidelity presets
+def test_a_preset_sets_its_knobs_and_a_scene_at_a_preset_holds_them():
+    s = Scene.maeno2008().with_value("numerics.fidelity", "fine")
+    assert (s.grid.dx, s.grid.dz, s.grid.dz_bed, s.numerics.cfl) == (0.0125, 0.005, 0.0025, 0.5)
+    assert load_scene_text(s.to_toml()) == s.to_toml()
+    with pytest.raises(ValueError, match=r"numerics.fidelity = 'fine' sets grid.dx = 0.0125, the scene has 0.03"):
+        s.with_value("grid.dx", 0.03)
+    with pytest.raises(ValueError, match=r"numerics.fidelity = 'ultra' is not one of 'draft', 'standard', 'fine'"):
+        Scene.maeno2008().with_value("numerics.fidelity", "ultra")
+    # a file naming a preset gets its values where it gives none, and is refused where it gives another
+    text = Scene.maeno2008().to_toml().replace("[numerics]", '[numerics]\nfidelity = "draft"')
+    with pytest.raises(ValueError, match="sets grid.dx = 0.05, the scene has 0.025"):
+        Scene.from_toml(text)
+    lines = [ln for ln in text.splitlines() if not ln.startswith(("dx =", "dz =", "dz_bed =", "bed_layer_height ="))]
+    assert Scene.from_toml("\n".join(lines)).grid.dx == 0.05
+    # --quick is the draft grid (a scene at a preset becomes 'draft'); without a preset its scene is unchanged
+    assert "fidelity" not in Scene.maeno2008().quick().to_toml()
+    assert Scene.maeno2008().with_value("numerics.fidelity", "standard").quick().numerics.fidelity == "draft"
+
+
+def load_scene_text(text: str) -> str:
+    return Scene.from_toml(text).to_toml()
+
+
+def test_the_fidelity_option_of_the_command_line(capsys):
+    assert cli_main(["check", "maeno2008", "--fidelity", "draft"]) == 0
+    out = capsys.readouterr().out
+    assert 'fidelity = "draft"' in out and "dx = 0.05" in out
+    assert cli_main(["check", "maeno2008", "--fidelity", "ultra"]) == 2
+    assert "numerics.fidelity = 'ultra' is not one of 'draft', 'standard', 'fine'" in capsys.readouterr().err
