@@ -224,6 +224,26 @@ def test_a_directory_of_another_scene_is_refused(tmp_path):
         run_ensemble(other.validate(), [0], tmp_path, build=_build, workers=0, **QUIET)
 
 
+def test_a_member_of_an_older_version_without_new_default_keys_is_the_same_scene(tmp_path):
+    """A version that added scene keys with their defaults writes another scene.toml for the same scene:
+    the finished member is recognised by its scene read with the present defaults, and not run again."""
+    import hashlib
+    import json
+
+    first = run_ensemble(short_scene(), [0], tmp_path, build=_build, workers=0, n_boot=0, **QUIET)
+    member = tmp_path / "seed0"
+    text = "".join(line for line in (member / "scene.toml").read_text().splitlines(keepends=True)
+                   if not line.startswith(("aspect_ratio", "polygon_radial_jitter")))
+    (member / "scene.toml").write_text(text)
+    outcome = json.loads((member / "outcome.json").read_text())
+    outcome["scene_sha256"] = hashlib.sha256(text.encode()).hexdigest()
+    (member / "outcome.json").write_text(json.dumps(outcome))
+    calls = []
+    again = run_ensemble(short_scene(), [0], tmp_path, build=lambda sc: calls.append(sc) or _build(sc), workers=0,
+                         n_boot=0, **QUIET)
+    assert calls == [] and again["stones_hash"].tolist() == first["stones_hash"].tolist()
+
+
 def test_the_maeno_fragility_script_at_a_tiny_size(tmp_path):
     """benchmarks/maeno2008_fragility.py, which makes the README's 30-seed figure, on 1 seed of the quick
     variant for 2 s."""

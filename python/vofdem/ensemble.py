@@ -200,7 +200,7 @@ def run_member(base: Scene, member: Member, out_dir, figures: bool = False, anim
     scene = member.scene(base)
     mdir = Path(out_dir) / member.name
     old = read_outcome(mdir / OUTCOME_FILE)
-    if old is not None and old.get("scene_sha256") == scene_digest(scene) and not (
+    if old is not None and _same_scene(old, mdir, scene) and not (
             retry_failed and old.get("status") != "completed"):
         return old
     row: Dict[str, Any] = {"member": member.name, "seed": member.seed, "params": dict(member.params),
@@ -257,13 +257,30 @@ def collect_outcomes(out_dir) -> List[Dict[str, Any]]:
     return sorted((r for r in rows if r is not None), key=lambda r: (r["member"].rpartition("/")[0], r["seed"]))
 
 
+def _same_scene(row: Dict[str, Any], member_dir: Path, scene: Scene) -> bool:
+    """Whether the member in `member_dir` ran `scene`: the same digest, or, when the digest differs, its
+    scene.toml read with this version's defaults equals `scene` (a version that added keys with their
+    defaults writes a different file for the same scene)."""
+    if row.get("scene_sha256") == scene_digest(scene):
+        return True
+    path = member_dir / "scene.toml"
+    if not path.exists():
+        return False
+    from .scene import load_scene
+
+    try:
+        return scene_digest(load_scene(path)) == scene_digest(scene)
+    except ValueError:
+        return False
+
+
 def _check_existing(base: Scene, members: Sequence[Member], out: Path, retry_failed: bool):
     """(members to run, outcomes already there). A member directory holding a run of another scene
     is an error: its results are kept, not overwritten."""
     todo, done = [], {}
     for m in members:
         row = read_outcome(out / m.name / OUTCOME_FILE)
-        if row is not None and row.get("scene_sha256") != scene_digest(m.scene(base)):
+        if row is not None and not _same_scene(row, out / m.name, m.scene(base)):
             raise ValueError(f"{out / m.name} holds a run of another scene (its scene differs from this "
                              f"ensemble's); choose another output directory or remove it")
         if row is None or (retry_failed and row.get("status") != "completed"):
