@@ -37,7 +37,7 @@ import pandas as pd
 
 from vofdem.cluster import default_workers, ensemble_client
 from vofdem.ensemble import parse_seeds, run_ensemble
-from vofdem.fragility import EVENTS, fig_fragility, fragility_of
+from vofdem.fragility import EVENTS, fig_fragility, figure_legend, fragility_of
 from vofdem.scene import load_scene
 from vofdem.fidelity import PRESETS
 from vofdem.study import (KNOBS, coupling, event_summary, knob_settings, median_shift, preset_of, spread,
@@ -327,13 +327,7 @@ def fig_cost(rows, path: Path) -> None:
         ax.set_xlabel("CPU time per member [s]")
     for ax in axes[::2]:
         ax.set_ylabel("shift of the median [l/s]")
-    handles, labels = [], []
-    for ax in axes:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(h)
-                labels.append(lab)
-    fig.legend(handles, labels, loc="outside lower center", ncols=min(4, len(labels)), fontsize=8)
+    figure_legend(fig, axes, 4)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=90)
 

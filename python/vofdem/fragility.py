@@ -425,14 +425,19 @@ def fig_fragility(by_combo, reference: Optional[Reference] = None):
         ax.set_xlabel("discharge Q [l/s]")
     for ax in axes[::2]:
         ax.set_ylabel("P(happened by Q)")
+    figure_legend(fig, axes, 3)
+    return fig
+
+
+def figure_legend(fig, axes, max_cols: int) -> None:
+    """One legend below the panels of `fig`: every label of `axes` once, in the order first drawn."""
     handles, labels = [], []
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    fig.legend(handles, labels, loc="outside lower center", ncols=min(3, len(labels)), fontsize=8)
-    return fig
+    fig.legend(handles, labels, loc="outside lower center", ncols=min(max_cols, len(labels)), fontsize=8)
 
 
 def _draw_event(ax, e: EventFragility, color: str, label: str, lo: float) -> None:
