@@ -37,15 +37,27 @@ inline bool rolling_springs_zero(const std::map<std::string, std::vector<double>
   return true;
 }
 
-inline std::uint64_t pin_hash(const std::map<std::string, std::vector<double>>& state) {
+// FNV-1a over the keys and the bytes of the arrays of `state` that keep(key) accepts
+template <class Keep>
+std::uint64_t fnv_state(const std::map<std::string, std::vector<double>>& state, Keep keep) {
   std::uint64_t h = 1469598103934665603ull;
   for (const auto& [key, v] : state) {
-    if (added_after_pins(key)) continue;
+    if (!keep(key)) continue;
     for (char c : key) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
     const auto* b = reinterpret_cast<const unsigned char*>(v.data());
     for (std::size_t k = 0; k < v.size() * sizeof(double); ++k) h = (h ^ b[k]) * 1099511628211ull;
   }
   return h;
+}
+
+// every array (determinism and restart tests)
+inline std::uint64_t state_hash(const std::map<std::string, std::vector<double>>& state) {
+  return fnv_state(state, [](const std::string&) { return true; });
+}
+
+// the arrays the pins were taken over
+inline std::uint64_t pin_hash(const std::map<std::string, std::vector<double>>& state) {
+  return fnv_state(state, [](const std::string& key) { return !added_after_pins(key); });
 }
 
 }  // namespace vofdem::test

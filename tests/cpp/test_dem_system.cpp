@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "vofdem/dem_system.h"
+#include "pin_hash.h"
 
 using namespace vofdem;
 
@@ -16,16 +17,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kR = 0.024;
 
-// FNV-1a over the bytes of every exported array
-std::uint64_t state_hash(const DEMSystem& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const auto& [key, v] : s.export_state()) {
-    for (char c : key) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-    const auto* b = reinterpret_cast<const unsigned char*>(v.data());
-    for (std::size_t k = 0; k < v.size() * sizeof(double); ++k) h = (h ^ b[k]) * 1099511628211ull;
-  }
-  return h;
-}
+std::uint64_t state_hash(const DEMSystem& s) { return test::state_hash(s.export_state()); }
 
 // a small random heap of discs falling into a box
 DEMSystem random_box(int n, std::uint64_t seed, DEMParams p = {}) {
