@@ -30,7 +30,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .scene import Scene
+from .scene import Scene, load_scene
 
 OUTCOME_FILE = "outcome.json"
 # the columns of an outcome, after the member's name, seed and parameters
@@ -266,8 +266,6 @@ def _same_scene(row: Dict[str, Any], member_dir: Path, scene: Scene) -> bool:
     path = member_dir / "scene.toml"
     if not path.exists():
         return False
-    from .scene import load_scene
-
     try:
         return scene_digest(load_scene(path)) == scene_digest(scene)
     except ValueError:
@@ -364,8 +362,6 @@ def summarise(out_dir, n_boot: int = 1000, boot_seed: int = 0) -> str:
 
 def _member_reference(out: Path, rows):
     """The reference data of an ensemble's scene, read from its first member's scene.toml (None if none)."""
-    from .scene import load_scene
-
     for r in rows:
         path = out / r["member"] / "scene.toml"
         if path.is_file():
