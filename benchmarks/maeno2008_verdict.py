@@ -50,6 +50,7 @@ SIZES = {"full": dict(seeds="0-29", quick=False, end_time=None, widths=(0.3, 0.4
          "small": dict(seeds="0-5", quick=True, end_time=None, widths=(0.3, 0.4, 0.5)),
          "tiny": dict(seeds="0-1", quick=True, end_time=3.0, widths=(0.4, 0.5))}
 SUFFIX = {"full": "", "small": "_small", "tiny": "_tiny"}
+PARTS = ("verdict", "width", "cost")
 
 
 def _parser():
@@ -64,6 +65,11 @@ def _parser():
     p.add_argument("--widths", type=float, nargs="+", default=None, help="flume widths [m] of the sweep")
     p.add_argument("--knobs", nargs="+", default=None, choices=KNOBS, help="knobs of the cost part (default all)")
     p.add_argument("--seeds", default=None, help="packings (default 0-29; --small 0-5; --tiny 0-1)")
+    p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
+                   "the reference's members at these seeds are paired with each setting's)")
+    p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
+                   help="parts to run (default all; the verdict's ensembles always run: the others are "
+                        "measured against them)")
     p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s]")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default one per core; 0: "
                    "in this process, no Dask)")
@@ -101,16 +107,18 @@ def run_study(args, build=None, log=print):
     d = SIZES[size]
     end_time = args.end_time if args.end_time is not None else d["end_time"]
     seeds = parse_seeds(args.seeds or d["seeds"])
+    knob_seeds = parse_seeds(args.knob_seeds) if args.knob_seeds else seeds
     scenes = {n: _scene(n, d["quick"], end_time) for n in args.scenes}
     width_name, cost_name = args.width_scene or args.scenes[0], args.cost_scene or args.scenes[0]
     for n in (width_name, cost_name):
         if n not in scenes:
             raise ValueError(f"{n!r} is not one of the study's scenes ({', '.join(scenes)})")
-    settings = knob_settings(scenes[cost_name], size, args.knobs)
+    settings = knob_settings(scenes[cost_name], size, args.knobs) if "cost" in args.parts else []
     base_width = scenes[width_name].flume.width
     widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
+    widths = widths if "width" in args.parts else []
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
-    res = {"size": size, "seeds": seeds, "scenes": scenes, "width_scene": width_name, "cost_scene": cost_name,
+    res = {"size": size, "seeds": seeds, "knob_seeds": knob_seeds, "scenes": scenes, "width_scene": width_name, "cost_scene": cost_name,
            "settings": settings, "base_width": base_width, "out": out, "found": _finished(out)}
     with _client(args.workers, args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
@@ -119,8 +127,14 @@ def run_study(args, build=None, log=print):
         res["width"] = (run_ensemble(scenes[width_name], seeds, out / "width" / width_name,
                                      vary={"flume.width": widths}, **kw) if widths else None)
         ref = scenes[cost_name]
-        res["cost"] = {st.name: run_ensemble(st.scene(ref), seeds, out / "cost" / st.name, **kw) for st in settings}
+        res["cost"] = {st.name: run_ensemble(st.scene(ref), knob_seeds, out / "cost" / st.name, **kw)
+                       for st in settings}
     return res
+
+
+def _seed_range(seeds) -> str:
+    return f"{seeds[0]}-{seeds[-1]}" if list(seeds) == list(range(seeds[0], seeds[-1] + 1)) else \
+        ", ".join(map(str, seeds))
 
 
 def _finished(out: Path) -> int:
@@ -383,7 +397,7 @@ def write_results(res, args, wall: float) -> Path:
     scene0 = next(iter(res["scenes"].values()))
     text = [f"# The Maeno 2008 weir: the verdict and what its accuracy costs ({size} version)", "",
             f"Written by `PYTHONPATH=python python3 benchmarks/maeno2008_verdict.py{flag}`: {len(res['seeds'])} "
-            f"seeds ({res['seeds'][0]}-{res['seeds'][-1]}), {n_members} members, "
+            f"seeds ({_seed_range(res['seeds'])}), {n_members} members, "
             f"{'the quick variants of ' if size != 'full' else ''}scenes {', '.join(res['scenes'])}, "
             f"{scene0.duration:g} s simulated per member, {cpu / 60:.1f} CPU-minutes in all. The last call ran {ran} "
             f"members (found {res['found']} finished) in {wall / 60:.1f} min {where} ({os.cpu_count()} cores, load "
@@ -405,7 +419,7 @@ def write_results(res, args, wall: float) -> Path:
              f"CFL {ref_scene.numerics.cfl:g}, porosity {ref_scene.numerics.porosity_method}, "
              f"{ref_scene.numerics.dem_contact_steps:g} DEM steps per contact, ramp "
              f"{ref_scene.hydrograph.ramp_duration:g} s, spin-up {ref_scene.hydrograph.spin_up_duration:g} s). "
-             "One knob at a time over the same seeds: the shift of each event's Kaplan-Meier median from the "
+             f"One knob at a time over the same seeds ({_seed_range(res['knob_seeds'])}): the shift of each event's Kaplan-Meier median from the "
              "reference's [l/s], with its paired bootstrap 16-84 % interval over the seeds, and the median CPU time "
              "per member (its ratio to the reference's, measured in the same run).", ""] + _cost_md(crows)
     text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "

@@ -349,6 +349,7 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.stone_drag = getattr(_core.StoneDragModel, _STONE_DRAG[scene.stones.drag_model])
     p.max_dt = scene.numerics.max_dt
     p.implicit_drag = scene.numerics.drag_exchange == "implicit"
+    p.lookup_m = scene.numerics.lookup_m
     flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
     if fx.dem:
         flags |= _core.COUPLE_DEM

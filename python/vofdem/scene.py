@@ -228,10 +228,7 @@ class Stones(_Section):
 
     def _validate_polygon(self, prefix: str) -> None:
         for name in ("polygon_vertices_min", "polygon_vertices_max"):
-            v = getattr(self, name)
-            if v != int(v):
-                raise ValueError(f"{prefix}.{name} = {_fmt(v)} must be a whole number in [3, 16]")
-            setattr(self, name, int(v))
+            _make_whole(self, prefix, name, "[3, 16]")
         if self.polygon_vertices_max < self.polygon_vertices_min:
             raise ValueError(f"{prefix}.polygon_vertices_max = {self.polygon_vertices_max} is outside the allowed "
                              f"range [{self.polygon_vertices_min}, 16] (at least {prefix}.polygon_vertices_min)")
@@ -318,6 +315,14 @@ class GridSpec(_Section):
         self._validate_fields(prefix)
 
 
+def _make_whole(section, prefix: str, name: str, allowed: str) -> None:
+    """A key read as a number (TOML 8 or 8.0) made an int, refused unless whole."""
+    v = getattr(section, name)
+    if v != int(v):
+        raise ValueError(f"{prefix}.{name} = {_fmt(v)} must be a whole number in {allowed}")
+    setattr(section, name, int(v))
+
+
 @dataclass
 class Numerics(_Section):
     cfl: float = _p(0.5, None, 0.0, 0.5, "Courant number of the fluid step [-]; usual 0.5 with adams_bashforth2 "
@@ -332,6 +337,8 @@ class Numerics(_Section):
                               "usual 1.2", "[]")
     porosity_method: str = _choice("exact", ("exact", "lookup"),
                                    "disc-cell overlap: exact areas or the paper's lookup table")
+    lookup_m: int = _p(8, None, 2, 64, "sub-areas per side of a cell in the paper's lookup table (porosity_method "
+                       "= 'lookup') [-]; 8")
     pressure_solver: str = _choice("multigrid_cg", ("multigrid_cg", "direct"),
                                    "multigrid-preconditioned CG (fast) or Eigen's direct solver (reference)")
     pressure_tolerance: float = _p(1e-5, None, 0.0, 1e-2, "relative residual of the pressure solve [-]; 1e-5 "
@@ -350,6 +357,7 @@ class Numerics(_Section):
 
     def validate(self, prefix: str = "numerics") -> None:
         self._validate_fields(prefix)
+        _make_whole(self, prefix, "lookup_m", "[2, 64]")
 
 
 @dataclass

@@ -18,8 +18,8 @@ own spread, against which a shift is judged, is the reference's 16-84 % band.
 
 **Knob settings** (`knob_settings`): one knob at a time from the reference scene, each a set of scene
 keys (docs/verdict.md): the grid twice as coarse or as fine, the ramp's duration, the fluid's CFL, the
-porosity by the paper's lookup table instead of exact areas (its sub-areas per side m are not a scene
-key: the table's m = 8 alone), the DEM steps per contact at the same contact stiffness (dem_dt and
+porosity by the paper's lookup table instead of exact areas (its sub-areas per side m: 'lookup4',
+'lookup' (m = 8), 'lookup16'), the DEM steps per contact at the same contact stiffness (dem_dt and
 dem_contact_steps together), and the spin-up's length.
 """
 from __future__ import annotations
@@ -183,7 +183,8 @@ class Setting:
 # the knobs and their settings by study size: (knob, factor or value), relative to the reference
 KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up")
 SIZES = {
-    "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25, 0.35], "porosity": ["lookup"],
+    "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25, 0.35],
+             "porosity": ["lookup4", "lookup", "lookup16"],
              "dem_steps": [24.0, 64.0], "spin_up": [0.5, 2.0]},
     "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
               "spin_up": [0.5]},
@@ -209,7 +210,9 @@ def setting(ref, knob: str, value) -> Setting:
     if knob == "cfl":
         return Setting("cfl", f"{float(value):g}", f"{float(value):g}", {"numerics.cfl": float(value)})
     if knob == "porosity":
-        return Setting("porosity", str(value), "lookup table, m = 8", {"numerics.porosity_method": value})
+        m = int(str(value)[len("lookup"):] or 8)  # 'lookup' is the table at m = 8, 'lookup16' at m = 16
+        return Setting("porosity", str(value), f"lookup table, m = {m}",
+                       {"numerics.porosity_method": "lookup", "numerics.lookup_m": m})
     if knob == "dem_steps":  # the same contact stiffness: the contact lasts steps x dem_dt
         steps, dt = float(value), n.dem_dt * n.dem_contact_steps / float(value)
         return Setting("dem_steps", f"{steps:g}", f"{steps:g} (dem_dt {dt:.3g} s)",
