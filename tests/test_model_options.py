@@ -33,7 +33,8 @@ def test_defaults_are_the_papers_and_choices_are_validated():
     s = Scene.maeno2008()
     assert s.stones.drag_model == "sphere" and s.stones.porosity_mapping == "paper"
     p = coupler_params(s)
-    assert p.stone_drag == vofdem.StoneDragModel.SPHERE and p.n_exp == s.stones.n_exp
+    assert p.stone_drag == vofdem.StoneDragModel.SPHERE and p.n_exp == s.stones.n_exp and p.lookup_m == 8
+    assert coupler_params(s.with_value("numerics.lookup_m", 16)).lookup_m == 16
     s.stones.drag_model = "bed"
     assert coupler_params(s).stone_drag == vofdem.StoneDragModel.BED
     for key, bad, allowed in (("drag_model", "ergun", "'sphere', 'bed'"), ("porosity_mapping", "2d", "'paper', 'bulk'")):

@@ -77,6 +77,8 @@ def test_knob_settings_are_scene_keys_relative_to_the_reference():
     # the same contact stiffness: 64 steps of half the reference's step (32 of 6.25e-5 s)
     assert by["dem_steps=64"].values == {"numerics.dem_dt": 3.125e-05, "numerics.dem_contact_steps": 64.0}
     assert by["porosity=lookup"].scene(ref).numerics.porosity_method == "lookup"
+    # the table's sub-areas per side: m = 8 unless named
+    assert [by[f"porosity={v}"].scene(ref).numerics.lookup_m for v in ("lookup4", "lookup", "lookup16")] == [4, 8, 16]
     with pytest.raises(ValueError, match="knobs: 'mesh' is not one of grid"):
         knob_settings(ref, "small", ["mesh"])
 
