@@ -183,9 +183,8 @@ class Setting:
 # the knobs and their settings by study size: (knob, factor or value), relative to the reference
 KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up")
 SIZES = {
-    "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25, 0.35],
-             "porosity": ["lookup4", "lookup", "lookup16"],
-             "dem_steps": [24.0, 64.0], "spin_up": [0.5, 2.0]},
+    "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25], "porosity": ["lookup4", "lookup", "lookup16"],
+             "dem_steps": [64.0], "spin_up": [0.5]},
     "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
               "spin_up": [0.5]},
     "tiny": {"cfl": [0.25], "porosity": ["lookup"]},
