@@ -67,6 +67,7 @@ def _parser():
     p.add_argument("--widths", type=float, nargs="+", default=None, help="flume widths [m] of the sweep")
     p.add_argument("--knobs", nargs="+", default=None, choices=KNOBS, help="knobs of the cost part (default all)")
     p.add_argument("--seeds", default=None, help="packings (default 0-29; --small 0-5; --tiny 0-1)")
+    p.add_argument("--width-seeds", default=None, help="packings of the width sweep (default --seeds)")
     p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
                    "the reference's members at these seeds are paired with each setting's)")
     p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
@@ -109,7 +110,7 @@ def run_study(args, build=None, log=print):
     d = SIZES[size]
     end_time = args.end_time if args.end_time is not None else d["end_time"]
     seeds = parse_seeds(args.seeds or d["seeds"])
-    knob_seeds = parse_seeds(args.knob_seeds) if args.knob_seeds else seeds
+    width_seeds, knob_seeds = (parse_seeds(a) if a else seeds for a in (args.width_seeds, args.knob_seeds))
     scenes = {n: _scene(n, d["quick"], end_time) for n in args.scenes}
     width_name, cost_name = args.width_scene or args.scenes[0], args.cost_scene or args.scenes[0]
     for n in (width_name, cost_name):
@@ -120,13 +121,13 @@ def run_study(args, build=None, log=print):
     widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
     widths = widths if "width" in args.parts else []
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
-    res = {"size": size, "seeds": seeds, "knob_seeds": knob_seeds, "scenes": scenes, "width_scene": width_name, "cost_scene": cost_name,
+    res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes, "width_scene": width_name, "cost_scene": cost_name,
            "settings": settings, "base_width": base_width, "out": out, "found": _finished(out)}
     with _client(args.workers, args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
                   progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
         res["verdict"] = {n: run_ensemble(s, seeds, out / "verdict" / n, **kw) for n, s in scenes.items()}
-        res["width"] = (run_ensemble(scenes[width_name], seeds, out / "width" / width_name,
+        res["width"] = (run_ensemble(scenes[width_name], width_seeds, out / "width" / width_name,
                                      vary={"flume.width": widths}, **kw) if widths else None)
         ref = scenes[cost_name]
         res["cost"] = {st.name: run_ensemble(st.scene(ref), knob_seeds, out / "cost" / st.name, **kw)
@@ -191,8 +192,10 @@ def _config_md(name, scene, df) -> list:
 
 
 def width_frames(res):
-    """{width [m]: outcome frame} of the width sweep, the scene's own width from its verdict ensemble."""
-    out = {res["base_width"]: res["verdict"][res["width_scene"]]}
+    """{width [m]: outcome frame} of the width sweep, the scene's own width from its verdict ensemble (its
+    members at the sweep's seeds)."""
+    base = res["verdict"][res["width_scene"]]
+    out = {res["base_width"]: base[base["seed"].isin(res["width_seeds"])]}
     wide = res["width"]
     if wide is not None:
         for w, g in wide.groupby("flume.width"):
@@ -414,7 +417,7 @@ def write_results(res, args, wall: float) -> Path:
     for n, s in res["scenes"].items():
         text += _config_md(n, s, res["verdict"][n])
     text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by B; "
-             f"the paper does not give it).", ""] + _width_md(res)
+             f"the paper does not give it), seeds {_seed_range(res['width_seeds'])}.", ""] + _width_md(res)
     ref_scene = res["scenes"][res["cost_scene"]]
     text += ["## Accuracy against cost", "",
              f"Reference: `{res['cost_scene']}` (grid {ref_scene.grid.dx * 100:g} x {ref_scene.grid.dz * 100:g} cm, "
