@@ -36,7 +36,7 @@ import numpy as np
 import pandas as pd
 
 from vofdem.cluster import default_workers, ensemble_client
-from vofdem.ensemble import parse_seeds, run_ensemble
+from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble
 from vofdem.fragility import EVENTS, fig_fragility, figure_legend, fragility_of
 from vofdem.scene import load_scene
 from vofdem.fidelity import PRESETS
@@ -70,6 +70,8 @@ def _parser():
     p.add_argument("--width-seeds", default=None, help="packings of the width sweep (default --seeds)")
     p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
                    "the reference's members at these seeds are paired with each setting's)")
+    p.add_argument("--no-run", action="store_true", help="run no member: the tables of the members finished so far "
+                   "(an ensemble cut short says how many of its members it holds)")
     p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
                    help="parts to run (default all; the verdict's ensembles always run: the others are "
                         "measured against them)")
@@ -121,17 +123,19 @@ def run_study(args, build=None, log=print):
     widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
     widths = widths if "width" in args.parts else []
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
-    res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes, "width_scene": width_name, "cost_scene": cost_name,
+    res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes,
+           "width_scene": width_name, "cost_scene": cost_name,
            "settings": settings, "base_width": base_width, "out": out, "found": _finished(out)}
-    with _client(args.workers, args.scheduler) as client:
+    with _client(0 if args.no_run else args.workers, None if args.no_run else args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
                   progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
-        res["verdict"] = {n: run_ensemble(s, seeds, out / "verdict" / n, **kw) for n, s in scenes.items()}
-        res["width"] = (run_ensemble(scenes[width_name], width_seeds, out / "width" / width_name,
-                                     vary={"flume.width": widths}, **kw) if widths else None)
+        ens = (lambda s, sd, d, vary=None: finished_outcomes(s, sd, d, vary)) if args.no_run else \
+            (lambda s, sd, d, vary=None: run_ensemble(s, sd, d, vary=vary, **kw))
+        res["verdict"] = {n: ens(s, seeds, out / "verdict" / n) for n, s in scenes.items()}
+        res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, {"flume.width": widths})
+                        if widths else None)
         ref = scenes[cost_name]
-        res["cost"] = {st.name: run_ensemble(st.scene(ref), knob_seeds, out / "cost" / st.name, **kw)
-                       for st in settings}
+        res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
     return res
 
 
@@ -401,7 +405,11 @@ def write_results(res, args, wall: float) -> Path:
     ran = _finished(res["out"]) - res["found"]
     where = (f"on the cluster at {args.scheduler}" if args.scheduler else "in this process" if args.workers == 0
              else f"on {args.workers or default_workers()} local worker process(es)")
-    flag = {"full": "", "small": " --small", "tiny": " --tiny"}[size]
+    flag = {"full": "", "small": " --small", "tiny": " --tiny"}[size] + "".join(
+        f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "knob_seeds")
+        if getattr(args, k))
+    if args.no_run:
+        where = "(--no-run: tables of the members finished so far)"
     scene0 = next(iter(res["scenes"].values()))
     text = [f"# The Maeno 2008 weir: the verdict and what its accuracy costs ({size} version)", "",
             f"Written by `PYTHONPATH=python python3 benchmarks/maeno2008_verdict.py{flag}`: {len(res['seeds'])} "
@@ -427,7 +435,8 @@ def write_results(res, args, wall: float) -> Path:
              f"CFL {ref_scene.numerics.cfl:g}, porosity {ref_scene.numerics.porosity_method}, "
              f"{ref_scene.numerics.dem_contact_steps:g} DEM steps per contact, ramp "
              f"{ref_scene.hydrograph.ramp_duration:g} s, spin-up {ref_scene.hydrograph.spin_up_duration:g} s). "
-             f"One knob at a time over the same seeds ({_seed_range(res['knob_seeds'])}): the shift of each event's Kaplan-Meier median from the "
+             f"One knob at a time over the same seeds ({_seed_range(res['knob_seeds'])}): the shift of each event's "
+             "Kaplan-Meier median from the "
              "reference's [l/s], with its paired bootstrap 16-84 % interval over the seeds, and the median CPU time "
              "per member (its ratio to the reference's, measured in the same run).", ""] + _cost_md(crows)
     text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "

@@ -131,6 +131,13 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     assert [m for m in logs if "ensemble of" in m] == [
         f"vofdem: ensemble of 3 members (3 already finished in {tmp_path / 'ens' / d})"
         for d in ("verdict/maeno2008_rolling", "cost/cfl=0.25", "cost/porosity=lookup")]
+    # --no-run: a member cut short is a row 'not run', its setting paired on the seeds both finished
+    (tmp_path / "ens" / "cost" / "cfl=0.25" / "seed1" / "outcome.json").unlink()
+    text = mod.main(args + ["--no-run"], build=_build, log=lambda *a: None).read_text()
+    assert "| cfl: 0.25 | 2 of 3 |" in text
+    assert not (tmp_path / "ens" / "cost" / "cfl=0.25" / "seed1" / "outcome.json").exists()
+    cost = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_cost.csv").set_index(["setting", "event"])
+    assert cost.loc[("cfl=0.25", "first_removal"), "seeds"] == 2
 
 
 def test_the_study_with_the_solver_at_a_tiny_size(tmp_path):

@@ -251,6 +251,16 @@ def outcomes_frame(rows: Sequence[Dict[str, Any]], param_keys: Sequence[str] = (
     return df
 
 
+def finished_outcomes(scene: Scene, seeds: Sequence[int], out_dir, vary=None):
+    """The outcome table (as run_ensemble's) of an ensemble as far as it ran in `out_dir`, running none:
+    a member not finished there is a row of status 'not run'."""
+    members = plan_members(scene, seeds, vary)
+    _, done = _check_existing(scene, members, Path(out_dir).resolve(), False)
+    rows = [done.get(m.name) or {"member": m.name, "seed": m.seed, "params": dict(m.params), "status": "not run"}
+            for m in members]
+    return outcomes_frame(rows, [k for k, _ in members[0].params])
+
+
 def collect_outcomes(out_dir) -> List[Dict[str, Any]]:
     """Every finished member's outcome found under `out_dir`, by parameter combination and seed."""
     rows = [read_outcome(p) for p in Path(out_dir).glob(f"**/{OUTCOME_FILE}")]
