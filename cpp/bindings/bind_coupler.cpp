@@ -60,7 +60,10 @@ void bind_coupler(py::module_& m) {
            py::arg("params") = CouplerParams(), py::keep_alive<1, 2>(), py::keep_alive<1, 3>())
       .def_property_readonly("fluid", py::overload_cast<>(&Coupler::fluid), py::return_value_policy::reference_internal)
       .def_property_readonly("stones", py::overload_cast<>(&Coupler::stones), py::return_value_policy::reference_internal)
-      .def_property("params", &Coupler::params, &Coupler::set_params)
+      .def_property(
+          "params", [](const Coupler& c) { return c.params(); }, &Coupler::set_params,
+          "a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity "
+          "mapper and the flow's relative-velocity flag following them")
       .def_property_readonly("n", &Coupler::n)
       .def_property_readonly("time", &Coupler::time)
       .def_property_readonly("step_count", &Coupler::step_count)

@@ -102,7 +102,9 @@ void bind_system(py::module_& m) {
            py::arg("params"), py::arg("pos"), py::arg("radius"), py::arg("density") = A(py::cast(2650.0)),
            py::arg("fixed") = std::vector<std::uint8_t>{})
       .def_property_readonly("n", &DEMSystem::n)
-      .def_property("params", &DEMSystem::params, &DEMSystem::set_params)
+      .def_property(
+          "params", [](const DEMSystem& s) { return s.params(); }, &DEMSystem::set_params,
+          "a copy (editing it changes nothing); assign a modified copy to change them, checked")
       .def("resize", &DEMSystem::resize, py::arg("n"))
       .def("stable_dt", &DEMSystem::stable_dt)
       .def("step", &DEMSystem::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())

@@ -163,7 +163,10 @@ void bind_vof(py::module_& m) {
                       "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).")
       .def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
       .def_property_readonly("grid", &VOFGrid::grid, py::return_value_policy::reference_internal)
-      .def_property("params", &VOFGrid::params, &VOFGrid::set_params, "a copy; assign a modified copy to change it")
+      .def_property(
+          "params", [](const VOFGrid& f) { return f.params(); }, &VOFGrid::set_params,
+          "a copy (editing it changes nothing); assign a modified copy to change them, checked, with the pressure "
+          "solver and the k-epsilon model rebuilt")
       .def_property("discharge", &VOFGrid::discharge, &VOFGrid::set_discharge, "DischargeTable Q(t) [m^3/s]")
       .def_property_readonly("face_u", [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_u); },
                              "superficial x-velocity [m/s]")

@@ -40,8 +40,8 @@ void CouplerParams::validate() const {
 
 Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     : fluid_(fluid), stones_(stones), params_(params) {
-  params_.validate();
   n_ = stones_ ? stones_->n() : 0;
+  check_params(params_);
   check_scene();
   disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
   disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
@@ -101,9 +101,6 @@ void Coupler::make_mapper() {
     if (r > 0.0) rmin = std::min(rmin, r), rmax = std::max(rmax, r);
   }
   if (!(rmax > 0.0)) return;
-  if (polygons() && (params_.flags & kCoupleLookupPorosity))
-    throw std::invalid_argument("CouplerParams.flags: the lookup porosity (kCoupleLookupPorosity, the paper's table of "
-                                "disc areas) is for disc stones; polygon stones need the exact mapping (clear the flag)");
   PorosityParams p;
   p.method = (params_.flags & kCoupleLookupPorosity) ? PorosityMethod::kLookup : PorosityMethod::kExact;
   p.m = params_.lookup_m;
@@ -127,8 +124,17 @@ void Coupler::apply_flow_flags() {
   }
 }
 
+// the parameters' limits that depend on the scene (checked before anything changes)
+void Coupler::check_params(const CouplerParams& p) const {
+  p.validate();
+  if (fluid_ && polygons() && (p.flags & kCoupleLookupPorosity))
+    throw std::invalid_argument("CouplerParams.flags = " + std::to_string(p.flags) +
+                                ": the lookup porosity (kCoupleLookupPorosity, the paper's table of disc areas) is "
+                                "for disc stones; polygon stones need the exact mapping (clear the flag)");
+}
+
 void Coupler::set_params(const CouplerParams& params) {
-  params.validate();
+  check_params(params);
   const bool remap = (params.flags ^ params_.flags) & kCoupleLookupPorosity || params.n_exp != params_.n_exp ||
                      params.lookup_m != params_.lookup_m || params.lookup_dr != params_.lookup_dr;
   params_ = params;

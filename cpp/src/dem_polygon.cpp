@@ -68,7 +68,7 @@ inline double cross(double rx, double rz, double fx, double fz) { return rx * fz
 
 void DEMSystem::set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset) {
   check_polygons(vertex, offset, n_);
-  check_rolling_shape(StoneShape::kPolygon);
+  check_rolling_shape(StoneShape::kPolygon, params_);
   poly_vertex = vertex;
   poly_offset = offset;
   shape_ = StoneShape::kPolygon;

@@ -46,7 +46,12 @@ void FlowParams::validate() const {
   if (static_cast<int>(time_scheme) < 0 || static_cast<int>(time_scheme) > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(static_cast<int>(time_scheme)) +
                                 " is outside the allowed values {0 (kEuler), 1 (kAdamsBashforth2)}");
-  if (flags & kFlowTurbulence) check_k_epsilon_params(turbulence);
+  // checked with the model off too: set_params rebuilds the model, which would refuse them half-way
+  try {
+    check_k_epsilon_params(turbulence);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("turbulence.") + e.what());
+  }
   if (flags >= (1u << 8))
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
 }

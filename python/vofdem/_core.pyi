@@ -251,7 +251,9 @@ class PorosityMapper:
         ...
     @property
     def params(self) -> PorosityParams:
-        ...
+        """
+        a copy: fixed at construction
+        """
     @property
     def profile(self) -> StageProfile:
         ...
@@ -454,7 +456,6 @@ class DEMSystem:
     """
     Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).
     """
-    params: DEMParams
     @typing.overload
     def __init__(self, params: DEMParams, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -570,6 +571,14 @@ class DEMSystem:
         ...
     @property
     def neighbour_builds(self) -> int:
+        ...
+    @property
+    def params(self) -> DEMParams:
+        """
+        a copy (editing it changes nothing); assign a modified copy to change them, checked
+        """
+    @params.setter
+    def params(self, arg1: DEMParams) -> None:
         ...
     @property
     def poly_offset(self) -> numpy.typing.NDArray[numpy.int32]:
@@ -1934,7 +1943,7 @@ class VOFGrid:
     @property
     def params(self) -> FlowParams:
         """
-        a copy; assign a modified copy to change it
+        a copy (editing it changes nothing); assign a modified copy to change them, checked, with the pressure solver and the k-epsilon model rebuilt
         """
     @params.setter
     def params(self, arg1: FlowParams) -> None:
@@ -2115,7 +2124,6 @@ class Coupler:
     """
     Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.
     """
-    params: CouplerParams
     def __init__(self, fluid: typing.Any, stones: typing.Any, params: CouplerParams = ...) -> None:
         ...
     def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
@@ -2167,6 +2175,14 @@ class Coupler:
         ...
     @property
     def n(self) -> int:
+        ...
+    @property
+    def params(self) -> CouplerParams:
+        """
+        a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity mapper and the flow's relative-velocity flag following them
+        """
+    @params.setter
+    def params(self, arg1: CouplerParams) -> None:
         ...
     @property
     def profile(self) -> StageProfile:

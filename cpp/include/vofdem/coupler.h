@@ -114,6 +114,8 @@ class Coupler {
   VOFGrid* fluid() { return fluid_; }
   DEMSystem* stones() { return stones_; }
   const CouplerParams& params() const { return params_; }
+  // replaces the parameters after checking them (a refused set changes nothing): the porosity mapper
+  // and the flow's relative-velocity flag follow them
   void set_params(const CouplerParams& params);
   int n() const { return n_; }
 
@@ -164,6 +166,7 @@ class Coupler {
 
  private:
   void check_scene() const;
+  void check_params(const CouplerParams& p) const;
   // stable_dt() and which limit binds (term, cell: -1 where it has no place)
   double stable_dt_limits(const char** term, int* cell);
   void count_limit(const char* term, int cell);

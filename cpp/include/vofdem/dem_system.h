@@ -98,6 +98,8 @@ struct DEMParams {
 
   // adds the flume: bed z = z_bed and end walls x = x_min, x_max [m], all with stone-wall friction mu
   void add_flume(double x_min, double x_max, double z_bed, double mu = 0.176);
+  // throws std::invalid_argument naming the first bad parameter (the shape's own limits: DEMSystem)
+  void validate() const;
 };
 
 // named stages of a DEM step (StageProfile indices). `integrate` is one pass over the stones: kick, drift,
@@ -130,7 +132,8 @@ class DEMSystem {
 
   int n() const { return n_; }
   const DEMParams& params() const { return params_; }
-  // replaces the parameters (walls, flags, stiffness...); checked on the next step
+  // replaces the parameters (walls, flags, stiffness...) after checking them (a refused set changes
+  // nothing); the derived constants follow on the next step
   void set_params(const DEMParams& p);
 
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
@@ -269,8 +272,7 @@ class DEMSystem {
   // (applied to disc_torque; the energies returned)
   bool rolling_stones() const;
   bool rolling_walls() const;
-  void check_rolling_params() const;
-  void check_rolling_shape(StoneShape shape) const;  // refuses mu_r > 0 for polygon stones
+  void check_rolling_shape(StoneShape shape, const DEMParams& p) const;  // refuses mu_r > 0 for polygon stones
   double rolling_spin_stiffness(double m_min) const;
   void update_rolling_inertia();
   void update_pair_rolling();  // Pair::roll_c of every listed pair
