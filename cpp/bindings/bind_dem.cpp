@@ -105,7 +105,8 @@ void bind_system(py::module_& m) {
       .def_property(
           "params", [](const DEMSystem& s) { return s.params(); }, &DEMSystem::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked")
-      .def("resize", &DEMSystem::resize, py::arg("n"))
+      .def("resize", &DEMSystem::resize, py::arg("n"),
+           "n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories")
       .def("stable_dt", &DEMSystem::stable_dt)
       .def("step", &DEMSystem::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", &DEMSystem::advance, py::arg("duration"), py::call_guard<py::gil_scoped_release>())
@@ -142,7 +143,9 @@ void bind_system(py::module_& m) {
       .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
       .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)
       .def("export_state", [](const DEMSystem& s) { return state_to_dict(s.export_state()); })
-      .def("import_state", [](DEMSystem& s, const py::dict& d) { s.import_state(dict_to_state(d)); }, py::arg("state"))
+      .def("import_state", [](DEMSystem& s, const py::dict& d) { s.import_state(dict_to_state(d)); }, py::arg("state"),
+           "restores export_state() exactly, written into the arrays in place; a state of another stone count "
+           "(or, for polygons, vertex count) resizes and so invalidates earlier views")
       .def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); })
       .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); })

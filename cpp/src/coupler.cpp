@@ -55,7 +55,6 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     cell_base_porosity = fluid_->cell_porosity;
     cell_base_diameter = fluid_->cell_stone_diameter;
     n_old_.assign(nc, 0.0);
-    n_new_.assign(nc, 0.0);
     cell_U_.assign(nc, 0.0);
     cell_W_.assign(nc, 0.0);
     cell_dpdx_.assign(nc, 0.0);
@@ -200,15 +199,17 @@ void Coupler::stage_porosity(bool keep_water_volume) {
       cell_solid_w_[c] += area[p] * w;
     }
   }
-  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins
+  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins. Written
+  // into the flow's own array (its numpy views stay live), the old values kept in n_old_
   const std::vector<double>& nm = mapper_->cell_porosity();
+  std::vector<double>& n_new = fluid_->cell_porosity;
   for (int c = 0; c < nc; ++c) {
-    n_old_[c] = fluid_->cell_porosity[c];
+    n_old_[c] = n_new[c];
     if (nm[c] < cell_base_porosity[c]) {
-      n_new_[c] = nm[c];
+      n_new[c] = nm[c];
       fluid_->cell_stone_diameter[c] = cell_diam_sum_[c] / cell_solid_sum_[c];
     } else {
-      n_new_[c] = cell_base_porosity[c];
+      n_new[c] = cell_base_porosity[c];
       fluid_->cell_stone_diameter[c] = cell_base_diameter[c];
     }
   }
@@ -216,13 +217,14 @@ void Coupler::stage_porosity(bool keep_water_volume) {
   // the first mapping sets the scene up (nothing flows); later changes drive the flow if asked
   const bool displace = keep_water_volume && mapped_ && (params_.flags & kCoupleDisplaceFlow);
   if (keep_water_volume && !displace && (fluid_->params().flags & kFlowFreeSurface)) {
-    const int bad = redistribution_->apply(n_old_, n_new_, fluid_->cell_F);
+    const int bad = redistribution_->apply(n_old_, n_new, fluid_->cell_F);
     redistributed_ += redistribution_->moved_volume();
-    if (bad >= 0)
+    if (bad >= 0) {
+      std::copy(n_old_.begin(), n_old_.end(), n_new.begin());  // as it was, also without a snapshot
       fail("porosity", "no room for the water displaced from cell (i=" + std::to_string(bad % g.nx()) +
                            ", k=" + std::to_string(bad / g.nx()) + "): the domain is full");
+    }
   }
-  fluid_->cell_porosity.swap(n_new_);
   fluid_->update_face_porosity(displace);
   if (fluid_->params().flags & kFlowRelativeVelocity) solid_velocity_at_faces();
   mapped_ = true;

@@ -469,7 +469,9 @@ class DEMSystem:
     def export_state(self) -> dict:
         ...
     def import_state(self, state: dict) -> None:
-        ...
+        """
+        restores export_state() exactly, written into the arrays in place; a state of another stone count (or, for polygons, vertex count) resizes and so invalidates earlier views
+        """
     def inertia(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         ...
     def mass(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
@@ -489,7 +491,9 @@ class DEMSystem:
     def projected_area(self, i: typing.SupportsInt | typing.SupportsIndex, ux: typing.SupportsFloat | typing.SupportsIndex, uz: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+        """
+        n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories
+        """
     def set_polygons(self, vertex: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], offset: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
         """
         Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.
@@ -748,7 +752,7 @@ class WeirPackingReport:
         ...
 class VofBoundaryInflow:
     """
-    Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, bottom/top: nx); empty = 0. The arrays are numpy views, writable in place.
+    Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, bottom/top: nx); empty = 0. The arrays are numpy views, writable in place; assigning a whole side replaces its array (earlier views of it are invalidated).
     """
     @typing.overload
     def __init__(self) -> None:

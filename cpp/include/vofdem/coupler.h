@@ -209,7 +209,7 @@ class Coupler {
   bool csr_current_ = false;  // the mapper's per-stone cell lists match the stones' positions
   // scratch (sized at construction)
   std::vector<double> disc_x_, disc_z_;
-  std::vector<double> n_old_, n_new_;
+  std::vector<double> n_old_;  // the flow's porosity before the porosity stage
   std::vector<double> cell_U_, cell_W_, cell_dpdx_, cell_dpdz_;
   std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
   std::vector<double> disc_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]
