@@ -1,7 +1,8 @@
 """Zero-copy views stay live for their owner's lifetime: a view held across set_params, building and
 freeing a Coupler, stepping, a guard's restore and a checkpoint's import still points at the owner's
 array (same data pointer, same shape) and shows what a fresh view shows. Only an explicit resize (and
-DEMSystem.set_polygons for the poly_* arrays) may reallocate, as views.h states."""
+DEMSystem.set_polygons for the poly_* arrays, a state of another stone count) may reallocate, as views.h
+states. The typed state copies (copy_state / set_state) keep them too."""
 import gc
 
 import numpy as np
@@ -107,6 +108,12 @@ def test_views_stay_live_through_every_operation():
     after("coupler.import_state")
     dem.import_state(dem.export_state())
     after("stones.import_state")
+    branch = sim.copy_state()
+    sim.advance(0.08)
+    sim.set_state(branch)
+    fluid.set_state(fluid.copy_state())
+    dem.set_state(dem.copy_state())
+    after("set_state")
     cp = sim.params
     cp.flags &= ~_core.COUPLE_RELATIVE_VELOCITY
     sim.params = cp
@@ -148,7 +155,8 @@ def test_polygon_views_stay_live_through_stepping_and_checkpoints():
 def test_the_reallocating_calls_say_so():
     # the only calls that may move a view's memory: an explicit resize, new polygons, and a checkpoint
     # of another size; each says so in its docstring
-    for method in (vofdem.DEMSystem.resize, vofdem.DEMSystem.set_polygons, vofdem.DEMSystem.import_state):
+    for method in (vofdem.DEMSystem.resize, vofdem.DEMSystem.set_polygons, vofdem.DEMSystem.import_state,
+                   vofdem.DEMSystem.set_state):
         assert "invalidates" in method.__doc__.lower(), method.__name__
     dem = stones(2)
     dem.resize(5)

@@ -4,13 +4,14 @@
 // of its memory (as MuJoCo's bindings do).
 //
 // The rule: an array behind a view keeps its buffer for the owner's lifetime. Setting parameters,
-// building or freeing a Coupler, stepping, a guard's restore and importing a checkpoint of the same
-// sizes write into the arrays in place (never swap, move or reassign a vector of another size). Only a
-// call that changes a size reallocates, and its docstring says that it invalidates earlier views:
-// DEMSystem.resize, DEMSystem.set_polygons (the poly_* arrays), DEMSystem.import_state of another
-// stone or vertex count, VofBoundaryInflow.resize and the assignment of a whole side of it (the views
-// of that side). tests/test_views.py holds every view of VOFGrid, DEMSystem and Coupler across those
-// calls; tests/cpp/test_buffer_stability.cpp checks the same buffers under the sanitizers.
+// building or freeing a Coupler, stepping, a guard's restore and importing a state or checkpoint of
+// the same sizes write into the arrays in place (never swap, move or reassign a vector of another
+// size). Only a call that changes a size reallocates, and its docstring says that it invalidates
+// earlier views: DEMSystem.resize, DEMSystem.set_polygons (the poly_* arrays), DEMSystem.import_state
+// or set_state of another stone or vertex count, VofBoundaryInflow.resize and the assignment of a
+// whole side of it (the views of that side). tests/test_views.py holds every view of VOFGrid,
+// DEMSystem and Coupler across those calls; tests/cpp/test_buffer_stability.cpp checks the same
+// buffers under the sanitizers.
 #pragma once
 
 #include <pybind11/numpy.h>

@@ -346,12 +346,12 @@ void DEMSystem::advance_checked(double dt, long long nsub) {
     throw std::invalid_argument("dt = " + format_value(dt) +
                                 " s exceeds the DEM contact's stable step: allowed range (0, " +
                                 format_value(limit) + "] (stable_dt(); lower dt or stiffness_normal)");
-  const auto backup = export_state();
+  export_state(backup_);
   update_kick_scale(dt);
   try {
     for (long long s = 0; s < nsub; ++s) substep(dt);
   } catch (const std::runtime_error&) {
-    import_state(backup);
+    import_state(backup_);
     throw;
   }
 }

@@ -101,6 +101,22 @@ struct CouplerParams {
   void validate() const;
 };
 
+// the whole coupled state as one typed value: the flow's, the stones' and the coupler's own (time,
+// the exchanged forces, the base porosity). Copying it is a copy of arrays (a reused CouplerState
+// allocates nothing once sized): the guard's snapshot, and a user's branch point
+struct CouplerState {
+  FlowState fluid;   // unused without a fluid
+  DEMState stones;   // unused without stones
+  double time = 0.0;  // [s]
+  long long steps = 0;
+  bool mapped = false;
+  double redistributed = 0.0;  // [m^2]
+  std::vector<double> disc_force_drag, disc_force_pressure, disc_relative_speed;
+  bool has_drag_slope = false;  // the bed drag's slopes (false: zero)
+  std::vector<double> disc_drag_slope;
+  std::vector<double> cell_base_porosity, cell_base_diameter;
+};
+
 class Coupler {
  public:
   // couples `fluid` and `stones` (either may be null: a scene without water or without stones); both
@@ -153,6 +169,12 @@ class Coupler {
   double redistributed_volume() const { return redistributed_; }
 
   // ---- whole state (fluid fields, stones, contact histories, time, hydrograph, forces) ----
+  // typed: copied into s (its arrays reused); restored (every part checked first: a refused state
+  // changes nothing), written into the arrays in place (the numpy views stay valid)
+  void export_state(CouplerState& s) const;
+  void import_state(const CouplerState& s);
+  // the checkpoint: the same state as named flat arrays ("coupler/...", "fluid/...", "turbulence/...",
+  // "dem/..."); entries added since are optional on import, with what older runs had
   std::map<std::string, std::vector<double>> export_state() const;
   void import_state(const std::map<std::string, std::vector<double>>& state);
 
@@ -173,7 +195,6 @@ class Coupler {
   int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
   void apply_flow_flags();
   void make_mapper();
-  void import_turbulence(const std::map<std::string, std::vector<double>>& state);
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
   std::string non_finite_cell(int count, const int* cells) const;
@@ -204,7 +225,7 @@ class Coupler {
 
   std::unique_ptr<PorosityMapper> mapper_;
   std::unique_ptr<WaterRedistribution> redistribution_;
-  std::map<std::string, std::vector<double>> snapshot_;  // state at the start of the step (guards)
+  CouplerState snapshot_;  // state at the start of the step (guards)
   bool snapshot_valid_ = false;
   bool csr_current_ = false;  // the mapper's per-stone cell lists match the stones' positions
   // scratch (sized at construction)
