@@ -56,9 +56,11 @@ def test_bad_input_is_a_value_error_naming_the_parameter():
     s = falling_pair()
     with pytest.raises(ValueError, match="stable"):
         s.step(10 * s.stable_dt())
-    s.params.friction_stone = -1.0  # edited in place: checked on the next step
+    p = s.params
+    p.friction_stone = -1.0  # a copy: checked when assigned back
     with pytest.raises(ValueError, match="friction_stone = -1"):
-        s.advance(0.01)
+        s.params = p
+    assert s.params.friction_stone == pytest.approx(0.577)
     with pytest.raises(ValueError, match="disc_radius"):
         vofdem.DEMSystem(vofdem.DEMParams(), pos=np.zeros((1, 2)), radius=np.array([0.0]))
 

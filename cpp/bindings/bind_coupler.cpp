@@ -50,6 +50,12 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
       .def("validate", &CouplerParams::validate);
 
+  py::class_<CouplerState>(m, "CouplerState",
+                           "A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, the "
+                           "stones' and the coupler's own; set_state() returns to it.")
+      .def_readonly("time", &CouplerState::time, "simulated time [s]")
+      .def_readonly("steps", &CouplerState::steps);
+
   py::class_<Coupler>(m, "Coupler",
                       "Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.")
       .def(py::init([](const py::object& fluid, const py::object& stones, const CouplerParams& p) {
@@ -60,7 +66,10 @@ void bind_coupler(py::module_& m) {
            py::arg("params") = CouplerParams(), py::keep_alive<1, 2>(), py::keep_alive<1, 3>())
       .def_property_readonly("fluid", py::overload_cast<>(&Coupler::fluid), py::return_value_policy::reference_internal)
       .def_property_readonly("stones", py::overload_cast<>(&Coupler::stones), py::return_value_policy::reference_internal)
-      .def_property("params", &Coupler::params, &Coupler::set_params)
+      .def_property(
+          "params", [](const Coupler& c) { return c.params(); }, &Coupler::set_params,
+          "a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity "
+          "mapper and the flow's relative-velocity flag following them")
       .def_property_readonly("n", &Coupler::n)
       .def_property_readonly("time", &Coupler::time)
       .def_property_readonly("step_count", &Coupler::step_count)
@@ -88,6 +97,17 @@ void bind_coupler(py::module_& m) {
       .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
       .def("export_state", [](const Coupler& c) { return state_to_dict(c.export_state()); })
       .def("import_state", [](Coupler& c, const py::dict& d) { c.import_state(dict_to_state(d)); }, py::arg("state"))
+      .def(
+          "copy_state",
+          [](const Coupler& c) {
+            CouplerState s;
+            c.export_state(s);
+            return s;
+          },
+          "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) continues from "
+          "it bit for bit")
+      .def("set_state", py::overload_cast<const CouplerState&>(&Coupler::import_state), py::arg("state"),
+           "returns to a copy_state() copy (every part checked first; written into the arrays in place)")
       .def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_force_drag",
                              [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); })

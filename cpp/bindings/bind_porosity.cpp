@@ -57,7 +57,8 @@ void bind_porosity(py::module_& m) {
       .def("map", &map_discs, py::arg("disc_x"), py::arg("disc_z"), py::arg("disc_r"), py::arg("active") = py::none(),
            "Maps disc centres [m] and radii [m] onto cell_solid_area and cell_porosity (no allocation).")
       .def_property_readonly("grid", &PorosityMapper::grid)
-      .def_property_readonly("params", &PorosityMapper::params)
+      .def_property_readonly(
+          "params", [](const PorosityMapper& p) { return p.params(); }, "a copy: fixed at construction")
       .def_property_readonly("ndisc", &PorosityMapper::ndisc)
       .def_property_readonly("table_count", &PorosityMapper::table_count)
       .def_property_readonly("table_bytes", &PorosityMapper::table_bytes)

@@ -37,7 +37,8 @@ void bind_vof_advection(py::module_& m) {
   py::class_<VofBoundaryInflow> inflow(
       m, "VofBoundaryInflow",
       "Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, "
-      "bottom/top: nx); empty = 0. The arrays are numpy views, writable in place.");
+      "bottom/top: nx); empty = 0. The arrays are numpy views, writable in place; assigning a whole side "
+      "replaces its array (earlier views of it are invalidated).");
   inflow.def(py::init<>())
       .def(py::init([](const Grid2D& g, double value) {
              VofBoundaryInflow b;

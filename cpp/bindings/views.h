@@ -1,7 +1,17 @@
 // Zero-copy numpy views of C++ arrays.
 //
 // A view's base is the Python object that owns the C++ object, so the owner lives as long as any view
-// of its memory (as MuJoCo's bindings do). Views are invalidated by an explicit resize of the owner.
+// of its memory (as MuJoCo's bindings do).
+//
+// The rule: an array behind a view keeps its buffer for the owner's lifetime. Setting parameters,
+// building or freeing a Coupler, stepping, a guard's restore and importing a state or checkpoint of
+// the same sizes write into the arrays in place (never swap, move or reassign a vector of another
+// size). Only a call that changes a size reallocates, and its docstring says that it invalidates
+// earlier views: DEMSystem.resize, DEMSystem.set_polygons (the poly_* arrays), DEMSystem.import_state
+// or set_state of another stone or vertex count, VofBoundaryInflow.resize and the assignment of a
+// whole side of it (the views of that side). tests/test_views.py holds every view of VOFGrid,
+// DEMSystem and Coupler across those calls; tests/cpp/test_buffer_stability.cpp checks the same
+// buffers under the sanitizers.
 #pragma once
 
 #include <pybind11/numpy.h>

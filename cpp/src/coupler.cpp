@@ -40,8 +40,8 @@ void CouplerParams::validate() const {
 
 Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     : fluid_(fluid), stones_(stones), params_(params) {
-  params_.validate();
   n_ = stones_ ? stones_->n() : 0;
+  check_params(params_);
   check_scene();
   disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
   disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
@@ -55,7 +55,6 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     cell_base_porosity = fluid_->cell_porosity;
     cell_base_diameter = fluid_->cell_stone_diameter;
     n_old_.assign(nc, 0.0);
-    n_new_.assign(nc, 0.0);
     cell_U_.assign(nc, 0.0);
     cell_W_.assign(nc, 0.0);
     cell_dpdx_.assign(nc, 0.0);
@@ -101,9 +100,6 @@ void Coupler::make_mapper() {
     if (r > 0.0) rmin = std::min(rmin, r), rmax = std::max(rmax, r);
   }
   if (!(rmax > 0.0)) return;
-  if (polygons() && (params_.flags & kCoupleLookupPorosity))
-    throw std::invalid_argument("CouplerParams.flags: the lookup porosity (kCoupleLookupPorosity, the paper's table of "
-                                "disc areas) is for disc stones; polygon stones need the exact mapping (clear the flag)");
   PorosityParams p;
   p.method = (params_.flags & kCoupleLookupPorosity) ? PorosityMethod::kLookup : PorosityMethod::kExact;
   p.m = params_.lookup_m;
@@ -127,8 +123,17 @@ void Coupler::apply_flow_flags() {
   }
 }
 
+// the parameters' limits that depend on the scene (checked before anything changes)
+void Coupler::check_params(const CouplerParams& p) const {
+  p.validate();
+  if (fluid_ && polygons() && (p.flags & kCoupleLookupPorosity))
+    throw std::invalid_argument("CouplerParams.flags = " + std::to_string(p.flags) +
+                                ": the lookup porosity (kCoupleLookupPorosity, the paper's table of disc areas) is "
+                                "for disc stones; polygon stones need the exact mapping (clear the flag)");
+}
+
 void Coupler::set_params(const CouplerParams& params) {
-  params.validate();
+  check_params(params);
   const bool remap = (params.flags ^ params_.flags) & kCoupleLookupPorosity || params.n_exp != params_.n_exp ||
                      params.lookup_m != params_.lookup_m || params.lookup_dr != params_.lookup_dr;
   params_ = params;
@@ -194,15 +199,17 @@ void Coupler::stage_porosity(bool keep_water_volume) {
       cell_solid_w_[c] += area[p] * w;
     }
   }
-  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins
+  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins. Written
+  // into the flow's own array (its numpy views stay live), the old values kept in n_old_
   const std::vector<double>& nm = mapper_->cell_porosity();
+  std::vector<double>& n_new = fluid_->cell_porosity;
   for (int c = 0; c < nc; ++c) {
-    n_old_[c] = fluid_->cell_porosity[c];
+    n_old_[c] = n_new[c];
     if (nm[c] < cell_base_porosity[c]) {
-      n_new_[c] = nm[c];
+      n_new[c] = nm[c];
       fluid_->cell_stone_diameter[c] = cell_diam_sum_[c] / cell_solid_sum_[c];
     } else {
-      n_new_[c] = cell_base_porosity[c];
+      n_new[c] = cell_base_porosity[c];
       fluid_->cell_stone_diameter[c] = cell_base_diameter[c];
     }
   }
@@ -210,13 +217,14 @@ void Coupler::stage_porosity(bool keep_water_volume) {
   // the first mapping sets the scene up (nothing flows); later changes drive the flow if asked
   const bool displace = keep_water_volume && mapped_ && (params_.flags & kCoupleDisplaceFlow);
   if (keep_water_volume && !displace && (fluid_->params().flags & kFlowFreeSurface)) {
-    const int bad = redistribution_->apply(n_old_, n_new_, fluid_->cell_F);
+    const int bad = redistribution_->apply(n_old_, n_new, fluid_->cell_F);
     redistributed_ += redistribution_->moved_volume();
-    if (bad >= 0)
+    if (bad >= 0) {
+      std::copy(n_old_.begin(), n_old_.end(), n_new.begin());  // as it was, also without a snapshot
       fail("porosity", "no room for the water displaced from cell (i=" + std::to_string(bad % g.nx()) +
                            ", k=" + std::to_string(bad / g.nx()) + "): the domain is full");
+    }
   }
-  fluid_->cell_porosity.swap(n_new_);
   fluid_->update_face_porosity(displace);
   if (fluid_->params().flags & kFlowRelativeVelocity) solid_velocity_at_faces();
   mapped_ = true;
@@ -475,7 +483,7 @@ void Coupler::save() {
   snapshot_valid_ = false;
   if (!(fluid_ && has_stones())) return;  // one module: it restores itself
   ScopedStage timer(profile_, st_snapshot_);
-  snapshot_ = export_state();
+  export_state(snapshot_);
   snapshot_valid_ = true;
 }
 
@@ -542,174 +550,6 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
     if (progress) progress(time_);
   }
   return n;
-}
-
-// ---------------------------------------------------------------------------------------------
-// checkpoint
-
-std::map<std::string, std::vector<double>> Coupler::export_state() const {
-  std::map<std::string, std::vector<double>> s;
-  s["coupler/time"] = {time_};
-  s["coupler/steps"] = {static_cast<double>(steps_)};
-  s["coupler/mapped"] = {mapped_ ? 1.0 : 0.0};
-  s["coupler/redistributed"] = {redistributed_};
-  s["coupler/disc_force_drag"] = disc_force_drag;
-  s["coupler/disc_force_pressure"] = disc_force_pressure;
-  s["coupler/disc_relative_speed"] = disc_vrel_;
-  if (params_.stone_drag == StoneDragModel::kBed) s["coupler/disc_drag_slope"] = disc_drag_slope_;
-  if (fluid_) {
-    s["coupler/cell_base_porosity"] = cell_base_porosity;
-    s["coupler/cell_base_diameter"] = cell_base_diameter;
-    const VOFGrid& f = *fluid_;
-    s["fluid/face_u"] = f.face_u;
-    s["fluid/face_w"] = f.face_w;
-    s["fluid/cell_p"] = f.cell_p;
-    s["fluid/cell_F"] = f.cell_F;
-    s["fluid/cell_porosity"] = f.cell_porosity;
-    s["fluid/cell_stone_diameter"] = f.cell_stone_diameter;
-    s["fluid/cell_nut"] = f.cell_nut;
-    s["fluid/face_x_solid_u"] = f.face_x_solid_u;
-    s["fluid/face_z_solid_w"] = f.face_z_solid_w;
-    s["fluid/time"] = {f.time()};
-    s["fluid/step_count"] = {static_cast<double>(f.step_count())};
-    s["fluid/last_dt"] = {f.last_dt()};
-    s["fluid/prev_dt"] = {f.prev_dt()};
-    s["fluid/face_u_prev"] = f.face_u_prev;
-    s["fluid/face_w_prev"] = f.face_w_prev;
-    s["fluid/inlet_volume"] = {f.inlet_volume()};
-    s["fluid/net_inflow_volume"] = {f.net_inflow_volume()};
-    s["fluid/dilatation_volume"] = {f.dilatation_volume()};
-    s["fluid/discharge_times"] = f.discharge().times;
-    s["fluid/discharge_q"] = f.discharge().discharge;
-    // the k-epsilon model's own state: the next step reads its k, eps, nu_t and wall shear
-    const KEpsilonModel& t = f.turbulence();
-    s["turbulence/cell_k"] = t.cell_k;
-    s["turbulence/cell_eps"] = t.cell_eps;
-    s["turbulence/cell_nut"] = t.cell_nut;
-    s["turbulence/cell_u_tau"] = t.cell_u_tau;
-    s["turbulence/face_x_wall_shear"] = t.face_x_wall_shear;
-    s["turbulence/face_z_wall_shear"] = t.face_z_wall_shear;
-    s["turbulence/cell_role"] = t.cell_roles();  // which cells held water: a cell that fills starts from them
-  }
-  if (stones_)
-    for (auto& kv : stones_->export_state()) s["dem/" + kv.first] = std::move(kv.second);
-  return s;
-}
-
-namespace {
-const std::vector<double>& need(const std::map<std::string, std::vector<double>>& s, const std::string& key,
-                                std::size_t size) {
-  auto it = s.find(key);
-  if (it == s.end()) throw std::invalid_argument("state: missing entry '" + key + "'");
-  if (size != static_cast<std::size_t>(-1) && it->second.size() != size)
-    throw std::invalid_argument("state: '" + key + "' has " + std::to_string(it->second.size()) +
-                                " values, expected " + std::to_string(size));
-  return it->second;
-}
-}  // namespace
-
-// the k-epsilon model's state (sizes checked by import_state); states written before it was part
-// of the checkpoint keep the model as it is
-void Coupler::import_turbulence(const std::map<std::string, std::vector<double>>& s) {
-  if (!s.count("turbulence/cell_k")) return;
-  KEpsilonModel& t = fluid_->turbulence();
-  t.cell_k = s.at("turbulence/cell_k");
-  t.cell_eps = s.at("turbulence/cell_eps");
-  t.cell_nut = s.at("turbulence/cell_nut");
-  t.cell_u_tau = s.at("turbulence/cell_u_tau");
-  t.face_x_wall_shear = s.at("turbulence/face_x_wall_shear");
-  t.face_z_wall_shear = s.at("turbulence/face_z_wall_shear");
-  // older states: the roles as they are (a cell filling in the next step may start differently)
-  if (s.count("turbulence/cell_role")) t.set_cell_roles(s.at("turbulence/cell_role"));
-}
-
-void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
-  const std::size_t any = static_cast<std::size_t>(-1), n = static_cast<std::size_t>(n_);
-  // check every entry before writing anything
-  need(s, "coupler/time", 1);
-  need(s, "coupler/disc_force_drag", 2 * n);
-  need(s, "coupler/disc_force_pressure", 2 * n);
-  need(s, "coupler/disc_relative_speed", n);
-  const bool has_slope = s.count("coupler/disc_drag_slope") > 0;
-  if (has_slope) need(s, "coupler/disc_drag_slope", n);
-  std::map<std::string, std::vector<double>> dem;
-  if (stones_) {
-    for (const auto& kv : s)
-      if (kv.first.rfind("dem/", 0) == 0) dem[kv.first.substr(4)] = kv.second;
-    if (dem.empty()) throw std::invalid_argument("state: no 'dem/' entries for the stones");
-  }
-  if (fluid_) {
-    const Grid2D& g = fluid_->grid();
-    const std::size_t nc = g.ncell(), nfx = g.nface_x(), nfz = g.nface_z();
-    for (const char* k : {"fluid/cell_p", "fluid/cell_F", "fluid/cell_porosity", "fluid/cell_stone_diameter",
-                          "fluid/cell_nut", "coupler/cell_base_porosity", "coupler/cell_base_diameter"})
-      need(s, k, nc);
-    for (const char* k : {"fluid/time", "fluid/step_count", "fluid/inlet_volume", "coupler/steps", "coupler/mapped",
-                          "coupler/redistributed"})
-      need(s, k, 1);
-    need(s, "fluid/face_u", nfx);
-    need(s, "fluid/face_x_solid_u", nfx);
-    need(s, "fluid/face_w", nfz);
-    need(s, "fluid/face_z_solid_w", nfz);
-    if (s.count("fluid/last_dt")) require_non_negative("fluid/last_dt", need(s, "fluid/last_dt", 1)[0]);
-    // the step history of AB2 (older states: none, the next step is forward Euler)
-    const bool history = s.count("fluid/prev_dt") && need(s, "fluid/prev_dt", 1)[0] > 0.0;
-    if (history) need(s, "fluid/face_u_prev", nfx), need(s, "fluid/face_w_prev", nfz);
-    if (s.count("turbulence/cell_k")) {
-      for (const char* k : {"turbulence/cell_k", "turbulence/cell_eps", "turbulence/cell_nut", "turbulence/cell_u_tau"})
-        need(s, k, nc);
-      need(s, "turbulence/face_x_wall_shear", nfx);
-      need(s, "turbulence/face_z_wall_shear", nfz);
-      if (s.count("turbulence/cell_role"))
-        for (double r : need(s, "turbulence/cell_role", nc)) require_in_closed("turbulence/cell_role", r, 0.0, 2.0);
-    }
-    DischargeTable t;
-    t.times = need(s, "fluid/discharge_times", any);
-    t.discharge = need(s, "fluid/discharge_q", any);
-    fluid_->set_discharge(t);
-    fluid_->face_u = need(s, "fluid/face_u", nfx);
-    fluid_->face_w = need(s, "fluid/face_w", nfz);
-    fluid_->cell_p = need(s, "fluid/cell_p", nc);
-    fluid_->cell_F = need(s, "fluid/cell_F", nc);
-    fluid_->cell_porosity = need(s, "fluid/cell_porosity", nc);
-    fluid_->cell_stone_diameter = need(s, "fluid/cell_stone_diameter", nc);
-    fluid_->cell_nut = need(s, "fluid/cell_nut", nc);
-    fluid_->face_x_solid_u = need(s, "fluid/face_x_solid_u", nfx);
-    fluid_->face_z_solid_w = need(s, "fluid/face_z_solid_w", nfz);
-    fluid_->set_time(need(s, "fluid/time", 1)[0]);
-    fluid_->set_step_count(static_cast<long long>(need(s, "fluid/step_count", 1)[0]));
-    // older states have no last step: the next one starts from FlowParams::initial_dt
-    fluid_->set_last_dt(s.count("fluid/last_dt") ? need(s, "fluid/last_dt", 1)[0] : 0.0);
-    if (history) {
-      fluid_->face_u_prev = s.at("fluid/face_u_prev");
-      fluid_->face_w_prev = s.at("fluid/face_w_prev");
-      fluid_->set_prev_dt(s.at("fluid/prev_dt")[0]);
-    } else {
-      fluid_->clear_step_history();
-    }
-    fluid_->set_inlet_volume(need(s, "fluid/inlet_volume", 1)[0]);
-    // older states have no boundary budget: it restarts from 0
-    fluid_->set_net_inflow_volume(s.count("fluid/net_inflow_volume") ? need(s, "fluid/net_inflow_volume", 1)[0] : 0.0);
-    fluid_->set_dilatation_volume(s.count("fluid/dilatation_volume") ? need(s, "fluid/dilatation_volume", 1)[0] : 0.0);
-    cell_base_porosity = need(s, "coupler/cell_base_porosity", nc);
-    cell_base_diameter = need(s, "coupler/cell_base_diameter", nc);
-    fluid_->update_face_porosity();
-    import_turbulence(s);
-  }
-  if (stones_) stones_->import_state(dem);
-  time_ = s.at("coupler/time")[0];
-  steps_ = static_cast<long long>(need(s, "coupler/steps", 1)[0]);
-  mapped_ = need(s, "coupler/mapped", 1)[0] != 0.0;
-  redistributed_ = need(s, "coupler/redistributed", 1)[0];
-  disc_force_drag = s.at("coupler/disc_force_drag");
-  disc_force_pressure = s.at("coupler/disc_force_pressure");
-  disc_vrel_ = s.at("coupler/disc_relative_speed");
-  forces_applied_ = false;
-  for (std::size_t i = 0; i < disc_force_drag.size(); ++i)
-    if (disc_force_drag[i] != 0.0 || disc_force_pressure[i] != 0.0) forces_applied_ = true;
-  // written with the bed drag only (older states and the sphere drag: none)
-  if (has_slope) disc_drag_slope_ = s.at("coupler/disc_drag_slope");
-  else std::fill(disc_drag_slope_.begin(), disc_drag_slope_.end(), 0.0);
 }
 
 }  // namespace vofdem

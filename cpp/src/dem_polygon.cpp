@@ -68,7 +68,7 @@ inline double cross(double rx, double rz, double fx, double fz) { return rx * fz
 
 void DEMSystem::set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset) {
   check_polygons(vertex, offset, n_);
-  check_rolling_shape(StoneShape::kPolygon);
+  check_rolling_shape(StoneShape::kPolygon, params_);
   poly_vertex = vertex;
   poly_offset = offset;
   shape_ = StoneShape::kPolygon;
@@ -323,67 +323,71 @@ void DEMSystem::polygon_wall_forces(double dt) {
   nwall_contact_ = ncontact;
 }
 
-// ---- checkpoint: the shape and the manifold points' springs (polygon systems only)
+// ---- state: the shape and the manifold points' springs (polygon systems only)
 
-void DEMSystem::export_polygons(std::map<std::string, std::vector<double>>& s) const {
-  s["poly_vertex"] = poly_vertex;
-  s["poly_offset"] = std::vector<double>(poly_offset.begin(), poly_offset.end());
-  std::vector<double> ci, cj, cid, cxi;
+void DEMSystem::export_polygons(DEMState& s) const {
+  s.poly_contact_i.clear(), s.poly_contact_j.clear(), s.poly_contact_id.clear(), s.poly_contact_xi.clear();
+  s.poly_wall_id.clear(), s.poly_wall_xi.clear();
+  if (shape_ != StoneShape::kPolygon) {
+    s.poly_vertex.clear(), s.poly_offset.clear();
+    return;
+  }
+  s.poly_vertex = poly_vertex;
+  s.poly_offset = poly_offset;
   for (const Pair& c : pairs_) {
     if (c.poly.id[0] < 0 && c.poly.id[1] < 0) continue;
-    ci.push_back(c.i);
-    cj.push_back(c.j);
-    for (int k = 0; k < 2; ++k) cid.push_back(c.poly.id[k]), cxi.push_back(c.poly.xi[k]);
+    s.poly_contact_i.push_back(c.i);
+    s.poly_contact_j.push_back(c.j);
+    for (int k = 0; k < 2; ++k) s.poly_contact_id.push_back(c.poly.id[k]), s.poly_contact_xi.push_back(c.poly.xi[k]);
   }
-  s["poly_contact_i"] = ci;
-  s["poly_contact_j"] = cj;
-  s["poly_contact_id"] = cid;
-  s["poly_contact_xi"] = cxi;
-  std::vector<double> wid, wxi;
   for (const PolygonHistory& h : poly_wall_hist_)
-    for (int k = 0; k < 2; ++k) wid.push_back(h.id[k]), wxi.push_back(h.xi[k]);
-  s["poly_wall_id"] = wid;
-  s["poly_wall_xi"] = wxi;
+    for (int k = 0; k < 2; ++k) s.poly_wall_id.push_back(h.id[k]), s.poly_wall_xi.push_back(h.xi[k]);
 }
 
-void DEMSystem::import_polygons(const std::map<std::string, std::vector<double>>& s) {
-  const auto it = s.find("poly_vertex");
-  if (it == s.end()) {  // a disc state
+// the polygon part of a state, checked before anything is written
+void DEMSystem::check_polygon_state(const DEMState& s) const {
+  const std::size_t n = s.disc_radius.size(), nw = n * params_.walls.size(), np = s.poly_contact_i.size();
+  auto need = [](const char* name, std::size_t size, std::size_t expected) {
+    if (size != expected)
+      throw std::invalid_argument(std::string("import_state: array '") + name + "' has size " + std::to_string(size) +
+                                  ", expected " + std::to_string(expected));
+  };
+  need("poly_offset", s.poly_offset.size(), n + 1);
+  check_polygons(s.poly_vertex, s.poly_offset, static_cast<int>(n));
+  check_rolling_shape(StoneShape::kPolygon, params_);
+  need("poly_contact_j", s.poly_contact_j.size(), np);
+  need("poly_contact_id", s.poly_contact_id.size(), 2 * np);
+  need("poly_contact_xi", s.poly_contact_xi.size(), 2 * np);
+  need("poly_wall_id", s.poly_wall_id.size(), 2 * nw);
+  need("poly_wall_xi", s.poly_wall_xi.size(), 2 * nw);
+  for (std::size_t k = 0; k < np; ++k) {
+    const int i = s.poly_contact_i[k], j = s.poly_contact_j[k];
+    const bool sorted = k == 0 || s.poly_contact_i[k - 1] < i || (s.poly_contact_i[k - 1] == i && s.poly_contact_j[k - 1] < j);
+    if (!(i >= 0 && i < j && j < static_cast<int>(n)) || !sorted)
+      throw std::invalid_argument("import_state: polygon contact pair (" + std::to_string(i) + ", " +
+                                  std::to_string(j) + ") is outside 0 <= i < j < n or not sorted by (i, j)");
+  }
+}
+
+// after check_polygon_state
+void DEMSystem::import_polygons(const DEMState& s) {
+  if (s.poly_offset.empty()) {  // a disc state
     shape_ = StoneShape::kDisc;
     poly_vertex.clear();
     poly_offset.clear();
     poly_wall_hist_.clear();
     return;
   }
-  auto need = [&s](const char* key, std::size_t size) -> const std::vector<double>& {
-    const auto f = s.find(key);
-    if (f == s.end()) throw std::invalid_argument(std::string("import_state: missing array '") + key + "'");
-    if (size != static_cast<std::size_t>(-1) && f->second.size() != size)
-      throw std::invalid_argument(std::string("import_state: array '") + key + "' has size " +
-                                  std::to_string(f->second.size()) + ", expected " + std::to_string(size));
-    return f->second;
-  };
-  const auto& off = need("poly_offset", static_cast<std::size_t>(n_) + 1);
-  set_polygons(it->second, std::vector<int>(off.begin(), off.end()));
-  const auto& ci = need("poly_contact_i", static_cast<std::size_t>(-1));
-  const auto& cj = need("poly_contact_j", ci.size());
-  const auto& cid = need("poly_contact_id", 2 * ci.size());
-  const auto& cxi = need("poly_contact_xi", 2 * ci.size());
-  for (std::size_t k = 0; k < ci.size(); ++k) {
-    Pair c{static_cast<int>(ci[k]), static_cast<int>(cj[k]), 0.0, 0.0};
-    if (!(c.i >= 0 && c.i < c.j && c.j < n_) ||
-        (!pairs_.empty() && !(pairs_.back().i < c.i || (pairs_.back().i == c.i && pairs_.back().j < c.j))))
-      throw std::invalid_argument("import_state: polygon contact pair (" + std::to_string(c.i) + ", " +
-                                  std::to_string(c.j) + ") is outside 0 <= i < j < n or not sorted by (i, j)");
-    for (int q = 0; q < 2; ++q) c.poly.id[q] = static_cast<int>(cid[2 * k + q]), c.poly.xi[q] = cxi[2 * k + q];
+  set_polygons(s.poly_vertex, s.poly_offset);
+  for (std::size_t k = 0; k < s.poly_contact_i.size(); ++k) {
+    Pair c{s.poly_contact_i[k], s.poly_contact_j[k], 0.0, 0.0};
+    for (int q = 0; q < 2; ++q) c.poly.id[q] = s.poly_contact_id[2 * k + q], c.poly.xi[q] = s.poly_contact_xi[2 * k + q];
     pairs_.push_back(c);
   }
   const std::size_t nwh = static_cast<std::size_t>(n_) * params_.walls.size();
-  const auto& wid = need("poly_wall_id", 2 * nwh);
-  const auto& wxi = need("poly_wall_xi", 2 * nwh);
   for (std::size_t k = 0; k < nwh; ++k)
     for (int q = 0; q < 2; ++q)
-      poly_wall_hist_[k].id[q] = static_cast<int>(wid[2 * k + q]), poly_wall_hist_[k].xi[q] = wxi[2 * k + q];
+      poly_wall_hist_[k].id[q] = s.poly_wall_id[2 * k + q], poly_wall_hist_[k].xi[q] = s.poly_wall_xi[2 * k + q];
 }
 
 }  // namespace vofdem

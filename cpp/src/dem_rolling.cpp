@@ -26,19 +26,12 @@ bool DEMSystem::rolling_walls() const {
   return (params_.flags & kDEMRollingResistance) && params_.rolling_friction_wall > 0.0;
 }
 
-void DEMSystem::check_rolling_params() const {
-  require_non_negative("rolling_friction_stone", params_.rolling_friction_stone);
-  require_non_negative("rolling_friction_wall", params_.rolling_friction_wall);
-  require_in_closed("rolling_damping", params_.rolling_damping, 0.0, 1.0);
-  check_rolling_shape(shape_);
-}
-
 // the law is a disc's: a polygon resists rolling by its shape, and a moment capped on its bounding
 // radius would have no physical basis, so polygon stones refuse mu_r > 0
-void DEMSystem::check_rolling_shape(StoneShape shape) const {
+void DEMSystem::check_rolling_shape(StoneShape shape, const DEMParams& p) const {
   if (shape != StoneShape::kPolygon) return;
-  for (const auto& [name, value] : {std::pair<const char*, double>{"rolling_friction_stone", params_.rolling_friction_stone},
-                                    {"rolling_friction_wall", params_.rolling_friction_wall}}) {
+  for (const auto& [name, value] : {std::pair<const char*, double>{"rolling_friction_stone", p.rolling_friction_stone},
+                                    {"rolling_friction_wall", p.rolling_friction_wall}}) {
     if (value > 0.0)
       throw std::invalid_argument(std::string(name) + " = " + std::to_string(value) +
                                   " is outside the allowed range [0, 0] for polygon stones (the rolling resistance "

@@ -96,9 +96,11 @@ void DEMSystem::resize(int n) {
 }
 
 void DEMSystem::set_params(const DEMParams& p) {
+  // checked before anything changes: a refused set leaves the system as it was
+  p.validate();
+  check_rolling_shape(shape_, p);
   const std::size_t old_walls = params_.walls.size();
   params_ = p;
-  check_params();
   forces_valid_ = false;
   if (params_.walls.size() != old_walls) {
     wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
@@ -110,35 +112,45 @@ void DEMSystem::set_params(const DEMParams& p) {
   prepared_ = false;
 }
 
-void DEMSystem::check_params() const {
-  const DEMParams& p = params_;
-  require_finite("gravity[0]", p.gravity[0]);
-  require_finite("gravity[1]", p.gravity[1]);
-  require_non_negative("fluid_density", p.fluid_density);
-  require_non_negative("added_mass_coefficient", p.added_mass_coefficient);
-  require_positive("dt", p.dt);
-  require_non_negative("stiffness_normal", p.stiffness_normal);
-  require_in_closed("contact_steps", p.contact_steps, 5.0, 1e6);
-  require_non_negative("stiffness_ratio", p.stiffness_ratio);
-  require_in_closed("restitution", p.restitution, 0.0, 1.0);
-  require_non_negative("tangential_damping_factor", p.tangential_damping_factor);
-  require_non_negative("friction_stone", p.friction_stone);
-  require_in_open_closed("inertia_factor", p.inertia_factor, 0.0, 1.0);
-  check_rolling_params();
-  require_non_negative("neighbour_skin", p.neighbour_skin);
-  require_non_negative("sleep_velocity", p.sleep_velocity);
-  require_non_negative("sleep_time", p.sleep_time);
-  require_non_negative("wake_acceleration", p.wake_acceleration);
+void DEMParams::validate() const {
+  require_finite("gravity[0]", gravity[0]);
+  require_finite("gravity[1]", gravity[1]);
+  require_non_negative("fluid_density", fluid_density);
+  require_non_negative("added_mass_coefficient", added_mass_coefficient);
+  require_positive("dt", dt);
+  require_non_negative("stiffness_normal", stiffness_normal);
+  require_in_closed("contact_steps", contact_steps, 5.0, 1e6);
+  require_non_negative("stiffness_ratio", stiffness_ratio);
+  require_in_closed("restitution", restitution, 0.0, 1.0);
+  require_non_negative("tangential_damping_factor", tangential_damping_factor);
+  require_non_negative("friction_stone", friction_stone);
+  require_in_open_closed("inertia_factor", inertia_factor, 0.0, 1.0);
+  require_non_negative("rolling_friction_stone", rolling_friction_stone);
+  require_non_negative("rolling_friction_wall", rolling_friction_wall);
+  require_in_closed("rolling_damping", rolling_damping, 0.0, 1.0);
+  require_non_negative("neighbour_skin", neighbour_skin);
+  require_non_negative("sleep_velocity", sleep_velocity);
+  require_non_negative("sleep_time", sleep_time);
+  require_non_negative("wake_acceleration", wake_acceleration);
   for (int c = 0; c < 2; ++c) {
-    if (!(p.domain_max[c] > p.domain_min[c]))
-      require_in_open_closed(c == 0 ? "domain_max[0]" : "domain_max[1]", p.domain_max[c], p.domain_min[c], INFINITY);
+    // -inf is a side without removal; NaN and +inf bound nothing
+    if (!(domain_min[c] < INFINITY)) require_finite(c == 0 ? "domain_min[0]" : "domain_min[1]", domain_min[c]);
+    if (!(domain_max[c] > domain_min[c]))
+      require_in_open_closed(c == 0 ? "domain_max[0]" : "domain_max[1]", domain_max[c], domain_min[c], INFINITY);
   }
-  for (const DEMWall& w : p.walls) {
+  for (const DEMWall& w : walls) {
     require_finite("wall point", w.point[0]);
     require_finite("wall point", w.point[1]);
     require_positive("wall normal length", std::hypot(w.normal[0], w.normal[1]));
     require_non_negative("wall friction", w.friction);
   }
+  if (flags >= (1u << 10))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 1023]");
+}
+
+void DEMSystem::check_params() const {
+  params_.validate();
+  check_rolling_shape(shape_, params_);
 }
 
 void DEMSystem::check_stones() const {
@@ -251,7 +263,7 @@ double DEMSystem::reduced_stiffness_mass() const {
 }
 
 void DEMSystem::prepare() {
-  check_params();  // the parameters may have been edited in place (Python: system.params.x = ...)
+  check_params();  // C++ callers may have built the system from unchecked parameters
   // polygon vertices may have been edited through the views: their sections are derived again
   if (shape_ == StoneShape::kPolygon && cached_poly_vertex_ != poly_vertex) update_polygon_properties();
   check_stones();
@@ -334,12 +346,12 @@ void DEMSystem::advance_checked(double dt, long long nsub) {
     throw std::invalid_argument("dt = " + format_value(dt) +
                                 " s exceeds the DEM contact's stable step: allowed range (0, " +
                                 format_value(limit) + "] (stable_dt(); lower dt or stiffness_normal)");
-  const auto backup = export_state();
+  export_state(backup_);
   update_kick_scale(dt);
   try {
     for (long long s = 0; s < nsub; ++s) substep(dt);
   } catch (const std::runtime_error&) {
-    import_state(backup);
+    import_state(backup_);
     throw;
   }
 }

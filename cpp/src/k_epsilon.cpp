@@ -128,6 +128,8 @@ void KEpsilonModel::initialize(double k, double eps, double nu) {
 
 std::vector<double> KEpsilonModel::cell_roles() const { return std::vector<double>(cell_role_.begin(), cell_role_.end()); }
 
+void KEpsilonModel::cell_roles(std::vector<double>& out) const { out.assign(cell_role_.begin(), cell_role_.end()); }
+
 void KEpsilonModel::set_cell_roles(const std::vector<double>& roles) {
   if (roles.size() != cell_role_.size())
     throw std::invalid_argument("cell roles: " + std::to_string(roles.size()) + " values, expected " +

@@ -46,7 +46,12 @@ void FlowParams::validate() const {
   if (static_cast<int>(time_scheme) < 0 || static_cast<int>(time_scheme) > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(static_cast<int>(time_scheme)) +
                                 " is outside the allowed values {0 (kEuler), 1 (kAdamsBashforth2)}");
-  if (flags & kFlowTurbulence) check_k_epsilon_params(turbulence);
+  // checked with the model off too: set_params rebuilds the model, which would refuse them half-way
+  try {
+    check_k_epsilon_params(turbulence);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("turbulence.") + e.what());
+  }
   if (flags >= (1u << 8))
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 255]");
 }
@@ -138,14 +143,18 @@ void VOFGrid::make_turbulence_model() {
   b.bottom = KEpsilonBoundary::kWall;
   // the open top and the slip lid are both free of shear
   b.top = KEpsilonBoundary::kZeroGradient;
-  auto model = std::make_unique<KEpsilonModel>(grid_, params_.turbulence, b);
-  if (turbulence_) {
-    model->cell_k = turbulence_->cell_k;
-    model->cell_eps = turbulence_->cell_eps;
-    model->cell_nut = turbulence_->cell_nut;
-    model->time = turbulence_->time;
+  KEpsilonModel model(grid_, params_.turbulence, b);
+  if (!turbulence_) {
+    turbulence_ = std::make_unique<KEpsilonModel>(std::move(model));
+    return;
   }
-  turbulence_ = std::move(model);
+  // a fresh model that keeps k, eps, nu_t and the time, moved into the old object with the old arrays:
+  // the numpy views of cell_k and cell_eps stay valid (views.h)
+  model.cell_k.swap(turbulence_->cell_k);
+  model.cell_eps.swap(turbulence_->cell_eps);
+  model.cell_nut.swap(turbulence_->cell_nut);
+  model.time = turbulence_->time;
+  *turbulence_ = std::move(model);
 }
 
 void VOFGrid::set_params(const FlowParams& params) {

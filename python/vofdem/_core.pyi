@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'DEMEnergy', 'DEMParams', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -251,7 +251,9 @@ class PorosityMapper:
         ...
     @property
     def params(self) -> PorosityParams:
-        ...
+        """
+        a copy: fixed at construction
+        """
     @property
     def profile(self) -> StageProfile:
         ...
@@ -450,11 +452,22 @@ class DEMEnergy:
     @property
     def work_external(self) -> float:
         ...
+class DEMState:
+    """
+    A copy of a DEMSystem's whole state (DEMSystem.copy_state); set_state() returns to it.
+    """
+    @property
+    def steps(self) -> int:
+        ...
+    @property
+    def time(self) -> float:
+        """
+        simulated time [s]
+        """
 class DEMSystem:
     """
     Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).
     """
-    params: DEMParams
     @typing.overload
     def __init__(self, params: DEMParams, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -463,12 +476,18 @@ class DEMSystem:
         ...
     def advance(self, duration: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def copy_state(self) -> DEMState:
+        """
+        a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit
+        """
     def energy(self) -> DEMEnergy:
         ...
     def export_state(self) -> dict:
         ...
     def import_state(self, state: dict) -> None:
-        ...
+        """
+        restores export_state() exactly, written into the arrays in place; a state of another stone count (or, for polygons, vertex count) resizes and so invalidates earlier views
+        """
     def inertia(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         ...
     def mass(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
@@ -488,10 +507,16 @@ class DEMSystem:
     def projected_area(self, i: typing.SupportsInt | typing.SupportsIndex, ux: typing.SupportsFloat | typing.SupportsIndex, uz: typing.SupportsFloat | typing.SupportsIndex) -> float:
         ...
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+        """
+        n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories
+        """
     def set_polygons(self, vertex: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], offset: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
         """
         Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.
+        """
+    def set_state(self, state: DEMState) -> None:
+        """
+        returns to a copy_state() copy (checked first; written in place unless the stone or vertex count differs, which invalidates earlier views)
         """
     def set_wet_fraction(self, i: typing.SupportsInt | typing.SupportsIndex, w: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
@@ -570,6 +595,14 @@ class DEMSystem:
         ...
     @property
     def neighbour_builds(self) -> int:
+        ...
+    @property
+    def params(self) -> DEMParams:
+        """
+        a copy (editing it changes nothing); assign a modified copy to change them, checked
+        """
+    @params.setter
+    def params(self, arg1: DEMParams) -> None:
         ...
     @property
     def poly_offset(self) -> numpy.typing.NDArray[numpy.int32]:
@@ -739,7 +772,7 @@ class WeirPackingReport:
         ...
 class VofBoundaryInflow:
     """
-    Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, bottom/top: nx); empty = 0. The arrays are numpy views, writable in place.
+    Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, bottom/top: nx); empty = 0. The arrays are numpy views, writable in place; assigning a whole side replaces its array (earlier views of it are invalidated).
     """
     @typing.overload
     def __init__(self) -> None:
@@ -1781,6 +1814,18 @@ class FlowStableDt:
     @property
     def viscous(self) -> float:
         ...
+class FlowState:
+    """
+    A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.
+    """
+    @property
+    def step_count(self) -> int:
+        ...
+    @property
+    def time(self) -> float:
+        """
+        simulated time [s]
+        """
 class VOFGrid:
     """
     2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).
@@ -1794,6 +1839,10 @@ class VOFGrid:
     def clear_step_history(self) -> None:
         """
         forget the last step (the next one is forward Euler): after velocities were set by hand
+        """
+    def copy_state(self) -> FlowState:
+        """
+        a copy of the whole state (FlowState): set_state(copy) continues from it bit for bit
         """
     def discharge_through(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         """
@@ -1819,6 +1868,10 @@ class VOFGrid:
         """
     def set_porosity_box(self, x0: typing.SupportsFloat | typing.SupportsIndex, x1: typing.SupportsFloat | typing.SupportsIndex, z0: typing.SupportsFloat | typing.SupportsIndex, z1: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsFloat | typing.SupportsIndex, d: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def set_state(self, state: FlowState) -> None:
+        """
+        returns to a copy_state() copy (checked first; written into the arrays in place: views stay valid)
+        """
     def stable_dt(self) -> float:
         ...
     def stable_dt_terms(self) -> FlowStableDt:
@@ -1934,7 +1987,7 @@ class VOFGrid:
     @property
     def params(self) -> FlowParams:
         """
-        a copy; assign a modified copy to change it
+        a copy (editing it changes nothing); assign a modified copy to change them, checked, with the pressure solver and the k-epsilon model rebuilt
         """
     @params.setter
     def params(self, arg1: FlowParams) -> None:
@@ -2111,23 +2164,42 @@ class CouplerParams:
     @stone_drag.setter
     def stone_drag(self, arg0: StoneDragModel) -> None:
         ...
+class CouplerState:
+    """
+    A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, the stones' and the coupler's own; set_state() returns to it.
+    """
+    @property
+    def steps(self) -> int:
+        ...
+    @property
+    def time(self) -> float:
+        """
+        simulated time [s]
+        """
 class Coupler:
     """
     Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.
     """
-    params: CouplerParams
     def __init__(self, fluid: typing.Any, stones: typing.Any, params: CouplerParams = ...) -> None:
         ...
     def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
         ...
     def clear_step_limits(self) -> None:
         ...
+    def copy_state(self) -> CouplerState:
+        """
+        a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) continues from it bit for bit
+        """
     def export_state(self) -> dict:
         ...
     def import_state(self, state: dict) -> None:
         ...
     def set_inflow_table(self, times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], discharge: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
+    def set_state(self, state: CouplerState) -> None:
+        """
+        returns to a copy_state() copy (every part checked first; written into the arrays in place)
+        """
     def stable_dt(self) -> float:
         ...
     @typing.overload
@@ -2167,6 +2239,14 @@ class Coupler:
         ...
     @property
     def n(self) -> int:
+        ...
+    @property
+    def params(self) -> CouplerParams:
+        """
+        a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity mapper and the flow's relative-velocity flag following them
+        """
+    @params.setter
+    def params(self, arg1: CouplerParams) -> None:
         ...
     @property
     def profile(self) -> StageProfile:

@@ -101,6 +101,22 @@ struct CouplerParams {
   void validate() const;
 };
 
+// the whole coupled state as one typed value: the flow's, the stones' and the coupler's own (time,
+// the exchanged forces, the base porosity). Copying it is a copy of arrays (a reused CouplerState
+// allocates nothing once sized): the guard's snapshot, and a user's branch point
+struct CouplerState {
+  FlowState fluid;   // unused without a fluid
+  DEMState stones;   // unused without stones
+  double time = 0.0;  // [s]
+  long long steps = 0;
+  bool mapped = false;
+  double redistributed = 0.0;  // [m^2]
+  std::vector<double> disc_force_drag, disc_force_pressure, disc_relative_speed;
+  bool has_drag_slope = false;  // the bed drag's slopes (false: zero)
+  std::vector<double> disc_drag_slope;
+  std::vector<double> cell_base_porosity, cell_base_diameter;
+};
+
 class Coupler {
  public:
   // couples `fluid` and `stones` (either may be null: a scene without water or without stones); both
@@ -114,6 +130,8 @@ class Coupler {
   VOFGrid* fluid() { return fluid_; }
   DEMSystem* stones() { return stones_; }
   const CouplerParams& params() const { return params_; }
+  // replaces the parameters after checking them (a refused set changes nothing): the porosity mapper
+  // and the flow's relative-velocity flag follow them
   void set_params(const CouplerParams& params);
   int n() const { return n_; }
 
@@ -151,6 +169,12 @@ class Coupler {
   double redistributed_volume() const { return redistributed_; }
 
   // ---- whole state (fluid fields, stones, contact histories, time, hydrograph, forces) ----
+  // typed: copied into s (its arrays reused); restored (every part checked first: a refused state
+  // changes nothing), written into the arrays in place (the numpy views stay valid)
+  void export_state(CouplerState& s) const;
+  void import_state(const CouplerState& s);
+  // the checkpoint: the same state as named flat arrays ("coupler/...", "fluid/...", "turbulence/...",
+  // "dem/..."); entries added since are optional on import, with what older runs had
   std::map<std::string, std::vector<double>> export_state() const;
   void import_state(const std::map<std::string, std::vector<double>>& state);
 
@@ -164,13 +188,13 @@ class Coupler {
 
  private:
   void check_scene() const;
+  void check_params(const CouplerParams& p) const;
   // stable_dt() and which limit binds (term, cell: -1 where it has no place)
   double stable_dt_limits(const char** term, int* cell);
   void count_limit(const char* term, int cell);
   int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
   void apply_flow_flags();
   void make_mapper();
-  void import_turbulence(const std::map<std::string, std::vector<double>>& state);
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
   std::string non_finite_cell(int count, const int* cells) const;
@@ -201,12 +225,12 @@ class Coupler {
 
   std::unique_ptr<PorosityMapper> mapper_;
   std::unique_ptr<WaterRedistribution> redistribution_;
-  std::map<std::string, std::vector<double>> snapshot_;  // state at the start of the step (guards)
+  CouplerState snapshot_;  // state at the start of the step (guards)
   bool snapshot_valid_ = false;
   bool csr_current_ = false;  // the mapper's per-stone cell lists match the stones' positions
   // scratch (sized at construction)
   std::vector<double> disc_x_, disc_z_;
-  std::vector<double> n_old_, n_new_;
+  std::vector<double> n_old_;  // the flow's porosity before the porosity stage
   std::vector<double> cell_U_, cell_W_, cell_dpdx_, cell_dpdz_;
   std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
   std::vector<double> disc_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]

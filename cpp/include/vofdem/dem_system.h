@@ -98,6 +98,8 @@ struct DEMParams {
 
   // adds the flume: bed z = z_bed and end walls x = x_min, x_max [m], all with stone-wall friction mu
   void add_flume(double x_min, double x_max, double z_bed, double mu = 0.176);
+  // throws std::invalid_argument naming the first bad parameter (the shape's own limits: DEMSystem)
+  void validate() const;
 };
 
 // named stages of a DEM step (StageProfile indices). `integrate` is one pass over the stones: kick, drift,
@@ -117,6 +119,33 @@ struct DEMEnergy {
   double total() const { return kinetic + potential + elastic + dissipated - work_external; }
 };
 
+// the whole state of a DEMSystem as one typed value (export_state / import_state): what a run needs to
+// continue bit-for-bit. Copying it is a copy of arrays (a reused DEMState allocates nothing once sized)
+struct DEMState {
+  std::vector<double> disc_pos, disc_vel, disc_angle, disc_omega, disc_radius, disc_density;
+  std::vector<std::uint8_t> disc_fixed, disc_active, disc_asleep;
+  std::vector<double> disc_force_ext, disc_drag_coef, disc_drag_vel, disc_wet, disc_water_level, disc_force,
+      disc_torque, disc_acc, disc_alpha, disc_sleep_timer;
+  // the contact histories that are not zero, sorted by (i, j); the rest is rebuilt by the neighbour search
+  std::vector<int> contact_i, contact_j;
+  std::vector<double> contact_xi, contact_mr;  // tangential spring [m], rolling spring moment [N m]
+  std::vector<double> wall_xi, wall_mr;        // per (stone, wall)
+  // polygon stones (empty poly_offset: discs): the shape and the manifold points' springs
+  std::vector<double> poly_vertex;
+  std::vector<int> poly_offset, poly_contact_i, poly_contact_j, poly_contact_id, poly_wall_id;
+  std::vector<double> poly_contact_xi, poly_wall_xi;
+  double time = 0.0;  // [s]
+  long long steps = 0;
+  int removed = 0, ncontact = 0, nwall_contact = 0;
+  double dissipated = 0.0, work_external = 0.0, elastic = 0.0;  // energy accumulators [J]
+  bool forces_valid = false;
+};
+
+// a DEMState as the checkpoint's named flat arrays, and back (nwalls: the system's wall count; entries
+// added since are optional on the way back, with what older runs had)
+std::map<std::string, std::vector<double>> dem_state_to_map(DEMState s);
+DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& s, std::size_t nwalls);
+
 class DEMSystem {
  public:
   // n stones, all at the origin with zero radius: fill the arrays before stepping
@@ -130,7 +159,8 @@ class DEMSystem {
 
   int n() const { return n_; }
   const DEMParams& params() const { return params_; }
-  // replaces the parameters (walls, flags, stiffness...); checked on the next step
+  // replaces the parameters (walls, flags, stiffness...) after checking them (a refused set changes
+  // nothing); the derived constants follow on the next step
   void set_params(const DEMParams& p);
 
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
@@ -194,6 +224,12 @@ class DEMSystem {
   // named flat arrays; import_state() restores it exactly (bit-for-bit restart)
   std::map<std::string, std::vector<double>> export_state() const;
   void import_state(const std::map<std::string, std::vector<double>>& state);
+  // the same state typed: copied into s (its arrays reused: no allocation once sized); checked; and
+  // restored (checked first: a refused state changes nothing), written into the arrays in place (the
+  // numpy views stay valid) unless the state has another stone or polygon vertex count
+  void export_state(DEMState& s) const;
+  void check_state(const DEMState& s) const;
+  void import_state(const DEMState& s);
 
   StageProfile& profile() { return profile_; }
 
@@ -269,8 +305,7 @@ class DEMSystem {
   // (applied to disc_torque; the energies returned)
   bool rolling_stones() const;
   bool rolling_walls() const;
-  void check_rolling_params() const;
-  void check_rolling_shape(StoneShape shape) const;  // refuses mu_r > 0 for polygon stones
+  void check_rolling_shape(StoneShape shape, const DEMParams& p) const;  // refuses mu_r > 0 for polygon stones
   double rolling_spin_stiffness(double m_min) const;
   void update_rolling_inertia();
   void update_pair_rolling();  // Pair::roll_c of every listed pair
@@ -291,8 +326,9 @@ class DEMSystem {
   void polygon_wall_forces(double dt);
   double polygon_stable_dt() const;
   double inertia_of(int i, double mass) const;
-  void export_polygons(std::map<std::string, std::vector<double>>& s) const;
-  void import_polygons(const std::map<std::string, std::vector<double>>& s);
+  void export_polygons(DEMState& s) const;
+  void check_polygon_state(const DEMState& s) const;
+  void import_polygons(const DEMState& s);
 
   DEMParams params_;
   int n_ = 0;
@@ -359,6 +395,8 @@ class DEMSystem {
   int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to
   std::vector<double> cached_poly_vertex_;
   std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
+
+  DEMState backup_;  // the state at the start of advance(), restored on a failure
 
   StageProfile profile_;
 };

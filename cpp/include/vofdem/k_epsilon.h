@@ -175,6 +175,7 @@ class KEpsilonModel {
   // the role of each cell in the last step [-] (0 inactive, 1 solved, 2 wall-fixed), ncell: a checkpoint
   // holds it, since the next step starts a cell that has just filled from its neighbours
   std::vector<double> cell_roles() const;
+  void cell_roles(std::vector<double>& out) const;  // into out (its storage reused)
   // sets those roles (values 0, 1, 2; ncell of them), as cell_roles() gave them
   void set_cell_roles(const std::vector<double>& roles);
   const StageProfile& profile() const { return profile_; }

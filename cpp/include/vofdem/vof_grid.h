@@ -159,6 +159,24 @@ struct FlowStableDt {
   const char* binding(int* cell = nullptr) const;
 };
 
+// the whole state of a VOFGrid as one typed value (export_state / import_state): what a run needs to
+// continue bit-for-bit. Copying it is a copy of arrays (a reused FlowState allocates nothing once sized)
+struct FlowState {
+  std::vector<double> face_u, face_w, cell_p, cell_F, cell_porosity, cell_stone_diameter, cell_nut;
+  std::vector<double> face_x_solid_u, face_z_solid_w;
+  // the Adams-Bashforth history: the last step's start velocities and its length [s] (0: none)
+  std::vector<double> face_u_prev, face_w_prev;
+  double prev_dt = 0.0;
+  double time = 0.0, last_dt = 0.0;  // [s]
+  long long step_count = 0;
+  double inlet_volume = 0.0, net_inflow_volume = 0.0, dilatation_volume = 0.0;  // [m^2]
+  DischargeTable discharge;
+  // the k-epsilon model (has_turbulence false: the model is kept as it is; has_roles false: its cell roles)
+  bool has_turbulence = false, has_roles = false;
+  std::vector<double> turbulence_k, turbulence_eps, turbulence_nut, turbulence_u_tau;
+  std::vector<double> turbulence_face_x_wall_shear, turbulence_face_z_wall_shear, turbulence_role;
+};
+
 class VOFGrid {
  public:
   VOFGrid(const Grid2D& grid, const FlowParams& params);
@@ -217,6 +235,15 @@ class VOFGrid {
   void set_porosity_box(double x0, double x1, double z0, double z1, double n, double d);
   // hydrostatic pressure from the water fraction, p = 0 at the top
   void set_hydrostatic_pressure();
+
+  // ---- state ----
+  // copies the whole state into s (its arrays reused: no allocation once sized)
+  void export_state(FlowState& s) const;
+  // throws std::invalid_argument naming the first entry of s that does not fit this grid
+  void check_state(const FlowState& s) const;
+  // restores a state of export_state() (checked first; a refused one changes nothing), written into
+  // the arrays in place: the numpy views stay valid
+  void import_state(const FlowState& s);
 
   // ---- time stepping ----
   double time() const { return time_; }
