@@ -143,18 +143,32 @@ void DEMSystem::polygon_world(int i) {
 // separating axis that still separates; or a cached reference axis that led every other by `margin`,
 // while no separation can have changed by more than
 //   b = |d - d0| + 2 (|theta_i - theta_i0| + |theta_j - theta_j0|) (R_i + R_j)
-// (a vertex moves relative to the other body's frame by at most that), with 2 b < margin. Otherwise the
+// (a vertex moves relative to the other body's frame by at most that), with 2 b < margin; or a cached
+// separating axis whose separation sep exceeds b (apart without touching a vertex). Otherwise the
 // full test runs and refreshes the cache. Either way the same axis and the same arithmetic: bit-identical.
 bool DEMSystem::polygon_reference(SatCache& sc, int i, int j, double dx, double dz, int& flip, int& edge) {
   const int oi = poly_offset[i], oj = poly_offset[j], ni = poly_offset[i + 1] - oi, nj = poly_offset[j + 1] - oj;
   const double *va = &poly_world_[2 * oi], *ua = &poly_world_normal_[2 * oi];
   const double *vb = &poly_world_[2 * oj], *ub = &poly_world_normal_[2 * oj];
   if (sc.flip >= 0) {
+    const double reach = disc_radius[i] + disc_radius[j];
+    if (sc.margin <= 0.0) {
+      // a separating axis that separated by sep: apart while the pose moved less than that, the bound b
+      // with |e_x| + |e_z| >= |d - d0| (no sqrt); no vertex is touched
+      const double b1 = std::fabs(dx - sc.dx) + std::fabs(dz - sc.dz) +
+                        2.0 * (std::fabs(disc_angle[i] - sc.ai) + std::fabs(disc_angle[j] - sc.aj)) * reach;
+      if (b1 < sc.sep - 1e-12 * reach) return false;
+    }
+    polygon_world(i);
+    polygon_world(j);
     const double s = sc.flip ? polygon_axis_separation(vb, ub, sc.edge, va, ni)
                              : polygon_axis_separation(va, ua, sc.edge, vb, nj);
-    if (sc.margin <= 0.0 && s > 0.0) return false;  // still apart
+    if (sc.margin <= 0.0 && s > 0.0) {  // still apart: its separation now is the new reference
+      sc.sep = s;
+      sc.dx = dx, sc.dz = dz, sc.ai = disc_angle[i], sc.aj = disc_angle[j];
+      return false;
+    }
     if (sc.margin > 0.0) {
-      const double reach = disc_radius[i] + disc_radius[j];
       const double ex = dx - sc.dx, ez = dz - sc.dz;  // sqrt, not hypot: no overflow here, and 5x cheaper
       const double b = std::sqrt(ex * ex + ez * ez) +
                        2.0 * (std::fabs(disc_angle[i] - sc.ai) + std::fabs(disc_angle[j] - sc.aj)) * reach;
@@ -165,10 +179,13 @@ bool DEMSystem::polygon_reference(SatCache& sc, int i, int j, double dx, double 
       }
     }
   }
+  polygon_world(i);  // (again, if the cache looked: a stamp check)
+  polygon_world(j);
   const SatResult r = polygon_sat(va, ua, ni, vb, ub, nj);
   sc.flip = r.flip;
   sc.edge = r.edge;
   sc.margin = r.value < 0.0 ? r.margin : 0.0;
+  sc.sep = r.value < 0.0 ? 0.0 : r.value;
   sc.dx = dx;
   sc.dz = dz;
   sc.ai = disc_angle[i];
@@ -221,10 +238,9 @@ void DEMSystem::polygon_contact_forces(double dt) {
       cache.flip = -1;
       continue;
     }
-    polygon_world(i);
-    polygon_world(j);
     const int oi = poly_offset[i], oj = poly_offset[j];
     int flip = 0, edge = 0;
+    // (it brings both stones' world geometry up to date whenever it looks at a vertex)
     if (!polygon_reference(cache, i, j, dx, dz, flip, edge)) {  // apart: cleared in place, no manifold
       c.poly = PolygonHistory{};
       continue;
@@ -233,7 +249,8 @@ void DEMSystem::polygon_contact_forces(double dt) {
         polygon_manifold(&poly_world_[2 * oi], &poly_world_normal_[2 * oi], poly_offset[i + 1] - oi, &poly_world_[2 * oj],
                          &poly_world_normal_[2 * oj], poly_offset[j + 1] - oj, flip, edge,
                          polygon_incident(cache, i, j, flip, edge));
-    PolygonHistory next;
+    const PolygonHistory prev = c.poly;
+    c.poly = PolygonHistory{};  // written field by field below: no copy of a just-stored struct
     if (m.count > 0) ++ncontact;
     const double nx = m.normal[0], nz = m.normal[1];
     const double cn = m.count == 2 ? damp * c.sqrt_m * kSqrtHalf : damp * c.sqrt_m;
@@ -244,7 +261,7 @@ void DEMSystem::polygon_contact_forces(double dt) {
       const double vrz = disc_vel[2 * i + 1] + disc_omega[i] * rix - disc_vel[2 * j + 1] - disc_omega[j] * rjx;
       const double vn = vrx * nx + vrz * nz;
       const double vt = -vrx * nz + vrz * nx;
-      double xi = c.poly.spring(q.id);
+      double xi = prev.spring(q.id);
       const ContactForce f = friction ? linear_contact(q.depth, vn, vt, xi, dt, kn_, kt, cn, ct_factor * cn,
                                                        p.friction_stone, true)
                                       : linear_contact(q.depth, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
@@ -256,12 +273,11 @@ void DEMSystem::polygon_contact_forces(double dt) {
       disc_force[2 * j + 1] -= fz;
       disc_torque[i] += cross(rix, riz, fx, fz);
       disc_torque[j] -= cross(rjx, rjz, fx, fz);
-      next.id[k] = q.id;
-      next.xi[k] = xi;
+      c.poly.id[k] = q.id;
+      c.poly.xi[k] = xi;
       elastic += f.energy_spring;
       dissipated += f.power_damp * dt + f.energy_slip;
     }
-    c.poly = next;
   }
   elastic_ = elastic;
   dissipated_ += dissipated;
@@ -292,7 +308,8 @@ void DEMSystem::polygon_wall_forces(double dt) {
           s >= disc_radius[i] ? ContactManifold{}
                               : collide_polygon_wall(&poly_world_[2 * o], &poly_world_normal_[2 * o],
                                                      poly_offset[i + 1] - o, wall.point[0], wall.point[1], wx, wz);
-      PolygonHistory next;
+      const PolygonHistory prev = hist;
+      hist = PolygonHistory{};
       if (m.count > 0) ++ncontact;
       const double nx = m.normal[0], nz = m.normal[1];
       const double cn = m.count == 2 ? damp * std::sqrt(mass_eff_[i]) * kSqrtHalf : damp * std::sqrt(mass_eff_[i]);
@@ -302,7 +319,7 @@ void DEMSystem::polygon_wall_forces(double dt) {
         const double vx = disc_vel[2 * i] - disc_omega[i] * rz, vz = disc_vel[2 * i + 1] + disc_omega[i] * rx;
         const double vn = vx * nx + vz * nz;
         const double vt = -vx * nz + vz * nx;
-        double xi = hist.spring(q.id);
+        double xi = prev.spring(q.id);
         const ContactForce f = friction ? linear_contact(q.depth, vn, vt, xi, dt, kn_, kt, cn,
                                                          p.tangential_damping_factor * cn, wall.friction, true)
                                         : linear_contact(q.depth, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
@@ -310,12 +327,11 @@ void DEMSystem::polygon_wall_forces(double dt) {
         disc_force[2 * i] += fx;
         disc_force[2 * i + 1] += fz;
         disc_torque[i] += cross(rx, rz, fx, fz);
-        next.id[k] = q.id;
-        next.xi[k] = xi;
+        hist.id[k] = q.id;
+        hist.xi[k] = xi;
         elastic += f.energy_spring;
         dissipated += f.power_damp * dt + f.energy_slip;
       }
-      hist = next;
     }
   }
   elastic_ += elastic;

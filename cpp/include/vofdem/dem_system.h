@@ -385,6 +385,7 @@ class DEMSystem {
   struct SatCache {
     int flip = -1, edge = 0;  // the axis (flip -1: none)
     double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
+    double sep = 0.0;         // a separating axis: its separation at the pose below [m]
     double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
     // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
     // its lead over the next edge (in n . u) [-]; inc -1: none
