@@ -2,7 +2,7 @@
 """Calibration of the disc stones on the two laboratory experiments of vofdem.calibration, never on the
 weir's failure.
 
-1. Dry angle of repose of 300-stone heaps poured from a funnel (3 seeds) for rolling friction mu_r on a
+1. Dry angle of repose of 300-stone heaps poured from a funnel (3 seeds, --heaps N for more) for rolling friction mu_r on a
    grid (stone-stone and stone-wall alike), with the paper's Coulomb friction (0.577 stone-stone, 0.176
    stone-wall). A heap's angle scatters by several degrees from seed to seed, more than the mean moves
    between neighbouring grid values, so the calibrated mu_r is read from a quadratic least-squares fit of
@@ -307,6 +307,9 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--polygons", action="store_true", help="the polygon stones' sweep (see above)")
+    ap.add_argument("--heaps", type=int, default=None,
+                    help="dry heaps per mu_r of the sweep (seeds 0..N-1; default 3, --quick 2): more heaps "
+                         "narrow the fit where the angle levels off")
     args = ap.parse_args()
     if args.polygons:
         return main_polygons(args)
@@ -317,6 +320,8 @@ def main():
     else:
         grid, seeds, pull_seeds, per_seed = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6], [0, 1, 2], [0, 1, 2, 3, 4], 2
         rsetup = cal.ReposeSetup()
+    if args.heaps is not None:
+        seeds = list(range(args.heaps))
     psetup = cal.PullSetup()
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         # 1. the dry sweep and the choice of mu_r
@@ -358,7 +363,8 @@ def main():
                             "stones)").savefig(os.path.join(res, "dem_calibration_pull.png"), dpi=90)
 
     lines = ["# Calibration of the disc stones: angle of repose and the paper's pull-out test", "",
-             f"`benchmarks/dem_calibration.py{' --quick' if args.quick else ''}` (vofdem.calibration). Friction "
+             f"`benchmarks/dem_calibration.py{' --quick' if args.quick else ''}"
+             f"{f' --heaps {args.heaps}' if args.heaps is not None else ''}` (vofdem.calibration). Friction "
              "0.577 stone-stone and 0.176 stone-wall (the paper's) throughout; rolling friction mu_r at stone-stone "
              "and stone-wall contacts alike, rolling damping 0.3; stones 4.8 cm +- 10 %, 2650 kg/m3, DEM step "
              f"1e-4 s (20 steps per contact) without rolling friction, {1e-4 * 20 / cal.ROLLING_CONTACT_STEPS:.3g} s "

@@ -295,6 +295,6 @@ def test_the_stone_models_script_at_a_tiny_size(tmp_path):
                    "--figures", str(tmp_path)])
     text = md.read_text()
     assert "| discs | paper's | 1 | 0 | none | 0 | none | 0 | 0 |" in text
-    assert "| discs, mu_r = 0.4 | consistent | 1 | 0 | none |" in text
-    assert "## `maeno2008_rolling_consistent`: discs, mu_r = 0.4, consistent coupling" in text
+    assert "| discs, mu_r = 0.5 | consistent | 1 | 0 | none |" in text
+    assert "## `maeno2008_rolling_consistent`: discs, mu_r = 0.5, consistent coupling" in text
     assert (tmp_path / "stone_models_weir.png").stat().st_size > 0

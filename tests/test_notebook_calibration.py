@@ -22,5 +22,5 @@ def test_calibration_notebook_runs_and_shows_heaps_and_pulls(tmp_path, monkeypat
     markdown = "".join(o.get("data", {}).get("text/markdown", "") for o in outputs)
     assert markdown.count("| vertical | 1 |") == 2 and "4.75" in markdown
     text = "".join(o.get("text", "") for o in outputs)
-    assert "submerged, mu_r = 0.4" in text
+    assert "submerged, mu_r = 0.5" in text
     assert sum("image/png" in o.get("data", {}) for o in outputs) == 3

@@ -34,7 +34,7 @@ from .fragility import BAND, EVENTS, empirical_quantile, event_fragility
 
 
 def stone_model(scene) -> str:
-    """The stone model in words: 'discs', 'discs, mu_r = 0.4', or the shape's name."""
+    """The stone model in words: 'discs', 'discs, mu_r = 0.5', or the shape's name."""
     st = scene.stones
     shape = getattr(st, "shape", "disc")
     if shape != "disc":
