@@ -52,7 +52,7 @@ FLOW_BAD = {
     "gravity_x": [math.inf, NAN], "gravity_z": [-math.inf, NAN], "cfl": [0.0, 0.7, NAN],
     "max_dt": [0.0, NAN], "initial_dt": [-1e-3, NAN], "max_dt_growth": [0.9, 11.0, NAN], "min_dt": [0.0, NAN],
     "k1": [0.0, NAN], "k2": [-1.0, NAN], "flume_width": [0.0, NAN], "pressure_tol": [0.0, NAN],
-    "tailwater_level": [math.inf, NAN], "flags": [1 << 8],
+    "tailwater_level": [math.inf, NAN], "flags": [1 << 8], "viscous_substeps": [0, 65],
     "turbulence_production_limit": [-1.0, NAN], "turbulence_bed_roughness": [-1e-3, NAN],
     "turbulence_wall_roughness": [-1e-3, NAN], "turbulence_inflow_intensity": [-0.1, NAN],
     "turbulence_inflow_length_scale": [0.0, NAN],

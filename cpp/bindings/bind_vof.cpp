@@ -105,6 +105,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("top", &FlowParams::top)
       .def_readwrite("walls", &FlowParams::walls)
       .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme)
+      .def_readwrite("viscous_substeps", &FlowParams::viscous_substeps)
       .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
       .def_readwrite("time_scheme", &FlowParams::time_scheme, "MomentumTimeScheme of the explicit momentum terms")
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")

@@ -261,10 +261,9 @@ void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumB
   }
 }
 
-}  // namespace
-
-void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
-                       double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
+// every term in one step of dt (the viscous stresses explicit, or split with the column solves)
+void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
+                   double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx(), inv_dx = 1.0 / dx;
   u_star.assign(g.nface_x(), 0.0);
@@ -345,6 +344,45 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
     }
   }
   if (implicit) implicit_vertical_diffusion(g, f, bc, dt, u_star, w_star, s);
+}
+
+// the viscous increment of m substeps of dt / m added to u*, w* (open faces only: the boundary and
+// closed faces carry no viscous increment in the one-step scheme either)
+void add_viscous_substeps(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
+                          double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
+  MomentumTerms vt = t;
+  vt.convection = false;
+  vt.gravity_x = vt.gravity_z = 0.0;
+  vt.viscous_substeps = 1;
+  const int m = t.viscous_substeps;
+  const double h = dt / m;
+  s.sub_u.assign(f.face_u, f.face_u + g.nface_x());
+  s.sub_w.assign(f.face_w, f.face_w + g.nface_z());
+  MomentumFields vf = f;
+  vf.conv_face_u = vf.conv_face_w = nullptr;
+  for (int i = 0; i < m; ++i) {
+    vf.face_u = s.sub_u.data(), vf.face_w = s.sub_w.data();
+    momentum_once(g, vf, vt, bc, h, s.sub_u_next, s.sub_w_next, s);
+    s.sub_u.swap(s.sub_u_next), s.sub_w.swap(s.sub_w_next);
+  }
+  for (int j = 0; j < g.nface_x(); ++j)
+    if (f.face_x_porosity[j] > 0.0) u_star[j] += s.sub_u[j] - f.face_u[j];
+  for (int j = 0; j < g.nface_z(); ++j)
+    if (f.face_z_porosity[j] > 0.0) w_star[j] += s.sub_w[j] - f.face_w[j];
+}
+
+}  // namespace
+
+void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
+                       double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
+  if (!t.viscosity || t.viscous_substeps <= 1) {
+    momentum_once(g, f, t, bc, dt, u_star, w_star, s);
+    return;
+  }
+  MomentumTerms cg = t;
+  cg.viscosity = false;
+  momentum_once(g, f, cg, bc, dt, u_star, w_star, s);
+  add_viscous_substeps(g, f, t, bc, dt, u_star, w_star, s);
 }
 
 void solve_tridiagonal_rows(int m, int i0, int i1, int stride, const double* a, double* b, const double* c,

@@ -42,6 +42,9 @@ void FlowParams::validate() const {
   require_non_negative("k2", k2);
   require_positive("flume_width", flume_width);
   require_positive("pressure_tol", pressure_tol);
+  if (!(viscous_substeps >= 1 && viscous_substeps <= 64))
+    throw std::invalid_argument("viscous_substeps = " + std::to_string(viscous_substeps) +
+                                " is outside the allowed range [1, 64]");
   require_finite("tailwater_level", tailwater_level);
   if (static_cast<int>(time_scheme) < 0 || static_cast<int>(time_scheme) > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(static_cast<int>(time_scheme)) +
@@ -161,6 +164,7 @@ void VOFGrid::set_params(const FlowParams& params) {
   params.validate();
   const bool new_solver = params.pressure_solver != params_.pressure_solver;
   params_ = params;
+  viscous_limit_step_ = -1;
   if (new_solver) solver_ = make_pressure_solver(params_.pressure_solver);
   make_turbulence_model();
   update_face_porosity();
@@ -398,8 +402,10 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
   if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
-    s.viscous = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                  params_.viscous_scheme == ViscousScheme::kImplicitVertical, &s.viscous_cell);
+    viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
+                                       params_.viscous_scheme == ViscousScheme::kImplicitVertical, &s.viscous_cell);
+    viscous_limit_step_ = step_count_;
+    s.viscous = params_.viscous_substeps * viscous_limit_;
   }
   const double g = std::hypot(params_.gravity_x, params_.gravity_z);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0
@@ -576,6 +582,17 @@ double VOFGrid::dilatation(double dt) const {
   return sum * dt;
 }
 
+int VOFGrid::viscous_substeps(double dt) const {
+  // the limit stable_dt_terms() found before this step (the phases it saw are this step's), else anew
+  if (viscous_limit_step_ != step_count_) {
+    viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
+                                       params_.viscous_scheme == ViscousScheme::kImplicitVertical, nullptr);
+    viscous_limit_step_ = step_count_;
+  }
+  if (!(dt > viscous_limit_)) return 1;
+  return static_cast<int>(std::min<double>(params_.viscous_substeps, std::ceil(dt / viscous_limit_)));
+}
+
 void VOFGrid::stage_momentum(double dt) {
   ScopedStage timer(profile_, st_momentum_);
   MomentumTerms terms;
@@ -583,6 +600,7 @@ void VOFGrid::stage_momentum(double dt) {
   terms.viscosity = params_.flags & kFlowViscosity;
   terms.implicit_vertical = params_.viscous_scheme == ViscousScheme::kImplicitVertical;
   if (params_.flags & kFlowGravity) terms.gravity_x = params_.gravity_x, terms.gravity_z = params_.gravity_z;
+  if (terms.viscosity && params_.viscous_substeps > 1) terms.viscous_substeps = viscous_substeps(dt);
   const bool ab2 = params_.time_scheme == MomentumTimeScheme::kAdamsBashforth2 && prev_dt_ > 0.0;
   if (!ab2) {
     momentum_explicit(grid_, momentum_fields(), terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);

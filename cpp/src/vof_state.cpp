@@ -83,6 +83,7 @@ void VOFGrid::check_state(const FlowState& s) const {
 
 void VOFGrid::import_state(const FlowState& s) {
   check_state(s);
+  viscous_limit_step_ = -1;
   discharge_ = s.discharge;
   copy_into(face_u, s.face_u);
   copy_into(face_w, s.face_w);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -175,7 +176,7 @@ TEST(ImplicitViscosity, StepLimitOfTheImplicitSchemeLeavesOutTheVerticalDiffusio
 // the whole viscous step (x-diffusion and cross terms explicit, vertical diffusion backward Euler) as
 // a matrix, column by column from unit velocities, on a graded closed box with a random eddy viscosity
 // (contrast 100) and an air layer: its spectral radius at the step limit and above it
-double step_spectral_radius(double dt_factor, double* limit) {
+double step_spectral_radius(double dt_factor, double* limit, int substeps = 1) {
   const Grid2D g = Grid2D::graded(6, 0.15, 0.06, 0.01, 0.005, 0.02);  // dx 2.5 cm; dz 5 mm then 1 cm
   Column c(g, 1e-3);
   unsigned seed = 7;
@@ -206,6 +207,7 @@ double step_spectral_radius(double dt_factor, double* limit) {
   MomentumTerms t;
   t.convection = false;
   t.implicit_vertical = true;
+  t.viscous_substeps = substeps;
   MomentumBoundary bc;
   bc.top_open = false;
   bc.no_slip = true;
@@ -233,6 +235,98 @@ TEST(ImplicitViscosity, StepLimitIsStableOnTheWholeStepMatrix) {
   std::printf("[ info     ] viscous step limit %.3e s: spectral radius %.6f at it, %.3f at 5 x\n", limit, at, above);
   EXPECT_LE(at, 1.0 + 1e-9);
   EXPECT_GT(above, 1.0);  // the bound is not vacuous: far above it the step grows
+}
+
+TEST(ViscousSubsteps, StableAtFiveTimesTheLimitWhereOneStepGrows) {
+  // the same step matrix at 5 x the explicit limit: one step grows (1.36 above), five substeps of
+  // dt / 5 are each at the limit, so the whole step is a product of stable steps
+  double limit = 0.0;
+  const double one = step_spectral_radius(5.0, &limit, 1), five = step_spectral_radius(5.0, &limit, 5);
+  std::printf("[ info     ] spectral radius at 5 x the limit: %.3f in one step, %.6f in 5 substeps\n", one, five);
+  EXPECT_GT(one, 1.0);
+  EXPECT_LE(five, 1.0 + 1e-9);
+}
+
+TEST(ViscousSubsteps, OneSubstepIsTheOneStepSchemeBitForBit) {
+  // viscous_substeps = 1 takes the one-step path: the same u*, w* to the bit as the default terms
+  const Grid2D g = Grid2D::uniform(6, 10, 0.15, 0.1);
+  Column c(g, 5.0);
+  set_shear_mode(c, 1.0);
+  for (int k = 1; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) c.w[g.face_z(i, k)] = 0.1 * std::sin(0.7 * i + 1.3 * k);
+  MomentumTerms a, b;
+  a.implicit_vertical = b.implicit_vertical = true;
+  a.gravity_z = b.gravity_z = -9.81;
+  b.viscous_substeps = 1;
+  std::vector<double> ua, wa, ub, wb;
+  MomentumScratch s;
+  momentum_explicit(g, c.fields(), a, MomentumBoundary{}, 1e-3, ua, wa, s);
+  momentum_explicit(g, c.fields(), b, MomentumBoundary{}, 1e-3, ub, wb, s);
+  EXPECT_EQ(ua, ub);
+  EXPECT_EQ(wa, wb);
+}
+
+// w = sin(pi z / H) (+ a grid-scale zigzag of size `zig`), uniform in x between slip end walls: a mode
+// of the discrete stress operator, lambda = 2 nu (4 / dz^2) sin^2(pi dz / (2 H)); n steps of dt with
+// the explicit stresses in `substeps` substeps; returns the largest |w| over the amplitude at the start
+double w_mode_decay(int substeps, double dt_over_limit, int n, double zig, double* expected) {
+  const Grid2D g = Grid2D::uniform(4, 40, 0.2, 0.2);
+  const double nu = 1e-3, dz = 0.2 / 40, h = 0.2;
+  Column c(g, nu * 1000.0);
+  for (int k = 1; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) c.w[g.face_z(i, k)] = std::sin(kPi * k * dz / h) + (k % 2 ? zig : -zig);
+  MomentumTerms t;
+  t.convection = false;
+  t.viscous_substeps = substeps;
+  MomentumBoundary bc;
+  bc.top_open = false;
+  std::vector<double> cm, us, ws;
+  MomentumScratch s;
+  const double dt = dt_over_limit * viscous_stable_dt(g, c.fields(), cm, false);
+  for (int step = 0; step < n; ++step) {
+    momentum_explicit(g, c.fields(), t, bc, dt, us, ws, s);
+    c.w = ws;
+  }
+  const double lambda = 2.0 * nu * 4.0 / (dz * dz) * std::pow(std::sin(kPi * dz / (2.0 * h)), 2);
+  *expected = std::exp(-lambda * dt * n);
+  double m = 0.0;
+  for (double v : c.w) m = std::max(m, std::abs(v));
+  return m;
+}
+
+TEST(ViscousSubsteps, ModeDecaysAtTheAnalyticRateAtEightTimesTheLimit) {
+  // the explicit stresses at 8 x their limit in 8 substeps: after 40 steps the mode's amplitude is
+  // within 1 % of exp(-lambda t) (0.32 here); the same steps without substeps blow a zigzag of 1e-6 up
+  double expected = 0.0;
+  const double sub = w_mode_decay(8, 8.0, 40, 0.0, &expected);
+  std::printf("[ info     ] amplitude %.6f after 40 steps of 8 limits in 8 substeps, exact %.6f\n", sub, expected);
+  EXPECT_NEAR(sub, expected, 0.01 * expected);
+  EXPECT_LT(expected, 0.9);  // the mode did decay
+  EXPECT_GT(w_mode_decay(1, 8.0, 40, 1e-6, &expected), 10.0);
+}
+
+TEST(ViscousSubsteps, FlowStepLimitIsTheSubstepsTimesTheExplicitLimit) {
+  // a turbulent-like water column (nu = 1e-3 m^2/s): the reported viscous limit is viscous_substeps
+  // times the explicit bound; 1 gives the bound itself; out of [1, 64] is refused naming the field
+  const Grid2D g = Grid2D::uniform(10, 20, 0.25, 0.1);
+  FlowParams p;
+  EXPECT_EQ(p.viscous_substeps, 8);
+  p.flags = kFlowViscosity | kFlowGravity;
+  p.nu_water = 1e-3;
+  VOFGrid f8(g, p);
+  p.viscous_substeps = 1;
+  VOFGrid f1(g, p);
+  EXPECT_DOUBLE_EQ(f8.stable_dt_terms().viscous, 8.0 * f1.stable_dt_terms().viscous);
+  for (int bad : {0, 65, -3}) {
+    p.viscous_substeps = bad;
+    try {
+      p.validate();
+      ADD_FAILURE() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("viscous_substeps = " + std::to_string(bad)), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("[1, 64]"), std::string::npos);
+    }
+  }
 }
 
 TEST(ImplicitViscosity, FlowParamsSelectTheSchemeAndTheStepLimit) {

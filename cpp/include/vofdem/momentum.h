@@ -66,6 +66,10 @@ struct MomentumTerms {
   // vertical diffusion d/dz(mu du/dz) and d/dz(2 mu dw/dz) by backward Euler (one tridiagonal solve per
   // column for u and for w); x-diffusion and the cross terms stay explicit
   bool implicit_vertical = false;
+  // the viscous increment in this many substeps of dt / m, each the one-step scheme above (explicit
+  // part, then the column solves), convection and gravity over the whole dt at the step's start: each
+  // substep needs only dt / m below the explicit viscous limit (viscous_stable_dt); 1: one step
+  int viscous_substeps = 1;
   double gravity_x = 0.0;  // [m/s^2], 0 when gravity is off
   double gravity_z = 0.0;  // [m/s^2]
 };
@@ -79,10 +83,12 @@ struct MomentumScratch {
   std::vector<double> tri_a, tri_b, tri_c, tri_d;  // tridiagonal systems of all columns, (nx + 1) x (nz + 1)
   std::vector<double> cell_flux_u, cell_flux_w;      // x-flux of u, z-flux of w at cell centres
   std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
+  std::vector<double> sub_u, sub_w, sub_u_next, sub_w_next;  // velocities of the viscous substeps
 };
 
 // writes u* on every x-face and w* on every z-face. Closed faces (n_f = 0) and walls get 0; the
 // inlet faces get u^n (the boundary stage overwrites them); open boundary faces get u^n + dt n g.
+// terms.viscous_substeps > 1 with viscosity on: see MomentumTerms (1 takes the one-step path, bit for bit).
 void momentum_explicit(const Grid2D& grid, const MomentumFields& fields, const MomentumTerms& terms,
                        const MomentumBoundary& bc, double dt, std::vector<double>& u_star,
                        std::vector<double>& w_star, MomentumScratch& scratch);

@@ -132,6 +132,10 @@ struct FlowParams {
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
   ViscousScheme viscous_scheme = ViscousScheme::kImplicitVertical;  // kExplicit: the forward-Euler reference
+  // the viscous stresses in up to this many substeps of a flow step [-], [1, 64], 8: a step longer than
+  // their explicit limit takes ceil(dt / limit) substeps of the viscous part alone (MomentumTerms), so
+  // that limit binds the step only at this many times its value; 1: one explicit step
+  int viscous_substeps = 8;
   CornerViscosity corner_viscosity = CornerViscosity::kHarmonic;    // kArithmetic: the plain mean
   MomentumTimeScheme time_scheme = MomentumTimeScheme::kAdamsBashforth2;  // convection; kEuler: first order
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
@@ -144,8 +148,9 @@ struct FlowParams {
 // each term's largest stable step [s] (infinity when the term imposes none)
 struct FlowStableDt {
   double advective = 0;   // cfl * min over faces of h / |u / n| (pore velocity)
-  double viscous = 0;     // Gershgorin bound of the explicit stresses, ~ 1 / (4 nu_max (1/dx^2 + 1/dz^2));
-                          // with kImplicitVertical of the x-diffusion and cross terms only
+  double viscous = 0;     // viscous_substeps x the Gershgorin bound of the explicit stresses,
+                          // ~ 1 / (4 nu_max (1/dx^2 + 1/dz^2)); with kImplicitVertical of the x-diffusion
+                          // and cross terms only
   double gravity = 0;     // cfl * sqrt(2 h_min / |g|): a cell crossed by a fall from rest
   double turbulence = 0;  // from the k-epsilon model when on
   double max_dt = 0;      // FlowParams::max_dt
@@ -312,6 +317,8 @@ class VOFGrid {
   void stage_advect_vof(double dt);
   double dilatation(double dt) const;  // the water of the last advection's divergence correction [m^2]
   void stage_momentum(double dt);
+  // viscous substeps of a step of dt [s]: ceil(dt / explicit limit), at most params.viscous_substeps
+  int viscous_substeps(double dt) const;
   void stage_porous_resistance(double dt);
   void stage_turbulence(double dt);
   void stage_pressure(double dt);
@@ -368,6 +375,10 @@ class VOFGrid {
   std::unique_ptr<KEpsilonModel> turbulence_;
   mutable std::vector<double> cell_nu_;     // molecular kinematic viscosity of the cell mixture [m^2/s]
   mutable std::vector<double> dt_scratch_;  // work array of stable_dt_terms()
+  // the explicit viscous limit [s] stable_dt_terms() found, and the step count it was found at (the
+  // momentum stage's substeps reuse it within that step; -1: none)
+  mutable double viscous_limit_ = 0.0;
+  mutable long long viscous_limit_step_ = -1;
   mutable std::vector<double> cfl_row_;     // Courant numbers of one row of faces (max_cfl)
   std::vector<double> cell_porosity_prev_;   // porosity of the last step (the reference of dn)
   void make_turbulence_model();
