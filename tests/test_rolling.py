@@ -155,7 +155,7 @@ def test_rolling_scenes_are_the_base_scenes_with_the_calibrated_stones():
     for name, base in (("maeno2008_rolling", "maeno2008"), ("maeno2008_rolling_consistent", "maeno2008_consistent")):
         s, b = load_scene(root / f"{name}.toml"), load_scene(root / f"{base}.toml")
         assert s.name == name and s.effects.rolling_resistance
-        assert (s.stones.rolling_friction, s.stones.rolling_friction_wall, s.stones.rolling_damping) == (0.4, 0.4, 0.3)
+        assert (s.stones.rolling_friction, s.stones.rolling_friction_wall, s.stones.rolling_damping) == (0.5, 0.5, 0.3)
         # the same contact stiffness in more, shorter DEM steps (the rolling springs' stable step)
         assert s.numerics.dem_contact_steps * s.numerics.dem_dt == pytest.approx(
             b.numerics.dem_contact_steps * b.numerics.dem_dt, rel=1e-12)
