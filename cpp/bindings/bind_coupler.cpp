@@ -5,6 +5,7 @@
 
 #include <cstring>
 
+#include "state.h"
 #include "views.h"
 #include "vofdem/coupler.h"
 
@@ -50,15 +51,14 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
       .def("validate", &CouplerParams::validate);
 
-  py::class_<CouplerState>(m, "CouplerState",
-                           "A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, the "
-                           "stones' and the coupler's own; set_state() returns to it.")
-      .def_readonly("time", &CouplerState::time, "simulated time [s]")
-      .def_readonly("steps", &CouplerState::steps);
+  bind_state_class<CouplerState>(m, "CouplerState",
+                                  "A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, "
+                                  "the stones' and the coupler's own; set_state() returns to it.",
+                                  "steps", &CouplerState::steps);
 
-  py::class_<Coupler>(m, "Coupler",
-                      "Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.")
-      .def(py::init([](const py::object& fluid, const py::object& stones, const CouplerParams& p) {
+  py::class_<Coupler> cls(m, "Coupler",
+                          "Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.");
+  cls.def(py::init([](const py::object& fluid, const py::object& stones, const CouplerParams& p) {
              return new Coupler(fluid.is_none() ? nullptr : fluid.cast<VOFGrid*>(),
                                 stones.is_none() ? nullptr : stones.cast<DEMSystem*>(), p);
            }),
@@ -94,21 +94,13 @@ void bind_coupler(py::module_& m) {
       .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true)
       .def("update_fluid_forces", &Coupler::update_fluid_forces)
       .def("water_volume", &Coupler::water_volume)
-      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
-      .def("export_state", [](const Coupler& c) { return state_to_dict(c.export_state()); })
-      .def("import_state", [](Coupler& c, const py::dict& d) { c.import_state(dict_to_state(d)); }, py::arg("state"))
-      .def(
-          "copy_state",
-          [](const Coupler& c) {
-            CouplerState s;
-            c.export_state(s);
-            return s;
-          },
-          "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) continues from "
-          "it bit for bit")
-      .def("set_state", py::overload_cast<const CouplerState&>(&Coupler::import_state), py::arg("state"),
-           "returns to a copy_state() copy (every part checked first; written into the arrays in place)")
-      .def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
+      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume);
+  def_checkpoint_state(cls, "restores export_state() exactly (every part checked first; written into the arrays in place)");
+  def_copy_state<CouplerState>(cls,
+                               "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) "
+                               "continues from it bit for bit",
+                               "returns to a copy_state() copy (every part checked first; written into the arrays in place)");
+  cls.def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_force_drag",
                              [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); })
       .def_property_readonly("disc_force_pressure",

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 
+#include "state.h"
 #include "views.h"
 #include "vofdem/dem_contact.h"
 #include "vofdem/dem_system.h"
@@ -93,13 +94,12 @@ void bind_params(py::module_& m) {
 
 void bind_system(py::module_& m) {
   using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  py::class_<DEMState>(m, "DEMState",
-                       "A copy of a DEMSystem's whole state (DEMSystem.copy_state); set_state() returns to it.")
-      .def_readonly("time", &DEMState::time, "simulated time [s]")
-      .def_readonly("steps", &DEMState::steps);
+  bind_state_class<DEMState>(m, "DEMState",
+                              "A copy of a DEMSystem's whole state (DEMSystem.copy_state); set_state() returns to it.",
+                              "steps", &DEMState::steps);
 
-  py::class_<DEMSystem>(m, "DEMSystem", "Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).")
-      .def(py::init<const DEMParams&, int>(), py::arg("params"), py::arg("n"))
+  py::class_<DEMSystem> cls(m, "DEMSystem", "Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).");
+  cls.def(py::init<const DEMParams&, int>(), py::arg("params"), py::arg("n"))
       .def(py::init([](const DEMParams& p, const A& pos, const A& radius, const A& density,
                        const std::vector<std::uint8_t>& fixed) {
              return new DEMSystem(p, flat_pos(pos), flat_pos(radius), flat_pos(density), fixed);
@@ -146,23 +146,14 @@ void bind_system(py::module_& m) {
                              [](py::object self) { return view(self.cast<DEMSystem&>().poly_offset, self); })
       .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
       .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
-      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)
-      .def("export_state", [](const DEMSystem& s) { return state_to_dict(s.export_state()); })
-      .def("import_state", [](DEMSystem& s, const py::dict& d) { s.import_state(dict_to_state(d)); }, py::arg("state"),
-           "restores export_state() exactly, written into the arrays in place; a state of another stone count "
-           "(or, for polygons, vertex count) resizes and so invalidates earlier views")
-      .def(
-          "copy_state",
-          [](const DEMSystem& s) {
-            DEMState st;
-            s.export_state(st);
-            return st;
-          },
-          "a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit")
-      .def("set_state", py::overload_cast<const DEMState&>(&DEMSystem::import_state), py::arg("state"),
-           "returns to a copy_state() copy (checked first; written in place unless the stone or vertex count "
-           "differs, which invalidates earlier views)")
-      .def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
+      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference);
+  def_checkpoint_state(cls,
+                       "restores export_state() exactly, written into the arrays in place; a state of another stone "
+                       "count (or, for polygons, vertex count) resizes and so invalidates earlier views");
+  def_copy_state<DEMState>(cls, "a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit",
+                           "returns to a copy_state() copy (checked first; written in place unless the stone or "
+                           "vertex count differs, which invalidates earlier views)");
+  cls.def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); })
       .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); })
       .def_property_readonly("disc_force_ext",

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "state.h"
 #include "views.h"
 #include "vofdem/vof_grid.h"
 
@@ -158,15 +159,14 @@ void bind_vof(py::module_& m) {
       .def_readonly("growth", &FlowStableDt::growth)
       .def("min", &FlowStableDt::min);
 
-  py::class_<FlowState>(m, "FlowState",
-                        "A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.")
-      .def_readonly("time", &FlowState::time, "simulated time [s]")
-      .def_readonly("step_count", &FlowState::step_count);
+  bind_state_class<FlowState>(m, "FlowState",
+                               "A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.",
+                               "step_count", &FlowState::step_count);
 
-  py::class_<VOFGrid>(m, "VOFGrid",
-                      "2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are "
-                      "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).")
-      .def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
+  py::class_<VOFGrid> cls(m, "VOFGrid",
+                          "2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are "
+                          "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).");
+  cls.def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
       .def_property_readonly("grid", &VOFGrid::grid, py::return_value_policy::reference_internal)
       .def_property(
           "params", [](const VOFGrid& f) { return f.params(); }, &VOFGrid::set_params,
@@ -226,18 +226,11 @@ void bind_vof(py::module_& m) {
       .def("clear_step_history", &VOFGrid::clear_step_history,
            "forget the last step (the next one is forward Euler): after velocities were set by hand")
       .def("stable_dt", &VOFGrid::stable_dt)
-      .def("stable_dt_terms", &VOFGrid::stable_dt_terms)
-      .def(
-          "copy_state",
-          [](const VOFGrid& f) {
-            FlowState s;
-            f.export_state(s);
-            return s;
-          },
-          "a copy of the whole state (FlowState): set_state(copy) continues from it bit for bit")
-      .def("set_state", py::overload_cast<const FlowState&>(&VOFGrid::import_state), py::arg("state"),
-           "returns to a copy_state() copy (checked first; written into the arrays in place: views stay valid)")
-      .def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
+      .def("stable_dt_terms", &VOFGrid::stable_dt_terms);
+  def_copy_state<FlowState>(cls, "a copy of the whole state (FlowState): set_state(copy) continues from it bit for bit",
+                            "returns to a copy_state() copy (checked first; written into the arrays in place: views "
+                            "stay valid)");
+  cls.def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", &VOFGrid::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>())
       .def("pore_velocity_at_cells",
            [](const VOFGrid& f) {
