@@ -19,7 +19,6 @@ void bind_coupler(py::module_& m) {
   m.attr("COUPLE_POROSITY") = static_cast<unsigned>(kCouplePorosity);
   m.attr("COUPLE_DRAG") = static_cast<unsigned>(kCoupleDrag);
   m.attr("COUPLE_PRESSURE_GRADIENT") = static_cast<unsigned>(kCouplePressureGradient);
-  m.attr("COUPLE_RELATIVE_VELOCITY") = static_cast<unsigned>(kCoupleRelativeVelocity);
   m.attr("COUPLE_WET_FRACTION") = static_cast<unsigned>(kCoupleWetFraction);
   m.attr("COUPLE_CHECKS") = static_cast<unsigned>(kCoupleChecks);
   m.attr("COUPLE_LOOKUP_POROSITY") = static_cast<unsigned>(kCoupleLookupPorosity);

@@ -42,8 +42,22 @@ void bind_params(py::module_& m) {
 
   py::class_<DEMParams>(m, "DEMParams", "Constant parameters of the DEM of the stones (SI units; see dem_system.h).")
       .def(py::init<>())
-      .def_readwrite("gravity", &DEMParams::gravity)
-      .def_readwrite("fluid_density", &DEMParams::fluid_density)
+      .def_readwrite("medium", &DEMParams::medium, "water and gravity (Medium); a Coupler sets the flow's")
+      .def_readwrite("submerged", &DEMParams::submerged,
+                     "the stones lie in the medium's water (buoyancy, added mass); False: dry")
+      .def_property_readonly("water_density", &DEMParams::water_density,
+                             "rho_w of buoyancy and added mass [kg/m^3]: medium.rho_water if submerged, else 0")
+      // older scripts' names
+      .def_property(
+          "gravity", [](const DEMParams& p) { return p.medium.gravity; },
+          [](DEMParams& p, const std::array<double, 2>& g) { p.medium.gravity = g; }, "alias of medium.gravity")
+      .def_property(
+          "fluid_density", [](const DEMParams& p) { return p.water_density(); },
+          [](DEMParams& p, double rho) {
+            p.submerged = rho != 0.0;
+            if (p.submerged) p.medium.rho_water = rho;
+          },
+          "alias: 0 sets submerged False, another value submerged True and medium.rho_water [kg/m^3]")
       .def_readwrite("added_mass_coefficient", &DEMParams::added_mass_coefficient)
       .def_readwrite("dt", &DEMParams::dt)
       .def_readwrite("stiffness_normal", &DEMParams::stiffness_normal)

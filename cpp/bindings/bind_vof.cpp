@@ -84,12 +84,26 @@ void bind_vof(py::module_& m) {
 
   py::class_<FlowParams>(m, "FlowParams", "Flow parameters, constant while stepping (SI units).")
       .def(py::init<>())
-      .def_readwrite("rho_water", &FlowParams::rho_water, "water density [kg/m^3], 998.2")
-      .def_readwrite("rho_air", &FlowParams::rho_air, "air density [kg/m^3], 1.204")
-      .def_readwrite("nu_water", &FlowParams::nu_water, "water kinematic viscosity [m^2/s], 1.004e-6")
-      .def_readwrite("nu_air", &FlowParams::nu_air, "air kinematic viscosity [m^2/s], 1.516e-5")
-      .def_readwrite("gravity_x", &FlowParams::gravity_x, "gravity along the flume [m/s^2], 0")
-      .def_readwrite("gravity_z", &FlowParams::gravity_z, "gravity, upward component [m/s^2], -9.81")
+      .def_readwrite("medium", &FlowParams::medium, "water, air and gravity (Medium), shared with the stones")
+      // older scripts' names of the medium's fields
+      .def_property(
+          "rho_water", [](const FlowParams& p) { return p.medium.rho_water; },
+          [](FlowParams& p, double v) { p.medium.rho_water = v; }, "alias of medium.rho_water [kg/m^3]")
+      .def_property(
+          "rho_air", [](const FlowParams& p) { return p.medium.rho_air; },
+          [](FlowParams& p, double v) { p.medium.rho_air = v; }, "alias of medium.rho_air [kg/m^3]")
+      .def_property(
+          "nu_water", [](const FlowParams& p) { return p.medium.nu_water; },
+          [](FlowParams& p, double v) { p.medium.nu_water = v; }, "alias of medium.nu_water [m^2/s]")
+      .def_property(
+          "nu_air", [](const FlowParams& p) { return p.medium.nu_air; },
+          [](FlowParams& p, double v) { p.medium.nu_air = v; }, "alias of medium.nu_air [m^2/s]")
+      .def_property(
+          "gravity_x", [](const FlowParams& p) { return p.medium.gravity[0]; },
+          [](FlowParams& p, double v) { p.medium.gravity[0] = v; }, "alias of medium.gravity[0] [m/s^2]")
+      .def_property(
+          "gravity_z", [](const FlowParams& p) { return p.medium.gravity[1]; },
+          [](FlowParams& p, double v) { p.medium.gravity[1] = v; }, "alias of medium.gravity[1] [m/s^2]")
       .def_readwrite("cfl", &FlowParams::cfl, "target Courant number of the pore velocity [-], 0.4")
       .def_readwrite("max_dt", &FlowParams::max_dt, "largest time step [s], 0.01")
       .def_readwrite("initial_dt", &FlowParams::initial_dt, "first time step [s], 1e-3")
@@ -97,7 +111,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("min_dt", &FlowParams::min_dt, "a stable step below this is a failure [s], 1e-8")
       .def_readwrite("k1", &FlowParams::k1, "linear resistance coefficient of eq. (7) [-], 200")
       .def_readwrite("k2", &FlowParams::k2, "quadratic resistance coefficient of eq. (7) [-], 2.8")
-      .def_readwrite("flume_width", &FlowParams::flume_width, "flume width B [m], 0.3")
+      .def_readwrite("flume_width", &FlowParams::flume_width, "flume width B [m], 0.5")
       .def_readwrite("pressure_solver", &FlowParams::pressure_solver)
       .def_readwrite("pressure_tol", &FlowParams::pressure_tol, "relative residual of the pressure solve [-]")
       .def_readwrite("inlet", &FlowParams::inlet)

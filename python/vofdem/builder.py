@@ -14,8 +14,9 @@ from .scene import Scene
 
 import math
 
-WATER_DENSITY = 998.2  # kg/m^3 at 20 C, the flow solver's default water density
-GRAVITY = 9.81  # m/s^2
+# the core's water and gravity (Medium) are the one source of their values
+WATER_DENSITY = _core.Medium().rho_water  # kg/m^3, 998.2 at 20 C
+GRAVITY = -_core.Medium().gravity[1]  # m/s^2, 9.81
 
 
 def gravity(scene: Scene):
@@ -24,12 +25,24 @@ def gravity(scene: Scene):
     return GRAVITY * s, -GRAVITY * math.sqrt(1.0 - s * s)
 
 
-def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
-    """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags."""
+def medium(scene: Scene):
+    """The scene's Medium: the core's water and air, gravity along a sloping bed; the flow owns it and a
+    Coupler hands it to the stones."""
+    m = _core.Medium()
+    m.gravity = list(gravity(scene))
+    return m
+
+
+def dem_params(scene: Scene, submerged: bool = True, fluid_density: Optional[float] = None):
+    """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags.
+    submerged: in the medium's water (False: dry, as the packing); fluid_density: older callers' name
+    (0: dry, else submerged in water of that density [kg/m^3])."""
     st, fx = scene.stones, scene.effects
     p = _core.DEMParams()
-    p.gravity = list(gravity(scene))
-    p.fluid_density = fluid_density
+    p.medium = medium(scene)
+    p.submerged = submerged
+    if fluid_density is not None:
+        p.fluid_density = fluid_density
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
     p.contact_steps = scene.numerics.dem_contact_steps
@@ -185,7 +198,7 @@ def build_stones(scene: Scene):
     if route == "explicit":
         return _explicit_stones(scene), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
-    pack = dem_params(scene, fluid_density=0.0)
+    pack = dem_params(scene, submerged=False)
     pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
     trap = _trapezoid(scene)
     try:
@@ -217,8 +230,7 @@ def flow_params(scene: Scene):
     """FlowParams of a scene: fluid, gravity along a sloping bed, CFL, porous law, boundaries, effects."""
     f, n, fx, st = scene.flume, scene.numerics, scene.effects, scene.stones
     p = _core.FlowParams()
-    p.rho_water = WATER_DENSITY
-    p.gravity_x, p.gravity_z = gravity(scene)
+    p.medium = medium(scene)
     p.cfl = n.cfl
     p.max_dt = n.max_dt
     p.initial_dt = n.initial_dt
@@ -244,7 +256,8 @@ def flow_params(scene: Scene):
         flags |= int(E.POROUS_RESISTANCE)
     if fx.turbulence:
         flags |= int(E.TURBULENCE)
-    if fx.relative_velocity_resistance:
+    # resistance relative to the stones' velocity: the stones move the flow's porosity only two-way
+    if fx.relative_velocity_resistance and fx.two_way:
         flags |= int(E.RELATIVE_VELOCITY)
     p.flags = flags
     return p
@@ -359,8 +372,6 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
         flags |= _core.COUPLE_DRAG
     if fx.pressure_gradient:
         flags |= _core.COUPLE_PRESSURE_GRADIENT
-    if fx.relative_velocity_resistance:
-        flags |= _core.COUPLE_RELATIVE_VELOCITY
     if fx.buoyancy or fx.added_mass:
         flags |= _core.COUPLE_WET_FRACTION
     if scene.numerics.porosity_method == "lookup":
@@ -377,9 +388,6 @@ def build_simulation(scene: Scene, packing: Optional[dict] = None):
     stones, report = build_stones(scene)
     if packing is not None:
         packing["report"] = report
-    params = stones.params
-    params.fluid_density = fluid.params.rho_water
-    stones.params = params
     n_s, _ = disc_porosity(scene, stones)
     sim = _core.Coupler(fluid, stones, coupler_params(scene, n_s))
     t, q = scene.hydrograph.table(scene.duration)

@@ -21,6 +21,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
+from . import _core
 from .flood import Hydrograph
 from .reference import Reference, maeno2008_reference
 from .params import (_BASE_UNIT, _UNITS, _Section, _check_list, _check_number, _choice, _flag, _fmt,  # noqa: F401
@@ -32,7 +33,9 @@ class Flume(_Section):
     """The computational flume: a 2D vertical slice of a flume of width B."""
 
     length: float = _p(3.681, "length", 0.2, 100.0, "domain length from inflow to outflow end [m]", "(]")
-    width: float = _p(0.50, "length", 0.0, 10.0, "flume width B dividing the discharge [m]; usual 0.5", "(]")
+    # the core's FlowParams.flume_width is the one source of the default
+    width: float = _p(_core.FlowParams().flume_width, "length", 0.0, 10.0,
+                      "flume width B dividing the discharge [m]; usual 0.5", "(]")
     height: float = _p(0.45, "length", 0.05, 10.0, "domain height above the bed [m]", "(]")
     bed_slope: float = _p(0.0, None, -0.1, 0.1, "bed slope S0 = sin(angle) [-], positive falling downstream")
     outflow: str = _choice("free_overfall", ("free_overfall", "tailwater"),
