@@ -1,11 +1,15 @@
 // Thin bindings of the DEM of the stones (dem_system.h) and the weir packing (weir_packing.h).
+#include <pybind11/native_enum.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cstring>
 #include <memory>
+#include <string>
+#include <tuple>
 
+#include "flags.h"
 #include "state.h"
 #include "views.h"
 #include "vofdem/dem_contact.h"
@@ -81,17 +85,20 @@ void bind_params(py::module_& m) {
       .def("add_flume", &DEMParams::add_flume, py::arg("x_min"), py::arg("x_max"), py::arg("z_bed") = 0.0,
            py::arg("mu") = 0.176);
 
-  m.attr("DEM_GRAVITY") = static_cast<unsigned>(kDEMGravity);
-  m.attr("DEM_ROTATION") = static_cast<unsigned>(kDEMRotation);
-  m.attr("DEM_FRICTION") = static_cast<unsigned>(kDEMFriction);
-  m.attr("DEM_ADDED_MASS") = static_cast<unsigned>(kDEMAddedMass);
-  m.attr("DEM_BUOYANCY") = static_cast<unsigned>(kDEMBuoyancy);
-  m.attr("DEM_SLEEPING") = static_cast<unsigned>(kDEMSleeping);
-  m.attr("DEM_DAMPING") = static_cast<unsigned>(kDEMDamping);
-  m.attr("DEM_EXTERNAL_FORCE") = static_cast<unsigned>(kDEMExternalForce);
-  m.attr("DEM_REMOVAL") = static_cast<unsigned>(kDEMRemoval);
-  m.attr("DEM_ROLLING_RESISTANCE") = static_cast<unsigned>(kDEMRollingResistance);
-  m.attr("DEM_ALL_EFFECTS") = static_cast<unsigned>(kDEMAllEffects);
+  py::native_enum<DEMFlag>(m, "DEMFlag", "enum.IntFlag", "Bit flags of the DEM's physical effects (DEMParams.flags).")
+      .value("GRAVITY", kDEMGravity, "gravity (and buoyancy with BUOYANCY)")
+      .value("ROTATION", kDEMRotation, "stones spin, eq. (10)")
+      .value("FRICTION", kDEMFriction, "Coulomb cap of the tangential spring")
+      .value("ADDED_MASS", kDEMAddedMass, "M' = rho_w C_M V w")
+      .value("BUOYANCY", kDEMBuoyancy, "rho_w V w g")
+      .value("SLEEPING", kDEMSleeping, "stones at rest under small forces are not integrated")
+      .value("DAMPING", kDEMDamping, "contact dashpots")
+      .value("EXTERNAL_FORCE", kDEMExternalForce, "disc_force_ext (the fluid's forces)")
+      .value("REMOVAL", kDEMRemoval, "stones leaving the domain box are deactivated")
+      .value("ROLLING_RESISTANCE", kDEMRollingResistance, "rolling moment (rolling_resistance.h)")
+      .value("ALL_EFFECTS", kDEMAllEffects, "everything but sleeping")
+      .finalize();
+  export_flag_members(m, "DEMFlag", "DEM_");  // the older module constants
 
   py::class_<DEMEnergy>(m, "DEMEnergy", "Energy bookkeeping of the DEM [J].")
       .def_readonly("kinetic", &DEMEnergy::kinetic)
@@ -245,12 +252,31 @@ void bind_packing(py::module_& m) {
                ", porosity=" + std::to_string(r.porosity) + ", max_speed=" + std::to_string(r.max_speed) +
                ", outline_error=" + std::to_string(r.outline_error) + ")";
       });
+  // the weir packer: one C++ packer, a WeirSpec in; the keyword form (older scripts) makes the spec
+  auto pack = [](const WeirSpec& spec, const DEMParams& params) {
+    WeirPackingReport report;
+    std::unique_ptr<DEMSystem> sys;
+    {
+      py::gil_scoped_release release;
+      sys = std::make_unique<DEMSystem>(pack_weir(spec, params, report));
+    }
+    return std::make_pair(std::move(sys), report);
+  };
   m.def(
       "pack_weir",
-      [](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
-         double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
-         double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
-         double aspect_ratio, double radial_jitter) {
+      [pack](const WeirSpec& spec, const DEMParams& params) {
+        auto [sys, report] = pack(spec, params);
+        return std::make_tuple(std::move(sys), report);
+      },
+      "Packs the trapezoidal rubble mound weir `spec` with the contact law of `params`; returns (DEMSystem, "
+      "WeirPackingReport).",
+      py::arg("spec"), py::arg("params") = DEMParams());
+  m.def(
+      "pack_weir",
+      [pack](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
+             double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
+             double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
+             double aspect_ratio, double radial_jitter) {
         WeirSpec spec;
         spec.shape = shape_from_name(shape);
         spec.polygon.vertices_min = vertices_min;
@@ -269,15 +295,11 @@ void bind_packing(py::module_& m) {
         spec.seed = seed;
         spec.settle_time_max = settle_time_max;
         spec.rest_speed = rest_speed;
-        WeirPackingReport report;
-        std::unique_ptr<DEMSystem> sys;
-        {
-          py::gil_scoped_release release;
-          sys = std::make_unique<DEMSystem>(pack_weir(spec, params, report));
-        }
-        return py::make_tuple(py::cast(std::move(sys)), report, spec);
+        auto [sys, report] = pack(spec, params);
+        return std::make_tuple(std::move(sys), report, spec);
       },
-      "Packs a trapezoidal rubble mound weir; returns (DEMSystem, WeirPackingReport, WeirSpec).",
+      "The older keyword form: the WeirSpec made from the keywords; returns (DEMSystem, WeirPackingReport, "
+      "WeirSpec).",
       py::arg("height") = 0.25, py::arg("crest") = 0.20, py::arg("slope_up_deg") = 27.0,
       py::arg("slope_down_deg") = 27.0, py::arg("x_toe") = 1.0, py::arg("z_bed") = 0.0, py::arg("d_mean") = 0.048,
       py::arg("d_spread") = 0.1, py::arg("density") = 2650.0, py::arg("seed") = 0, py::arg("settle_time_max") = 6.0,

@@ -134,7 +134,7 @@ class Coupler {
   DEMSystem* stones() { return stones_; }
   const CouplerParams& params() const { return params_; }
   // replaces the parameters after checking them (a refused set changes nothing): the porosity mapper
-  // and the flow's relative-velocity flag follow them
+  // follows them (the flow's flags are the flow's own)
   void set_params(const CouplerParams& params);
   int n() const { return n_; }
 
