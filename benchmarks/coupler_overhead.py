@@ -78,11 +78,12 @@ def run_stones(T=1.0):
 def coupled_profile(T=0.4):
     grid = vofdem.Grid2D.uniform(40, 50, 0.4, 0.5)
     fp = vofdem.FlowParams()
+    fp.flags |= vofdem.FlowEffect.RELATIVE_VELOCITY  # two-way: resistance relative to the stones
     f = vofdem.VOFGrid(grid, fp)
     f.fill_water_below(0.25)
     f.set_hydrostatic_pressure()
     dp = vofdem.DEMParams()
-    dp.fluid_density = fp.rho_water
+    dp.submerged = True  # the Coupler hands the stones the flow's medium
     dp.add_flume(0.0, 0.4, 0.0)
     pos = np.array([[0.12 + 0.06 * (j % 3) + 0.003 * j, 0.32 + 0.06 * (j // 3)] for j in range(6)])
     s = vofdem.DEMSystem(dp, pos=pos, radius=np.full(6, 0.024))

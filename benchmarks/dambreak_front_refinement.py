@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 import vofdem
-from vofdem import validation as val
+import vof_cases as val
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 A = val.MM_A

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from vofdem import validation as val
+import vof_cases as val
 from vofdem.builder import build_simulation
 from vofdem.scene import load_scene
 

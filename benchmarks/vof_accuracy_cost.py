@@ -21,7 +21,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-from vofdem import validation as val  # noqa: E402
+import vof_cases as val  # noqa: E402
 
 
 def main():

@@ -1,7 +1,7 @@
 """Porosity of a rubble mound weir from its stones (seed paper section 2.4, eq. 11, Fig. 4).
 
 Builds the paper's trapezoidal weir of 4.8 cm stones (0.25 m high, 0.20 m crest, 27 degree slopes)
-by a deterministic layered packing, maps the cell porosity on the paper's grid (2.5 cm x 1.0 cm,
+packed under gravity by the DEM (`vofdem.pack_weir`, weir_packing.h), maps the cell porosity on the paper's grid (2.5 cm x 1.0 cm,
 0.5 cm rows up to 2 cm) with the exact disc-cell areas and with the paper's lookup table, and writes
 a figure in the manner of the paper's Fig. 4 and the arrays.
 
@@ -22,7 +22,6 @@ from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
 
 import vofdem  # noqa: E402
-from vofdem.packing import trapezoid_weir_discs  # noqa: E402
 
 N_EXP = 0.41
 
@@ -56,9 +55,12 @@ def main(argv=None):
     args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
 
-    x, z, d = trapezoid_weir_discs(height=0.25, crest=0.20, slope_deg=27.0, d_mean=0.048, spread=0.10,
-                                   x_toe=0.20, seed=args.seed)
-    r = 0.5 * d
+    spec = vofdem.WeirSpec()
+    spec.x_toe, spec.seed = 0.20, args.seed  # the paper's trapezoid and stones are the spec's defaults
+    stones, _ = vofdem.pack_weir(spec)
+    pos = np.asarray(stones.disc_pos)
+    x, z, r = pos[:, 0].copy(), pos[:, 1].copy(), np.asarray(stones.disc_radius).copy()
+    d = 2.0 * r
     grid = vofdem.Grid2D.graded(nx=64, length_x=1.60, height_z=0.35, dz=0.01, dz_bed=0.005, z_bed_top=0.02)
     n_exact, as_exact = map_porosity(grid, x, z, r, "exact", args.m)
     n_lookup, as_lookup = map_porosity(grid, x, z, r, "lookup", args.m)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates python/vofdem/_core.pyi (type stubs of the C++ extension, for editors and type checkers)
-# from the built extension. Run after changing a binding; needs `pip install pybind11-stubgen`.
+# from the built extension. Run after changing a binding; needs pybind11-stubgen (the test extra);
+# tests/test_stubs.py fails while the stub and the extension disagree.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=$(mktemp -d)

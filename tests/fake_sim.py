@@ -32,8 +32,10 @@ class FakeSimulation:
         xs = np.arange(w.toe_x + d, w.x_toe_down - d / 2, d)
         pos = np.stack([xs, np.maximum(w.surface(xs) - d / 2, d / 2)], axis=1)
         n = len(pos)
-        self.stones = SimpleNamespace(disc_pos=pos, disc_vel=np.zeros((n, 2)), disc_radius=np.full(n, d / 2),
-                                      disc_active=np.ones(n, bool), disc_fixed=pos[:, 1] <= d / 2 + 1e-12)
+        self.params = SimpleNamespace(n_exp=scene.stones.n_exp)  # as the Coupler's CouplerParams
+        self.stones = SimpleNamespace(shape="disc", disc_pos=pos, disc_vel=np.zeros((n, 2)),
+                                      disc_radius=np.full(n, d / 2), disc_active=np.ones(n, bool),
+                                      disc_fixed=pos[:, 1] <= d / 2 + 1e-12)
         self.disc_force_drag = np.zeros((n, 2))
         self.disc_force_pressure = np.zeros((n, 2))
         self.profile = FakeProfile()

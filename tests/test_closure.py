@@ -8,8 +8,9 @@ from hypothesis import strategies as st
 
 import vofdem
 
-NU = 1.0e-6  # m^2/s
-RHO = 1000.0  # kg/m^3
+NU = vofdem.Medium().nu_water  # m^2/s, the helpers' default water (the core's medium)
+RHO = vofdem.Medium().rho_water  # kg/m^3
+REF_NU, REF_RHO = 1.0e-6, 1000.0  # the water of the settling velocities in REFERENCES.md
 G = 9.81  # m/s^2
 
 
@@ -125,9 +126,10 @@ def brentq(f, a, b, tol=1e-12):
 
 
 def settling_velocity(d, rho_s, law):
-    weight = (rho_s - RHO) * G * math.pi * d**3 / 6  # submerged weight [N]
+    weight = (rho_s - REF_RHO) * G * math.pi * d**3 / 6  # submerged weight [N]
     # a stone sinking at speed v in still water: the drag on it points up
-    return brentq(lambda v: vofdem.drag_force(0.0, 0.0, 0.0, -v, d, law=law)[1] - weight, 1e-6, 20.0)
+    return brentq(lambda v: vofdem.drag_force(0.0, 0.0, 0.0, -v, d, rho=REF_RHO, nu=REF_NU, law=law)[1] - weight,
+                  1e-6, 20.0)
 
 
 @pytest.mark.parametrize(

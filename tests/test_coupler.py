@@ -12,11 +12,13 @@ from vofdem import _core
 def scene(n_stones=3, flags=None):
     grid = vofdem.Grid2D.uniform(20, 40, 0.2, 0.4)
     fp = vofdem.FlowParams()
+    if flags is None or flags & _core.COUPLE_POROSITY:
+        fp.flags |= vofdem.FlowEffect.RELATIVE_VELOCITY  # two-way: resistance relative to the stones
     fluid = vofdem.VOFGrid(grid, fp)
     fluid.fill_water_below(0.2)
     fluid.set_hydrostatic_pressure()
     dp = vofdem.DEMParams()
-    dp.fluid_density = fp.rho_water
+    dp.submerged = True
     dp.add_flume(0.0, 0.2, 0.0)
     pos = np.array([[0.1 + 0.002 * j, 0.2 + 0.05 * j] for j in range(n_stones)])
     stones = vofdem.DEMSystem(dp, pos=pos, radius=np.full(n_stones, 0.024))
@@ -88,9 +90,22 @@ def test_guards_and_bad_input():
     p.stone_cfl = 5.0
     with pytest.raises(ValueError, match="stone_cfl"):
         p.validate()
+    p = _core.CouplerParams()
+    p.flags |= 1 << 5  # the former relative-velocity coupling: the flow's own flag now
+    with pytest.raises(ValueError, match="FlowEffect|kFlowRelativeVelocity"):
+        p.validate()
+
+
+def test_the_stones_take_the_flows_medium():
+    fp = vofdem.FlowParams()
+    fp.medium.rho_water = 1025.0  # sea water
+    fp.medium.gravity = [0.3, -9.8]
+    fluid = vofdem.VOFGrid(vofdem.Grid2D.uniform(4, 4, 0.2, 0.2), fp)
     dry = vofdem.DEMSystem(vofdem.DEMParams(), pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
-    with pytest.raises(ValueError, match="fluid_density"):
-        _core.Coupler(vofdem.VOFGrid(vofdem.Grid2D.uniform(4, 4, 0.2, 0.2), vofdem.FlowParams()), dry)
+    _core.Coupler(fluid, dry)
+    assert dry.params.submerged and dry.params.medium == fp.medium
+    assert dry.params.water_density == 1025.0
+    assert fluid.params.flags == fp.flags  # the coupler sets no flag of the flow
 
 
 def test_scenes_with_one_module():

@@ -86,10 +86,7 @@ def _fluid_and_stones(scene):
 
     fluid = build_fluid(scene)
     stones, _ = build_stones(scene)
-    p = stones.params
-    p.fluid_density = fluid.params.rho_water
-    stones.params = p
-    return fluid, stones
+    return fluid, stones  # the Coupler hands the stones the flow's medium
 
 
 def test_bulk_mapping_refuses_a_packing_too_loose_for_n_exp():

@@ -22,7 +22,7 @@ def fluid(params=None):
 
 def dem_params():
     p = vofdem.DEMParams()
-    p.fluid_density = vofdem.FlowParams().rho_water
+    p.submerged = True
     p.add_flume(0.0, 0.08, 0.0)
     return p
 
@@ -48,8 +48,7 @@ def mapper(params=None):
 
 # invalid values of every numeric field (NaN is refused everywhere); the name the error must give
 FLOW_BAD = {
-    "rho_water": [0.0, -1.0, NAN], "rho_air": [0.0, NAN], "nu_water": [-1e-6, NAN], "nu_air": [-1e-6, NAN],
-    "gravity_x": [math.inf, NAN], "gravity_z": [-math.inf, NAN], "cfl": [0.0, 0.7, NAN],
+    "cfl": [0.0, 0.7, NAN],
     "max_dt": [0.0, NAN], "initial_dt": [-1e-3, NAN], "max_dt_growth": [0.9, 11.0, NAN], "min_dt": [0.0, NAN],
     "k1": [0.0, NAN], "k2": [-1.0, NAN], "flume_width": [0.0, NAN], "pressure_tol": [0.0, NAN],
     "tailwater_level": [math.inf, NAN], "flags": [1 << 8], "viscous_substeps": [0, 65],
@@ -58,7 +57,7 @@ FLOW_BAD = {
     "turbulence_inflow_length_scale": [0.0, NAN],
 }
 DEM_BAD = {
-    "fluid_density": [-1.0, NAN], "added_mass_coefficient": [-0.5, NAN], "dt": [0.0, NAN],
+    "added_mass_coefficient": [-0.5, NAN], "dt": [0.0, NAN],
     "stiffness_normal": [-1.0, NAN], "contact_steps": [4.0, NAN], "stiffness_ratio": [-0.1, NAN],
     "restitution": [-0.1, 1.5, NAN], "tangential_damping_factor": [-0.5, NAN], "friction_stone": [-0.1, NAN],
     "inertia_factor": [0.0, 1.5, NAN], "rolling_friction_stone": [-0.1, NAN], "rolling_friction_wall": [-0.1, NAN],
@@ -67,13 +66,24 @@ DEM_BAD = {
 }
 # fields holding pairs: the bad pair and the element the error names
 DEM_BAD_PAIRS = {
-    "gravity": [([NAN, -9.81], "gravity[0]"), ([0.0, math.inf], "gravity[1]")],
     "domain_min": [([NAN, 0.0], "domain_min[0]"), ([0.0, math.inf], "domain_min[1]")],
     "domain_max": [([-2e30, 0.0], "domain_max[0]"), ([1.0, NAN], "domain_max[1]")],
 }
 COUPLER_BAD = {
     "flags": [1 << 10], "n_exp": [-0.1, 1.1, NAN], "lookup_m": [1, 65], "lookup_dr": [0.0, NAN],
     "max_dt": [0.0, NAN], "stone_cfl": [0.0, 1.5, NAN], "drag_relaxation": [0.0, NAN], "min_dt": [-1.0, NAN],
+}
+# the medium shared by flow and stones (FlowParams.medium, DEMParams.medium)
+MEDIUM_BAD = {
+    "rho_water": [0.0, -1.0, NAN], "rho_air": [0.0, NAN], "nu_water": [-1e-6, NAN], "nu_air": [-1e-6, NAN],
+}
+MEDIUM_BAD_PAIRS = {"gravity": [([NAN, -9.81], "gravity[0]"), ([0.0, math.inf], "gravity[1]")]}
+# older names kept as aliases of the medium's fields: (alias, a bad value, the field the error names)
+ALIASES = {
+    "flow": [("rho_water", -1.0, "rho_water"), ("rho_air", NAN, "rho_air"), ("nu_water", -1e-6, "nu_water"),
+             ("nu_air", NAN, "nu_air"), ("gravity_x", math.inf, "gravity[0]"), ("gravity_z", NAN, "gravity[1]")],
+    "dem": [("fluid_density", -1.0, "rho_water"), ("fluid_density", NAN, "rho_water"),
+            ("gravity", [NAN, -9.81], "gravity[0]")],
 }
 POROSITY_BAD = {
     "m": [0, 257], "n_exp": [-0.1, 1.1, NAN], "r_min": [0.0, NAN], "r_max": [0.005, NAN], "dr": [0.0, NAN],
@@ -82,10 +92,14 @@ POROSITY_BAD = {
 
 
 def numeric_fields(p):
-    """the int and float fields of a parameter struct (bools have no invalid value; enums are typed)"""
+    """the int and float fields of a parameter struct (bools have no invalid value; enums are typed;
+    aliases and read-only properties are checked through the field behind them)"""
     out = []
     for name in dir(type(p)):
-        if name.startswith("_") or not isinstance(getattr(type(p), name), property):
+        prop = getattr(type(p), name)
+        if name.startswith("_") or not isinstance(prop, property) or prop.fset is None:
+            continue
+        if (prop.__doc__ or "").startswith("alias"):
             continue
         v = getattr(p, name)
         if isinstance(v, (int, float)) and not isinstance(v, bool):
@@ -150,6 +164,57 @@ def test_invalid_pairs_and_walls_of_the_dem_raise_naming_the_element():
     assert s.params.walls[0].friction == pytest.approx(0.176)
 
 
+def flow_with_medium(m):
+    p = vofdem.FlowParams()
+    p.medium = m
+    return p
+
+
+def dem_with_medium(m):
+    p = dem_params()
+    p.medium = m
+    return p
+
+
+def test_an_invalid_medium_raises_through_the_flow_and_the_stones():
+    f, s = fluid(), stones()
+    cases = [(name, v, name) for name, values in MEDIUM_BAD.items() for v in values]
+    cases += [(name, v, named) for name, pairs in MEDIUM_BAD_PAIRS.items() for v, named in pairs]
+    for name, value, named in cases:
+        m = with_value(_core.Medium, name, value)
+        with pytest.raises(ValueError, match=re_name(named)):
+            m.validate()
+        for build, owner, params in ((fluid, f, flow_with_medium(m)), (stones, s, dem_with_medium(m))):
+            with pytest.raises(ValueError, match=re_name(named)):
+                build(params)
+            before = owner.params.medium
+            with pytest.raises(ValueError, match=re_name(named)):
+                owner.params = params
+            assert owner.params.medium == before
+    # every numeric field of the medium is listed
+    listed = set(MEDIUM_BAD) | set(MEDIUM_BAD_PAIRS)
+    assert {n for n in dir(_core.Medium) if not n.startswith("_") and isinstance(getattr(_core.Medium, n), property)} \
+        == listed
+
+
+@pytest.mark.parametrize("label", ["flow", "dem"])
+def test_the_older_names_reach_the_medium_and_are_checked(label):
+    make, build = {"flow": (vofdem.FlowParams, fluid), "dem": (dem_params, stones)}[label]
+    for alias, value, named in ALIASES[label]:
+        p = with_value(make, alias, value)
+        with pytest.raises(ValueError, match=re_name(named)):
+            build(p)
+    p = make()
+    if label == "flow":
+        p.rho_water, p.gravity_x = 1025.0, 0.5
+        assert (p.medium.rho_water, p.medium.gravity[0]) == (1025.0, 0.5)
+    else:
+        p.fluid_density = 1025.0
+        assert p.submerged and p.medium.rho_water == 1025.0 and p.water_density == 1025.0
+        p.fluid_density = 0.0
+        assert not p.submerged and p.water_density == 0.0
+
+
 def re_name(name):
     return name.replace("[", r"\[").replace("]", r"\]") + " = "
 
@@ -196,12 +261,11 @@ def test_assigned_params_rebuild_what_depends_on_them():
     f.params = p
     f.advance(0.015)
     assert f.last_pressure_stats.iterations == 0  # the direct solver
-    # the coupler's flags reach the flow's relative-velocity resistance only through assignment
+    # one owner per flag: the coupler's parameters never rewrite the flow's flags
     c = coupler()
-    assert c.fluid.params.flags & vofdem.FlowEffect.RELATIVE_VELOCITY
-    c.params.flags = _core.COUPLE_ONE_WAY  # a copy: nothing changes
-    assert c.fluid.params.flags & vofdem.FlowEffect.RELATIVE_VELOCITY
+    flags = c.fluid.params.flags
+    assert not flags & vofdem.FlowEffect.RELATIVE_VELOCITY
     cp = c.params
     cp.flags = _core.COUPLE_ONE_WAY
     c.params = cp
-    assert not c.fluid.params.flags & vofdem.FlowEffect.RELATIVE_VELOCITY
+    assert c.fluid.params.flags == flags

@@ -11,11 +11,11 @@ from vofdem import _core
 def scene(polygons=False):
     grid = vofdem.Grid2D.uniform(20, 40, 0.2, 0.4)
     fp = vofdem.FlowParams()
-    fp.flags |= vofdem.FlowEffect.TURBULENCE
+    fp.flags |= vofdem.FlowEffect.TURBULENCE | vofdem.FlowEffect.RELATIVE_VELOCITY
     fluid = vofdem.VOFGrid(grid, fp)
     fluid.fill_water_box(0.0, 0.12, 0.0, 0.25)  # a dam break over the stones: everything moves
     dp = vofdem.DEMParams()
-    dp.fluid_density = fp.rho_water
+    dp.submerged = True
     dp.add_flume(0.0, 0.2, 0.0)
     if polygons:
         dp.contact_steps = 40  # the polygons' stable step stays above the DEM step

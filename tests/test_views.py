@@ -71,7 +71,7 @@ def flow():
 
 def stones(n=3):
     dp = vofdem.DEMParams()
-    dp.fluid_density = vofdem.FlowParams().rho_water
+    dp.submerged = True
     dp.add_flume(0.0, 0.2, 0.0)
     pos = np.array([[0.1 + 0.002 * j, 0.2 + 0.05 * j] for j in range(n)])
     return vofdem.DEMSystem(dp, pos=pos, radius=np.full(n, 0.024))
@@ -88,7 +88,7 @@ def test_views_stay_live_through_every_operation():
         steps.extend(f"{what}: {s}" for s in held.stale())
 
     p = fluid.params
-    p.flags |= vofdem.FlowEffect.TURBULENCE
+    p.flags |= vofdem.FlowEffect.TURBULENCE | vofdem.FlowEffect.RELATIVE_VELOCITY
     p.pressure_solver = _core.PressureSolverKind.EIGEN_DIRECT
     fluid.params = p  # rebuilds the pressure solver and the k-epsilon model
     after("fluid.params =")
@@ -96,7 +96,7 @@ def test_views_stay_live_through_every_operation():
     d.friction_stone = 0.5
     dem.params = d
     after("stones.params =")
-    sim = _core.Coupler(fluid, dem, _core.CouplerParams())  # sets the flow's relative-velocity flag
+    sim = _core.Coupler(fluid, dem, _core.CouplerParams())
     held.hold("coupler", sim, COUPLER_VIEWS)
     after("Coupler()")
     sim.advance(0.03)  # the stones' porosity is mapped onto the flow
@@ -115,9 +115,13 @@ def test_views_stay_live_through_every_operation():
     dem.set_state(dem.copy_state())
     after("set_state")
     cp = sim.params
-    cp.flags &= ~_core.COUPLE_RELATIVE_VELOCITY
+    cp.flags |= _core.COUPLE_LOOKUP_POROSITY  # a new porosity mapper
     sim.params = cp
     after("coupler.params =")
+    fp = fluid.params
+    fp.flags = int(fp.flags) & ~int(vofdem.FlowEffect.RELATIVE_VELOCITY)
+    fluid.params = fp
+    after("fluid.params = (relative velocity)")
     with pytest.raises(RuntimeError):
         fluid.step(10.0)  # a CFL breach: the flow restores the step's start
     after("fluid guard")

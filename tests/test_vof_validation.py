@@ -4,10 +4,14 @@ Dam break: Martin & Moyce (1952), surge front Z = x/a against T = t sqrt(2g/a), 
 +0.175 time shift some codes add (the simulated T is used as it is). Porous dam break: Lin (1998) /
 Liu, Lin, Chang & Sakakiyama (1999), crushed rock, free-surface profiles at five instants.
 """
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from vofdem import validation as val
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import vof_cases as val  # noqa: E402  (the cases live with the studies, outside the package)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -31,9 +31,13 @@ Scene& scene() {
       for (int j = 0; j < count; ++j) pos.push_back(1.0 + 0.025 * row + 0.05 * j), pos.push_back(0.025 + 0.045 * row);
     const std::size_t n = pos.size() / 2;
     vofdem::DEMParams p;
-    p.fluid_density = vofdem::FlowParams().rho_water;
+    p.submerged = true;
+    p.medium.rho_water = vofdem::FlowParams().medium.rho_water;
     p.add_flume(0.0, 3.7, 0.0);
     s.stones = std::make_unique<vofdem::DEMSystem>(p, pos, std::vector<double>(n, 0.024), std::vector<double>(n, 2650.0));
+    vofdem::FlowParams fp = s.fluid->params();
+    fp.flags |= vofdem::kFlowRelativeVelocity;  // the two-way scene's resistance relative to the stones
+    s.fluid->set_params(fp);
     s.sim = std::make_unique<vofdem::Coupler>(s.fluid.get(), s.stones.get(), vofdem::CouplerParams());
     s.sim->advance(0.05);
     return s;

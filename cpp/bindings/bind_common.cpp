@@ -1,7 +1,9 @@
 #include <pybind11/pybind11.h>
+#include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
 #include "vofdem/grid.h"
+#include "vofdem/medium.h"
 #include "vofdem/profile.h"
 
 namespace py = pybind11;
@@ -26,6 +28,23 @@ void bind_common(py::module_& m) {
       .def_property_readonly("z_faces", &Grid2D::z_faces)
       .def("__repr__", [](const Grid2D& g) {
         return "Grid2D(nx=" + std::to_string(g.nx()) + ", nz=" + std::to_string(g.nz()) + ")";
+      });
+
+  py::class_<Medium>(m, "Medium",
+                     "Water, air and gravity (SI units), one value for the flow and the stones: FlowParams.medium "
+                     "owns it, a Coupler hands it to the stones (DEMParams.medium).")
+      .def(py::init<>())
+      .def_readwrite("rho_water", &Medium::rho_water, "water density [kg/m^3], 998.2")
+      .def_readwrite("rho_air", &Medium::rho_air, "air density [kg/m^3], 1.204")
+      .def_readwrite("nu_water", &Medium::nu_water, "water kinematic viscosity [m^2/s], 1.004e-6")
+      .def_readwrite("nu_air", &Medium::nu_air, "air kinematic viscosity [m^2/s], 1.516e-5")
+      .def_readwrite("gravity", &Medium::gravity, "gravitational acceleration (x along the flume, z up) [m/s^2]")
+      .def("validate", &Medium::validate)
+      .def(py::self == py::self)
+      .def(py::self != py::self)
+      .def("__repr__", [](const Medium& d) {
+        return "Medium(rho_water=" + std::to_string(d.rho_water) + ", gravity=(" + std::to_string(d.gravity[0]) +
+               ", " + std::to_string(d.gravity[1]) + "))";
       });
 
   py::class_<StageProfile>(m, "StageProfile", "Accumulated wall time [s] and calls of each named solver stage.")

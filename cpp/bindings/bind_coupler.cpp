@@ -1,10 +1,14 @@
 // Python binding of the VOF-DEM coupler: thin wrappers only (see coupler.h).
+#include <pybind11/native_enum.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <string>
 
+#include "flags.h"
+#include "state.h"
 #include "views.h"
 #include "vofdem/coupler.h"
 
@@ -13,20 +17,23 @@ namespace py = pybind11;
 namespace vofdem::bind {
 
 void bind_coupler(py::module_& m) {
-  m.attr("COUPLE_DEM") = static_cast<unsigned>(kCoupleDEM);
-  m.attr("COUPLE_FLUID") = static_cast<unsigned>(kCoupleFluid);
-  m.attr("COUPLE_POROSITY") = static_cast<unsigned>(kCouplePorosity);
-  m.attr("COUPLE_DRAG") = static_cast<unsigned>(kCoupleDrag);
-  m.attr("COUPLE_PRESSURE_GRADIENT") = static_cast<unsigned>(kCouplePressureGradient);
-  m.attr("COUPLE_RELATIVE_VELOCITY") = static_cast<unsigned>(kCoupleRelativeVelocity);
-  m.attr("COUPLE_WET_FRACTION") = static_cast<unsigned>(kCoupleWetFraction);
-  m.attr("COUPLE_CHECKS") = static_cast<unsigned>(kCoupleChecks);
-  m.attr("COUPLE_LOOKUP_POROSITY") = static_cast<unsigned>(kCoupleLookupPorosity);
-  m.attr("COUPLE_DISPLACE_FLOW") = static_cast<unsigned>(kCoupleDisplaceFlow);
-  m.attr("COUPLE_FORCES") = static_cast<unsigned>(kCoupleForces);
-  m.attr("COUPLE_ONE_WAY") = static_cast<unsigned>(kCoupleOneWay);
-  m.attr("COUPLE_TWO_WAY") = static_cast<unsigned>(kCoupleTwoWay);
-  m.attr("COUPLE_DEFAULT") = static_cast<unsigned>(kCoupleDefault);
+  py::native_enum<CouplerEffect>(m, "CouplerEffect", "enum.IntFlag",
+                                 "Bit flags of the coupling's effects (CouplerParams.flags).")
+      .value("DEM", kCoupleDEM, "step the stones")
+      .value("FLUID", kCoupleFluid, "step the flow (off: a frozen flow still acts on the stones)")
+      .value("POROSITY", kCouplePorosity, "two-way: the flow's porosity follows the stones")
+      .value("DRAG", kCoupleDrag, "drag on the stones, eqs. (16)-(18)")
+      .value("PRESSURE_GRADIENT", kCouplePressureGradient, "F_S = -V (grad p - rho_w F g) on the stones")
+      .value("WET_FRACTION", kCoupleWetFraction, "disc_wet from the water fraction")
+      .value("CHECKS", kCoupleChecks, "non-finite forces and stone states checked every step")
+      .value("LOOKUP_POROSITY", kCoupleLookupPorosity, "the paper's lookup table instead of exact areas")
+      .value("DISPLACE_FLOW", kCoupleDisplaceFlow, "porosity changes drive the flow (dn/dt + div u = 0)")
+      .value("FORCES", kCoupleForces, "DRAG and PRESSURE_GRADIENT")
+      .value("ONE_WAY", kCoupleOneWay, "the stones feel the flow, the flow ignores them")
+      .value("TWO_WAY", kCoupleTwoWay, "ONE_WAY and POROSITY")
+      .value("DEFAULT", kCoupleDefault, "TWO_WAY")
+      .finalize();
+  export_flag_members(m, "CouplerEffect", "COUPLE_");  // the older module constants
 
   py::enum_<StoneDragModel>(m, "StoneDragModel", "Drag on the stones (one of the two, never both).")
       .value("SPHERE", StoneDragModel::kSphere, "single sphere in the pore velocity, eqs. (16)-(18) (the paper's)")
@@ -34,7 +41,7 @@ void bind_coupler(py::module_& m) {
 
   py::class_<CouplerParams>(m, "CouplerParams", "Parameters of the VOF-DEM coupling (SI units; see coupler.h).")
       .def(py::init<>())
-      .def_readwrite("flags", &CouplerParams::flags, "COUPLE_* bits")
+      .def_readwrite("flags", &CouplerParams::flags, "CouplerEffect bits")
       .def_readwrite("n_exp", &CouplerParams::n_exp, "packing porosity of eq. (11) [-], 0.41")
       .def_readwrite("lookup_m", &CouplerParams::lookup_m, "sub-areas per side of the lookup table [-], 8")
       .def_readwrite("lookup_dr", &CouplerParams::lookup_dr, "radius spacing of the lookup tables [m], 5e-4")
@@ -50,15 +57,14 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
       .def("validate", &CouplerParams::validate);
 
-  py::class_<CouplerState>(m, "CouplerState",
-                           "A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, the "
-                           "stones' and the coupler's own; set_state() returns to it.")
-      .def_readonly("time", &CouplerState::time, "simulated time [s]")
-      .def_readonly("steps", &CouplerState::steps);
+  bind_state_class<CouplerState>(m, "CouplerState",
+                                  "A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, "
+                                  "the stones' and the coupler's own; set_state() returns to it.",
+                                  "steps", &CouplerState::steps);
 
-  py::class_<Coupler>(m, "Coupler",
-                      "Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.")
-      .def(py::init([](const py::object& fluid, const py::object& stones, const CouplerParams& p) {
+  py::class_<Coupler> cls(m, "Coupler",
+                          "Two-way VOF-DEM coupling of a VOFGrid and a DEMSystem (either may be None); keeps both alive.");
+  cls.def(py::init([](const py::object& fluid, const py::object& stones, const CouplerParams& p) {
              return new Coupler(fluid.is_none() ? nullptr : fluid.cast<VOFGrid*>(),
                                 stones.is_none() ? nullptr : stones.cast<DEMSystem*>(), p);
            }),
@@ -69,7 +75,7 @@ void bind_coupler(py::module_& m) {
       .def_property(
           "params", [](const Coupler& c) { return c.params(); }, &Coupler::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity "
-          "mapper and the flow's relative-velocity flag following them")
+          "mapper following them")
       .def_property_readonly("n", &Coupler::n)
       .def_property_readonly("time", &Coupler::time)
       .def_property_readonly("step_count", &Coupler::step_count)
@@ -94,21 +100,13 @@ void bind_coupler(py::module_& m) {
       .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true)
       .def("update_fluid_forces", &Coupler::update_fluid_forces)
       .def("water_volume", &Coupler::water_volume)
-      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
-      .def("export_state", [](const Coupler& c) { return state_to_dict(c.export_state()); })
-      .def("import_state", [](Coupler& c, const py::dict& d) { c.import_state(dict_to_state(d)); }, py::arg("state"))
-      .def(
-          "copy_state",
-          [](const Coupler& c) {
-            CouplerState s;
-            c.export_state(s);
-            return s;
-          },
-          "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) continues from "
-          "it bit for bit")
-      .def("set_state", py::overload_cast<const CouplerState&>(&Coupler::import_state), py::arg("state"),
-           "returns to a copy_state() copy (every part checked first; written into the arrays in place)")
-      .def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
+      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume);
+  def_checkpoint_state(cls, "restores export_state() exactly (every part checked first; written into the arrays in place)");
+  def_copy_state<CouplerState>(cls,
+                               "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) "
+                               "continues from it bit for bit",
+                               "returns to a copy_state() copy (every part checked first; written into the arrays in place)");
+  cls.def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_force_drag",
                              [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); })
       .def_property_readonly("disc_force_pressure",

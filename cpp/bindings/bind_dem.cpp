@@ -1,11 +1,16 @@
 // Thin bindings of the DEM of the stones (dem_system.h) and the weir packing (weir_packing.h).
+#include <pybind11/native_enum.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cstring>
 #include <memory>
+#include <string>
+#include <tuple>
 
+#include "flags.h"
+#include "state.h"
 #include "views.h"
 #include "vofdem/dem_contact.h"
 #include "vofdem/dem_system.h"
@@ -41,8 +46,22 @@ void bind_params(py::module_& m) {
 
   py::class_<DEMParams>(m, "DEMParams", "Constant parameters of the DEM of the stones (SI units; see dem_system.h).")
       .def(py::init<>())
-      .def_readwrite("gravity", &DEMParams::gravity)
-      .def_readwrite("fluid_density", &DEMParams::fluid_density)
+      .def_readwrite("medium", &DEMParams::medium, "water and gravity (Medium); a Coupler sets the flow's")
+      .def_readwrite("submerged", &DEMParams::submerged,
+                     "the stones lie in the medium's water (buoyancy, added mass); False: dry")
+      .def_property_readonly("water_density", &DEMParams::water_density,
+                             "rho_w of buoyancy and added mass [kg/m^3]: medium.rho_water if submerged, else 0")
+      // older scripts' names
+      .def_property(
+          "gravity", [](const DEMParams& p) { return p.medium.gravity; },
+          [](DEMParams& p, const std::array<double, 2>& g) { p.medium.gravity = g; }, "alias of medium.gravity")
+      .def_property(
+          "fluid_density", [](const DEMParams& p) { return p.water_density(); },
+          [](DEMParams& p, double rho) {
+            p.submerged = rho != 0.0;
+            if (p.submerged) p.medium.rho_water = rho;
+          },
+          "alias: 0 sets submerged False, another value submerged True and medium.rho_water [kg/m^3]")
       .def_readwrite("added_mass_coefficient", &DEMParams::added_mass_coefficient)
       .def_readwrite("dt", &DEMParams::dt)
       .def_readwrite("stiffness_normal", &DEMParams::stiffness_normal)
@@ -66,17 +85,20 @@ void bind_params(py::module_& m) {
       .def("add_flume", &DEMParams::add_flume, py::arg("x_min"), py::arg("x_max"), py::arg("z_bed") = 0.0,
            py::arg("mu") = 0.176);
 
-  m.attr("DEM_GRAVITY") = static_cast<unsigned>(kDEMGravity);
-  m.attr("DEM_ROTATION") = static_cast<unsigned>(kDEMRotation);
-  m.attr("DEM_FRICTION") = static_cast<unsigned>(kDEMFriction);
-  m.attr("DEM_ADDED_MASS") = static_cast<unsigned>(kDEMAddedMass);
-  m.attr("DEM_BUOYANCY") = static_cast<unsigned>(kDEMBuoyancy);
-  m.attr("DEM_SLEEPING") = static_cast<unsigned>(kDEMSleeping);
-  m.attr("DEM_DAMPING") = static_cast<unsigned>(kDEMDamping);
-  m.attr("DEM_EXTERNAL_FORCE") = static_cast<unsigned>(kDEMExternalForce);
-  m.attr("DEM_REMOVAL") = static_cast<unsigned>(kDEMRemoval);
-  m.attr("DEM_ROLLING_RESISTANCE") = static_cast<unsigned>(kDEMRollingResistance);
-  m.attr("DEM_ALL_EFFECTS") = static_cast<unsigned>(kDEMAllEffects);
+  py::native_enum<DEMFlag>(m, "DEMFlag", "enum.IntFlag", "Bit flags of the DEM's physical effects (DEMParams.flags).")
+      .value("GRAVITY", kDEMGravity, "gravity (and buoyancy with BUOYANCY)")
+      .value("ROTATION", kDEMRotation, "stones spin, eq. (10)")
+      .value("FRICTION", kDEMFriction, "Coulomb cap of the tangential spring")
+      .value("ADDED_MASS", kDEMAddedMass, "M' = rho_w C_M V w")
+      .value("BUOYANCY", kDEMBuoyancy, "rho_w V w g")
+      .value("SLEEPING", kDEMSleeping, "stones at rest under small forces are not integrated")
+      .value("DAMPING", kDEMDamping, "contact dashpots")
+      .value("EXTERNAL_FORCE", kDEMExternalForce, "disc_force_ext (the fluid's forces)")
+      .value("REMOVAL", kDEMRemoval, "stones leaving the domain box are deactivated")
+      .value("ROLLING_RESISTANCE", kDEMRollingResistance, "rolling moment (rolling_resistance.h)")
+      .value("ALL_EFFECTS", kDEMAllEffects, "everything but sleeping")
+      .finalize();
+  export_flag_members(m, "DEMFlag", "DEM_");  // the older module constants
 
   py::class_<DEMEnergy>(m, "DEMEnergy", "Energy bookkeeping of the DEM [J].")
       .def_readonly("kinetic", &DEMEnergy::kinetic)
@@ -93,13 +115,12 @@ void bind_params(py::module_& m) {
 
 void bind_system(py::module_& m) {
   using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  py::class_<DEMState>(m, "DEMState",
-                       "A copy of a DEMSystem's whole state (DEMSystem.copy_state); set_state() returns to it.")
-      .def_readonly("time", &DEMState::time, "simulated time [s]")
-      .def_readonly("steps", &DEMState::steps);
+  bind_state_class<DEMState>(m, "DEMState",
+                              "A copy of a DEMSystem's whole state (DEMSystem.copy_state); set_state() returns to it.",
+                              "steps", &DEMState::steps);
 
-  py::class_<DEMSystem>(m, "DEMSystem", "Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).")
-      .def(py::init<const DEMParams&, int>(), py::arg("params"), py::arg("n"))
+  py::class_<DEMSystem> cls(m, "DEMSystem", "Stones as discs (sphere masses), eqs. (8)-(10) of Maeno & Tomita (2008).");
+  cls.def(py::init<const DEMParams&, int>(), py::arg("params"), py::arg("n"))
       .def(py::init([](const DEMParams& p, const A& pos, const A& radius, const A& density,
                        const std::vector<std::uint8_t>& fixed) {
              return new DEMSystem(p, flat_pos(pos), flat_pos(radius), flat_pos(density), fixed);
@@ -146,23 +167,14 @@ void bind_system(py::module_& m) {
                              [](py::object self) { return view(self.cast<DEMSystem&>().poly_offset, self); })
       .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
       .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
-      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference)
-      .def("export_state", [](const DEMSystem& s) { return state_to_dict(s.export_state()); })
-      .def("import_state", [](DEMSystem& s, const py::dict& d) { s.import_state(dict_to_state(d)); }, py::arg("state"),
-           "restores export_state() exactly, written into the arrays in place; a state of another stone count "
-           "(or, for polygons, vertex count) resizes and so invalidates earlier views")
-      .def(
-          "copy_state",
-          [](const DEMSystem& s) {
-            DEMState st;
-            s.export_state(st);
-            return st;
-          },
-          "a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit")
-      .def("set_state", py::overload_cast<const DEMState&>(&DEMSystem::import_state), py::arg("state"),
-           "returns to a copy_state() copy (checked first; written in place unless the stone or vertex count "
-           "differs, which invalidates earlier views)")
-      .def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
+      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference);
+  def_checkpoint_state(cls,
+                       "restores export_state() exactly, written into the arrays in place; a state of another stone "
+                       "count (or, for polygons, vertex count) resizes and so invalidates earlier views");
+  def_copy_state<DEMState>(cls, "a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit",
+                           "returns to a copy_state() copy (checked first; written in place unless the stone or "
+                           "vertex count differs, which invalidates earlier views)");
+  cls.def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
       .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); })
       .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); })
       .def_property_readonly("disc_force_ext",
@@ -240,12 +252,31 @@ void bind_packing(py::module_& m) {
                ", porosity=" + std::to_string(r.porosity) + ", max_speed=" + std::to_string(r.max_speed) +
                ", outline_error=" + std::to_string(r.outline_error) + ")";
       });
+  // the weir packer: one C++ packer, a WeirSpec in; the keyword form (older scripts) makes the spec
+  auto pack = [](const WeirSpec& spec, const DEMParams& params) {
+    WeirPackingReport report;
+    std::unique_ptr<DEMSystem> sys;
+    {
+      py::gil_scoped_release release;
+      sys = std::make_unique<DEMSystem>(pack_weir(spec, params, report));
+    }
+    return std::make_pair(std::move(sys), report);
+  };
   m.def(
       "pack_weir",
-      [](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
-         double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
-         double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
-         double aspect_ratio, double radial_jitter) {
+      [pack](const WeirSpec& spec, const DEMParams& params) {
+        auto [sys, report] = pack(spec, params);
+        return std::make_tuple(std::move(sys), report);
+      },
+      "Packs the trapezoidal rubble mound weir `spec` with the contact law of `params`; returns (DEMSystem, "
+      "WeirPackingReport).",
+      py::arg("spec"), py::arg("params") = DEMParams());
+  m.def(
+      "pack_weir",
+      [pack](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
+             double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
+             double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
+             double aspect_ratio, double radial_jitter) {
         WeirSpec spec;
         spec.shape = shape_from_name(shape);
         spec.polygon.vertices_min = vertices_min;
@@ -264,15 +295,11 @@ void bind_packing(py::module_& m) {
         spec.seed = seed;
         spec.settle_time_max = settle_time_max;
         spec.rest_speed = rest_speed;
-        WeirPackingReport report;
-        std::unique_ptr<DEMSystem> sys;
-        {
-          py::gil_scoped_release release;
-          sys = std::make_unique<DEMSystem>(pack_weir(spec, params, report));
-        }
-        return py::make_tuple(py::cast(std::move(sys)), report, spec);
+        auto [sys, report] = pack(spec, params);
+        return std::make_tuple(std::move(sys), report, spec);
       },
-      "Packs a trapezoidal rubble mound weir; returns (DEMSystem, WeirPackingReport, WeirSpec).",
+      "The older keyword form: the WeirSpec made from the keywords; returns (DEMSystem, WeirPackingReport, "
+      "WeirSpec).",
       py::arg("height") = 0.25, py::arg("crest") = 0.20, py::arg("slope_up_deg") = 27.0,
       py::arg("slope_down_deg") = 27.0, py::arg("x_toe") = 1.0, py::arg("z_bed") = 0.0, py::arg("d_mean") = 0.048,
       py::arg("d_spread") = 0.1, py::arg("density") = 2650.0, py::arg("seed") = 0, py::arg("settle_time_max") = 6.0,

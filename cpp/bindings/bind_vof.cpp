@@ -1,3 +1,4 @@
+#include <pybind11/native_enum.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -5,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "fields.h"
+#include "state.h"
 #include "views.h"
 #include "vofdem/vof_grid.h"
 
@@ -39,7 +42,7 @@ py::array_t<double> cell_copy(const Grid2D& g, const std::vector<double>& v) {
 }  // namespace
 
 void bind_vof(py::module_& m) {
-  py::enum_<FlowEffect>(m, "FlowEffect", py::arithmetic(), "Bit flags of the flow solver's physical effects.")
+  py::native_enum<FlowEffect>(m, "FlowEffect", "enum.IntFlag", "Bit flags of the flow solver's physical effects.")
       .value("FREE_SURFACE", kFlowFreeSurface, "two phases and VOF advection (off: water everywhere)")
       .value("POROUS_DARCY", kFlowPorousDarcy, "linear porous resistance nu/K")
       .value("POROUS_FORCHHEIMER", kFlowPorousForchheimer, "quadratic porous resistance C/sqrt(K) |u|")
@@ -49,7 +52,8 @@ void bind_vof(py::module_& m) {
       .value("RELATIVE_VELOCITY", kFlowRelativeVelocity, "porous resistance on the velocity relative to the stones")
       .value("CONVECTION", kFlowConvection, "momentum convection")
       .value("POROUS_RESISTANCE", kFlowPorousResistance, "Darcy and Forchheimer terms")
-      .value("DEFAULT", kFlowDefault, "free surface, porous resistance, viscosity, gravity, convection");
+      .value("DEFAULT", kFlowDefault, "free surface, porous resistance, viscosity, gravity, convection")
+      .finalize();
 
   py::enum_<InletBoundary>(m, "InletBoundary")
       .value("WALL", InletBoundary::kWall)
@@ -81,14 +85,9 @@ void bind_vof(py::module_& m) {
       .value("ARITHMETIC", CornerViscosity::kArithmetic)
       .value("HARMONIC", CornerViscosity::kHarmonic);
 
-  py::class_<FlowParams>(m, "FlowParams", "Flow parameters, constant while stepping (SI units).")
-      .def(py::init<>())
-      .def_readwrite("rho_water", &FlowParams::rho_water, "water density [kg/m^3], 998.2")
-      .def_readwrite("rho_air", &FlowParams::rho_air, "air density [kg/m^3], 1.204")
-      .def_readwrite("nu_water", &FlowParams::nu_water, "water kinematic viscosity [m^2/s], 1.004e-6")
-      .def_readwrite("nu_air", &FlowParams::nu_air, "air kinematic viscosity [m^2/s], 1.516e-5")
-      .def_readwrite("gravity_x", &FlowParams::gravity_x, "gravity along the flume [m/s^2], 0")
-      .def_readwrite("gravity_z", &FlowParams::gravity_z, "gravity, upward component [m/s^2], -9.81")
+  py::class_<FlowParams> fp(m, "FlowParams", "Flow parameters, constant while stepping (SI units).");
+  fp.def(py::init<>())
+      .def_readwrite("medium", &FlowParams::medium, "water, air and gravity (Medium), shared with the stones")
       .def_readwrite("cfl", &FlowParams::cfl, "target Courant number of the pore velocity [-], 0.4")
       .def_readwrite("max_dt", &FlowParams::max_dt, "largest time step [s], 0.01")
       .def_readwrite("initial_dt", &FlowParams::initial_dt, "first time step [s], 1e-3")
@@ -96,7 +95,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("min_dt", &FlowParams::min_dt, "a stable step below this is a failure [s], 1e-8")
       .def_readwrite("k1", &FlowParams::k1, "linear resistance coefficient of eq. (7) [-], 200")
       .def_readwrite("k2", &FlowParams::k2, "quadratic resistance coefficient of eq. (7) [-], 2.8")
-      .def_readwrite("flume_width", &FlowParams::flume_width, "flume width B [m], 0.3")
+      .def_readwrite("flume_width", &FlowParams::flume_width, "flume width B [m], 0.5")
       .def_readwrite("pressure_solver", &FlowParams::pressure_solver)
       .def_readwrite("pressure_tol", &FlowParams::pressure_tol, "relative residual of the pressure solve [-]")
       .def_readwrite("inlet", &FlowParams::inlet)
@@ -109,32 +108,32 @@ void bind_vof(py::module_& m) {
       .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
       .def_readwrite("time_scheme", &FlowParams::time_scheme, "MomentumTimeScheme of the explicit momentum terms")
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
-      // the k-epsilon settings most runs touch (the rest keep the model's standard values)
-      .def_property(
-          "turbulence_production", [](const FlowParams& p) { return p.turbulence.production; },
-          [](FlowParams& p, KEpsilonProduction v) { p.turbulence.production = v; },
-          "production of k: STRAIN (nu_t S^2) or KATO_LAUNDER (nu_t S Omega)")
-      .def_property(
-          "turbulence_production_limit", [](const FlowParams& p) { return p.turbulence.production_limit; },
-          [](FlowParams& p, double v) { p.turbulence.production_limit = v; },
-          "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]")
-      .def_property(
-          "turbulence_time_scheme", [](const FlowParams& p) { return p.turbulence.time_scheme; },
-          [](FlowParams& p, KEpsilonTimeScheme v) { p.turbulence.time_scheme = v; },
-          "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES")
-      .def_property(
-          "turbulence_bed_roughness", [](const FlowParams& p) { return p.turbulence.bed_roughness; },
-          [](FlowParams& p, double v) { p.turbulence.bed_roughness = v; }, "equivalent sand roughness k_s of the bed [m]")
-      .def_property(
-          "turbulence_wall_roughness", [](const FlowParams& p) { return p.turbulence.wall_roughness; },
-          [](FlowParams& p, double v) { p.turbulence.wall_roughness = v; }, "k_s of end walls and solid cells [m]")
-      .def_property(
-          "turbulence_inflow_intensity", [](const FlowParams& p) { return p.turbulence.inflow_intensity; },
-          [](FlowParams& p, double v) { p.turbulence.inflow_intensity = v; }, "inflow turbulence intensity [-], 0.05")
-      .def_property(
-          "turbulence_inflow_length_scale", [](const FlowParams& p) { return p.turbulence.inflow_length_scale; },
-          [](FlowParams& p, double v) { p.turbulence.inflow_length_scale = v; }, "inflow length scale [m], 0.01")
       .def("validate", &FlowParams::validate);
+
+  // the k-epsilon settings most runs touch (the rest keep the model's standard values)
+  const auto k_eps = &FlowParams::turbulence;
+  def_part_field(fp, "turbulence_production", k_eps, &KEpsilonParams::production,
+                 "production of k: STRAIN (nu_t S^2) or KATO_LAUNDER (nu_t S Omega)");
+  def_part_field(fp, "turbulence_production_limit", k_eps, &KEpsilonParams::production_limit,
+                 "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]");
+  def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
+                 "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES");
+  def_part_field(fp, "turbulence_bed_roughness", k_eps, &KEpsilonParams::bed_roughness,
+                 "equivalent sand roughness k_s of the bed [m]");
+  def_part_field(fp, "turbulence_wall_roughness", k_eps, &KEpsilonParams::wall_roughness,
+                 "k_s of end walls and solid cells [m]");
+  def_part_field(fp, "turbulence_inflow_intensity", k_eps, &KEpsilonParams::inflow_intensity,
+                 "inflow turbulence intensity [-], 0.05");
+  def_part_field(fp, "turbulence_inflow_length_scale", k_eps, &KEpsilonParams::inflow_length_scale,
+                 "inflow length scale [m], 0.01");
+  // older scripts' names of the medium's fields
+  const auto medium = &FlowParams::medium;
+  def_part_field(fp, "rho_water", medium, &Medium::rho_water, "alias of medium.rho_water [kg/m^3]");
+  def_part_field(fp, "rho_air", medium, &Medium::rho_air, "alias of medium.rho_air [kg/m^3]");
+  def_part_field(fp, "nu_water", medium, &Medium::nu_water, "alias of medium.nu_water [m^2/s]");
+  def_part_field(fp, "nu_air", medium, &Medium::nu_air, "alias of medium.nu_air [m^2/s]");
+  def_part_element(fp, "gravity_x", medium, &Medium::gravity, 0, "alias of medium.gravity[0] [m/s^2]");
+  def_part_element(fp, "gravity_z", medium, &Medium::gravity, 1, "alias of medium.gravity[1] [m/s^2]");
 
   py::class_<DischargeTable>(m, "DischargeTable", "Piecewise-linear discharge Q(t): times [s], discharge [m^3/s].")
       .def(py::init([](std::vector<double> t, std::vector<double> q) {
@@ -159,15 +158,14 @@ void bind_vof(py::module_& m) {
       .def_readonly("growth", &FlowStableDt::growth)
       .def("min", &FlowStableDt::min);
 
-  py::class_<FlowState>(m, "FlowState",
-                        "A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.")
-      .def_readonly("time", &FlowState::time, "simulated time [s]")
-      .def_readonly("step_count", &FlowState::step_count);
+  bind_state_class<FlowState>(m, "FlowState",
+                               "A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.",
+                               "step_count", &FlowState::step_count);
 
-  py::class_<VOFGrid>(m, "VOFGrid",
-                      "2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are "
-                      "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).")
-      .def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
+  py::class_<VOFGrid> cls(m, "VOFGrid",
+                          "2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are "
+                          "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).");
+  cls.def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
       .def_property_readonly("grid", &VOFGrid::grid, py::return_value_policy::reference_internal)
       .def_property(
           "params", [](const VOFGrid& f) { return f.params(); }, &VOFGrid::set_params,
@@ -227,18 +225,11 @@ void bind_vof(py::module_& m) {
       .def("clear_step_history", &VOFGrid::clear_step_history,
            "forget the last step (the next one is forward Euler): after velocities were set by hand")
       .def("stable_dt", &VOFGrid::stable_dt)
-      .def("stable_dt_terms", &VOFGrid::stable_dt_terms)
-      .def(
-          "copy_state",
-          [](const VOFGrid& f) {
-            FlowState s;
-            f.export_state(s);
-            return s;
-          },
-          "a copy of the whole state (FlowState): set_state(copy) continues from it bit for bit")
-      .def("set_state", py::overload_cast<const FlowState&>(&VOFGrid::import_state), py::arg("state"),
-           "returns to a copy_state() copy (checked first; written into the arrays in place: views stay valid)")
-      .def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
+      .def("stable_dt_terms", &VOFGrid::stable_dt_terms);
+  def_copy_state<FlowState>(cls, "a copy of the whole state (FlowState): set_state(copy) continues from it bit for bit",
+                            "returns to a copy_state() copy (checked first; written into the arrays in place: views "
+                            "stay valid)");
+  cls.def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", &VOFGrid::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>())
       .def("pore_velocity_at_cells",
            [](const VOFGrid& f) {

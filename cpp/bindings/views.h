@@ -58,27 +58,4 @@ py::array_t<T> view_pairs(std::vector<T>& v, py::handle owner) {
   return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 2), 2, owner);
 }
 
-// a solver's whole state (export_state) as a dict of numpy arrays, copied: a checkpoint outlives the solver
-using StateMap = std::map<std::string, std::vector<double>>;
-
-inline py::dict state_to_dict(const StateMap& s) {
-  py::dict d;
-  for (const auto& [key, v] : s) {
-    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
-    if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(double));
-    d[py::str(key)] = a;
-  }
-  return d;
-}
-
-inline StateMap dict_to_state(const py::dict& d) {
-  StateMap s;
-  for (const auto& item : d) {
-    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(item.second);
-    if (!a) throw py::value_error("state entry '" + py::str(item.first).cast<std::string>() + "' is not numeric");
-    s[py::str(item.first).cast<std::string>()] = std::vector<double>(a.data(), a.data() + a.size());
-  }
-  return s;
-}
-
 }  // namespace vofdem::bind

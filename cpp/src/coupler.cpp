@@ -21,6 +21,10 @@ constexpr double kPi = 3.14159265358979323846;
 void CouplerParams::validate() const {
   if (flags >= (1u << 10))
     throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 1023]");
+  if (flags & (1u << 5))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + ": bit 5 (the former relative-velocity "
+                                "coupling) is retired: the effect is the flow's own flag, FlowEffect.RELATIVE_VELOCITY "
+                                "(kFlowRelativeVelocity)");
   require_in_closed("n_exp", n_exp, 0.0, 1.0);
   if (lookup_m < 2 || lookup_m > 64)
     throw std::invalid_argument("lookup_m = " + std::to_string(lookup_m) + " is outside the allowed range [2, 64]");
@@ -42,7 +46,7 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     : fluid_(fluid), stones_(stones), params_(params) {
   n_ = stones_ ? stones_->n() : 0;
   check_params(params_);
-  check_scene();
+  share_medium();
   disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
   disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
   disc_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
@@ -65,7 +69,6 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     cell_diam_sum_.assign(nc, 0.0);
     redistribution_ = std::make_unique<WaterRedistribution>(g);
     make_mapper();
-    apply_flow_flags();
   }
   time_ = fluid_ ? fluid_->time() : (stones_ ? stones_->time() : 0.0);
   st_snapshot_ = profile_.add_stage("snapshot");
@@ -76,19 +79,16 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
   st_checks_ = profile_.add_stage("checks");
 }
 
-void Coupler::check_scene() const {
+// the stones feel the flow's water and gravity (buoyancy, added mass, weight): one medium, the flow's
+void Coupler::share_medium() {
   if (!fluid_ || !stones_ || n_ == 0) return;
-  const FlowParams& f = fluid_->params();
+  const Medium& m = fluid_->params().medium;
   const DEMParams& d = stones_->params();
-  // buoyancy and added mass of the DEM must use the flow's water and gravity
-  if (std::abs(d.fluid_density - f.rho_water) > 1e-12 * f.rho_water)
-    throw std::invalid_argument("DEMParams.fluid_density = " + format_value(d.fluid_density) +
-                                " must equal FlowParams.rho_water = " + format_value(f.rho_water) +
-                                " when stones and water are coupled");
-  if (d.gravity[0] != f.gravity_x || d.gravity[1] != f.gravity_z)
-    throw std::invalid_argument("DEMParams.gravity = (" + format_value(d.gravity[0]) + ", " +
-                                format_value(d.gravity[1]) + ") must equal the flow's (gravity_x, gravity_z) = (" +
-                                format_value(f.gravity_x) + ", " + format_value(f.gravity_z) + ")");
+  if (d.submerged && d.medium == m) return;
+  DEMParams p = d;
+  p.medium = m;
+  p.submerged = true;
+  stones_->set_params(p);
 }
 
 void Coupler::make_mapper() {
@@ -112,17 +112,6 @@ void Coupler::make_mapper() {
   csr_current_ = false;
 }
 
-// the flow's relative-velocity resistance follows the coupler's flag (it needs the stones' velocity)
-void Coupler::apply_flow_flags() {
-  FlowParams f = fluid_->params();
-  const bool on = (params_.flags & kCoupleRelativeVelocity) && (params_.flags & kCouplePorosity) && n_ > 0;
-  const std::uint32_t flags = on ? (f.flags | kFlowRelativeVelocity) : (f.flags & ~kFlowRelativeVelocity);
-  if (flags != f.flags) {
-    f.flags = flags;
-    fluid_->set_params(f);
-  }
-}
-
 // the parameters' limits that depend on the scene (checked before anything changes)
 void Coupler::check_params(const CouplerParams& p) const {
   p.validate();
@@ -137,10 +126,7 @@ void Coupler::set_params(const CouplerParams& params) {
   const bool remap = (params.flags ^ params_.flags) & kCoupleLookupPorosity || params.n_exp != params_.n_exp ||
                      params.lookup_m != params_.lookup_m || params.lookup_dr != params_.lookup_dr;
   params_ = params;
-  if (fluid_) {
-    if (remap) make_mapper();
-    apply_flow_flags();
-  }
+  if (fluid_ && remap) make_mapper();
   mapped_ = false;
 }
 
@@ -284,7 +270,7 @@ void Coupler::stage_fluid_forces() {
   const std::vector<int>& off = mapper_->disc_cell_offsets();
   const std::vector<int>& idx = mapper_->disc_cell_index();
   const std::vector<double>& area = mapper_->disc_cell_area();
-  const double rho = fp.rho_water, nu = fp.nu_water;
+  const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
   const bool bed = params_.stone_drag == StoneDragModel::kBed;
   BedDragParams bp;
   if (bed) {
@@ -303,7 +289,7 @@ void Coupler::stage_fluid_forces() {
     if (!stones_->disc_active[j]) continue;
     const StoneFlowSample s = sample_flow_at_stone(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j],
                                                    fluid_->cell_F.data(), cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
-                                                   cell_dpdz_.data(), rho, fp.gravity_x, fp.gravity_z);
+                                                   cell_dpdz_.data(), rho, fp.medium.gravity[0], fp.medium.gravity[1]);
     const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
     if ((fl & kCoupleDrag) && !bed && polygons()) {
@@ -415,8 +401,8 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
     const Grid2D& g = fluid_->grid();
     const double inv_hx = 1.0 / g.dx(), inv_hz = 1.0 / g.min_dz();
     const DEMParams& dp = stones_->params();
-    const bool added = (dp.flags & kDEMAddedMass) && dp.fluid_density > 0.0;
-    const double rho = fluid_->params().rho_water, nu = fluid_->params().nu_water;
+    const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
+    const double rho = fluid_->params().medium.rho_water, nu = fluid_->params().medium.nu_water;
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
       // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
@@ -506,6 +492,7 @@ void Coupler::step(double dt) {
   if (stones_ && stones_->n() != n_)
     throw std::invalid_argument("stones.n = " + std::to_string(stones_->n()) + " changed since the coupler was built (" +
                                 std::to_string(n_) + "): build a new Coupler after a resize");
+  share_medium();
   const unsigned fl = params_.flags;
   const bool stones_move = has_stones() && (fl & kCoupleDEM);
   save();

@@ -363,19 +363,14 @@ void DEMSystem::export_polygons(DEMState& s) const {
 // the polygon part of a state, checked before anything is written
 void DEMSystem::check_polygon_state(const DEMState& s) const {
   const std::size_t n = s.disc_radius.size(), nw = n * params_.walls.size(), np = s.poly_contact_i.size();
-  auto need = [](const char* name, std::size_t size, std::size_t expected) {
-    if (size != expected)
-      throw std::invalid_argument(std::string("import_state: array '") + name + "' has size " + std::to_string(size) +
-                                  ", expected " + std::to_string(expected));
-  };
-  need("poly_offset", s.poly_offset.size(), n + 1);
+  require_size("poly_offset", s.poly_offset, n + 1);
   check_polygons(s.poly_vertex, s.poly_offset, static_cast<int>(n));
   check_rolling_shape(StoneShape::kPolygon, params_);
-  need("poly_contact_j", s.poly_contact_j.size(), np);
-  need("poly_contact_id", s.poly_contact_id.size(), 2 * np);
-  need("poly_contact_xi", s.poly_contact_xi.size(), 2 * np);
-  need("poly_wall_id", s.poly_wall_id.size(), 2 * nw);
-  need("poly_wall_xi", s.poly_wall_xi.size(), 2 * nw);
+  require_size("poly_contact_j", s.poly_contact_j, np);
+  require_size("poly_contact_id", s.poly_contact_id, 2 * np);
+  require_size("poly_contact_xi", s.poly_contact_xi, 2 * np);
+  require_size("poly_wall_id", s.poly_wall_id, 2 * nw);
+  require_size("poly_wall_xi", s.poly_wall_xi, 2 * nw);
   for (std::size_t k = 0; k < np; ++k) {
     const int i = s.poly_contact_i[k], j = s.poly_contact_j[k];
     const bool sorted = k == 0 || s.poly_contact_i[k - 1] < i || (s.poly_contact_i[k - 1] == i && s.poly_contact_j[k - 1] < j);

@@ -9,70 +9,58 @@
 #include <stdexcept>
 #include <utility>
 
+#include "state_fields.h"
 #include "vofdem/check.h"
 #include "vofdem/dem_system.h"
 
 namespace vofdem {
 
 namespace {
-using StateMap = std::map<std::string, std::vector<double>>;
-constexpr std::size_t kAny = static_cast<std::size_t>(-1);
+using state::entry;
+using state::from_double;
+using state::StateMap;
+using state::to_double;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// the per-stone arrays (values per stone; optional: what a checkpoint written before it existed holds)
 template <class T>
-std::vector<double> to_double(const std::vector<T>& v) {
-  return std::vector<double>(v.begin(), v.end());
-}
+using DiscField = state::Field<DEMState, DEMSystem, T>;
+const DiscField<double> kDiscReals[] = {
+    {"disc_pos", &DEMState::disc_pos, &DEMSystem::disc_pos, 0, 2, false, 0.0},
+    {"disc_vel", &DEMState::disc_vel, &DEMSystem::disc_vel, 0, 2, false, 0.0},
+    {"disc_angle", &DEMState::disc_angle, &DEMSystem::disc_angle, 0, 1, false, 0.0},
+    {"disc_omega", &DEMState::disc_omega, &DEMSystem::disc_omega, 0, 1, false, 0.0},
+    {"disc_radius", &DEMState::disc_radius, &DEMSystem::disc_radius, 0, 1, false, 0.0},
+    {"disc_density", &DEMState::disc_density, &DEMSystem::disc_density, 0, 1, false, 0.0},
+    {"disc_force_ext", &DEMState::disc_force_ext, &DEMSystem::disc_force_ext, 0, 2, false, 0.0},
+    // older states hold no linear drag
+    {"disc_drag_coef", &DEMState::disc_drag_coef, &DEMSystem::disc_drag_coef, 0, 1, true, 0.0},
+    {"disc_drag_vel", &DEMState::disc_drag_vel, &DEMSystem::disc_drag_vel, 0, 2, true, 0.0},
+    {"disc_wet", &DEMState::disc_wet, &DEMSystem::disc_wet, 0, 1, false, 0.0},
+    // older states hold no water levels: the wet fractions are then held as set
+    {"disc_water_level", &DEMState::disc_water_level, &DEMSystem::disc_water_level, 0, 1, true, kNaN},
+    {"disc_force", &DEMState::disc_force, &DEMSystem::disc_force, 0, 2, false, 0.0},
+    {"disc_torque", &DEMState::disc_torque, &DEMSystem::disc_torque, 0, 1, false, 0.0},
+    {"disc_acc", &DEMState::disc_acc, &DEMSystem::disc_acc, 0, 2, false, 0.0},
+    {"disc_alpha", &DEMState::disc_alpha, &DEMSystem::disc_alpha, 0, 1, false, 0.0},
+    {"disc_sleep_timer", &DEMState::disc_sleep_timer, &DEMSystem::disc_sleep_timer, 0, 1, false, 0.0},
+};
+const DiscField<std::uint8_t> kDiscFlags[] = {
+    {"disc_fixed", &DEMState::disc_fixed, &DEMSystem::disc_fixed, 0, 1, false, 0.0},
+    {"disc_active", &DEMState::disc_active, &DEMSystem::disc_active, 0, 1, false, 0.0},
+    {"disc_asleep", &DEMState::disc_asleep, &DEMSystem::disc_asleep, 0, 1, false, 0.0},
+};
 
-const std::vector<double>& get(const StateMap& s, const std::string& key, std::size_t size) {
-  const auto it = s.find(key);
-  if (it == s.end()) throw std::invalid_argument("import_state: missing array '" + key + "'");
-  if (size != kAny && it->second.size() != size)
-    throw std::invalid_argument("import_state: array '" + key + "' has size " + std::to_string(it->second.size()) +
-                                ", expected " + std::to_string(size));
-  return it->second;
-}
-
-template <class T>
-void set(std::vector<T>& dst, const std::vector<double>& src) {
-  dst.assign(src.size(), T{});
-  for (std::size_t k = 0; k < src.size(); ++k) dst[k] = static_cast<T>(src[k]);
-}
-
-template <class T>
-void need(const char* name, const std::vector<T>& v, std::size_t size) {
-  if (v.size() != size)
-    throw std::invalid_argument(std::string("import_state: array '") + name + "' has size " +
-                                std::to_string(v.size()) + ", expected " + std::to_string(size));
-}
-
-// same size: written in place, so the numpy views of dst stay valid; another size reallocates
-template <class T>
-void copy_into(std::vector<T>& dst, const std::vector<T>& src) {
-  if (dst.size() == src.size()) std::copy(src.begin(), src.end(), dst.begin());
-  else dst = src;
+// op(field) for every per-stone array, of either element type
+template <class Op>
+void each_disc_field(Op&& op) {
+  for (const auto& f : kDiscReals) op(f);
+  for (const auto& f : kDiscFlags) op(f);
 }
 }  // namespace
 
 void DEMSystem::export_state(DEMState& s) const {
-  s.disc_pos = disc_pos;
-  s.disc_vel = disc_vel;
-  s.disc_angle = disc_angle;
-  s.disc_omega = disc_omega;
-  s.disc_radius = disc_radius;
-  s.disc_density = disc_density;
-  s.disc_fixed = disc_fixed;
-  s.disc_active = disc_active;
-  s.disc_force_ext = disc_force_ext;
-  s.disc_drag_coef = disc_drag_coef;
-  s.disc_drag_vel = disc_drag_vel;
-  s.disc_wet = disc_wet;
-  s.disc_water_level = disc_water_level;
-  s.disc_force = disc_force;
-  s.disc_torque = disc_torque;
-  s.disc_acc = disc_acc;
-  s.disc_alpha = disc_alpha;
-  s.disc_asleep = disc_asleep;
-  s.disc_sleep_timer = disc_sleep_timer;
+  each_disc_field([&](const auto& f) { s.*f.state = this->*f.live; });
   // only the histories that are not zero: the rest is rebuilt by the neighbour search
   s.contact_i.clear(), s.contact_j.clear(), s.contact_xi.clear(), s.contact_mr.clear();
   for (const Pair& p : pairs_) {
@@ -98,30 +86,11 @@ void DEMSystem::export_state(DEMState& s) const {
 
 void DEMSystem::check_state(const DEMState& s) const {
   const std::size_t n = s.disc_radius.size(), nw = n * params_.walls.size();
-  for (const auto& [name, v] : {std::pair<const char*, const std::vector<double>*>{"disc_pos", &s.disc_pos},
-                                {"disc_vel", &s.disc_vel},
-                                {"disc_force_ext", &s.disc_force_ext},
-                                {"disc_drag_vel", &s.disc_drag_vel},
-                                {"disc_force", &s.disc_force},
-                                {"disc_acc", &s.disc_acc}})
-    need(name, *v, 2 * n);
-  for (const auto& [name, v] : {std::pair<const char*, const std::vector<double>*>{"disc_angle", &s.disc_angle},
-                                {"disc_omega", &s.disc_omega},
-                                {"disc_density", &s.disc_density},
-                                {"disc_drag_coef", &s.disc_drag_coef},
-                                {"disc_wet", &s.disc_wet},
-                                {"disc_water_level", &s.disc_water_level},
-                                {"disc_torque", &s.disc_torque},
-                                {"disc_alpha", &s.disc_alpha},
-                                {"disc_sleep_timer", &s.disc_sleep_timer}})
-    need(name, *v, n);
-  need("disc_fixed", s.disc_fixed, n);
-  need("disc_active", s.disc_active, n);
-  need("disc_asleep", s.disc_asleep, n);
+  each_disc_field([&](const auto& f) { require_size(f.key, s.*f.state, f.per * n); });
   const std::size_t nc = s.contact_i.size();
-  need("contact_j", s.contact_j, nc);
-  need("contact_xi", s.contact_xi, nc);
-  need("contact_mr", s.contact_mr, nc);
+  require_size("contact_j", s.contact_j, nc);
+  require_size("contact_xi", s.contact_xi, nc);
+  require_size("contact_mr", s.contact_mr, nc);
   for (std::size_t k = 0; k < nc; ++k) {
     const int i = s.contact_i[k], j = s.contact_j[k];
     if (!(i >= 0 && i < j && j < static_cast<int>(n)))
@@ -130,8 +99,8 @@ void DEMSystem::check_state(const DEMState& s) const {
     if (k > 0 && !(s.contact_i[k - 1] < i || (s.contact_i[k - 1] == i && s.contact_j[k - 1] < j)))
       throw std::invalid_argument("import_state: contact pairs are not sorted by (i, j)");
   }
-  need("wall_xi", s.wall_xi, nw);
-  need("wall_mr", s.wall_mr, nw);
+  require_size("wall_xi", s.wall_xi, nw);
+  require_size("wall_mr", s.wall_mr, nw);
   if (!s.poly_offset.empty()) check_polygon_state(s);
 }
 
@@ -139,30 +108,12 @@ void DEMSystem::import_state(const DEMState& s) {
   check_state(s);
   const std::size_t n = s.disc_radius.size();
   if (n != static_cast<std::size_t>(n_)) resize(static_cast<int>(n));
-  copy_into(disc_pos, s.disc_pos);
-  copy_into(disc_vel, s.disc_vel);
-  copy_into(disc_angle, s.disc_angle);
-  copy_into(disc_omega, s.disc_omega);
-  copy_into(disc_radius, s.disc_radius);
-  copy_into(disc_density, s.disc_density);
-  copy_into(disc_fixed, s.disc_fixed);
-  copy_into(disc_active, s.disc_active);
-  copy_into(disc_force_ext, s.disc_force_ext);
-  copy_into(disc_drag_coef, s.disc_drag_coef);
-  copy_into(disc_drag_vel, s.disc_drag_vel);
-  copy_into(disc_wet, s.disc_wet);
-  copy_into(disc_water_level, s.disc_water_level);
-  copy_into(disc_force, s.disc_force);
-  copy_into(disc_torque, s.disc_torque);
-  copy_into(disc_acc, s.disc_acc);
-  copy_into(disc_alpha, s.disc_alpha);
-  copy_into(disc_asleep, s.disc_asleep);
-  copy_into(disc_sleep_timer, s.disc_sleep_timer);
+  each_disc_field([&](const auto& f) { state::copy_into(this->*f.live, s.*f.state); });
   pairs_.clear();
   for (std::size_t k = 0; k < s.contact_i.size(); ++k)
     pairs_.push_back({s.contact_i[k], s.contact_j[k], s.contact_xi[k], 0.0, s.contact_mr[k]});  // masses: next build
-  copy_into(wall_xi_, s.wall_xi);
-  copy_into(wall_mr_, s.wall_mr);
+  state::copy_into(wall_xi_, s.wall_xi);
+  state::copy_into(wall_mr_, s.wall_mr);
   import_polygons(s);  // the shape: polygons if the state has them, else discs
   time_ = s.time;
   steps_ = s.steps;
@@ -181,25 +132,8 @@ void DEMSystem::import_state(const DEMState& s) {
 
 std::map<std::string, std::vector<double>> dem_state_to_map(DEMState t) {
   StateMap s;
-  s["disc_pos"] = std::move(t.disc_pos);
-  s["disc_vel"] = std::move(t.disc_vel);
-  s["disc_angle"] = std::move(t.disc_angle);
-  s["disc_omega"] = std::move(t.disc_omega);
-  s["disc_radius"] = std::move(t.disc_radius);
-  s["disc_density"] = std::move(t.disc_density);
-  s["disc_fixed"] = to_double(t.disc_fixed);
-  s["disc_active"] = to_double(t.disc_active);
-  s["disc_force_ext"] = std::move(t.disc_force_ext);
-  s["disc_drag_coef"] = std::move(t.disc_drag_coef);
-  s["disc_drag_vel"] = std::move(t.disc_drag_vel);
-  s["disc_wet"] = std::move(t.disc_wet);
-  s["disc_water_level"] = std::move(t.disc_water_level);
-  s["disc_force"] = std::move(t.disc_force);
-  s["disc_torque"] = std::move(t.disc_torque);
-  s["disc_acc"] = std::move(t.disc_acc);
-  s["disc_alpha"] = std::move(t.disc_alpha);
-  s["disc_asleep"] = to_double(t.disc_asleep);
-  s["disc_sleep_timer"] = std::move(t.disc_sleep_timer);
+  for (const auto& f : kDiscReals) s[f.key] = std::move(t.*f.state);
+  for (const auto& f : kDiscFlags) s[f.key] = to_double(t.*f.state);
   s["contact_i"] = to_double(t.contact_i);
   s["contact_j"] = to_double(t.contact_j);
   s["contact_xi"] = std::move(t.contact_xi);
@@ -230,50 +164,30 @@ std::map<std::string, std::vector<double>> dem_state_to_map(DEMState t) {
 
 DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& s, std::size_t nwalls) {
   DEMState t;
-  const std::size_t n = get(s, "disc_radius", kAny).size();
-  t.disc_pos = get(s, "disc_pos", 2 * n);
-  t.disc_vel = get(s, "disc_vel", 2 * n);
-  t.disc_angle = get(s, "disc_angle", n);
-  t.disc_omega = get(s, "disc_omega", n);
-  t.disc_radius = get(s, "disc_radius", n);
-  t.disc_density = get(s, "disc_density", n);
-  set(t.disc_fixed, get(s, "disc_fixed", n));
-  set(t.disc_active, get(s, "disc_active", n));
-  t.disc_force_ext = get(s, "disc_force_ext", 2 * n);
-  // older states hold no linear drag
-  const bool drag = s.count("disc_drag_coef") > 0;
-  t.disc_drag_coef = drag ? get(s, "disc_drag_coef", n) : std::vector<double>(n, 0.0);
-  t.disc_drag_vel = drag ? get(s, "disc_drag_vel", 2 * n) : std::vector<double>(2 * n, 0.0);
-  t.disc_wet = get(s, "disc_wet", n);
-  // older states hold no water levels: the wet fractions are then held as set
-  t.disc_water_level = s.count("disc_water_level") ? get(s, "disc_water_level", n)
-                                                   : std::vector<double>(n, std::numeric_limits<double>::quiet_NaN());
-  t.disc_force = get(s, "disc_force", 2 * n);
-  t.disc_torque = get(s, "disc_torque", n);
-  t.disc_acc = get(s, "disc_acc", 2 * n);
-  t.disc_alpha = get(s, "disc_alpha", n);
-  set(t.disc_asleep, get(s, "disc_asleep", n));
-  t.disc_sleep_timer = get(s, "disc_sleep_timer", n);
-  const auto& ci = get(s, "contact_i", kAny);
-  set(t.contact_i, ci);
-  set(t.contact_j, get(s, "contact_j", ci.size()));
-  t.contact_xi = get(s, "contact_xi", ci.size());
-  t.contact_mr = s.count("contact_mr") ? get(s, "contact_mr", ci.size()) : std::vector<double>(ci.size(), 0.0);
+  const std::size_t n = entry(s, "disc_radius", state::kAnySize).size();
+  for (const auto& f : kDiscReals)
+    t.*f.state = f.optional && !s.count(f.key) ? std::vector<double>(f.per * n, f.missing) : entry(s, f.key, f.per * n);
+  for (const auto& f : kDiscFlags) from_double(t.*f.state, entry(s, f.key, f.per * n));
+  const auto& ci = entry(s, "contact_i", state::kAnySize);
+  from_double(t.contact_i, ci);
+  from_double(t.contact_j, entry(s, "contact_j", ci.size()));
+  t.contact_xi = entry(s, "contact_xi", ci.size());
+  t.contact_mr = s.count("contact_mr") ? entry(s, "contact_mr", ci.size()) : std::vector<double>(ci.size(), 0.0);
   const std::size_t nw = n * nwalls;
-  t.wall_xi = get(s, "wall_xi", nw);
-  t.wall_mr = s.count("wall_mr") ? get(s, "wall_mr", nw) : std::vector<double>(nw, 0.0);
+  t.wall_xi = entry(s, "wall_xi", nw);
+  t.wall_mr = s.count("wall_mr") ? entry(s, "wall_mr", nw) : std::vector<double>(nw, 0.0);
   if (s.count("poly_vertex")) {
     t.poly_vertex = s.at("poly_vertex");
-    set(t.poly_offset, get(s, "poly_offset", n + 1));
-    const auto& pi = get(s, "poly_contact_i", kAny);
-    set(t.poly_contact_i, pi);
-    set(t.poly_contact_j, get(s, "poly_contact_j", pi.size()));
-    set(t.poly_contact_id, get(s, "poly_contact_id", 2 * pi.size()));
-    t.poly_contact_xi = get(s, "poly_contact_xi", 2 * pi.size());
-    set(t.poly_wall_id, get(s, "poly_wall_id", 2 * nw));
-    t.poly_wall_xi = get(s, "poly_wall_xi", 2 * nw);
+    from_double(t.poly_offset, entry(s, "poly_offset", n + 1));
+    const auto& pi = entry(s, "poly_contact_i", state::kAnySize);
+    from_double(t.poly_contact_i, pi);
+    from_double(t.poly_contact_j, entry(s, "poly_contact_j", pi.size()));
+    from_double(t.poly_contact_id, entry(s, "poly_contact_id", 2 * pi.size()));
+    t.poly_contact_xi = entry(s, "poly_contact_xi", 2 * pi.size());
+    from_double(t.poly_wall_id, entry(s, "poly_wall_id", 2 * nw));
+    t.poly_wall_xi = entry(s, "poly_wall_xi", 2 * nw);
   }
-  const auto& sc = get(s, "scalars", 9);
+  const auto& sc = entry(s, "scalars", 9);
   t.time = sc[0];
   t.steps = static_cast<long long>(sc[1]);
   t.removed = static_cast<int>(sc[2]);

@@ -62,7 +62,7 @@ void DEMSystem::resize(int n) {
   if (n < 0) require_non_negative("n", n);
   n_ = n;
   const std::size_t un = static_cast<std::size_t>(n);
-  const double wet = params_.fluid_density > 0.0 ? 1.0 : 0.0;
+  const double wet = params_.submerged ? 1.0 : 0.0;
   disc_pos.assign(2 * un, 0.0);
   disc_vel.assign(2 * un, 0.0);
   disc_angle.assign(un, 0.0);
@@ -113,9 +113,7 @@ void DEMSystem::set_params(const DEMParams& p) {
 }
 
 void DEMParams::validate() const {
-  require_finite("gravity[0]", gravity[0]);
-  require_finite("gravity[1]", gravity[1]);
-  require_non_negative("fluid_density", fluid_density);
+  medium.validate();
   require_non_negative("added_mass_coefficient", added_mass_coefficient);
   require_positive("dt", dt);
   require_non_negative("stiffness_normal", stiffness_normal);
@@ -200,14 +198,14 @@ void DEMSystem::update_properties() {
 // effective mass, weight and inverse inertia of stone i from its size, density and wet fraction
 void DEMSystem::update_stone_properties(int i) {
   const DEMParams& p = params_;
-  const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
-  const bool buoy = (p.flags & kDEMBuoyancy) && p.fluid_density > 0.0;
+  const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
+  const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
   const bool poly = shape_ == StoneShape::kPolygon;
   const double v = volume(i);  // the matching 3D stone's for a polygon
   const double m = disc_density[i] * v;
   const double wv = v * disc_wet[i];
-  mass_eff_[i] = m + (added ? p.fluid_density * p.added_mass_coefficient * wv : 0.0);
-  weight_[i] = m - (buoy ? p.fluid_density * wv : 0.0);
+  mass_eff_[i] = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
+  weight_[i] = m - (buoy ? p.water_density() * wv : 0.0);
   const bool mobile = disc_active[i] && !disc_fixed[i];
   inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
   const double inertia =
@@ -221,11 +219,11 @@ void DEMSystem::set_wet_fraction(int i, double w) {
   const double w_old = disc_wet[i];
   if (w == w_old) return;
   const DEMParams& p = params_;
-  const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
+  const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
   if (added && w > w_old && disc_active[i] && !disc_fixed[i]) {
     // the water taken on starts at rest: (M + M') v kept, the kinetic energy that costs dissipated
     const double v_i = volume(i), m = disc_density[i] * v_i;
-    const double c = p.fluid_density * p.added_mass_coefficient * v_i;
+    const double c = p.water_density() * p.added_mass_coefficient * v_i;
     const double m_old = m + c * w_old, r = m_old / (m + c * w);
     double* v = &disc_vel[2 * i];
     dissipated_ += 0.5 * m_old * (1.0 - r) * (v[0] * v[0] + v[1] * v[1]);
@@ -439,7 +437,7 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
   const bool grav = p.flags & kDEMGravity;
   const bool ext = p.flags & kDEMExternalForce;
   const bool removal = p.flags & kDEMRemoval;
-  const double gx = p.gravity[0], gz = p.gravity[1];
+  const double gx = p.medium.gravity[0], gz = p.medium.gravity[1];
   const double lim2 = 0.25 * skin_ * skin_;
   FirstHalf out;
   out.stale = build_pos_.size() != disc_pos.size();
@@ -553,8 +551,8 @@ void DEMSystem::body_forces(double dt) {
     disc_torque[i] = 0.0;
     if (inv_mass_[i] == 0.0) continue;
     if (grav) {
-      f[0] += weight_[i] * p.gravity[0];
-      f[1] += weight_[i] * p.gravity[1];
+      f[0] += weight_[i] * p.medium.gravity[0];
+      f[1] += weight_[i] * p.medium.gravity[1];
     }
     if (ext) {
       const double* fe = &disc_force_ext[2 * i];
@@ -718,20 +716,20 @@ double DEMSystem::inertia_of(int i, double m) const {
 DEMEnergy DEMSystem::energy() const {
   const DEMParams& p = params_;
   DEMEnergy e;
-  const bool added = (p.flags & kDEMAddedMass) && p.fluid_density > 0.0;
-  const bool buoy = (p.flags & kDEMBuoyancy) && p.fluid_density > 0.0;
+  const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
+  const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
   const bool grav = p.flags & kDEMGravity;
   for (int i = 0; i < n_; ++i) {
     if (!disc_active[i] || disc_fixed[i]) continue;
     const double v = volume(i);
     const double m = disc_density[i] * v;
     const double wv = v * disc_wet[i];
-    const double me = m + (added ? p.fluid_density * p.added_mass_coefficient * wv : 0.0);
-    const double mw = m - (buoy ? p.fluid_density * wv : 0.0);
+    const double me = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
+    const double mw = m - (buoy ? p.water_density() * wv : 0.0);
     const double inertia = inertia_of(i, m);
     const double* u = &disc_vel[2 * i];
     e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * disc_omega[i] * disc_omega[i];
-    if (grav) e.potential -= mw * (p.gravity[0] * disc_pos[2 * i] + p.gravity[1] * disc_pos[2 * i + 1]);
+    if (grav) e.potential -= mw * (p.medium.gravity[0] * disc_pos[2 * i] + p.medium.gravity[1] * disc_pos[2 * i + 1]);
   }
   e.elastic = elastic_;
   e.dissipated = dissipated_;

@@ -23,12 +23,7 @@ constexpr double kFractionSlack = 1e-6;
 // parameters
 
 void FlowParams::validate() const {
-  require_positive("rho_water", rho_water);
-  require_positive("rho_air", rho_air);
-  require_non_negative("nu_water", nu_water);
-  require_non_negative("nu_air", nu_air);
-  require_finite("gravity_x", gravity_x);
-  require_finite("gravity_z", gravity_z);
+  medium.validate();
   // the split advection is bounded, and so conserves the water, up to 0.5 (docs/vof_advection.md): a
   // dam break at 0.6 loses 8e-5 of its water, at 0.7-1.0 1e-3 to 3e-3
   if (!(cfl > 0.0 && cfl <= kMaxFlowCfl))
@@ -277,8 +272,8 @@ void VOFGrid::set_porosity_box(double x0, double x1, double z0, double z1, doubl
 
 void VOFGrid::update_phase_properties() const {
   const bool two_phase = params_.flags & kFlowFreeSurface;
-  const double rw = params_.rho_water, ra = params_.rho_air;
-  const double mw = rw * params_.nu_water, ma = ra * params_.nu_air;
+  const double rw = params_.medium.rho_water, ra = params_.medium.rho_air;
+  const double mw = rw * params_.medium.nu_water, ma = ra * params_.medium.nu_air;
   const bool turb = params_.flags & kFlowTurbulence;
   for (int c = 0; c < grid_.ncell(); ++c) {
     const double f = two_phase ? std::clamp(cell_F[c], 0.0, 1.0) : 1.0;
@@ -311,7 +306,7 @@ void VOFGrid::update_phase_properties() const {
 
 void VOFGrid::set_hydrostatic_pressure() {
   update_phase_properties();
-  const double g = std::abs(params_.gravity_z);
+  const double g = std::abs(params_.medium.gravity[1]);
   const int nx = grid_.nx(), nz = grid_.nz();
   for (int i = 0; i < nx; ++i) {
     // the discrete balance of the projection: p_k - p_{k+1} = rho_face g (z_{k+1} - z_k), p = 0 on top
@@ -407,7 +402,7 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
     viscous_limit_step_ = step_count_;
     s.viscous = params_.viscous_substeps * viscous_limit_;
   }
-  const double g = std::hypot(params_.gravity_x, params_.gravity_z);
+  const double g = std::hypot(params_.medium.gravity[0], params_.medium.gravity[1]);
   s.gravity = (params_.flags & kFlowGravity) && g > 0.0
                   ? params_.cfl * std::sqrt(2.0 * std::min(grid_.dx(), grid_.min_dz()) / g)
                   : kInf;
@@ -517,15 +512,15 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
 double VOFGrid::outlet_pressure(int k) const {
   // still fluid outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
   // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
-  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.gravity_z) : 0.0;
+  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.medium.gravity[1]) : 0.0;
   const double z = grid_.z_center(k);
   const double top = grid_.z_face(grid_.nz());
   // single phase: water outside too, up to the tailwater level or the top
   if (!(params_.flags & kFlowFreeSurface))
-    return params_.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
-  double p = params_.rho_air * g * (top - z);
+    return params_.medium.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
+  double p = params_.medium.rho_air * g * (top - z);
   if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
-    p += (params_.rho_water - params_.rho_air) * g * (params_.tailwater_level - z);
+    p += (params_.medium.rho_water - params_.medium.rho_air) * g * (params_.tailwater_level - z);
   return p;
 }
 
@@ -599,7 +594,7 @@ void VOFGrid::stage_momentum(double dt) {
   terms.convection = params_.flags & kFlowConvection;
   terms.viscosity = params_.flags & kFlowViscosity;
   terms.implicit_vertical = params_.viscous_scheme == ViscousScheme::kImplicitVertical;
-  if (params_.flags & kFlowGravity) terms.gravity_x = params_.gravity_x, terms.gravity_z = params_.gravity_z;
+  if (params_.flags & kFlowGravity) terms.gravity_x = params_.medium.gravity[0], terms.gravity_z = params_.medium.gravity[1];
   if (terms.viscosity && params_.viscous_substeps > 1) terms.viscous_substeps = viscous_substeps(dt);
   const bool ab2 = params_.time_scheme == MomentumTimeScheme::kAdamsBashforth2 && prev_dt_ > 0.0;
   if (!ab2) {

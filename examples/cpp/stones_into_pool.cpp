@@ -13,12 +13,13 @@ int main() {
   using namespace vofdem;
   const Grid2D grid = Grid2D::uniform(40, 50, 0.4, 0.5);
   FlowParams flow;
+  flow.flags |= kFlowRelativeVelocity;  // the porous resistance on the water's velocity relative to the stones
   VOFGrid fluid(grid, flow);
   fluid.fill_water_below(0.25);
   fluid.set_hydrostatic_pressure();
 
   DEMParams dem;
-  dem.fluid_density = flow.rho_water;  // buoyancy and added mass of the stones use the flow's water
+  dem.submerged = true;  // wet from the start (the Coupler hands the stones the flow's medium)
   dem.add_flume(0.0, 0.4, 0.0);
   std::vector<double> pos, radius, density;
   for (int j = 0; j < 6; ++j) {

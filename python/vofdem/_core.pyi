@@ -3,10 +3,11 @@ vofdem C++ core: VOF flow, DEM stones and their coupling
 """
 from __future__ import annotations
 import collections.abc
+import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_RELATIVE_VELOCITY', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -44,6 +45,61 @@ class Grid2D:
         ...
     @property
     def z_faces(self) -> list[float]:
+        ...
+class Medium:
+    """
+    Water, air and gravity (SI units), one value for the flow and the stones: FlowParams.medium owns it, a Coupler hands it to the stones (DEMParams.medium).
+    """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: Medium) -> bool:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __ne__(self, arg0: Medium) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def gravity(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
+        """
+        gravitational acceleration (x along the flume, z up) [m/s^2]
+        """
+    @gravity.setter
+    def gravity(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+        ...
+    @property
+    def nu_air(self) -> float:
+        """
+        air kinematic viscosity [m^2/s], 1.516e-5
+        """
+    @nu_air.setter
+    def nu_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nu_water(self) -> float:
+        """
+        water kinematic viscosity [m^2/s], 1.004e-6
+        """
+    @nu_water.setter
+    def nu_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rho_air(self) -> float:
+        """
+        air density [kg/m^3], 1.204
+        """
+    @rho_air.setter
+    def rho_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rho_water(self) -> float:
+        """
+        water density [kg/m^3], 998.2
+        """
+    @rho_water.setter
+    def rho_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class StageProfile:
     """
@@ -336,9 +392,11 @@ class DEMParams:
         ...
     @property
     def fluid_density(self) -> float:
-        ...
+        """
+        alias: 0 sets submerged False, another value submerged True and medium.rho_water [kg/m^3]
+        """
     @fluid_density.setter
-    def fluid_density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def fluid_density(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def friction_stone(self) -> float:
@@ -348,15 +406,25 @@ class DEMParams:
         ...
     @property
     def gravity(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
-        ...
+        """
+        alias of medium.gravity
+        """
     @gravity.setter
-    def gravity(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
+    def gravity(self, arg1: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
         ...
     @property
     def inertia_factor(self) -> float:
         ...
     @inertia_factor.setter
     def inertia_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def medium(self) -> Medium:
+        """
+        water and gravity (Medium); a Coupler sets the flow's
+        """
+    @medium.setter
+    def medium(self, arg0: Medium) -> None:
         ...
     @property
     def neighbour_skin(self) -> float:
@@ -413,6 +481,14 @@ class DEMParams:
     def stiffness_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def submerged(self) -> bool:
+        """
+        the stones lie in the medium's water (buoyancy, added mass); False: dry
+        """
+    @submerged.setter
+    def submerged(self, arg0: bool) -> None:
+        ...
+    @property
     def tangential_damping_factor(self) -> float:
         ...
     @tangential_damping_factor.setter
@@ -429,6 +505,45 @@ class DEMParams:
         ...
     @walls.setter
     def walls(self, arg0: collections.abc.Sequence[DEMWall]) -> None:
+        ...
+    @property
+    def water_density(self) -> float:
+        """
+        rho_w of buoyancy and added mass [kg/m^3]: medium.rho_water if submerged, else 0
+        """
+class DEMFlag(enum.IntFlag):
+    """
+    Bit flags of the DEM's physical effects (DEMParams.flags).
+    """
+    ADDED_MASS: typing.ClassVar[DEMFlag]
+    ALL_EFFECTS: typing.ClassVar[DEMFlag]
+    BUOYANCY: typing.ClassVar[DEMFlag]
+    DAMPING: typing.ClassVar[DEMFlag]
+    EXTERNAL_FORCE: typing.ClassVar[DEMFlag]
+    FRICTION: typing.ClassVar[DEMFlag]
+    GRAVITY: typing.ClassVar[DEMFlag]
+    REMOVAL: typing.ClassVar[DEMFlag]
+    ROLLING_RESISTANCE: typing.ClassVar[DEMFlag]
+    ROTATION: typing.ClassVar[DEMFlag]
+    SLEEPING: typing.ClassVar[DEMFlag]
+    @classmethod
+    def __new__(cls, value):
+        ...
+    def __and__(self, other):
+        ...
+    def __format__(self, format_spec):
+        ...
+    def __invert__(self):
+        ...
+    def __or__(self, other):
+        ...
+    def __rand__(self, other):
+        ...
+    def __ror__(self, other):
+        ...
+    def __rxor__(self, other):
+        ...
+    def __xor__(self, other):
         ...
 class DEMEnergy:
     """
@@ -1004,31 +1119,9 @@ class PressureSolver:
     @property
     def kind(self) -> PressureSolverKind:
         ...
-class FlowEffect:
+class FlowEffect(enum.IntFlag):
     """
     Bit flags of the flow solver's physical effects.
-    
-    Members:
-    
-      FREE_SURFACE : two phases and VOF advection (off: water everywhere)
-    
-      POROUS_DARCY : linear porous resistance nu/K
-    
-      POROUS_FORCHHEIMER : quadratic porous resistance C/sqrt(K) |u|
-    
-      TURBULENCE : k-epsilon eddy viscosity
-    
-      VISCOSITY : viscous stresses
-    
-      GRAVITY : gravity
-    
-      RELATIVE_VELOCITY : porous resistance on the velocity relative to the stones
-    
-      CONVECTION : momentum convection
-    
-      POROUS_RESISTANCE : Darcy and Forchheimer terms
-    
-      DEFAULT : free surface, porous resistance, viscosity, gravity, convection
     """
     CONVECTION: typing.ClassVar[FlowEffect]
     DEFAULT: typing.ClassVar[FlowEffect]
@@ -1040,108 +1133,24 @@ class FlowEffect:
     RELATIVE_VELOCITY: typing.ClassVar[FlowEffect]
     TURBULENCE: typing.ClassVar[FlowEffect]
     VISCOSITY: typing.ClassVar[FlowEffect]
-    __members__: typing.ClassVar[dict[str, FlowEffect]]
-    @typing.overload
-    def __and__(self, other: FlowEffect) -> int:
+    @classmethod
+    def __new__(cls, value):
         ...
-    @typing.overload
-    def __and__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
+    def __and__(self, other):
         ...
-    @typing.overload
-    def __eq__(self, other: FlowEffect) -> bool:
+    def __format__(self, format_spec):
         ...
-    @typing.overload
-    def __eq__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+    def __invert__(self):
         ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
+    def __or__(self, other):
         ...
-    @typing.overload
-    def __ge__(self, other: FlowEffect) -> bool:
+    def __rand__(self, other):
         ...
-    @typing.overload
-    def __ge__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
+    def __ror__(self, other):
         ...
-    def __getstate__(self) -> int:
+    def __rxor__(self, other):
         ...
-    @typing.overload
-    def __gt__(self, other: FlowEffect) -> bool:
-        ...
-    @typing.overload
-    def __gt__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    def __invert__(self) -> typing.Any:
-        ...
-    @typing.overload
-    def __le__(self, other: FlowEffect) -> bool:
-        ...
-    @typing.overload
-    def __le__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
-        ...
-    @typing.overload
-    def __lt__(self, other: FlowEffect) -> bool:
-        ...
-    @typing.overload
-    def __lt__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: FlowEffect) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.SupportsInt | typing.SupportsIndex) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
-        ...
-    @typing.overload
-    def __or__(self, other: FlowEffect) -> int:
-        ...
-    @typing.overload
-    def __or__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
-        ...
-    @typing.overload
-    def __rand__(self, other: FlowEffect) -> int:
-        ...
-    @typing.overload
-    def __rand__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
-        ...
-    def __repr__(self) -> str:
-        ...
-    @typing.overload
-    def __ror__(self, other: FlowEffect) -> int:
-        ...
-    @typing.overload
-    def __ror__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
-        ...
-    @typing.overload
-    def __rxor__(self, other: FlowEffect) -> int:
-        ...
-    @typing.overload
-    def __rxor__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
-        ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __str__(self) -> str:
-        ...
-    @typing.overload
-    def __xor__(self, other: FlowEffect) -> int:
-        ...
-    @typing.overload
-    def __xor__(self, other: typing.SupportsInt | typing.SupportsIndex) -> int:
-        ...
-    @property
-    def name(self) -> str:
-        ...
-    @property
-    def value(self) -> int:
+    def __xor__(self, other):
         ...
 class InletBoundary:
     """
@@ -1585,7 +1594,7 @@ class FlowParams:
     @property
     def flume_width(self) -> float:
         """
-        flume width B [m], 0.3
+        flume width B [m], 0.5
         """
     @flume_width.setter
     def flume_width(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1593,18 +1602,18 @@ class FlowParams:
     @property
     def gravity_x(self) -> float:
         """
-        gravity along the flume [m/s^2], 0
+        alias of medium.gravity[0] [m/s^2]
         """
     @gravity_x.setter
-    def gravity_x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def gravity_x(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def gravity_z(self) -> float:
         """
-        gravity, upward component [m/s^2], -9.81
+        alias of medium.gravity[1] [m/s^2]
         """
     @gravity_z.setter
-    def gravity_z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def gravity_z(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def initial_dt(self) -> float:
@@ -1647,6 +1656,14 @@ class FlowParams:
     def max_dt_growth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def medium(self) -> Medium:
+        """
+        water, air and gravity (Medium), shared with the stones
+        """
+    @medium.setter
+    def medium(self, arg0: Medium) -> None:
+        ...
+    @property
     def min_dt(self) -> float:
         """
         a stable step below this is a failure [s], 1e-8
@@ -1657,18 +1674,18 @@ class FlowParams:
     @property
     def nu_air(self) -> float:
         """
-        air kinematic viscosity [m^2/s], 1.516e-5
+        alias of medium.nu_air [m^2/s]
         """
     @nu_air.setter
-    def nu_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def nu_air(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def nu_water(self) -> float:
         """
-        water kinematic viscosity [m^2/s], 1.004e-6
+        alias of medium.nu_water [m^2/s]
         """
     @nu_water.setter
-    def nu_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def nu_water(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def pressure_tol(self) -> float:
@@ -1681,18 +1698,18 @@ class FlowParams:
     @property
     def rho_air(self) -> float:
         """
-        air density [kg/m^3], 1.204
+        alias of medium.rho_air [kg/m^3]
         """
     @rho_air.setter
-    def rho_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def rho_air(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def rho_water(self) -> float:
         """
-        water density [kg/m^3], 998.2
+        alias of medium.rho_water [kg/m^3]
         """
     @rho_water.setter
-    def rho_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def rho_water(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def tailwater_level(self) -> float:
@@ -2021,6 +2038,42 @@ class VOFGrid:
     @time.setter
     def time(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class CouplerEffect(enum.IntFlag):
+    """
+    Bit flags of the coupling's effects (CouplerParams.flags).
+    """
+    CHECKS: typing.ClassVar[CouplerEffect]
+    DEFAULT: typing.ClassVar[CouplerEffect]
+    DEM: typing.ClassVar[CouplerEffect]
+    DISPLACE_FLOW: typing.ClassVar[CouplerEffect]
+    DRAG: typing.ClassVar[CouplerEffect]
+    FLUID: typing.ClassVar[CouplerEffect]
+    FORCES: typing.ClassVar[CouplerEffect]
+    LOOKUP_POROSITY: typing.ClassVar[CouplerEffect]
+    ONE_WAY: typing.ClassVar[CouplerEffect]
+    POROSITY: typing.ClassVar[CouplerEffect]
+    PRESSURE_GRADIENT: typing.ClassVar[CouplerEffect]
+    TWO_WAY: typing.ClassVar[CouplerEffect]
+    WET_FRACTION: typing.ClassVar[CouplerEffect]
+    @classmethod
+    def __new__(cls, value):
+        ...
+    def __and__(self, other):
+        ...
+    def __format__(self, format_spec):
+        ...
+    def __invert__(self):
+        ...
+    def __or__(self, other):
+        ...
+    def __rand__(self, other):
+        ...
+    def __ror__(self, other):
+        ...
+    def __rxor__(self, other):
+        ...
+    def __xor__(self, other):
+        ...
 class StoneDragModel:
     """
     Drag on the stones (one of the two, never both).
@@ -2095,7 +2148,7 @@ class CouplerParams:
     @property
     def flags(self) -> int:
         """
-        COUPLE_* bits
+        CouplerEffect bits
         """
     @flags.setter
     def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2193,7 +2246,9 @@ class Coupler:
     def export_state(self) -> dict:
         ...
     def import_state(self, state: dict) -> None:
-        ...
+        """
+        restores export_state() exactly (every part checked first; written into the arrays in place)
+        """
     def set_inflow_table(self, times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], discharge: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     def set_state(self, state: CouplerState) -> None:
@@ -2243,7 +2298,7 @@ class Coupler:
     @property
     def params(self) -> CouplerParams:
         """
-        a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity mapper and the flow's relative-velocity flag following them
+        a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity mapper following them
         """
     @params.setter
     def params(self, arg1: CouplerParams) -> None:
@@ -2291,9 +2346,15 @@ def forchheimer_coefficient(n: typing.Annotated[numpy.typing.ArrayLike, numpy.fl
     """
     Forchheimer coefficient C = k2 / sqrt(k1 n^3) [-] (seed eq. 7).
     """
-def pack_weir(height: typing.SupportsFloat | typing.SupportsIndex = 0.25, crest: typing.SupportsFloat | typing.SupportsIndex = 0.2, slope_up_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, slope_down_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, x_toe: typing.SupportsFloat | typing.SupportsIndex = 1.0, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, d_mean: typing.SupportsFloat | typing.SupportsIndex = 0.048, d_spread: typing.SupportsFloat | typing.SupportsIndex = 0.1, density: typing.SupportsFloat | typing.SupportsIndex = 2650.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, settle_time_max: typing.SupportsFloat | typing.SupportsIndex = 6.0, rest_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, params: DEMParams = ..., shape: str = 'disc', polygon_vertices_min: typing.SupportsInt | typing.SupportsIndex = 5, polygon_vertices_max: typing.SupportsInt | typing.SupportsIndex = 8, aspect_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.5, radial_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.2) -> tuple[typing.Any, WeirPackingReport, WeirSpec]:
+@typing.overload
+def pack_weir(spec: WeirSpec, params: DEMParams = ...) -> tuple[DEMSystem, WeirPackingReport]:
     """
-    Packs a trapezoidal rubble mound weir; returns (DEMSystem, WeirPackingReport, WeirSpec).
+    Packs the trapezoidal rubble mound weir `spec` with the contact law of `params`; returns (DEMSystem, WeirPackingReport).
+    """
+@typing.overload
+def pack_weir(height: typing.SupportsFloat | typing.SupportsIndex = 0.25, crest: typing.SupportsFloat | typing.SupportsIndex = 0.2, slope_up_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, slope_down_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, x_toe: typing.SupportsFloat | typing.SupportsIndex = 1.0, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, d_mean: typing.SupportsFloat | typing.SupportsIndex = 0.048, d_spread: typing.SupportsFloat | typing.SupportsIndex = 0.1, density: typing.SupportsFloat | typing.SupportsIndex = 2650.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, settle_time_max: typing.SupportsFloat | typing.SupportsIndex = 6.0, rest_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, params: DEMParams = ..., shape: str = 'disc', polygon_vertices_min: typing.SupportsInt | typing.SupportsIndex = 5, polygon_vertices_max: typing.SupportsInt | typing.SupportsIndex = 8, aspect_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.5, radial_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.2) -> tuple[DEMSystem, WeirPackingReport, WeirSpec]:
+    """
+    The older keyword form: the WeirSpec made from the keywords; returns (DEMSystem, WeirPackingReport, WeirSpec).
     """
 def permeability(n: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], d: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 200.0) -> typing.Any:
     """
@@ -2329,31 +2390,30 @@ def weir_outline_error(system: DEMSystem, spec: WeirSpec) -> float:
     ...
 def weir_porosity(system: DEMSystem, spec: WeirSpec, h: typing.SupportsFloat | typing.SupportsIndex = 0.002) -> float:
     ...
-COUPLE_CHECKS: int = 128
-COUPLE_DEFAULT: int = 255
-COUPLE_DEM: int = 1
-COUPLE_DISPLACE_FLOW: int = 512
-COUPLE_DRAG: int = 8
-COUPLE_FLUID: int = 2
-COUPLE_FORCES: int = 24
-COUPLE_LOOKUP_POROSITY: int = 256
-COUPLE_ONE_WAY: int = 219
-COUPLE_POROSITY: int = 4
-COUPLE_PRESSURE_GRADIENT: int = 16
-COUPLE_RELATIVE_VELOCITY: int = 32
-COUPLE_TWO_WAY: int = 255
-COUPLE_WET_FRACTION: int = 64
-DEM_ADDED_MASS: int = 8
-DEM_ALL_EFFECTS: int = 991
-DEM_BUOYANCY: int = 16
-DEM_DAMPING: int = 64
-DEM_EXTERNAL_FORCE: int = 128
-DEM_FRICTION: int = 4
-DEM_GRAVITY: int = 1
-DEM_REMOVAL: int = 256
-DEM_ROLLING_RESISTANCE: int = 512
-DEM_ROTATION: int = 2
-DEM_SLEEPING: int = 32
+COUPLE_CHECKS: CouplerEffect
+COUPLE_DEFAULT: CouplerEffect
+COUPLE_DEM: CouplerEffect
+COUPLE_DISPLACE_FLOW: CouplerEffect
+COUPLE_DRAG: CouplerEffect
+COUPLE_FLUID: CouplerEffect
+COUPLE_FORCES: CouplerEffect
+COUPLE_LOOKUP_POROSITY: CouplerEffect
+COUPLE_ONE_WAY: CouplerEffect
+COUPLE_POROSITY: CouplerEffect
+COUPLE_PRESSURE_GRADIENT: CouplerEffect
+COUPLE_TWO_WAY: CouplerEffect
+COUPLE_WET_FRACTION: CouplerEffect
+DEM_ADDED_MASS: DEMFlag
+DEM_ALL_EFFECTS: DEMFlag
+DEM_BUOYANCY: DEMFlag
+DEM_DAMPING: DEMFlag
+DEM_EXTERNAL_FORCE: DEMFlag
+DEM_FRICTION: DEMFlag
+DEM_GRAVITY: DEMFlag
+DEM_REMOVAL: DEMFlag
+DEM_ROLLING_RESISTANCE: DEMFlag
+DEM_ROTATION: DEMFlag
+DEM_SLEEPING: DEMFlag
 ERGUN_K1: float = 150.0
 ERGUN_K2: float = 1.75
 PAPER_K1: float = 200.0

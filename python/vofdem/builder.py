@@ -14,8 +14,9 @@ from .scene import Scene
 
 import math
 
-WATER_DENSITY = 998.2  # kg/m^3 at 20 C, the flow solver's default water density
-GRAVITY = 9.81  # m/s^2
+# the core's water and gravity (Medium) are the one source of their values
+WATER_DENSITY = _core.Medium().rho_water  # kg/m^3, 998.2 at 20 C
+GRAVITY = -_core.Medium().gravity[1]  # m/s^2, 9.81
 
 
 def gravity(scene: Scene):
@@ -24,12 +25,24 @@ def gravity(scene: Scene):
     return GRAVITY * s, -GRAVITY * math.sqrt(1.0 - s * s)
 
 
-def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
-    """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags."""
+def medium(scene: Scene):
+    """The scene's Medium: the core's water and air, gravity along a sloping bed; the flow owns it and a
+    Coupler hands it to the stones."""
+    m = _core.Medium()
+    m.gravity = list(gravity(scene))
+    return m
+
+
+def dem_params(scene: Scene, submerged: bool = True, fluid_density: Optional[float] = None):
+    """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags.
+    submerged: in the medium's water (False: dry, as the packing); fluid_density: older callers' name
+    (0: dry, else submerged in water of that density [kg/m^3])."""
     st, fx = scene.stones, scene.effects
     p = _core.DEMParams()
-    p.gravity = list(gravity(scene))
-    p.fluid_density = fluid_density
+    p.medium = medium(scene)
+    p.submerged = submerged
+    if fluid_density is not None:
+        p.fluid_density = fluid_density
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
     p.contact_steps = scene.numerics.dem_contact_steps
@@ -43,19 +56,19 @@ def dem_params(scene: Scene, fluid_density: float = WATER_DENSITY):
     # stones leaving the flume (past its end, or falling below the bed level there) are removed
     p.domain_min = [-0.5 * scene.flume.length, -0.5 * scene.flume.height]
     p.domain_max = [scene.flume.length, 4.0 * scene.flume.height]
-    flags = _core.DEM_GRAVITY | _core.DEM_DAMPING | _core.DEM_REMOVAL
+    flags = _core.DEMFlag.GRAVITY | _core.DEMFlag.DAMPING | _core.DEMFlag.REMOVAL
     if fx.rotation:
-        flags |= _core.DEM_ROTATION
+        flags |= _core.DEMFlag.ROTATION
     if fx.friction:
-        flags |= _core.DEM_FRICTION
+        flags |= _core.DEMFlag.FRICTION
     if fx.rolling_resistance:
-        flags |= _core.DEM_ROLLING_RESISTANCE
+        flags |= _core.DEMFlag.ROLLING_RESISTANCE
     if fx.added_mass:
-        flags |= _core.DEM_ADDED_MASS
+        flags |= _core.DEMFlag.ADDED_MASS
     if fx.buoyancy:
-        flags |= _core.DEM_BUOYANCY
+        flags |= _core.DEMFlag.BUOYANCY
     if fx.drag or fx.pressure_gradient:
-        flags |= _core.DEM_EXTERNAL_FORCE
+        flags |= _core.DEMFlag.EXTERNAL_FORCE
     p.flags = int(flags)
     if is_graded(scene):
         p.stiffness_normal, p.dt = graded_contact(scene, p)
@@ -185,19 +198,13 @@ def build_stones(scene: Scene):
     if route == "explicit":
         return _explicit_stones(scene), None
     # packed dry (the rest state does not depend on the fluid), then given the run's parameters
-    pack = dem_params(scene, fluid_density=0.0)
-    pack.flags = int(pack.flags & ~_core.DEM_EXTERNAL_FORCE)
-    trap = _trapezoid(scene)
+    pack = dem_params(scene, submerged=False)
+    pack.flags = int(pack.flags & ~_core.DEMFlag.EXTERNAL_FORCE)
     try:
         if route == "outline":
             sys_, report = _pack_outline(scene, pack)
         else:
-            sys_, report, _ = _core.pack_weir(height=trap["height"], crest=trap["crest_length"],
-                                              slope_up_deg=trap["upstream_slope_deg"],
-                                              slope_down_deg=trap["downstream_slope_deg"], x_toe=trap["toe_x"],
-                                              z_bed=0.0, d_mean=st.diameter, d_spread=st.diameter_spread,
-                                              density=st.density, seed=scene.seed, params=pack,
-                                              **_shape_options(scene))
+            sys_, report = _core.pack_weir(weir_spec(scene), pack)
     except ValueError as e:
         raise ValueError(dem_step_hint(str(e))) from None
     sys_.params = dem_params(scene)
@@ -206,19 +213,11 @@ def build_stones(scene: Scene):
     return sys_, report
 
 
-def _shape_options(scene: Scene) -> dict:
-    """pack_weir's stone-shape arguments: none for discs (its defaults), the shape and its parameters for polygons."""
-    if scene.stones.shape == "disc":
-        return {}
-    return dict(shape="polygon", **polygon_options(scene))
-
-
 def flow_params(scene: Scene):
     """FlowParams of a scene: fluid, gravity along a sloping bed, CFL, porous law, boundaries, effects."""
     f, n, fx, st = scene.flume, scene.numerics, scene.effects, scene.stones
     p = _core.FlowParams()
-    p.rho_water = WATER_DENSITY
-    p.gravity_x, p.gravity_z = gravity(scene)
+    p.medium = medium(scene)
     p.cfl = n.cfl
     p.max_dt = n.max_dt
     p.initial_dt = n.initial_dt
@@ -244,7 +243,8 @@ def flow_params(scene: Scene):
         flags |= int(E.POROUS_RESISTANCE)
     if fx.turbulence:
         flags |= int(E.TURBULENCE)
-    if fx.relative_velocity_resistance:
+    # resistance relative to the stones' velocity: the stones move the flow's porosity only two-way
+    if fx.relative_velocity_resistance and fx.two_way:
         flags |= int(E.RELATIVE_VELOCITY)
     p.flags = flags
     return p
@@ -293,12 +293,18 @@ def _trapezoid(scene: Scene) -> dict:
 
 
 def weir_spec(scene: Scene):
-    """WeirSpec of the scene's weir trapezoid on the bed z = 0 (_trapezoid)."""
-    t = _trapezoid(scene)
+    """WeirSpec of the scene's weir: its trapezoid on the bed z = 0 (_trapezoid) and its stones (sizes,
+    density, seed, shape), what pack_weir packs."""
+    t, st = _trapezoid(scene), scene.stones
     spec = _core.WeirSpec()
     spec.height, spec.crest = t["height"], t["crest_length"]
     spec.slope_up_deg, spec.slope_down_deg = t["upstream_slope_deg"], t["downstream_slope_deg"]
     spec.x_toe, spec.z_bed = t["toe_x"], 0.0
+    spec.d_mean, spec.d_spread, spec.density, spec.seed = st.diameter, st.diameter_spread, st.density, scene.seed
+    if st.shape == "polygon":
+        spec.shape = "polygon"
+        for key, value in polygon_options(scene).items():
+            setattr(spec, key, value)
     return spec
 
 
@@ -350,21 +356,19 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.max_dt = scene.numerics.max_dt
     p.implicit_drag = scene.numerics.drag_exchange == "implicit"
     p.lookup_m = scene.numerics.lookup_m
-    flags = _core.COUPLE_FLUID | _core.COUPLE_CHECKS
+    flags = _core.CouplerEffect.FLUID | _core.CouplerEffect.CHECKS
     if fx.dem:
-        flags |= _core.COUPLE_DEM
+        flags |= _core.CouplerEffect.DEM
     if fx.two_way:
-        flags |= _core.COUPLE_POROSITY
+        flags |= _core.CouplerEffect.POROSITY
     if fx.drag:
-        flags |= _core.COUPLE_DRAG
+        flags |= _core.CouplerEffect.DRAG
     if fx.pressure_gradient:
-        flags |= _core.COUPLE_PRESSURE_GRADIENT
-    if fx.relative_velocity_resistance:
-        flags |= _core.COUPLE_RELATIVE_VELOCITY
+        flags |= _core.CouplerEffect.PRESSURE_GRADIENT
     if fx.buoyancy or fx.added_mass:
-        flags |= _core.COUPLE_WET_FRACTION
+        flags |= _core.CouplerEffect.WET_FRACTION
     if scene.numerics.porosity_method == "lookup":
-        flags |= _core.COUPLE_LOOKUP_POROSITY
+        flags |= _core.CouplerEffect.LOOKUP_POROSITY
     p.flags = int(flags)
     return p
 
@@ -377,9 +381,6 @@ def build_simulation(scene: Scene, packing: Optional[dict] = None):
     stones, report = build_stones(scene)
     if packing is not None:
         packing["report"] = report
-    params = stones.params
-    params.fluid_density = fluid.params.rho_water
-    stones.params = params
     n_s, _ = disc_porosity(scene, stones)
     sim = _core.Coupler(fluid, stones, coupler_params(scene, n_s))
     t, q = scene.hydrograph.table(scene.duration)

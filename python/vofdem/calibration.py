@@ -180,8 +180,10 @@ def with_rolling(scene: Scene, mu_r: float) -> Scene:
 def repose_params(scene: Scene, submerged: bool, half_width: float):
     """DEMParams of the heap: the scene's stone model, vertical gravity, a flat bed between end walls at
     +-half_width [m], no removal; submerged: buoyancy and added mass of still water."""
-    p = builder.dem_params(scene, fluid_density=WATER if submerged else 0.0)
-    p.gravity = [0.0, -builder.GRAVITY]
+    p = builder.dem_params(scene, submerged=submerged)
+    if submerged:
+        p.medium.rho_water = WATER
+    p.medium.gravity = [0.0, -builder.GRAVITY]
     p.walls = []
     p.add_flume(-half_width, half_width, 0.0, scene.stones.friction_wall)
     p.domain_min, p.domain_max = [-1e30, -1e30], [1e30, 1e30]
@@ -407,7 +409,7 @@ def pick_evenly(candidates: Sequence[int], k: int) -> List[int]:
 def pull_weir(scene: Scene, seed: int):
     """(DEMSystem, packed-state checkpoint): the scene's weir packed dry from `seed`, ready to pull."""
     sys_, _ = builder.build_stones(scene.replace(seed=seed))
-    p = builder.dem_params(scene, fluid_density=0.0)
+    p = builder.dem_params(scene, submerged=False)
     p.flags = int(p.flags | _core.DEM_EXTERNAL_FORCE)
     sys_.params = p
     sys_.disc_wet[:] = 0.0

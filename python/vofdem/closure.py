@@ -5,8 +5,9 @@ import numpy as np
 
 from . import _core
 
-WATER_DENSITY = 1000.0  # kg/m^3
-WATER_VISCOSITY = 1.0e-6  # kinematic, m^2/s
+# the core's water (Medium), the one source of its values
+WATER_DENSITY = _core.Medium().rho_water  # kg/m^3, 998.2
+WATER_VISCOSITY = _core.Medium().nu_water  # kinematic, m^2/s, 1.004e-6
 
 
 def porous_resistance(u, w, n, d, nu=WATER_VISCOSITY, k1=_core.PAPER_K1, k2=_core.PAPER_K2):

@@ -63,7 +63,7 @@ def parse_seeds(spec: str) -> List[int]:
 
 def _read_value(text: str):
     """A value as TOML reads it ('0.5', 'true', '"bed"'), else the text itself ('bed', '4.8 cm')."""
-    from .scene import _toml
+    from .schema import _toml
 
     try:
         return _toml.loads(f"v = {text}")["v"]

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, List, Optional, Tuple
 
-from .params import _Section, _check_list, _choice, _flag, _fmt, _p
+from .schema import _Section, _check_list, _choice, _flag, _fmt, _p
 
 TIME_UNITS = {"time_s": 1.0, "time_min": 60.0, "time_h": 3600.0}  # to s
 DISCHARGE_UNITS = {"discharge_lps": 1.0, "discharge_m3s": 1000.0}  # to l/s

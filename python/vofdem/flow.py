@@ -59,10 +59,12 @@ def dam_break(a: float = 0.05715, cells_per_a: int = 8, length_in_a: float = 5.0
     """The Martin & Moyce (1952) dam break: a water column a wide and 2a high in a closed tank.
 
     a [m]: column width; cells_per_a: resolution; the tank is length_in_a * a long and
-    height_in_a * a high (open top). Returns a VOFGrid at rest with the column filled.
+    height_in_a * a high (open top), in int(length_in_a * cells_per_a) by int(height_in_a * cells_per_a)
+    cells. Returns a VOFGrid at rest with the column filled. The one dam-break set-up (the validation's
+    dam_break_front runs it).
     """
-    nx = int(round(length_in_a * cells_per_a))
-    nz = int(round(height_in_a * cells_per_a))
+    nx = int(length_in_a * cells_per_a)
+    nz = int(height_in_a * cells_per_a)
     grid = _core.Grid2D.uniform(nx, nz, length_in_a * a, height_in_a * a)
     flow = _core.VOFGrid(grid, params if params is not None else _core.FlowParams())
     flow.fill_water_box(0.0, a, 0.0, 2.0 * a)

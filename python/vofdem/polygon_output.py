@@ -29,8 +29,8 @@ XDMF_POLYGON = 3
 
 
 def is_polygon_system(stones) -> bool:
-    """True for a DEMSystem of polygon stones (test doubles without a shape are discs)."""
-    return getattr(stones, "shape", "disc") == "polygon"
+    """True for a DEMSystem of polygon stones."""
+    return stones.shape == "polygon"
 
 
 def stone_diameters(stones) -> np.ndarray:

@@ -23,7 +23,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
-from .params import _Section, _check_list, _fmt, _p
+from .schema import _Section, _check_list, _fmt, _p
 
 _Q = {"lo": 0.0, "hi": 1e6, "closed": "(]", "kind": "discharge"}
 _T = {"lo": 0.0, "hi": 1e6, "closed": "[]", "kind": "time"}

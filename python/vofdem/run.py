@@ -325,9 +325,7 @@ def _model_attrs(sim, scene: Scene) -> dict:
     each disc that eq. (11) used (n_exp, or the bulk-consistent value computed at build)."""
     out = {"drag_model": scene.stones.drag_model, "porosity_mapping": scene.stones.porosity_mapping,
            "stone_shape": scene.stones.shape}
-    params = getattr(sim, "params", None)
-    if params is not None and hasattr(params, "n_exp"):
-        out["disc_porosity"] = float(params.n_exp)
+    out["disc_porosity"] = float(sim.params.n_exp)
     return out
 
 

@@ -21,10 +21,12 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
+from . import _core
 from .flood import Hydrograph
 from .reference import Reference, maeno2008_reference
-from .params import (_BASE_UNIT, _UNITS, _Section, _check_list, _check_number, _choice, _flag, _fmt,  # noqa: F401
-                     _p, _parse_quantity, _range_text, _toml, _toml_value, _unknown)
+from .schema import (_BASE_UNIT, _UNITS, _Section, _check_list, _check_number, _choice, _flag, _fmt,  # noqa: F401
+                     _p, _parse_quantity, _range_text, _toml, _toml_value, _unknown, describe, parse_toml,
+                     section_args, section_dict, toml_table)
 
 
 @dataclass
@@ -32,7 +34,9 @@ class Flume(_Section):
     """The computational flume: a 2D vertical slice of a flume of width B."""
 
     length: float = _p(3.681, "length", 0.2, 100.0, "domain length from inflow to outflow end [m]", "(]")
-    width: float = _p(0.50, "length", 0.0, 10.0, "flume width B dividing the discharge [m]; usual 0.5", "(]")
+    # the core's FlowParams.flume_width is the one source of the default
+    width: float = _p(_core.FlowParams().flume_width, "length", 0.0, 10.0,
+                      "flume width B dividing the discharge [m]; usual 0.5", "(]")
     height: float = _p(0.45, "length", 0.05, 10.0, "domain height above the bed [m]", "(]")
     bed_slope: float = _p(0.0, None, -0.1, 0.1, "bed slope S0 = sin(angle) [-], positive falling downstream")
     outflow: str = _choice("free_overfall", ("free_overfall", "tailwater"),
@@ -615,12 +619,12 @@ class Scene:
             sec = getattr(self, key)
             if key in _OPTIONAL_SECTIONS and sec == type(sec)():
                 continue
-            out[key] = _section_dict(sec)
+            out[key] = section_dict(sec)
             if key == "weir" and sec.outline:  # the outline replaces the trapezoid's keys
                 for k in TRAPEZOID_KEYS:
                     out[key].pop(k)
         if self.zones:
-            out["zones"] = [_section_dict(zn) for zn in self.zones]
+            out["zones"] = [section_dict(zn) for zn in self.zones]
         h = self.hydrograph
         if h.function is not None:
             t, q = h.table(self.duration)
@@ -651,7 +655,7 @@ class Scene:
             table = data[key]
             if not isinstance(table, dict):
                 raise ValueError(f"[{key}] must be a table of parameters, got {table!r}")
-            args = _section_args(sec_cls, table, key)
+            args = section_args(sec_cls, table, key, _LIST_KINDS)
             if key == "hydrograph":
                 args["base_dir"] = base_dir
             if key == "weir" and args.get("outline"):
@@ -664,33 +668,24 @@ class Scene:
             zones = data["zones"]
             if not isinstance(zones, list) or not all(isinstance(z, dict) for z in zones):
                 raise ValueError(f"zones = {zones!r} must be a list of tables ([[zones]] in a scene file)")
-            kwargs["zones"] = [Zone(**_section_args(Zone, z, f"zones[{j}]")) for j, z in enumerate(zones)]
+            kwargs["zones"] = [Zone(**section_args(Zone, z, f"zones[{j}]", _LIST_KINDS)) for j, z in enumerate(zones)]
         return cls(**kwargs)
 
     def to_toml(self) -> str:
         """The scene as TOML text (what `load_scene` reads back to an equal scene)."""
         d = self.to_dict()
         lines = [f"# vofdem scene '{self.name}' (SI units; angles *_deg in degrees, discharges *_lps in l/s)"]
-        for k in _TOP_KEYS:
-            if k in d:
-                lines.append(f"{k} = {_toml_value(d[k])}")
+        lines += toml_table(None, {k: d[k] for k in _TOP_KEYS if k in d})
         for key in _SECTIONS:
-            if key not in d:
-                continue
-            lines.append("")
-            lines.append(f"[{key}]")
-            for k, v in d[key].items():
-                lines.append(f"{k} = {_toml_value(v)}")
+            if key in d:
+                lines += [""] + toml_table(f"[{key}]", d[key])
         for zone in d.get("zones", []):
-            lines += ["", "[[zones]]"] + [f"{k} = {_toml_value(v)}" for k, v in zone.items()]
+            lines += [""] + toml_table("[[zones]]", zone)
         return "\n".join(lines) + "\n"
 
     @classmethod
     def from_toml(cls, text: str, source: str = "scene", base_dir: Optional[str] = None) -> "Scene":
-        try:
-            data = _toml.loads(text)
-        except _toml.TOMLDecodeError as e:
-            raise ValueError(f"{source}: not valid TOML: {e}") from None
+        data = parse_toml(text, source)
         if not data:
             raise ValueError(f"{source}: the scene is empty (no keys, no sections); write at least the sections "
                              f"that differ from the defaults, e.g. [flume], or run the ready scene 'maeno2008'")
@@ -738,33 +733,6 @@ class Scene:
         return getattr(getattr(self, section), name) if section else getattr(self, key)
 
 
-def _section_dict(sec) -> Dict[str, Any]:
-    """A section's keys and values (TOML-ready), without the Python-only fields and unset optional ones."""
-    d = {}
-    for f in dataclasses.fields(sec):
-        v = getattr(sec, f.name)
-        if f.metadata.get("python_only") or v is None:
-            continue
-        d[f.name] = copy.deepcopy(v)
-    return d
-
-
-def _section_args(sec_cls, table: Dict[str, Any], where: str) -> Dict[str, Any]:
-    """A section's constructor arguments from a TOML table: unknown keys refused, units converted."""
-    fields = {f.name: f for f in dataclasses.fields(sec_cls) if not f.metadata.get("python_only")}
-    args = {}
-    for k, v in table.items():
-        if k not in fields:
-            raise ValueError(_unknown(k, fields, f"[{where}]", prefix=where))
-        md = fields[k].metadata
-        args[k] = _parse_quantity(f"{where}.{k}", v, md.get("kind")) if "lo" in md else v
-    for k, kind in _LIST_KINDS.items():
-        if k in args and isinstance(args[k], list):
-            args[k] = [_parse_quantity(f"{where}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
-                       for j, v in enumerate(args[k])]
-    return args
-
-
 def load_scene(path) -> Scene:
     """Reads and validates a TOML scene file; ValueError names the file and the problem."""
     from pathlib import Path
@@ -781,15 +749,4 @@ def load_scene(path) -> Scene:
 
 def describe_parameters() -> str:
     """A markdown table of every scene parameter: section, name, default, range, meaning."""
-    rows = ["| parameter | default | allowed | meaning |", "|---|---|---|---|"]
-    for key, cls in [*_SECTIONS.items(), ("zones[]", Zone)]:
-        for f in dataclasses.fields(cls):
-            md = f.metadata
-            if md.get("python_only"):
-                continue
-            default = f.default if f.default is not dataclasses.MISSING else f.default_factory()
-            allowed = _range_text(md) if "lo" in md else (" / ".join(md["choices"]) if "choices" in md
-                                                            else ("true / false" if "flag" in md else
-                                                                  ("text" if "text" in md else "list")))
-            rows.append(f"| {key}.{f.name} | {default!r} | {allowed} | {md.get('doc', '')} |")
-    return "\n".join(rows)
+    return describe([*_SECTIONS.items(), ("zones[]", Zone)])

@@ -17,13 +17,23 @@ struct Scene {
 
 inline DEMParams wet_dem(double x0, double x1) {
   DEMParams p;
-  p.fluid_density = FlowParams().rho_water;
+  p.submerged = true;
+  p.medium.rho_water = FlowParams().medium.rho_water;
   p.add_flume(x0, x1, 0.0);
   return p;
 }
 
+// the porous resistance on the velocity relative to the stones: the flow's own flag, set on the built
+// flow (set_params) right before the Coupler, as the scenes' pinned runs had it
+inline void resist_relative_to_stones(VOFGrid& f) {
+  FlowParams p = f.params();
+  if (p.flags & kFlowRelativeVelocity) return;
+  p.flags |= kFlowRelativeVelocity;
+  f.set_params(p);
+}
+
 // a tank width x height [m] of square cells h [m], water below `level` [m], stones at pos (x, z pairs)
-// of radius r [m] (density 2650)
+// of radius r [m] (density 2650); a two-way coupling (kCouplePorosity) resists relative to the stones
 inline Scene tank(double width, double height, double h, double level, const std::vector<double>& pos, double r,
                   unsigned flags, const FlowParams& fp = FlowParams()) {
   Scene s;
@@ -35,6 +45,7 @@ inline Scene tank(double width, double height, double h, double level, const std
   const std::size_t n = pos.size() / 2;
   s.stones = std::make_unique<DEMSystem>(wet_dem(0.0, width), pos, std::vector<double>(n, r),
                                          std::vector<double>(n, 2650.0));
+  if ((flags & kCouplePorosity) && n > 0) resist_relative_to_stones(*s.fluid);
   CouplerParams cp;
   cp.flags = flags;
   s.sim = std::make_unique<Coupler>(s.fluid.get(), s.stones.get(), cp);

@@ -75,7 +75,7 @@ TEST(BedDrag, ParamsDefaultToTheSphereDragAndRejectUnknownModels) {
 
 TEST(Coupler, BedDragAndPressureGradientCarryThePressureDropOfTheBulk) {
   // The closure-law channel (test_vof_grid.cpp): a porous box (n = 0.4, D = 0.02 m) in a 1 m x 0.1 m
-  // closed channel, Q = 3 l/s over B = 0.3 m (FlowParams' default): u = 0.1 m/s superficial; three fixed
+  // closed channel, Q = 3 l/s over B = 0.3 m: u = 0.1 m/s superficial; three fixed
   // stones of the box's diameter inside it (their porosity not mapped: the box is the bed they stand
   // for). Steady uniform flow: -dp/dx = G = rho u (a + b u) with a = 200 x 1.004e-6 x 0.36 / (0.064 x
   // 4e-4) = 2.82375 1/s, b = 2.8 x 0.6 / (0.064 x 0.02) = 1312.5 1/m: G = 99.82 x 134.07375 = 13383.2 Pa/m.
@@ -86,6 +86,7 @@ TEST(Coupler, BedDragAndPressureGradientCarryThePressureDropOfTheBulk) {
   const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
   FlowParams p;
   p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection;
+  p.flume_width = 0.3;
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
   p.top = TopBoundary::kWall;

@@ -77,6 +77,7 @@ TEST(BufferStability, ViewsOfFlowAndStonesSurviveEveryOperation) {
   fluid->set_params(fp);
   expect_held("VOFGrid::set_params");
   {
+    test::resist_relative_to_stones(*fluid);
     Coupler sim(fluid.get(), &stones, CouplerParams());
     expect_held("Coupler()");
     sim.advance(0.03);
@@ -89,9 +90,13 @@ TEST(BufferStability, ViewsOfFlowAndStonesSurviveEveryOperation) {
     sim.import_state(state);
     expect_held("Coupler::import_state");
     CouplerParams cp = sim.params();
-    cp.flags &= ~kCoupleRelativeVelocity;
+    cp.flags |= kCoupleLookupPorosity;  // a new porosity mapper
     sim.set_params(cp);
     expect_held("Coupler::set_params");
+    FlowParams rel = fluid->params();
+    rel.flags &= ~kFlowRelativeVelocity;
+    fluid->set_params(rel);
+    expect_held("VOFGrid::set_params of the relative velocity");
   }
   expect_held("~Coupler");
   EXPECT_THROW(fluid->step(10.0), std::runtime_error);  // the guard restores the step's start

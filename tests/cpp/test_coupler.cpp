@@ -49,15 +49,15 @@ double ode_velocity(double d, double rho_s, double rho, double nu, double cm, do
 void check_terminal_velocity(double d, double h, double width, double height, double t_end) {
   const FlowParams fp;
   Scene s = tank(width, height, h, height - 0.05, {0.5 * width, height - 0.15}, 0.5 * d, kCoupleOneWay);
-  const double vt = terminal_velocity(d, 2650.0, fp.rho_water, fp.nu_water, 9.81);
+  const double vt = terminal_velocity(d, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 9.81);
   double ode_dev = 0.0;
   for (int q = 1; q <= 10; ++q) {
     const double t = t_end * q / 10;
     s.sim->advance(t);
     const double v = -s.stones->disc_vel[1];
-    ode_dev = std::max(ode_dev, std::abs(v - ode_velocity(d, 2650.0, fp.rho_water, fp.nu_water, 1.0, t)) / vt);
+    ode_dev = std::max(ode_dev, std::abs(v - ode_velocity(d, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 1.0, t)) / vt);
     // the fall follows the ODE of the force balance (explicit exchange every step): 2 %
-    EXPECT_NEAR(v, ode_velocity(d, 2650.0, fp.rho_water, fp.nu_water, 1.0, t), 0.02 * vt) << "t = " << t;
+    EXPECT_NEAR(v, ode_velocity(d, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 1.0, t), 0.02 * vt) << "t = " << t;
     // the excess pressure gradient of still water is zero: buoyancy is not counted twice
     EXPECT_LT(std::abs(s.sim->disc_force_pressure[1]), 1e-9);
     EXPECT_EQ(s.stones->disc_wet[0], 1.0);
@@ -379,14 +379,37 @@ TEST(Coupler, SceneWithoutWaterIsTheBareDEM) {
 TEST(Coupler, BadInputIsRefused) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.2, 0.2);
   VOFGrid fluid(g, FlowParams());
-  DEMParams dp;  // dry DEM (fluid_density 0) against water
+  DEMParams dp;
   DEMSystem stones(dp, {0.1, 0.1}, {0.024}, {2650});
-  EXPECT_THROW(Coupler(&fluid, &stones, CouplerParams()), std::invalid_argument);
+  CouplerParams retired;
+  retired.flags |= 1u << 5;  // the former relative-velocity bit: the flow's flag now
+  EXPECT_THROW(Coupler(&fluid, &stones, retired), std::invalid_argument);
   CouplerParams cp;
   cp.stone_cfl = 2.0;
   EXPECT_THROW(Coupler(&fluid, nullptr, cp), std::invalid_argument);
   Coupler sim(&fluid, nullptr, CouplerParams());
   EXPECT_THROW(sim.step(-1.0), std::invalid_argument);
+}
+
+TEST(Coupler, TheStonesTakeTheFlowsMediumAndTheFlowKeepsItsFlags) {
+  const Grid2D g = Grid2D::uniform(4, 4, 0.2, 0.2);
+  FlowParams fp;
+  fp.medium.rho_water = 1000.0;
+  fp.medium.gravity = {0.5, -9.8};
+  VOFGrid fluid(g, fp);
+  DEMParams dp;  // dry, with its own medium
+  DEMSystem stones(dp, {0.1, 0.1}, {0.024}, {2650});
+  Coupler sim(&fluid, &stones, CouplerParams());
+  EXPECT_TRUE(stones.params().submerged);
+  EXPECT_TRUE(stones.params().medium == fp.medium);
+  EXPECT_EQ(stones.params().water_density(), 1000.0);
+  EXPECT_EQ(fluid.params().flags, fp.flags);  // two-way coupling adds no flag to the flow
+  // a medium changed on the flow reaches the stones before the next step
+  FlowParams f2 = fluid.params();
+  f2.medium.rho_water = 998.2;
+  fluid.set_params(f2);
+  sim.step(1e-4);
+  EXPECT_EQ(stones.params().medium.rho_water, 998.2);
 }
 
 TEST(Coupler, TwoWayFallingStoneBalancesItsSubmergedWeight) {

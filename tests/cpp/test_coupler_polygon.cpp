@@ -39,6 +39,7 @@ Scene box_tank(double width, double height, double h, double level, const std::v
     off.push_back(off.back() + 4);
   }
   s.stones->set_polygons(v, off);
+  if (flags & kCouplePorosity) resist_relative_to_stones(*s.fluid);
   CouplerParams cp;
   cp.flags = flags;
   s.sim = std::make_unique<Coupler>(s.fluid.get(), s.stones.get(), cp);
@@ -76,8 +77,8 @@ TEST(CouplerPolygon, FlatStoneFallsAtTheTerminalVelocityOfItsProjectedArea) {
   const FlowParams fp;
   const double area = 4 * a * b, rA = std::sqrt(area / kPi), d = 2 * rA;
   const double Ap = 0.5 * kPi * rA * 2 * a, V = 4.0 / 3.0 * area * rA;
-  const double W = (2650.0 - fp.rho_water) * V * 9.81;
-  const double A = 0.5 * fp.rho_water * Ap * 0.4, B = 0.5 * fp.rho_water * Ap * 24.0 * fp.nu_water / d;
+  const double W = (2650.0 - fp.medium.rho_water) * V * 9.81;
+  const double A = 0.5 * fp.medium.rho_water * Ap * 0.4, B = 0.5 * fp.medium.rho_water * Ap * 24.0 * fp.medium.nu_water / d;
   const double vt = (-B + std::sqrt(B * B + 4 * A * W)) / (2 * A);
   s.sim->advance(1.0);
   EXPECT_NEAR(-s.stones->disc_vel[1], vt, 0.03 * vt) << "v_t = " << vt;

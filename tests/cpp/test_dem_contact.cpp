@@ -159,7 +159,7 @@ namespace {
 // a stone resting on a horizontal bed with gravity tilted by theta: an incline
 DEMSystem incline(double theta, double mu, bool rotation, double inertia_factor) {
   DEMParams p;
-  p.gravity = {9.81 * std::sin(theta), -9.81 * std::cos(theta)};
+  p.medium.gravity = {9.81 * std::sin(theta), -9.81 * std::cos(theta)};
   p.stiffness_normal = 1e5;
   p.restitution = 0.0;
   p.inertia_factor = inertia_factor;

@@ -120,7 +120,7 @@ TEST(DEMPolygon, FlatImpactOnTheBedHasTheRestitution) {
   // each point's dashpot taking half the mass, so the rebound is e v, resolved by 400 steps per contact
   for (double e : {0.3, 0.5, 0.9}) {
     DEMParams p;
-    p.gravity = {0.0, 0.0};
+    p.medium.gravity = {0.0, 0.0};
     p.restitution = e;
     p.stiffness_normal = 1e5;
     p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.5});
@@ -142,7 +142,7 @@ TEST(DEMPolygon, BlockOnInclineHoldsBelowTheFrictionAngleAndSlidesAbove) {
   const double mu = 0.5, g = 9.81, a = 0.03, b = 0.015;
   auto incline = [&](double theta) {
     DEMParams p;
-    p.gravity = {g * std::sin(theta), -g * std::cos(theta)};
+    p.medium.gravity = {g * std::sin(theta), -g * std::cos(theta)};
     p.stiffness_normal = 1e5;
     p.dt = 5e-5;
     p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, mu});
@@ -176,7 +176,7 @@ TEST(DEMPolygon, HexagonTipsOverAtThirtyDegrees) {
   auto run = [&](double deg) {
     const double th = deg * kPi / 180.0;
     DEMParams p;
-    p.gravity = {9.81 * std::sin(th), -9.81 * std::cos(th)};
+    p.medium.gravity = {9.81 * std::sin(th), -9.81 * std::cos(th)};
     p.dt = 4e-5;
     p.contact_steps = 50;
     p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.8});

@@ -40,7 +40,8 @@ DEMSystem random_box(int n, std::uint64_t seed, DEMParams p = {}) {
 TEST(DEMSystem, FreeStoneUnderWaterFollowsEquationNine) {
   // (M + M') z'' = -(M - rho_w V) g + F_z, with M' = rho_w C_M V
   DEMParams p;
-  p.fluid_density = 1000.0;
+  p.submerged = true;
+  p.medium.rho_water = 1000.0;
   p.added_mass_coefficient = 1.0;
   DEMSystem s(p, {0.0, 1.0}, {kR}, {2650.0});
   s.disc_force_ext[0] = 0.2;

@@ -85,7 +85,8 @@ TEST(DEMSystem, LinearDragRelaxesExactlyAtAnyStep) {
   // exact for a constant other force, so the DEM meets it to round-off for k dt from 1e-3 to 100.
   for (double kdt : {1e-3, 1.0, 100.0}) {
     DEMParams p;
-    p.fluid_density = 998.2;
+    p.submerged = true;
+    p.medium.rho_water = 998.2;
     DEMSystem s(p, {0.0, 0.0}, {0.024}, {2650.0});
     const double m = s.mass(0) + 998.2 * p.added_mass_coefficient * s.volume(0);
     const double gz = (s.mass(0) - 998.2 * s.volume(0)) * -9.81 / m;
@@ -111,7 +112,8 @@ TEST(DEMSystem, LinearDragFollowsTheAddedMassAcrossALevel) {
   // bring it back to U with the drag's rate at its new mass. A kick scale kept from the advance's
   // start would leave it short of U by up to 27 % of each slowdown (3.4e-5 m/s here).
   DEMParams p;
-  p.fluid_density = 1000.0;
+  p.submerged = true;
+  p.medium.rho_water = 1000.0;
   p.flags &= ~static_cast<unsigned>(kDEMGravity);
   DEMSystem s(p, {0.5, 0.35}, {0.024}, {2650.0});
   const double U = -0.5, c = 50.0 / p.dt * s.mass(0);
@@ -146,7 +148,8 @@ Relaxation relax(double U, double steps_per_tau, double t_end_tau, bool implicit
   fluid.fill_water_below(0.2);
   std::fill(fluid.face_u.begin(), fluid.face_u.end(), U);
   DEMParams dp;
-  dp.fluid_density = fluid.params().rho_water;
+  dp.submerged = true;
+  dp.medium.rho_water = fluid.params().medium.rho_water;
   dp.flags &= ~static_cast<unsigned>(kDEMGravity);
   DEMSystem stones(dp, {0.2, 0.1}, {0.024}, {2650.0});
   CouplerParams cp;
@@ -154,7 +157,7 @@ Relaxation relax(double U, double steps_per_tau, double t_end_tau, bool implicit
   cp.implicit_drag = implicit;
   Coupler sim(&fluid, &stones, cp);
   // exact: m dr/dt = -(a' r + b' r^2), r = U - v, a' = 1/2 rho A 24 nu / d, b' = 1/2 rho A 0.4
-  const double rho = fluid.params().rho_water, nu = fluid.params().nu_water, d = 0.048;
+  const double rho = fluid.params().medium.rho_water, nu = fluid.params().medium.nu_water, d = 0.048;
   const double m = stones.mass(0) + rho * dp.added_mass_coefficient * stones.volume(0);
   const double half_rho_a = 0.5 * rho * M_PI * d * d / 4.0;
   const double a = half_rho_a * 24.0 * nu / d / m, b = half_rho_a * 0.4 / m;

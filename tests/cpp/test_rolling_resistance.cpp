@@ -211,7 +211,7 @@ namespace {
 // a stone resting on a horizontal bed with gravity tilted by theta: an incline
 DEMSystem incline(double theta, double mu, double mu_r, double inertia_factor) {
   DEMParams p = rolling_params(0.0, mu_r);
-  p.gravity = {9.81 * std::sin(theta), -9.81 * std::cos(theta)};
+  p.medium.gravity = {9.81 * std::sin(theta), -9.81 * std::cos(theta)};
   p.stiffness_normal = 1e5;
   p.inertia_factor = inertia_factor;
   p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, mu});

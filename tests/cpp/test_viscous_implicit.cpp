@@ -337,7 +337,7 @@ TEST(ImplicitViscosity, FlowParamsSelectTheSchemeAndTheStepLimit) {
   EXPECT_EQ(p.viscous_scheme, ViscousScheme::kImplicitVertical);
   p.flags = kFlowViscosity | kFlowGravity;
   p.walls = WallCondition::kNoSlip;
-  p.nu_water = 1e-3;
+  p.medium.nu_water = 1e-3;
   VOFGrid fi(g, p);
   p.viscous_scheme = ViscousScheme::kExplicit;
   VOFGrid fe(g, p);

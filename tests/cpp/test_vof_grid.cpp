@@ -60,8 +60,8 @@ TEST_P(VOFGridBySolver, SteadyFlowThroughPorousBlockFollowsClosureLaw) {
   flow.set_discharge(DischargeTable::constant(Q));
   flow.advance(0.5);
   const double u = Q / p.flume_width / 0.1;  // superficial velocity [m/s]
-  const PorousCoefficients c = porous_coefficients(n, d, p.nu_water, p.k1, p.k2);
-  const double expected = -p.rho_water * u * (c.linear + c.quadratic * u);
+  const PorousCoefficients c = porous_coefficients(n, d, p.medium.nu_water, p.k1, p.k2);
+  const double expected = -p.medium.rho_water * u * (c.linear + c.quadratic * u);
   // interior of the block, away from its ends (i = 14..25 hold centres 0.3625..0.6375 m)
   for (int k = 0; k < g.nz(); ++k) {
     const double dpdx = (flow.cell_p[g.cell(25, k)] - flow.cell_p[g.cell(14, k)]) / (11 * g.dx());
@@ -450,9 +450,9 @@ TEST(VOFGrid, RelativeVelocityResistanceUsesTheStonesVelocity) {
   for (int k = 0; k < g.nz(); ++k)
     for (int i = 0; i <= g.nx(); ++i) flow.face_x_solid_u[g.face_x(i, k)] = 0.5 * u / n;
   flow.advance(0.5);
-  const PorousCoefficients c = porous_coefficients(n, d, p.nu_water, p.k1, p.k2);
+  const PorousCoefficients c = porous_coefficients(n, d, p.medium.nu_water, p.k1, p.k2);
   const double ur = 0.5 * u;
-  const double expected = -p.rho_water * ur * (c.linear + c.quadratic * ur);
+  const double expected = -p.medium.rho_water * ur * (c.linear + c.quadratic * ur);
   for (int k = 0; k < g.nz(); ++k) {
     const double dpdx = (flow.cell_p[g.cell(25, k)] - flow.cell_p[g.cell(14, k)]) / (11 * g.dx());
     EXPECT_NEAR(dpdx, expected, 0.01 * std::abs(expected)) << "row " << k;
@@ -462,7 +462,7 @@ TEST(VOFGrid, RelativeVelocityResistanceUsesTheStonesVelocity) {
   fixed.flags &= ~kFlowRelativeVelocity;
   flow.set_params(fixed);
   flow.advance(1.0);
-  const double full = -p.rho_water * u * (c.linear + c.quadratic * u);
+  const double full = -p.medium.rho_water * u * (c.linear + c.quadratic * u);
   const double dpdx = (flow.cell_p[g.cell(25, 2)] - flow.cell_p[g.cell(14, 2)]) / (11 * g.dx());
   EXPECT_NEAR(dpdx, full, 0.01 * std::abs(full));
 }
@@ -487,8 +487,8 @@ TEST(VOFGrid, PorousResistanceUsesTheMolecularViscosityNotTheEddyViscosity) {
   const double u = Q / p.flume_width / 0.1;
   std::fill(flow.cell_nut.begin(), flow.cell_nut.end(), 1e-2);
   flow.step(1e-3);
-  const PorousCoefficients c = porous_coefficients(n, d, p.nu_water, p.k1, p.k2);
-  const double expected = -p.rho_water * u * (c.linear + c.quadratic * u);
+  const PorousCoefficients c = porous_coefficients(n, d, p.medium.nu_water, p.k1, p.k2);
+  const double expected = -p.medium.rho_water * u * (c.linear + c.quadratic * u);
   for (int k = 1; k < g.nz() - 1; ++k) {
     const double dpdx = (flow.cell_p[g.cell(25, k)] - flow.cell_p[g.cell(14, k)]) / (11 * g.dx());
     EXPECT_NEAR(dpdx, expected, 0.01 * std::abs(expected)) << "row " << k;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "coupler_scenes.h"
 #include "vofdem/coupler.h"
 #include "vofdem/step_retry.h"
 #include "vofdem/vof_grid.h"
@@ -122,11 +123,13 @@ TEST(VOFTimeStep, CouplerRetriesABreachingStepAndCountsIt) {
   VOFGrid flow(wall_grid(), p);
   column_against_wall(flow);
   DEMParams dp;
-  dp.fluid_density = p.rho_water;
+  dp.submerged = true;
+  dp.medium.rho_water = p.medium.rho_water;
   dp.add_flume(0.0, 0.5, 0.0);
   DEMSystem stones(dp, {0.4, 0.02}, {0.02}, {2650.0});  // a stone on the dry bed behind the wall
   CouplerParams cp;
   cp.flags = kCoupleTwoWay;
+  test::resist_relative_to_stones(flow);
   Coupler sim(&flow, &stones, cp);
   const double v0 = sim.water_volume();
   sim.advance(0.05);

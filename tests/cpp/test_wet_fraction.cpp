@@ -37,7 +37,8 @@ TEST(WetFraction, ShareOfADiscBelowALevel) {
 
 TEST(WetFraction, WaterTakenOnStartsAtRest) {
   DEMParams p;
-  p.fluid_density = 1000.0;
+  p.submerged = true;
+  p.medium.rho_water = 1000.0;
   p.flags &= ~kDEMGravity;
   DEMSystem s(p, {0.5, 0.5}, {kR}, {2650.0});
   s.set_wet_fraction(0, 0.0);
@@ -63,7 +64,8 @@ namespace {
 // held in between
 std::pair<double, double> bobbing(bool follow) {
   DEMParams p;
-  p.fluid_density = 1000.0;
+  p.submerged = true;
+  p.medium.rho_water = 1000.0;
   p.added_mass_coefficient = 0.0;
   DEMSystem s(p, {0.5, 0.3}, {kR}, {500.0});
   s.disc_vel[1] = 0.2;
@@ -82,7 +84,8 @@ std::pair<double, double> bobbing(bool follow) {
 
 TEST(WetFraction, TheWetFractionFollowsTheStoneAcrossALevel) {
   DEMParams p;
-  p.fluid_density = 1000.0;
+  p.submerged = true;
+  p.medium.rho_water = 1000.0;
   DEMSystem s(p, {0.5, 0.3}, {kR}, {500.0});
   s.disc_water_level[0] = 0.3;
   s.disc_vel[1] = 0.2;

@@ -5,7 +5,7 @@ import pytest
 import vofdem
 from vofdem import _core
 
-from hc_harness import D, case, couple, dem_params, stones, tank
+from hc_harness import D, RHO_W, case, couple, dem_params, stones, tank
 
 
 def coupled_tank():
@@ -102,14 +102,15 @@ def stone_outside():
 
 @case("dem_and_flow_disagree_on_the_water", "errors",
       "stones told the water is 1025 kg/m3 (sea water) while the flow holds 998.2 kg/m3",
-      "ValueError at construction naming fluid_density and the flow's value")
+      "the coupler hands the stones the flow's medium (water and gravity): one value, no disagreement")
 def density_mismatch():
     fluid = tank(0.2, 0.2, 0.01, 0.1)
     p = dem_params(0.0, 0.2)
-    p.fluid_density = 1025.0
-    with pytest.raises(ValueError, match="fluid_density") as e:
-        couple(fluid, stones(p, [[0.1, 0.05]]))
-    return {"message": str(e.value)[:90]}
+    p.medium.rho_water = 1025.0
+    dem = stones(p, [[0.1, 0.05]])
+    couple(fluid, dem)
+    assert dem.params.medium == fluid.params.medium and dem.params.water_density == RHO_W
+    return {"stones' water": f"{dem.params.water_density:g} kg/m3"}
 
 
 @case("bad_parameters_of_every_solver", "errors",

@@ -68,7 +68,7 @@ def tank(width: float, height: float, h: float, level: Optional[float], hz: Opti
 def dem_params(x0: float, x1: float, wet: bool = True, **kw):
     """DEMParams of a flume [x0, x1] (bed z = 0, both end walls), water density if wet."""
     p = vofdem.DEMParams()
-    p.fluid_density = RHO_W if wet else 0.0
+    p.submerged = wet
     p.add_flume(x0, x1, 0.0)
     for k, v in kw.items():
         setattr(p, k, v)
@@ -90,6 +90,10 @@ def couple(fluid, dem, flags=None, **kw):
         cp.flags = int(flags)
     for k, v in kw.items():
         setattr(cp, k, v)
+    if fluid is not None and dem is not None and dem.n > 0 and cp.flags & _core.COUPLE_POROSITY:
+        fp = fluid.params  # two-way: the flow resists relative to the stones (its own flag)
+        fp.flags = int(fp.flags) | int(vofdem.FlowEffect.RELATIVE_VELOCITY)
+        fluid.params = fp
     return _core.Coupler(fluid, dem, cp)
 
 

@@ -4,8 +4,10 @@
 // parameter, the value given and the allowed range, so a user can fix the call without reading code.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace vofdem {
 
@@ -22,6 +24,14 @@ void require_non_negative(const char* name, double value);
 void require_in_open_closed(const char* name, double value, double lo, double hi);
 // value must lie in [lo, hi]
 void require_in_closed(const char* name, double value, double lo, double hi);
+
+// an array of a state (a copy or a checkpoint) must hold `size` values
+template <class T>
+void require_size(const char* name, const std::vector<T>& v, std::size_t size) {
+  if (v.size() != size)
+    throw std::invalid_argument(std::string("state: '") + name + "' has " + std::to_string(v.size()) +
+                                " values, expected " + std::to_string(size));
+}
 
 // A step whose velocities carry a cell's content further than one cell (Courant number > 1). The
 // velocities a step creates (a stone moving into a pore, a jet leaving the crest) are not known when its

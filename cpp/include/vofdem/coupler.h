@@ -61,7 +61,9 @@ enum CouplerEffect : unsigned {
   kCouplePorosity = 1u << 2,          // two-way feedback: the porosity (and water volume) follows the stones
   kCoupleDrag = 1u << 3,              // drag on the stones, eqs. (16)-(18)
   kCouplePressureGradient = 1u << 4,  // F_S = -V (grad p - rho_w F g) on the stones
-  kCoupleRelativeVelocity = 1u << 5,  // porous resistance on the velocity relative to the stones
+  // 1u << 5 retired: the porous resistance on the velocity relative to the stones is the flow's own
+  // effect (kFlowRelativeVelocity), owned by FlowParams::flags; the coupler maps the stones' velocity
+  // to the faces whenever that flag is on
   kCoupleWetFraction = 1u << 6,       // disc_wet from the water fraction (buoyancy, added mass); off: w kept
   kCoupleChecks = 1u << 7,            // non-finite forces / stone state checked every step
   kCoupleLookupPorosity = 1u << 8,    // porosity from the paper's lookup table instead of exact disc areas
@@ -69,7 +71,7 @@ enum CouplerEffect : unsigned {
                                       // F kept) instead of moving the displaced water by volume
   kCoupleForces = kCoupleDrag | kCouplePressureGradient,
   kCoupleOneWay = kCoupleDEM | kCoupleFluid | kCoupleForces | kCoupleWetFraction | kCoupleChecks,
-  kCoupleTwoWay = kCoupleOneWay | kCouplePorosity | kCoupleRelativeVelocity,
+  kCoupleTwoWay = kCoupleOneWay | kCouplePorosity,
   kCoupleDefault = kCoupleTwoWay,
 };
 
@@ -122,7 +124,8 @@ class Coupler {
   // couples `fluid` and `stones` (either may be null: a scene without water or without stones); both
   // must outlive the coupler. The porosity of the fluid at construction is kept as the base porosity
   // (walls, fixed porous zones) that the stones' porosity is combined with (the smaller one wins).
-  // Checks that the DEM's fluid_density and gravity match the flow's when both are present.
+  // With both, the flow's medium (water, gravity) is handed to the stones, submerged (medium.h); so
+  // again before every step if either was changed since. The flow's flags are the flow's own.
   Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params);
   Coupler(const Coupler&) = delete;
   Coupler& operator=(const Coupler&) = delete;
@@ -131,7 +134,7 @@ class Coupler {
   DEMSystem* stones() { return stones_; }
   const CouplerParams& params() const { return params_; }
   // replaces the parameters after checking them (a refused set changes nothing): the porosity mapper
-  // and the flow's relative-velocity flag follow them
+  // follows them (the flow's flags are the flow's own)
   void set_params(const CouplerParams& params);
   int n() const { return n_; }
 
@@ -187,13 +190,12 @@ class Coupler {
   std::vector<double> cell_base_diameter;   // stone diameter of the base porosity [m], ncell
 
  private:
-  void check_scene() const;
+  void share_medium();
   void check_params(const CouplerParams& p) const;
   // stable_dt() and which limit binds (term, cell: -1 where it has no place)
   double stable_dt_limits(const char** term, int* cell);
   void count_limit(const char* term, int cell);
   int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
-  void apply_flow_flags();
   void make_mapper();
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();

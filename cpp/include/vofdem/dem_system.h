@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "vofdem/medium.h"
 #include "vofdem/polygon.h"
 #include "vofdem/profile.h"
 
@@ -72,8 +73,10 @@ struct DEMWall {
 
 // constant parameters of a DEM run (SI units)
 struct DEMParams {
-  std::array<double, 2> gravity{0.0, -9.81};  // gravitational acceleration (x, z) [m/s^2]
-  double fluid_density = 0.0;                 // rho_w [kg/m^3]; 1000 for water, 0 = dry
+  Medium medium;          // water and gravity (medium.h); a Coupler hands the flow's to the stones
+  bool submerged = false;  // the stones lie in the medium's water (buoyancy, added mass); false: dry
+  // rho_w of buoyancy and added mass [kg/m^3]: the medium's water when submerged, else 0
+  double water_density() const { return submerged ? medium.rho_water : 0.0; }
   double added_mass_coefficient = 1.0;        // C_M [-]; paper's run 1.0 (its text 0.5)
   double dt = 1e-4;                           // DEM step [s]; advance() substeps never exceed it (paper 1e-4)
   double stiffness_normal = 0.0;              // k_n [N/m]; 0 = automatic (Gotoh & Sakai): see dem_contact.h
@@ -246,7 +249,7 @@ class DEMSystem {
   std::vector<double> disc_drag_coef;       // linear drag coefficient c >= 0 [N s/m], n; 0 (with kDEMExternalForce)
   std::vector<double> disc_drag_vel;        // velocity U the linear drag c (U - v) pulls towards [m/s], 2n
   std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
-                                            // when fluid_density > 0, else 0 (set_params keeps it)
+                                            // when submerged, else 0 (set_params keeps it)
   std::vector<double> disc_water_level;     // free-surface level at each stone [m], n; NaN (default): disc_wet
                                             // is held as set; else disc_wet follows the stone's height over the
                                             // substeps, the disc's share below the level (wet_fraction.h)

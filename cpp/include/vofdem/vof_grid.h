@@ -58,6 +58,7 @@
 #include "vofdem/grid.h"
 #include "vofdem/inflow.h"
 #include "vofdem/k_epsilon.h"
+#include "vofdem/medium.h"
 #include "vofdem/momentum.h"
 #include "vofdem/pressure_solver.h"
 #include "vofdem/profile.h"
@@ -107,12 +108,7 @@ constexpr double kMaxFlowCfl = 0.5;
 
 // parameters of the flow, constant while stepping (SI units)
 struct FlowParams {
-  double rho_water = 998.2;    // water density [kg/m^3], 998.2 at 20 C
-  double rho_air = 1.204;      // air density [kg/m^3], 1.204 at 20 C
-  double nu_water = 1.004e-6;  // water kinematic viscosity [m^2/s], 1.004e-6 at 20 C
-  double nu_air = 1.516e-5;    // air kinematic viscosity [m^2/s], 1.516e-5 at 20 C
-  double gravity_x = 0.0;      // gravity along the flume [m/s^2], 0 (or g sin(slope))
-  double gravity_z = -9.81;    // gravity upwards component [m/s^2], -9.81
+  Medium medium;               // water, air and gravity (medium.h); shared with the stones by a Coupler
   double cfl = 0.4;            // target advective Courant number (pore velocity) [-], (0, kMaxFlowCfl]
   double max_dt = 0.01;        // largest time step [s], 0.01
   // first step [s] (from rest the velocity terms impose no limit yet), 1e-3: a gravity wave of a
@@ -123,7 +119,7 @@ struct FlowParams {
   double min_dt = 1e-8;        // a stable step below this [s] is a failure (velocity blow-up), 1e-8
   double k1 = 200.0;           // linear resistance coefficient of eq. (7) [-], 200 (Ergun 150)
   double k2 = 2.8;             // quadratic resistance coefficient of eq. (7) [-], 2.8 (Ergun 1.75)
-  double flume_width = 0.3;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.3
+  double flume_width = 0.5;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.5 (the scenes')
   PressureSolverKind pressure_solver = PressureSolverKind::kMultigridCG;  // projection solver (Eigen: reference)
   double pressure_tol = 1e-8;   // relative residual of the iterative pressure solve [-], 1e-8
   InletBoundary inlet = InletBoundary::kWall;          // left end (x = x0)

@@ -1,4 +1,6 @@
-"""Classical validation cases of the flow solver `VOFGrid`, with their measured reference data.
+"""Classical validation cases of the flow solver `VOFGrid`, with their measured reference data: the
+drivers of tests/test_vof_validation.py and of the validation studies here (not part of the installed
+package; `import vof_cases` from benchmarks/).
 
 - Dam break of Martin & Moyce (1952): surge front Z = x/a against T = t sqrt(2 g / a).
 - Dam break through a porous dam of crushed rock (Lin 1998; Liu, Lin, Chang & Sakakiyama 1999):
@@ -15,7 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _core
+from vofdem import _core
+from vofdem.flow import dam_break
 
 __all__ = [
     "MM_A", "MM_T", "MM_Z", "MM_TIME_SHIFT", "front_from_row", "dam_break_params", "dam_break_front",
@@ -108,9 +111,9 @@ def dam_break_front(n: int = 8, t_end: float = 0.2, sample_dt: float = 0.005, cf
     counts the stepping only (the front sampling is a few numpy operations per sample).
     """
     a = MM_A
-    grid = _core.Grid2D.uniform(8 * n, (5 * n) // 2, 8 * a, 2.5 * a)
-    flow = _core.VOFGrid(grid, dam_break_params(cfl, solver, walls, scheme))
-    flow.fill_water_box(0.0, a, 0.0, 2.0 * a)
+    flow = dam_break(a=a, cells_per_a=n, length_in_a=8.0, height_in_a=2.5,
+                     params=dam_break_params(cfl, solver, walls, scheme))
+    grid = flow.grid
     xs = (np.arange(8 * n) + 0.5) * (a / n)
     F = flow.cell_F
     v0 = flow.water_volume()

@@ -1,15 +1,18 @@
-"""Scene parameters: the field helpers every section of a scene shares (units, ranges, choices, flags),
-and the validation of one value. A numeric field carries its unit kind and allowed range in its metadata;
+"""The scene's schema engine, apart from the scene's sections (scene.py, flood.py, reference.py): the field
+helpers every section shares (units, ranges, choices, flags), the validation of one value, a section to
+and from a TOML table (units converted, unknown keys refused with the closest valid one suggested), TOML
+text, and the parameter table. A numeric field carries its unit kind and allowed range in its metadata;
 a value given as a string in a TOML file may carry a unit ("4.8 cm"), converted to the field's unit.
 Errors are ValueError naming the parameter's dotted name, the value and the allowed range."""
 from __future__ import annotations
 
+import copy
 import dataclasses
 import difflib
 import math
 import re
 from dataclasses import field
-from typing import Dict, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 try:  # Python >= 3.11
     import tomllib as _toml
@@ -151,3 +154,60 @@ def _toml_value(v) -> str:
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     raise TypeError(f"cannot write {type(v).__name__} to TOML")
+
+
+def section_dict(sec) -> Dict[str, Any]:
+    """A section's keys and values (TOML-ready), without the Python-only fields and unset optional ones."""
+    d = {}
+    for f in dataclasses.fields(sec):
+        v = getattr(sec, f.name)
+        if f.metadata.get("python_only") or v is None:
+            continue
+        d[f.name] = copy.deepcopy(v)
+    return d
+
+
+def section_args(sec_cls, table: Dict[str, Any], where: str, list_kinds: Dict[str, Optional[str]]) -> Dict[str, Any]:
+    """A section's constructor arguments from a TOML table: unknown keys refused, units converted (also of
+    the entries of the lists named in list_kinds, {key: unit kind})."""
+    fields = {f.name: f for f in dataclasses.fields(sec_cls) if not f.metadata.get("python_only")}
+    args = {}
+    for k, v in table.items():
+        if k not in fields:
+            raise ValueError(_unknown(k, fields, f"[{where}]", prefix=where))
+        md = fields[k].metadata
+        args[k] = _parse_quantity(f"{where}.{k}", v, md.get("kind")) if "lo" in md else v
+    for k, kind in list_kinds.items():
+        if k in args and isinstance(args[k], list):
+            args[k] = [_parse_quantity(f"{where}.{k}[{j}]", v, kind) if not isinstance(v, list) else v
+                       for j, v in enumerate(args[k])]
+    return args
+
+
+def parse_toml(text: str, source: str) -> Dict[str, Any]:
+    """The tables of a TOML text; ValueError naming `source` when it is not TOML."""
+    try:
+        return _toml.loads(text)
+    except _toml.TOMLDecodeError as e:
+        raise ValueError(f"{source}: not valid TOML: {e}") from None
+
+
+def toml_table(header: Optional[str], table: Dict[str, Any]) -> List[str]:
+    """The lines of one TOML table (header '[name]' or '[[name]]'; None: top-level keys)."""
+    return ([header] if header else []) + [f"{k} = {_toml_value(v)}" for k, v in table.items()]
+
+
+def describe(sections: Sequence[Tuple[str, Any]]) -> str:
+    """A markdown table of every field of the sections [(key, class)]: name, default, range, meaning."""
+    rows = ["| parameter | default | allowed | meaning |", "|---|---|---|---|"]
+    for key, cls in sections:
+        for f in dataclasses.fields(cls):
+            md = f.metadata
+            if md.get("python_only"):
+                continue
+            default = f.default if f.default is not dataclasses.MISSING else f.default_factory()
+            allowed = _range_text(md) if "lo" in md else (" / ".join(md["choices"]) if "choices" in md
+                                                            else ("true / false" if "flag" in md else
+                                                                  ("text" if "text" in md else "list")))
+            rows.append(f"| {key}.{f.name} | {default!r} | {allowed} | {md.get('doc', '')} |")
+    return "\n".join(rows)
