@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import vofdem
-from vofdem.builder import build_simulation, build_stones, coupler_params, disc_porosity, solid_fraction
+from vofdem.builder import (build_simulation, build_stones, coupler_params, disc_porosity, flow_params,
+                             solid_fraction)
 from vofdem.run import grid_faces
 from vofdem.scene import GridSpec, Scene, describe_parameters
 
@@ -35,6 +36,8 @@ def test_defaults_are_the_papers_and_choices_are_validated():
     p = coupler_params(s)
     assert p.stone_drag == vofdem.StoneDragModel.SPHERE and p.n_exp == s.stones.n_exp and p.lookup_m == 8
     assert coupler_params(s.with_value("numerics.lookup_m", 16)).lookup_m == 16
+    assert flow_params(s).viscous_substeps == 8
+    assert flow_params(s.with_value("numerics.viscous_substeps", 1)).viscous_substeps == 1
     s.stones.drag_model = "bed"
     assert coupler_params(s).stone_drag == vofdem.StoneDragModel.BED
     for key, bad, allowed in (("drag_model", "ergun", "'sphere', 'bed'"), ("porosity_mapping", "2d", "'paper', 'bulk'")):

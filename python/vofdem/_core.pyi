@@ -1783,6 +1783,12 @@ class FlowParams:
     @turbulence_wall_roughness.setter
     def turbulence_wall_roughness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @property
+    def viscous_substeps(self) -> int:
+        ...
+    @viscous_substeps.setter
+    def viscous_substeps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 class DischargeTable:
     """
     Piecewise-linear discharge Q(t): times [s], discharge [m^3/s].

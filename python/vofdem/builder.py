@@ -227,6 +227,7 @@ def flow_params(scene: Scene):
     p.pressure_solver = {"multigrid_cg": _core.PressureSolverKind.MULTIGRID_CG,
                          "direct": _core.PressureSolverKind.EIGEN_DIRECT}[n.pressure_solver]
     p.pressure_tol = n.pressure_tolerance
+    p.viscous_substeps = n.viscous_substeps
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,

@@ -352,6 +352,8 @@ class Numerics(_Section):
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
                                      "faces) or point-implicit (bounded by all faces)")
+    viscous_substeps: int = _p(8, None, 1, 64, "the explicit viscous stresses in up to this many substeps of a "
+                               "fluid step longer than their limit [-]; 8 (1: one step, the limit binds)")
     drag_exchange: str = _choice("implicit", ("implicit", "held"),
                                  "stone drag: linearised in the stone's velocity, implicit in the DEM, or held "
                                  "over the step (bounded by its relaxation time)")
@@ -362,6 +364,7 @@ class Numerics(_Section):
     def validate(self, prefix: str = "numerics") -> None:
         self._validate_fields(prefix)
         _make_whole(self, prefix, "lookup_m", "[2, 64]")
+        _make_whole(self, prefix, "viscous_substeps", "[1, 64]")
 
 
 @dataclass

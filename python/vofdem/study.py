@@ -181,12 +181,14 @@ class Setting:
 
 
 # the knobs and their settings by study size: (knob, factor or value), relative to the reference
-KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up")
+KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up", "viscous_substeps")
+# the full size runs the grid last: its finer setting costs more than all the others together, and an
+# interrupted study then holds every other knob
 SIZES = {
-    "full": {"grid": [2.0, 0.5], "ramp": [0.25, 0.5], "cfl": [0.25], "porosity": ["lookup4", "lookup", "lookup16"],
-             "dem_steps": [64.0], "spin_up": [0.5]},
+    "full": {"ramp": [0.25, 0.5], "cfl": [0.25], "porosity": ["lookup4", "lookup", "lookup16"],
+             "dem_steps": [64.0], "spin_up": [0.5], "viscous_substeps": [1], "grid": [2.0, 0.5]},
     "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
-              "spin_up": [0.5]},
+              "spin_up": [0.5], "viscous_substeps": [1]},
     "tiny": {"cfl": [0.25], "porosity": ["lookup"]},
 }
 
@@ -216,6 +218,10 @@ def setting(ref, knob: str, value) -> Setting:
         steps, dt = float(value), n.dem_dt * n.dem_contact_steps / float(value)
         return Setting("dem_steps", f"{steps:g}", f"{steps:g} (dem_dt {dt:.3g} s)",
                        {"numerics.dem_dt": dt, "numerics.dem_contact_steps": steps})
+    if knob == "viscous_substeps":
+        m = int(value)
+        return Setting("viscous_substeps", f"{m}", f"{m} (the explicit stresses in one step)" if m == 1 else f"{m}",
+                       {"numerics.viscous_substeps": m})
     if knob == "spin_up":
         t = round(h.spin_up_duration * float(value), 9)
         return Setting("spin_up", f"{t:g}", f"{t:g} s", {"hydrograph.spin_up_duration": t})

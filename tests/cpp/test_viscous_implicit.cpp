@@ -312,7 +312,7 @@ TEST(ViscousSubsteps, FlowStepLimitIsTheSubstepsTimesTheExplicitLimit) {
   FlowParams p;
   EXPECT_EQ(p.viscous_substeps, 8);
   p.flags = kFlowViscosity | kFlowGravity;
-  p.nu_water = 1e-3;
+  p.medium.nu_water = 1e-3;
   VOFGrid f8(g, p);
   p.viscous_substeps = 1;
   VOFGrid f1(g, p);
