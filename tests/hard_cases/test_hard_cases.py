@@ -1,7 +1,8 @@
 """The hard-case catalogue: one parametrised suite over every registered case (hc_*.py).
 
 Each case builds a small scene, runs it, asserts what must hold and returns what it measured; the
-conftest writes the results and costs into docs/hard_cases.md when the whole catalogue has run.
+conftest writes the results into docs/hard_cases.md (the costs into build/hard_cases_cost.md) when the whole
+catalogue has run.
 """
 import time
 
