@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
+#include "vofdem/drag.h"
 #include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
 #include "vofdem/step_retry.h"
@@ -16,7 +18,8 @@ namespace vofdem {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-}
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
 
 void CouplerParams::validate() const {
   if (flags >= (1u << 10))
@@ -403,40 +406,37 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
     const DEMParams& dp = stones_->params();
     const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
     const double rho = fluid_->params().medium.rho_water, nu = fluid_->params().medium.nu_water;
+    // a drag held over the step (explicit exchange) relaxes the stone in (M + M') / slope: a step stays
+    // below drag_relaxation of that (the slope of eq. 18', drag.h); the implicit exchange needs no such
+    // bound (drag_exchange.h)
+    auto relaxation_dt = [&](int j) {
+      const double w = stones_->disc_wet[j];
+      const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * stones_->volume(j) * w : 0.0);
+      if (params_.stone_drag == StoneDragModel::kBed) {
+        // bed drag: its slope in the stone's velocity from the last exchange
+        const double slope = disc_drag_slope_[j];
+        return slope > 0.0 ? params_.drag_relaxation * mass / slope : kInf;
+      }
+      if (!(w > 0.0)) return kInf;
+      if (polygons()) {
+        // polygons: the mean projected area and the nominal diameter
+        const double slope = drag_slope(disc_vrel_[j], stones_->nominal_diameter(j),
+                                        w * 0.5 * rho * stones_->projected_area(j), nu, DragLaw::kPaper);
+        return params_.drag_relaxation * mass / slope;
+      }
+      const double r = stones_->disc_radius[j];
+      const double slope = drag_slope(disc_vrel_[j], 2.0 * r, w * 0.5 * rho * kPi * r * r, nu, DragLaw::kPaper);
+      return params_.drag_relaxation * (mass / slope);
+    };
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
       // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
       const double rate =
           std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
       if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
-      // a drag held over the step (explicit exchange): stay below its relaxation time (estimated with
-      // eq. 18); the implicit exchange needs no such bound (drag_exchange.h)
       if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
-      if (params_.stone_drag == StoneDragModel::kBed) {
-        // bed drag: its slope in the stone's velocity from the last exchange
-        const double slope = disc_drag_slope_[j];
-        if (slope > 0.0) {
-          const double w = stones_->disc_wet[j], vol = stones_->volume(j);
-          const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-          if (params_.drag_relaxation * mass / slope < dt)
-            dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
-        }
-      } else if (stones_->disc_wet[j] > 0.0 && polygons()) {
-        // polygons: the mean projected area and the nominal diameter
-        const double d = stones_->nominal_diameter(j), vol = stones_->volume(j), w = stones_->disc_wet[j];
-        const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-        const double slope = w * 0.5 * rho * stones_->projected_area(j) * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
-        if (params_.drag_relaxation * mass / slope < dt)
-          dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
-      } else if (stones_->disc_wet[j] > 0.0) {
-        const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
-        const double w = stones_->disc_wet[j];
-        const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-        const double slope = w * 0.5 * rho * kPi * r * r * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
-        const double tau = mass / slope;
-        if (params_.drag_relaxation * tau < dt)
-          dt = params_.drag_relaxation * tau, why = "drag_relaxation", where = stone_cell(j);
-      }
+      const double relax = relaxation_dt(j);
+      if (relax < dt) dt = relax, why = "drag_relaxation", where = stone_cell(j);
     }
   }
   if (term) *term = why;
