@@ -8,7 +8,8 @@
 #include <string>
 
 #include "vofdem/check.h"
-#include "vofdem/porous_resistance.h"
+#include "vofdem/porous_stage.h"
+#include "vofdem/projection.h"
 #include "vofdem/step_retry.h"
 
 namespace vofdem {
@@ -509,21 +510,6 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
 }
 
-double VOFGrid::outlet_pressure(int k) const {
-  // still fluid outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
-  // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
-  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.medium.gravity[1]) : 0.0;
-  const double z = grid_.z_center(k);
-  const double top = grid_.z_face(grid_.nz());
-  // single phase: water outside too, up to the tailwater level or the top
-  if (!(params_.flags & kFlowFreeSurface))
-    return params_.medium.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
-  double p = params_.medium.rho_air * g * (top - z);
-  if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
-    p += (params_.medium.rho_water - params_.medium.rho_air) * g * (params_.tailwater_level - z);
-  return p;
-}
-
 double VOFGrid::inlet_discharge_per_width() const {
   return params_.inlet == InletBoundary::kDischarge ? discharge_.at(time_) / params_.flume_width : 0.0;
 }
@@ -619,54 +605,16 @@ void VOFGrid::stage_momentum(double dt) {
 
 void VOFGrid::stage_porous_resistance(double dt) {
   ScopedStage timer(profile_, st_porous_);
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const bool lin = params_.flags & kFlowPorousDarcy, quad = params_.flags & kFlowPorousForchheimer;
-  const bool rel = params_.flags & kFlowRelativeVelocity;
-  const double k1 = params_.k1, k2 = params_.k2;
-  // R' = a + b |u_rel| from the velocity of the last step (Picard), then (1 + dt n R') u = u* + dt n R' n u_s
-  auto apply = [&](double n, double d, double rho, double mu, double u_rel_mag, double us, double& ustar, double& beta) {
-    if (n <= 0.0 || n >= 1.0) return;
-    const PorousCoefficients pc = porous_coefficients_unchecked(n, d, mu / rho, k1, k2);
-    const double r = (lin ? pc.linear : 0.0) + (quad ? pc.quadratic * u_rel_mag : 0.0);
-    const double denom = 1.0 + dt * n * r;
-    ustar = (ustar + (rel ? dt * n * r * n * us : 0.0)) / denom;
-    beta /= denom;
-  };
-  // eq. (5) uses the molecular viscosity nu, not nu_e = nu + nu_t: the eddy viscosity of the k-epsilon
-  // model (up to 1e4 nu in a weir) would make the Darcy term 1e4 times too large where the flow is turbulent
-  auto mu_face = [&](int a, int b) { return 0.5 * (cell_rho_[a] * cell_nu_[a] + cell_rho_[b] * cell_nu_[b]); };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const double n = face_x_porosity[j];
-      if (n <= 0.0 || n >= 1.0) continue;
-      const int a = std::max(i - 1, 0), b = std::min(i, nx - 1);
-      const double wm = 0.25 * (face_w[a + nx * k] + face_w[b + nx * k] + face_w[a + nx * (k + 1)] + face_w[b + nx * (k + 1)]);
-      double ur = face_u[j], wr = wm;
-      if (rel) {
-        ur -= n * face_x_solid_u[j];
-        wr -= n * 0.25 * (face_z_solid_w[a + nx * k] + face_z_solid_w[b + nx * k] + face_z_solid_w[a + nx * (k + 1)] +
-                          face_z_solid_w[b + nx * (k + 1)]);
-      }
-      apply(n, face_x_diameter_[j], face_x_rho_[j], mu_face(a + nx * k, b + nx * k), std::hypot(ur, wr),
-            face_x_solid_u[j], u_star_[j], face_x_beta_[j]);
-    }
-  for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const double n = face_z_porosity[j];
-      if (n <= 0.0 || n >= 1.0) continue;
-      const int a = std::max(k - 1, 0), b = std::min(k, nz - 1);
-      const double um = 0.25 * (face_u[i + sx * a] + face_u[i + 1 + sx * a] + face_u[i + sx * b] + face_u[i + 1 + sx * b]);
-      double ur = um, wr = face_w[j];
-      if (rel) {
-        wr -= n * face_z_solid_w[j];
-        ur -= n * 0.25 * (face_x_solid_u[i + sx * a] + face_x_solid_u[i + 1 + sx * a] + face_x_solid_u[i + sx * b] +
-                          face_x_solid_u[i + 1 + sx * b]);
-      }
-      apply(n, face_z_diameter_[j], face_z_rho_[j], mu_face(i + nx * a, i + nx * b), std::hypot(ur, wr),
-            face_z_solid_w[j], w_star_[j], face_z_beta_[j]);
-    }
+  const PorousStageFields f{face_u.data(),           face_w.data(),           face_x_porosity.data(),
+                            face_z_porosity.data(),  face_x_diameter_.data(), face_z_diameter_.data(),
+                            face_x_rho_.data(),      face_z_rho_.data(),      cell_rho_.data(),
+                            cell_nu_.data(),         face_x_solid_u.data(),   face_z_solid_w.data()};
+  PorousStageTerms t;
+  t.linear = params_.flags & kFlowPorousDarcy;
+  t.quadratic = params_.flags & kFlowPorousForchheimer;
+  t.relative = params_.flags & kFlowRelativeVelocity;
+  t.k1 = params_.k1, t.k2 = params_.k2;
+  porous_resistance_stage(grid_, f, t, dt, u_star_, w_star_, face_x_beta_, face_z_beta_);
   check_finite("porous_resistance", "x-velocity", u_star_, 1);
   check_finite("porous_resistance", "z-velocity", w_star_, 2);
 }
@@ -689,60 +637,27 @@ void VOFGrid::stage_turbulence(double dt) {
   check_finite("turbulence", "eddy viscosity", cell_nut, 0);
 }
 
+ProjectionFields VOFGrid::projection_fields() const {
+  return {face_x_porosity.data(), face_z_porosity.data(), face_x_beta_.data(), face_z_beta_.data(),
+          face_u.data(),          face_x_rho_.data(),     u_star_.data(),      w_star_.data(),
+          cell_porosity.data(),   cell_porosity_prev_.data()};
+}
+
+ProjectionBoundary VOFGrid::projection_boundary() const {
+  ProjectionBoundary bc;
+  bc.right_open = params_.outlet != OutletBoundary::kWall;
+  bc.tailwater = params_.outlet == OutletBoundary::kTailwater;
+  bc.tailwater_level = params_.tailwater_level;
+  bc.two_phase = params_.flags & kFlowFreeSurface;
+  bc.rho_water = params_.medium.rho_water;
+  bc.rho_air = params_.medium.rho_air;
+  bc.gravity = (params_.flags & kFlowGravity) ? std::abs(params_.medium.gravity[1]) : 0.0;
+  return bc;
+}
+
 void VOFGrid::stage_pressure(double dt) {
   ScopedStage timer(profile_, st_pressure_);
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const double dx = grid_.dx();
-  for (int c = 0; c < grid_.ncell(); ++c) problem_.cell_active[c] = cell_porosity[c] > 0.0;
-  // x-faces: a = beta dz / dx inside; an open end is a Dirichlet face half a cell from the centre
-  for (int k = 0; k < nz; ++k) {
-    const double dz = grid_.dz(k);
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      double a = 0.0;
-      if (face_x_porosity[j] > 0.0) {
-        if (i > 0 && i < nx) a = face_x_beta_[j] * dz / dx;
-        else if (i == nx && params_.outlet != OutletBoundary::kWall) a = face_x_beta_[j] * dz / (0.5 * dx);
-      }
-      problem_.face_x_coef[j] = a;
-      problem_.face_x_bc[j] = i == nx ? outlet_pressure(k) : 0.0;
-      // water drawn in from the still tailwater starts from rest: its static pressure at the end face is
-      // the outside pressure less 1/2 rho U^2 (a total-pressure inlet); a fixed static pressure lets the
-      // inflow run away (-25 m/s below a weir's jet)
-      if (i == nx && params_.outlet == OutletBoundary::kTailwater && face_u[j] < 0.0 && face_x_porosity[j] > 0.0) {
-        const double U = face_u[j] / face_x_porosity[j];
-        problem_.face_x_bc[j] -= 0.5 * face_x_rho_[j] * U * U;
-      }
-    }
-  }
-  for (int k = 0; k <= nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      double a = 0.0;
-      if (face_z_porosity[j] > 0.0) {
-        if (k > 0 && k < nz) a = face_z_beta_[j] * dx / (grid_.z_center(k) - grid_.z_center(k - 1));
-        else if (k == nz) a = face_z_beta_[j] * dx / (0.5 * grid_.dz(nz - 1));
-      }
-      problem_.face_z_coef[j] = a;
-      problem_.face_z_bc[j] = 0.0;
-    }
-  }
-  // b = net outflow of u* per metre of width [m^2/s], less the outflow the porosity change asks for:
-  // dn/dt + div u = 0, so the corrected velocities leave a cell at the rate -dn/dt dx dz
-  const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
-  for (int k = 0; k < nz; ++k) {
-    const double dz = grid_.dz(k);
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      double b = 0.0;
-      if (problem_.cell_active[c]) {
-        b = (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx;
-        const double dn = cell_porosity[c] - cell_porosity_prev_[c];
-        if (dn != 0.0 && cell_porosity_prev_[c] > 0.0) b += dn * inv_dt * dx * dz;
-      }
-      rhs_[c] = b;
-    }
-  }
+  assemble_pressure_problem(grid_, projection_fields(), projection_boundary(), dt, problem_, rhs_);
   try {
     solver_->setup(grid_, problem_);
     pressure_stats_ = solver_->solve(rhs_, cell_p, params_.pressure_tol);
@@ -770,36 +685,7 @@ void VOFGrid::solve_pressure_directly(const std::string& why) {
 
 void VOFGrid::stage_correct() {
   ScopedStage timer(profile_, st_correct_);
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const double dx = grid_.dx();
-  for (int k = 0; k < nz; ++k) {
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const double a = problem_.face_x_coef[j];
-      double u = u_star_[j];
-      if (a > 0.0) {
-        const double pl = i > 0 ? cell_p[i - 1 + nx * k] : 0.0;
-        const double pr = i < nx ? cell_p[i + nx * k] : problem_.face_x_bc[j];
-        const double dist = (i == 0 || i == nx) ? 0.5 * dx : dx;
-        u -= face_x_beta_[j] * (pr - pl) / dist;
-      }
-      face_u[j] = u;
-    }
-  }
-  for (int k = 0; k <= nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const double a = problem_.face_z_coef[j];
-      double w = w_star_[j];
-      if (a > 0.0) {
-        const double pb = k > 0 ? cell_p[i + nx * (k - 1)] : 0.0;
-        const double pt = k < nz ? cell_p[i + nx * k] : problem_.face_z_bc[j];
-        const double dist = k == nz ? 0.5 * grid_.dz(nz - 1) : grid_.z_center(k) - grid_.z_center(k - 1);
-        w -= face_z_beta_[j] * (pt - pb) / dist;
-      }
-      face_w[j] = w;
-    }
-  }
+  correct_velocities(grid_, projection_fields(), problem_, cell_p, face_u, face_w);
   check_finite("correct", "x-velocity", face_u, 1);
   check_finite("correct", "z-velocity", face_w, 2);
 }

@@ -66,6 +66,9 @@
 
 namespace vofdem {
 
+struct ProjectionFields;    // projection.h
+struct ProjectionBoundary;  // projection.h
+
 // physical effects of the flow solver, one bit each (FlowParams::flags)
 enum FlowEffect : std::uint32_t {
   kFlowFreeSurface = 1u << 0,         // two phases and VOF advection; off: water everywhere, F = 1
@@ -325,7 +328,8 @@ class VOFGrid {
   void apply_inlet(double t, std::vector<double>& u);
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
-  double outlet_pressure(int k) const;
+  ProjectionFields projection_fields() const;
+  ProjectionBoundary projection_boundary() const;
   // kind: 0 = cell, 1 = x-face, 2 = z-face
   void check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind);
   // courant > 0: a CFL breach, thrown as CflBreach (a shorter step may pass)
