@@ -11,7 +11,7 @@
 #include "vofdem/drag.h"
 #include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
-#include "vofdem/step_retry.h"
+#include "vofdem/advance.h"
 #include "vofdem/wet_fraction.h"
 
 namespace vofdem {
@@ -510,33 +510,27 @@ void Coupler::step(double dt) {
 }
 
 long long Coupler::advance(double t_end, const std::function<void(double)>& progress) {
-  require_finite("t_end", t_end);
-  long long n = 0;
-  const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
-  while (time_ < t_end - eps) {
-    const char* term = nullptr;
-    int cell = -1;
-    double dt = stable_dt_limits(&term, &cell);
-    if (dt < params_.min_dt) {
-      snapshot_valid_ = false;
-      fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " +
-                       format_value(params_.min_dt) + " s)");
-    }
-    // the last steps split the remainder evenly rather than leaving a sliver
-    const double left = t_end - time_, stable = dt;
-    if (dt >= left) dt = left;
-    else if (dt > 0.5 * left) dt = 0.5 * left;
-    bool retried = false;
-    const double cfl = fluid_ ? fluid_->params().cfl : 1.0;
-    step_with_retries(dt, cfl, params_.min_dt, [this](double h) { step(h); }, [&retried](double) { retried = true; });
+  const char* term = nullptr;
+  int cell = -1;
+  auto limits = [&] {
+    const double dt = stable_dt_limits(&term, &cell);
+    return AdvanceLimits{dt, params_.min_dt, fluid_ ? fluid_->params().cfl : 1.0};
+  };
+  auto collapse = [this](double dt) {
+    snapshot_valid_ = false;
+    fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " + format_value(params_.min_dt) +
+                     " s)");
+  };
+  auto stepped = [&](const AdvanceStep& a) {
+    const bool retried = a.retries > 0;
     if (retried) count_limit("cfl_retry", -1);
-    else count_limit(dt < stable ? "t_end" : term, cell);
+    else count_limit(a.dt < a.stable ? "t_end" : term, cell);
     // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
-    if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable && !retried) fluid_->set_last_dt(stable);
-    ++n;
+    if (fluid_ && (params_.flags & kCoupleFluid) && a.dt < a.stable && !retried) fluid_->set_last_dt(a.stable);
     if (progress) progress(time_);
-  }
-  return n;
+  };
+  return advance_until(
+      t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); }, [](double) {}, stepped);
 }
 
 }  // namespace vofdem

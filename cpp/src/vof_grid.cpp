@@ -10,7 +10,7 @@
 #include "vofdem/check.h"
 #include "vofdem/porous_stage.h"
 #include "vofdem/projection.h"
-#include "vofdem/step_retry.h"
+#include "vofdem/advance.h"
 
 namespace vofdem {
 
@@ -752,33 +752,24 @@ void VOFGrid::set_last_dt(double dt) {
 }
 
 long long VOFGrid::advance(double t_end) {
-  require_finite("t_end", t_end);
-  long long n = 0;
-  // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
-  const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
-  while (time_ < t_end - eps) {
-    const FlowStableDt s = stable_dt_terms();
-    double dt = s.min();
-    if (dt < params_.min_dt) {
-      int kind, index;
-      max_cfl(1.0, kind, index);
-      save_state();
-      fail("checks", "time step collapsed to " + format_value(dt) + " s (advective " + format_value(s.advective) +
-                         ", viscous " + format_value(s.viscous) + ")",
-           kind, index);
-    }
-    // the last steps split the remainder evenly rather than leaving a sliver
-    const double left = t_end - time_;
-    const double stable = dt;
-    if (dt >= left) dt = left;
-    else if (dt > 0.5 * left) dt = 0.5 * left;
-    const double taken =
-        step_with_retries(dt, params_.cfl, params_.min_dt, [this](double h) { step(h); }, [this](double) { ++retried_steps_; });
-    // a step cut to reach t_end is no stability decision: the growth goes on from the stable step
-    last_dt_ = taken < dt ? taken : std::max(dt, stable);
-    ++n;
-  }
-  return n;
+  FlowStableDt s;
+  auto limits = [&] {
+    s = stable_dt_terms();
+    return AdvanceLimits{s.min(), params_.min_dt, params_.cfl};
+  };
+  auto collapse = [&](double dt) {
+    int kind, index;
+    max_cfl(1.0, kind, index);
+    save_state();
+    fail("checks", "time step collapsed to " + format_value(dt) + " s (advective " + format_value(s.advective) +
+                       ", viscous " + format_value(s.viscous) + ")",
+         kind, index);
+  };
+  // a step cut to reach t_end is no stability decision: the growth goes on from the stable step
+  auto stepped = [this](const AdvanceStep& a) { last_dt_ = a.taken < a.dt ? a.taken : std::max(a.dt, a.stable); };
+  return advance_until(
+      t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); },
+      [this](double) { ++retried_steps_; }, stepped);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -265,7 +265,7 @@ class VOFGrid {
   // the cell and the time after restoring the state of the step's start
   void step(double dt);
   // steps of stable_dt() until time() reaches t_end [s], a step that breaches the CFL taken again
-  // shorter (step_retry.h); returns the number of steps
+  // shorter (step_retry.h), the last interval split evenly (advance.h); returns the number of steps
   long long advance(double t_end);
   // steps advance() took again, shorter, since construction
   long long retried_steps() const { return retried_steps_; }
