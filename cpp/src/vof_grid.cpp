@@ -83,7 +83,7 @@ struct VOFGrid::Snapshot {
 };
 
 // ---------------------------------------------------------------------------------------------
-// construction and scene
+// construction, parameters, porosity and phase properties
 
 VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
     : grid_(grid), params_(params), snapshot_(std::make_unique<Snapshot>()) {
@@ -233,44 +233,6 @@ void VOFGrid::update_face_porosity(bool displace) {
   }
 }
 
-namespace {
-// the cells whose centre lies inside [x0, x1] x [z0, z1]
-template <class F>
-void for_cells_in_box(const Grid2D& g, double x0, double x1, double z0, double z1, F&& f) {
-  for (int k = 0; k < g.nz(); ++k) {
-    const double z = g.z_center(k);
-    if (z < z0 || z > z1) continue;
-    for (int i = 0; i < g.nx(); ++i) {
-      const double x = g.x_center(i);
-      if (x >= x0 && x <= x1) f(g.cell(i, k));
-    }
-  }
-}
-}  // namespace
-
-void VOFGrid::fill_water_below(double level) {
-  require_finite("level", level);
-  for (int k = 0; k < grid_.nz(); ++k) {
-    const double f = std::clamp((level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0);
-    for (int i = 0; i < grid_.nx(); ++i) cell_F[grid_.cell(i, k)] = f;
-  }
-}
-
-void VOFGrid::fill_water_box(double x0, double x1, double z0, double z1, double value) {
-  require_in_closed("value", value, 0.0, 1.0);
-  for_cells_in_box(grid_, x0, x1, z0, z1, [&](int c) { cell_F[c] = value; });
-}
-
-void VOFGrid::set_porosity_box(double x0, double x1, double z0, double z1, double n, double d) {
-  require_in_closed("n", n, 0.0, 1.0);
-  require_positive("d", d);
-  for_cells_in_box(grid_, x0, x1, z0, z1, [&](int c) {
-    cell_porosity[c] = n;
-    cell_stone_diameter[c] = d;
-  });
-  update_face_porosity();
-}
-
 void VOFGrid::update_phase_properties() const {
   const bool two_phase = params_.flags & kFlowFreeSurface;
   const double rw = params_.medium.rho_water, ra = params_.medium.rho_air;
@@ -303,23 +265,6 @@ void VOFGrid::update_phase_properties() const {
       const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
       face_z_rho_[i + nx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
     }
-}
-
-void VOFGrid::set_hydrostatic_pressure() {
-  update_phase_properties();
-  const double g = std::abs(params_.medium.gravity[1]);
-  const int nx = grid_.nx(), nz = grid_.nz();
-  for (int i = 0; i < nx; ++i) {
-    // the discrete balance of the projection: p_k - p_{k+1} = rho_face g (z_{k+1} - z_k), p = 0 on top
-    double p = cell_rho_[i + nx * (nz - 1)] * g * 0.5 * grid_.dz(nz - 1);
-    cell_p[i + nx * (nz - 1)] = p;
-    for (int k = nz - 2; k >= 0; --k) {
-      p += face_z_rho_[i + nx * (k + 1)] * g * (grid_.z_center(k + 1) - grid_.z_center(k));
-      cell_p[i + nx * k] = p;
-    }
-  }
-  for (int c = 0; c < grid_.ncell(); ++c)
-    if (cell_porosity[c] <= 0.0) cell_p[c] = 0.0;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -508,10 +453,6 @@ void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   const double q = discharge_.at(t) / params_.flume_width;
   inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
   for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
-}
-
-double VOFGrid::inlet_discharge_per_width() const {
-  return params_.inlet == InletBoundary::kDischarge ? discharge_.at(time_) / params_.flume_width : 0.0;
 }
 
 void VOFGrid::stage_advect_vof(double dt) {
@@ -770,77 +711,6 @@ long long VOFGrid::advance(double t_end) {
   return advance_until(
       t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); },
       [this](double) { ++retried_steps_; }, stepped);
-}
-
-// ---------------------------------------------------------------------------------------------
-// diagnostics
-
-void VOFGrid::pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const {
-  const int nx = grid_.nx(), sx = nx + 1;
-  U.assign(grid_.ncell(), 0.0);
-  W.assign(grid_.ncell(), 0.0);
-  for (int k = 0; k < grid_.nz(); ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      const double n = cell_porosity[c];
-      if (n <= 0.0) continue;
-      U[c] = 0.5 * (face_u[i + sx * k] + face_u[i + 1 + sx * k]) / n;
-      W[c] = 0.5 * (face_w[c] + face_w[c + nx]) / n;
-    }
-}
-
-void VOFGrid::pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const {
-  const int nx = grid_.nx(), nz = grid_.nz();
-  dpdx.assign(grid_.ncell(), 0.0);
-  dpdz.assign(grid_.ncell(), 0.0);
-  auto active = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_porosity[i + nx * k] > 0.0; };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      if (!active(i, k)) continue;
-      // central where both neighbours are fluid, one-sided next to a wall or a solid
-      const bool l = active(i - 1, k), r = active(i + 1, k);
-      if (l && r) dpdx[c] = (cell_p[c + 1] - cell_p[c - 1]) / (2.0 * grid_.dx());
-      else if (r) dpdx[c] = (cell_p[c + 1] - cell_p[c]) / grid_.dx();
-      else if (l) dpdx[c] = (cell_p[c] - cell_p[c - 1]) / grid_.dx();
-      const bool b = active(i, k - 1), t = active(i, k + 1);
-      if (b && t) dpdz[c] = (cell_p[c + nx] - cell_p[c - nx]) / (grid_.z_center(k + 1) - grid_.z_center(k - 1));
-      else if (t) dpdz[c] = (cell_p[c + nx] - cell_p[c]) / (grid_.z_center(k + 1) - grid_.z_center(k));
-      else if (b) dpdz[c] = (cell_p[c] - cell_p[c - nx]) / (grid_.z_center(k) - grid_.z_center(k - 1));
-    }
-}
-
-double VOFGrid::water_volume() const {
-  const int nx = grid_.nx();
-  double v = 0.0;
-  for (int k = 0; k < grid_.nz(); ++k) {
-    double row = 0.0;
-    for (int i = 0; i < nx; ++i) row += cell_porosity[i + nx * k] * cell_F[i + nx * k];
-    v += row * grid_.cell_area(k);
-  }
-  return v;
-}
-
-double VOFGrid::discharge_through(int i) const {
-  if (i < 0 || i > grid_.nx())
-    throw std::invalid_argument("i = " + std::to_string(i) + " is outside the allowed range [0, " +
-                                std::to_string(grid_.nx()) + "]");
-  const int nx = grid_.nx(), sx = nx + 1;
-  double q = 0.0;
-  const std::vector<double>& flux = vof_scratch_.face_flux_x;
-  if (flux_dt_ > 0.0 && flux.size() == static_cast<std::size_t>(grid_.nface_x())) {
-    for (int k = 0; k < grid_.nz(); ++k) q += flux[i + sx * k];
-    return q / flux_dt_;
-  }
-  for (int k = 0; k < grid_.nz(); ++k) {
-    const double u = face_u[i + sx * k];
-    // the fraction of the cell the flow leaves (the inflow fraction 1 at the inlet)
-    double f;
-    if (u >= 0.0) f = i > 0 ? cell_F[i - 1 + nx * k] : 1.0;
-    else f = i < nx ? cell_F[i + nx * k] : 0.0;
-    q += u * f * grid_.dz(k);
-  }
-  return q;
 }
 
 }  // namespace vofdem
