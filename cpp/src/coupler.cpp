@@ -222,21 +222,16 @@ void Coupler::stage_porosity(bool keep_water_volume) {
 // area-weighted velocity of the stones in the two cells of each face [m/s]
 void Coupler::solid_velocity_at_faces() {
   const Grid2D& g = fluid_->grid();
-  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i <= nx; ++i) {
-      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
-      const double s = cell_solid_sum_[a] + (a != b ? cell_solid_sum_[b] : 0.0);
-      const double m = cell_solid_u_[a] + (a != b ? cell_solid_u_[b] : 0.0);
-      fluid_->face_x_solid_u[i + sx * k] = s > 0.0 ? m / s : 0.0;
-    }
-  for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
-      const double s = cell_solid_sum_[a] + (a != b ? cell_solid_sum_[b] : 0.0);
-      const double m = cell_solid_w_[a] + (a != b ? cell_solid_w_[b] : 0.0);
-      fluid_->face_z_solid_w[i + nx * k] = s > 0.0 ? m / s : 0.0;
-    }
+  // a boundary face has its one cell on both sides: counted once
+  auto mean = [&](const FaceCells& c, const std::vector<double>& v) {
+    const double s = cell_solid_sum_[c.a] + (c.a != c.b ? cell_solid_sum_[c.b] : 0.0);
+    const double m = v[c.a] + (c.a != c.b ? v[c.b] : 0.0);
+    return s > 0.0 ? m / s : 0.0;
+  };
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) fluid_->face_x_solid_u[g.face_x(i, k)] = mean(g.face_x_cells(i, k), cell_solid_u_);
+  for (int k = 0; k <= g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) fluid_->face_z_solid_w[g.face_z(i, k)] = mean(g.face_z_cells(i, k), cell_solid_w_);
 }
 
 void Coupler::update_fluid_forces() {

@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "vofdem/advance.h"
 #include "vofdem/check.h"
 #include "vofdem/porous_stage.h"
 #include "vofdem/projection.h"
-#include "vofdem/advance.h"
 
 namespace vofdem {
 
@@ -194,7 +194,7 @@ void VOFGrid::set_porosity(const std::vector<double>& porosity, bool displace) {
 void VOFGrid::update_face_porosity(bool displace) {
   check_sizes();
   if (!displace) cell_porosity_prev_ = cell_porosity;
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const int nx = grid_.nx(), nz = grid_.nz();
   // the checks' calls (which build the message) only for a value that fails
   for (int c = 0; c < grid_.ncell(); ++c) {
     const double n = cell_porosity[c];
@@ -212,9 +212,9 @@ void VOFGrid::update_face_porosity(bool displace) {
   };
   for (int k = 0; k < nz; ++k) {
     for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
-      pick(a, b, face_x_porosity[j], face_x_diameter_[j]);
+      const int j = grid_.face_x(i, k);
+      const FaceCells c = grid_.face_x_cells(i, k);
+      pick(c.a, c.b, face_x_porosity[j], face_x_diameter_[j]);
       // walls are closed; the inlet and an open end stay open as far as their cell is
       const bool open_end = (i == 0 && params_.inlet == InletBoundary::kDischarge) ||
                             (i == nx && params_.outlet != OutletBoundary::kWall);
@@ -224,9 +224,9 @@ void VOFGrid::update_face_porosity(bool displace) {
   }
   for (int k = 0; k <= nz; ++k) {
     for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
-      pick(a, b, face_z_porosity[j], face_z_diameter_[j]);
+      const int j = grid_.face_z(i, k);
+      const FaceCells c = grid_.face_z_cells(i, k);
+      pick(c.a, c.b, face_z_porosity[j], face_z_diameter_[j]);
       if (k == 0 || (k == nz && params_.top == TopBoundary::kWall)) face_z_porosity[j] = 0.0;
       if (face_z_porosity[j] == 0.0) face_w[j] = 0.0;
     }
@@ -246,11 +246,11 @@ void VOFGrid::update_phase_properties() const {
     cell_mu_eddy_[c] = turb ? cell_rho_[c] * cell_nut[c] : 0.0;
     cell_mu_[c] = mu + cell_mu_eddy_[c];
   }
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const int nx = grid_.nx(), nz = grid_.nz();
   for (int k = 0; k < nz; ++k)
     for (int i = 0; i <= nx; ++i) {
-      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
-      face_x_rho_[i + sx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
+      const FaceCells c = grid_.face_x_cells(i, k);
+      face_x_rho_[grid_.face_x(i, k)] = 0.5 * (cell_rho_[c.a] + cell_rho_[c.b]);
     }
   // an open end faces still fluid outside: water below the tailwater level, air above (two-phase)
   if (two_phase && params_.outlet != OutletBoundary::kWall)
@@ -258,12 +258,12 @@ void VOFGrid::update_phase_properties() const {
       const double f = params_.outlet == OutletBoundary::kTailwater
                            ? std::clamp((params_.tailwater_level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0)
                            : 0.0;
-      face_x_rho_[nx + sx * k] = 0.5 * (cell_rho_[nx - 1 + nx * k] + f * rw + (1.0 - f) * ra);
+      face_x_rho_[grid_.face_x(nx, k)] = 0.5 * (cell_rho_[grid_.cell(nx - 1, k)] + f * rw + (1.0 - f) * ra);
     }
   for (int k = 0; k <= nz; ++k)
     for (int i = 0; i < nx; ++i) {
-      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
-      face_z_rho_[i + nx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
+      const FaceCells c = grid_.face_z_cells(i, k);
+      face_z_rho_[grid_.face_z(i, k)] = 0.5 * (cell_rho_[c.a] + cell_rho_[c.b]);
     }
 }
 
@@ -324,20 +324,20 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   double rate = max_cfl(1.0, kind, index);
   // the inlet flow the step will carry (q / dz of the lowest row when the inlet is dry)
   if (params_.inlet == InletBoundary::kDischarge) {
-    const int nx = grid_.nx(), sx = nx + 1;
     std::vector<double>& u_in = inlet_u_;
-    inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
-                     u_in);
+    inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(),
+                     grid_.nx(), u_in);
     for (int k = 0; k < grid_.nz(); ++k) {
-      const double n = face_x_porosity[sx * k];
+      const double n = face_x_porosity[grid_.face_x(0, k)];
       if (n > 0.0) rate = std::max(rate, std::abs(u_in[k]) / (n * grid_.dx()));
     }
   }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
+  // the cell beside the binding face (inside the grid at a boundary face)
   if (index >= 0) {
-    const int nx = grid_.nx(), nz = grid_.nz();
-    s.advective_cell = kind == 1 ? std::min(index % (nx + 1), nx - 1) + nx * (index / (nx + 1))
-                                 : index % nx + nx * std::min(index / nx, nz - 1);
+    const int nx = grid_.nx();
+    s.advective_cell = kind == 1 ? grid_.face_x_cells(index % (nx + 1), index / (nx + 1)).b
+                                 : grid_.face_z_cells(index % nx, index / nx).b;
   }
   s.viscous = kInf;
   // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
@@ -449,10 +449,9 @@ void VOFGrid::check_finite(const char* stage, const char* name, const std::vecto
 
 void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   if (params_.inlet != InletBoundary::kDischarge) return;
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const double q = discharge_.at(t) / params_.flume_width;
-  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
-  for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
+  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), grid_.nx(), inlet_u_);
+  for (int k = 0; k < grid_.nz(); ++k) u[grid_.face_x(0, k)] = inlet_u_[k];
 }
 
 void VOFGrid::stage_advect_vof(double dt) {
@@ -464,7 +463,7 @@ void VOFGrid::stage_advect_vof(double dt) {
   for (int k = 0; k < nz; ++k)
     vof_inflow_.right[k] = params_.outlet == OutletBoundary::kTailwater && grid_.z_center(k) < params_.tailwater_level;
   if (params_.inlet == InletBoundary::kDischarge)
-    for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[(grid_.nx() + 1) * k], 0.0) * grid_.dz(k) * dt;
+    for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[grid_.face_x(0, k)], 0.0) * grid_.dz(k) * dt;
   try {
     advect_vof(grid_, cell_porosity, face_u, face_w, vof_inflow_, dt, step_count_ % 2 == 0, cell_F, vof_scratch_);
   } catch (const CflBreach& e) {
@@ -474,12 +473,12 @@ void VOFGrid::stage_advect_vof(double dt) {
   }
   check_finite("advect_vof", "water fraction", cell_F, 0);
   // the water budget: what the two sweeps carried through the boundary faces (left, right, bed, top)
-  const int nx = grid_.nx(), sx = nx + 1;
+  const int nx = grid_.nx();
   const std::vector<double>& fx = vof_scratch_.face_flux_x;
   const std::vector<double>& fz = vof_scratch_.face_flux_z;
   double net = 0.0;
-  for (int k = 0; k < nz; ++k) net += fx[sx * k] - fx[nx + sx * k];
-  for (int i = 0; i < nx; ++i) net += fz[i] - fz[i + nx * nz];
+  for (int k = 0; k < nz; ++k) net += fx[grid_.face_x(0, k)] - fx[grid_.face_x(nx, k)];
+  for (int i = 0; i < nx; ++i) net += fz[grid_.face_z(i, 0)] - fz[grid_.face_z(i, nz)];
   net_inflow_volume_ += net;
   dilatation_volume_ += dilatation(dt);
   flux_dt_ = dt;

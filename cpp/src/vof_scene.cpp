@@ -52,11 +52,11 @@ void VOFGrid::set_hydrostatic_pressure() {
   const int nx = grid_.nx(), nz = grid_.nz();
   for (int i = 0; i < nx; ++i) {
     // the discrete balance of the projection: p_k - p_{k+1} = rho_face g (z_{k+1} - z_k), p = 0 on top
-    double p = cell_rho_[i + nx * (nz - 1)] * g * 0.5 * grid_.dz(nz - 1);
-    cell_p[i + nx * (nz - 1)] = p;
+    double p = cell_rho_[grid_.cell(i, nz - 1)] * g * 0.5 * grid_.dz(nz - 1);
+    cell_p[grid_.cell(i, nz - 1)] = p;
     for (int k = nz - 2; k >= 0; --k) {
-      p += face_z_rho_[i + nx * (k + 1)] * g * (grid_.z_center(k + 1) - grid_.z_center(k));
-      cell_p[i + nx * k] = p;
+      p += face_z_rho_[grid_.face_z(i, k + 1)] * g * (grid_.z_center(k + 1) - grid_.z_center(k));
+      cell_p[grid_.cell(i, k)] = p;
     }
   }
   for (int c = 0; c < grid_.ncell(); ++c)
