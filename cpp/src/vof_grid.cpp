@@ -635,12 +635,20 @@ void VOFGrid::stage_checks(double dt) {
   for (int c = 0; c < grid_.ncell(); ++c)
     if (cell_F[c] < -kFractionSlack || cell_F[c] > 1.0 + kFractionSlack)
       fail("checks", "water fraction out of [0, 1] (" + format_value(cell_F[c]) + ")", 0, c);
+  check_cfl("checks", dt);
+}
+
+void VOFGrid::check_cfl(const char* stage, double dt) {
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
-  if (cfl > 1.0)
-    fail("checks", "CFL breach: the new velocity crosses " + format_value(cfl) + " cells in dt = " + format_value(dt) +
-                       " s",
-         kind, index, cfl);
+  if (!(cfl > 1.0)) return;
+  // before the step: the step asked for is too long; after it: the velocities it made are too fast
+  const std::string what = std::string(stage) == "step"
+                               ? "dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
+                                     " (pore velocity)"
+                               : "the new velocity crosses " + format_value(cfl) + " cells in dt = " +
+                                     format_value(dt) + " s";
+  fail(stage, "CFL breach: " + what, kind, index, cfl);
 }
 
 void VOFGrid::step(double dt) {
@@ -650,12 +658,7 @@ void VOFGrid::step(double dt) {
   check_finite("step", "x-velocity", face_u, 1);
   check_finite("step", "z-velocity", face_w, 2);
   check_finite("step", "water fraction", cell_F, 0);
-  int kind, index;
-  const double cfl = max_cfl(dt, kind, index);
-  if (cfl > 1.0)
-    fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
-                     " (pore velocity)",
-         kind, index, cfl);
+  check_cfl("step", dt);
   update_phase_properties();
   stage_momentum(dt);
   if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);

@@ -51,6 +51,35 @@ TEST(VOFTimeStep, FirstStepOfMaxDtFromRestBreachesTheCfl) {
   EXPECT_EQ(flow.time(), 0.0);
 }
 
+TEST(VOFTimeStep, CflBreachesNameTheTooLongStepOrTheNewVelocity) {
+  auto breach = [](VOFGrid& flow) -> std::string {
+    try {
+      flow.step(0.01);
+    } catch (const CflBreach& e) {
+      EXPECT_GT(e.courant(), 1.0);
+      return e.what();
+    }
+    return "no exception";
+  };
+  // at the step's start: 0.2 m/s through pores of 0.05 cross 8 cells of 5 mm in 0.01 s
+  VOFGrid a(wall_grid(), FlowParams{});
+  column_against_wall(a);
+  a.face_u[wall_grid().face_x(40, 0)] = 0.2;
+  EXPECT_EQ(breach(a).rfind("VOFGrid stage 'step': CFL breach: dt = 0.01 s gives a Courant number 8 (pore velocity) "
+                            "at x-face (i=40, k=0",
+                            0),
+            0u);
+  // at its end (no free surface, so no advection to meet it first): the inflow made in the step
+  FlowParams p;
+  p.flags &= ~kFlowFreeSurface;
+  p.inlet = InletBoundary::kDischarge;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  VOFGrid b(wall_grid(), p);
+  column_against_wall(b);
+  b.set_discharge(DischargeTable::constant(0.2));
+  EXPECT_EQ(breach(b).rfind("VOFGrid stage 'checks': CFL breach: the new velocity crosses ", 0), 0u);
+}
+
 TEST(VOFTimeStep, RetriesShortenTheStepByTheCourantNumberReached) {
   // dt 1, target 0.5: Courant 1.25 -> dt 0.4 (0.5 / 1.25); 3 -> 0.4 / 6; then it passes
   std::vector<double> courants = {1.25, 3.0}, tried, retried;

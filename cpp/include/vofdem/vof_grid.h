@@ -324,6 +324,9 @@ class VOFGrid {
   void solve_pressure_directly(const std::string& why);
   void stage_correct();
   void stage_checks(double dt);
+  // fails with a CflBreach where the velocities cross more than one cell in dt [s]: at the step's start
+  // (stage "step") or at its end (the new velocities)
+  void check_cfl(const char* stage, double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
   void apply_inlet(double t, std::vector<double>& u);
   MomentumFields momentum_fields() const;
