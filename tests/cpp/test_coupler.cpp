@@ -432,21 +432,12 @@ TEST(Coupler, HeldDragBoundsTheStepByItsRelaxationTime) {
   // 24 nu / d) of eq. (18) at the last exchange's relative speed (drag.h), scaled by the wet fraction;
   // pinned to the bit
   Scene s = tank(0.2, 0.2, 0.01, 0.15, {0.1, 0.08}, 0.01, kCoupleOneWay);
-  CouplerParams cp = s.sim->params();
-  cp.implicit_drag = false;
-  cp.drag_relaxation = 1e-3;
-  s.sim->set_params(cp);
-  s.stones->disc_vel[0] = 0.3;  // in still water: |U - u_p| = 0.3 m/s
-  s.sim->update_fluid_forces();
+  const double mass = hold_the_drag_of_a_moving_stone(s);  // |U - u_p| = 0.3 m/s
   const Medium& m = s.fluid->params().medium;
-  const DEMParams& dp = s.stones->params();
   const double r = 0.01, w = s.stones->disc_wet[0];
   ASSERT_GT(w, 0.99);
-  const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
-  const double mass =
-      s.stones->mass(0) + (added ? m.rho_water * dp.added_mass_coefficient * s.stones->volume(0) * w : 0.0);
   const double slope = w * 0.5 * m.rho_water * M_PI * r * r * (0.8 * 0.3 + 24.0 * m.nu_water / (2.0 * r));
-  EXPECT_EQ(s.sim->stable_dt(), cp.drag_relaxation * (mass / slope));
+  EXPECT_EQ(s.sim->stable_dt(), s.sim->params().drag_relaxation * (mass / slope));
   EXPECT_LT(s.sim->stable_dt(), s.fluid->stable_dt());
 }
 
