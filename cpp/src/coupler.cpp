@@ -2,21 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "vofdem/bed_drag.h"
 #include "vofdem/check.h"
+#include "vofdem/drag.h"
 #include "vofdem/drag_exchange.h"
 #include "vofdem/fluid_forces.h"
-#include "vofdem/step_retry.h"
+#include "vofdem/advance.h"
 #include "vofdem/wet_fraction.h"
 
 namespace vofdem {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-}
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
 
 void CouplerParams::validate() const {
   if (flags >= (1u << 10))
@@ -219,21 +222,16 @@ void Coupler::stage_porosity(bool keep_water_volume) {
 // area-weighted velocity of the stones in the two cells of each face [m/s]
 void Coupler::solid_velocity_at_faces() {
   const Grid2D& g = fluid_->grid();
-  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i <= nx; ++i) {
-      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
-      const double s = cell_solid_sum_[a] + (a != b ? cell_solid_sum_[b] : 0.0);
-      const double m = cell_solid_u_[a] + (a != b ? cell_solid_u_[b] : 0.0);
-      fluid_->face_x_solid_u[i + sx * k] = s > 0.0 ? m / s : 0.0;
-    }
-  for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
-      const double s = cell_solid_sum_[a] + (a != b ? cell_solid_sum_[b] : 0.0);
-      const double m = cell_solid_w_[a] + (a != b ? cell_solid_w_[b] : 0.0);
-      fluid_->face_z_solid_w[i + nx * k] = s > 0.0 ? m / s : 0.0;
-    }
+  // a boundary face has its one cell on both sides: counted once
+  auto mean = [&](const FaceCells& c, const std::vector<double>& v) {
+    const double s = cell_solid_sum_[c.a] + (c.a != c.b ? cell_solid_sum_[c.b] : 0.0);
+    const double m = v[c.a] + (c.a != c.b ? v[c.b] : 0.0);
+    return s > 0.0 ? m / s : 0.0;
+  };
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) fluid_->face_x_solid_u[g.face_x(i, k)] = mean(g.face_x_cells(i, k), cell_solid_u_);
+  for (int k = 0; k <= g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) fluid_->face_z_solid_w[g.face_z(i, k)] = mean(g.face_z_cells(i, k), cell_solid_w_);
 }
 
 void Coupler::update_fluid_forces() {
@@ -403,40 +401,37 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
     const DEMParams& dp = stones_->params();
     const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
     const double rho = fluid_->params().medium.rho_water, nu = fluid_->params().medium.nu_water;
+    // a drag held over the step (explicit exchange) relaxes the stone in (M + M') / slope: a step stays
+    // below drag_relaxation of that (the slope of eq. 18', drag.h); the implicit exchange needs no such
+    // bound (drag_exchange.h)
+    auto relaxation_dt = [&](int j) {
+      const double w = stones_->disc_wet[j];
+      const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * stones_->volume(j) * w : 0.0);
+      if (params_.stone_drag == StoneDragModel::kBed) {
+        // bed drag: its slope in the stone's velocity from the last exchange
+        const double slope = disc_drag_slope_[j];
+        return slope > 0.0 ? params_.drag_relaxation * mass / slope : kInf;
+      }
+      if (!(w > 0.0)) return kInf;
+      if (polygons()) {
+        // polygons: the mean projected area and the nominal diameter
+        const double slope = drag_slope(disc_vrel_[j], stones_->nominal_diameter(j),
+                                        w * 0.5 * rho * stones_->projected_area(j), nu, DragLaw::kPaper);
+        return params_.drag_relaxation * mass / slope;
+      }
+      const double r = stones_->disc_radius[j];
+      const double slope = drag_slope(disc_vrel_[j], 2.0 * r, w * 0.5 * rho * kPi * r * r, nu, DragLaw::kPaper);
+      return params_.drag_relaxation * (mass / slope);
+    };
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
       // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
       const double rate =
           std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
       if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
-      // a drag held over the step (explicit exchange): stay below its relaxation time (estimated with
-      // eq. 18); the implicit exchange needs no such bound (drag_exchange.h)
       if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
-      if (params_.stone_drag == StoneDragModel::kBed) {
-        // bed drag: its slope in the stone's velocity from the last exchange
-        const double slope = disc_drag_slope_[j];
-        if (slope > 0.0) {
-          const double w = stones_->disc_wet[j], vol = stones_->volume(j);
-          const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-          if (params_.drag_relaxation * mass / slope < dt)
-            dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
-        }
-      } else if (stones_->disc_wet[j] > 0.0 && polygons()) {
-        // polygons: the mean projected area and the nominal diameter
-        const double d = stones_->nominal_diameter(j), vol = stones_->volume(j), w = stones_->disc_wet[j];
-        const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-        const double slope = w * 0.5 * rho * stones_->projected_area(j) * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
-        if (params_.drag_relaxation * mass / slope < dt)
-          dt = params_.drag_relaxation * mass / slope, why = "drag_relaxation", where = stone_cell(j);
-      } else if (stones_->disc_wet[j] > 0.0) {
-        const double r = stones_->disc_radius[j], d = 2.0 * r, vol = stones_->volume(j);
-        const double w = stones_->disc_wet[j];
-        const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * vol * w : 0.0);
-        const double slope = w * 0.5 * rho * kPi * r * r * (0.8 * disc_vrel_[j] + 24.0 * nu / d);
-        const double tau = mass / slope;
-        if (params_.drag_relaxation * tau < dt)
-          dt = params_.drag_relaxation * tau, why = "drag_relaxation", where = stone_cell(j);
-      }
+      const double relax = relaxation_dt(j);
+      if (relax < dt) dt = relax, why = "drag_relaxation", where = stone_cell(j);
     }
   }
   if (term) *term = why;
@@ -510,33 +505,27 @@ void Coupler::step(double dt) {
 }
 
 long long Coupler::advance(double t_end, const std::function<void(double)>& progress) {
-  require_finite("t_end", t_end);
-  long long n = 0;
-  const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
-  while (time_ < t_end - eps) {
-    const char* term = nullptr;
-    int cell = -1;
-    double dt = stable_dt_limits(&term, &cell);
-    if (dt < params_.min_dt) {
-      snapshot_valid_ = false;
-      fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " +
-                       format_value(params_.min_dt) + " s)");
-    }
-    // the last steps split the remainder evenly rather than leaving a sliver
-    const double left = t_end - time_, stable = dt;
-    if (dt >= left) dt = left;
-    else if (dt > 0.5 * left) dt = 0.5 * left;
-    bool retried = false;
-    const double cfl = fluid_ ? fluid_->params().cfl : 1.0;
-    step_with_retries(dt, cfl, params_.min_dt, [this](double h) { step(h); }, [&retried](double) { retried = true; });
+  const char* term = nullptr;
+  int cell = -1;
+  auto limits = [&] {
+    const double dt = stable_dt_limits(&term, &cell);
+    return AdvanceLimits{dt, params_.min_dt, fluid_ ? fluid_->params().cfl : 1.0};
+  };
+  auto collapse = [this](double dt) {
+    snapshot_valid_ = false;
+    fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " + format_value(params_.min_dt) +
+                     " s)");
+  };
+  auto stepped = [&](const AdvanceStep& a) {
+    const bool retried = a.retries > 0;
     if (retried) count_limit("cfl_retry", -1);
-    else count_limit(dt < stable ? "t_end" : term, cell);
+    else count_limit(a.dt < a.stable ? "t_end" : term, cell);
     // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
-    if (fluid_ && (params_.flags & kCoupleFluid) && dt < stable && !retried) fluid_->set_last_dt(stable);
-    ++n;
+    if (fluid_ && (params_.flags & kCoupleFluid) && a.dt < a.stable && !retried) fluid_->set_last_dt(a.stable);
     if (progress) progress(time_);
-  }
-  return n;
+  };
+  return advance_until(
+      t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); }, [](double) {}, stepped);
 }
 
 }  // namespace vofdem

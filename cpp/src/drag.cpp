@@ -46,6 +46,15 @@ DragForce drag_force_area_unchecked(double u, double w, double up, double wp, do
   return {coef * vx, coef * vz};
 }
 
+double drag_slope(double speed, double d, double half_rho_area, double nu, DragLaw law) {
+  // eq. (18): c = 1/2 rho A (0.4 |v| + 24 nu / d)
+  if (law == DragLaw::kPaper) return half_rho_area * (0.8 * speed + 24.0 * nu / d);
+  // c = 1/2 rho A (24 nu / d) (1 + 0.15 Re^0.687) below Re = 1000, 1/2 rho A 0.44 |v| above
+  const double re = speed * d / nu;
+  return re < kSchillerNaumannReMax ? half_rho_area * (24.0 * nu / d) * (1.0 + 0.15 * 1.687 * std::pow(re, 0.687))
+                                    : half_rho_area * 0.88 * speed;
+}
+
 DragForce drag_force(double u, double w, double up, double wp, double d, double rho, double nu, DragLaw law) {
   require_finite("u", u);
   require_finite("w", w);

@@ -7,9 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "vofdem/advance.h"
 #include "vofdem/check.h"
-#include "vofdem/porous_resistance.h"
-#include "vofdem/step_retry.h"
+#include "vofdem/porous_stage.h"
+#include "vofdem/projection.h"
 
 namespace vofdem {
 
@@ -82,7 +83,7 @@ struct VOFGrid::Snapshot {
 };
 
 // ---------------------------------------------------------------------------------------------
-// construction and scene
+// construction, parameters, porosity and phase properties
 
 VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
     : grid_(grid), params_(params), snapshot_(std::make_unique<Snapshot>()) {
@@ -193,7 +194,7 @@ void VOFGrid::set_porosity(const std::vector<double>& porosity, bool displace) {
 void VOFGrid::update_face_porosity(bool displace) {
   check_sizes();
   if (!displace) cell_porosity_prev_ = cell_porosity;
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const int nx = grid_.nx(), nz = grid_.nz();
   // the checks' calls (which build the message) only for a value that fails
   for (int c = 0; c < grid_.ncell(); ++c) {
     const double n = cell_porosity[c];
@@ -211,9 +212,9 @@ void VOFGrid::update_face_porosity(bool displace) {
   };
   for (int k = 0; k < nz; ++k) {
     for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
-      pick(a, b, face_x_porosity[j], face_x_diameter_[j]);
+      const int j = grid_.face_x(i, k);
+      const FaceCells c = grid_.face_x_cells(i, k);
+      pick(c.a, c.b, face_x_porosity[j], face_x_diameter_[j]);
       // walls are closed; the inlet and an open end stay open as far as their cell is
       const bool open_end = (i == 0 && params_.inlet == InletBoundary::kDischarge) ||
                             (i == nx && params_.outlet != OutletBoundary::kWall);
@@ -223,51 +224,13 @@ void VOFGrid::update_face_porosity(bool displace) {
   }
   for (int k = 0; k <= nz; ++k) {
     for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
-      pick(a, b, face_z_porosity[j], face_z_diameter_[j]);
+      const int j = grid_.face_z(i, k);
+      const FaceCells c = grid_.face_z_cells(i, k);
+      pick(c.a, c.b, face_z_porosity[j], face_z_diameter_[j]);
       if (k == 0 || (k == nz && params_.top == TopBoundary::kWall)) face_z_porosity[j] = 0.0;
       if (face_z_porosity[j] == 0.0) face_w[j] = 0.0;
     }
   }
-}
-
-namespace {
-// the cells whose centre lies inside [x0, x1] x [z0, z1]
-template <class F>
-void for_cells_in_box(const Grid2D& g, double x0, double x1, double z0, double z1, F&& f) {
-  for (int k = 0; k < g.nz(); ++k) {
-    const double z = g.z_center(k);
-    if (z < z0 || z > z1) continue;
-    for (int i = 0; i < g.nx(); ++i) {
-      const double x = g.x_center(i);
-      if (x >= x0 && x <= x1) f(g.cell(i, k));
-    }
-  }
-}
-}  // namespace
-
-void VOFGrid::fill_water_below(double level) {
-  require_finite("level", level);
-  for (int k = 0; k < grid_.nz(); ++k) {
-    const double f = std::clamp((level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0);
-    for (int i = 0; i < grid_.nx(); ++i) cell_F[grid_.cell(i, k)] = f;
-  }
-}
-
-void VOFGrid::fill_water_box(double x0, double x1, double z0, double z1, double value) {
-  require_in_closed("value", value, 0.0, 1.0);
-  for_cells_in_box(grid_, x0, x1, z0, z1, [&](int c) { cell_F[c] = value; });
-}
-
-void VOFGrid::set_porosity_box(double x0, double x1, double z0, double z1, double n, double d) {
-  require_in_closed("n", n, 0.0, 1.0);
-  require_positive("d", d);
-  for_cells_in_box(grid_, x0, x1, z0, z1, [&](int c) {
-    cell_porosity[c] = n;
-    cell_stone_diameter[c] = d;
-  });
-  update_face_porosity();
 }
 
 void VOFGrid::update_phase_properties() const {
@@ -283,11 +246,11 @@ void VOFGrid::update_phase_properties() const {
     cell_mu_eddy_[c] = turb ? cell_rho_[c] * cell_nut[c] : 0.0;
     cell_mu_[c] = mu + cell_mu_eddy_[c];
   }
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const int nx = grid_.nx(), nz = grid_.nz();
   for (int k = 0; k < nz; ++k)
     for (int i = 0; i <= nx; ++i) {
-      const int a = std::max(i - 1, 0) + nx * k, b = std::min(i, nx - 1) + nx * k;
-      face_x_rho_[i + sx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
+      const FaceCells c = grid_.face_x_cells(i, k);
+      face_x_rho_[grid_.face_x(i, k)] = 0.5 * (cell_rho_[c.a] + cell_rho_[c.b]);
     }
   // an open end faces still fluid outside: water below the tailwater level, air above (two-phase)
   if (two_phase && params_.outlet != OutletBoundary::kWall)
@@ -295,30 +258,13 @@ void VOFGrid::update_phase_properties() const {
       const double f = params_.outlet == OutletBoundary::kTailwater
                            ? std::clamp((params_.tailwater_level - grid_.z_face(k)) / grid_.dz(k), 0.0, 1.0)
                            : 0.0;
-      face_x_rho_[nx + sx * k] = 0.5 * (cell_rho_[nx - 1 + nx * k] + f * rw + (1.0 - f) * ra);
+      face_x_rho_[grid_.face_x(nx, k)] = 0.5 * (cell_rho_[grid_.cell(nx - 1, k)] + f * rw + (1.0 - f) * ra);
     }
   for (int k = 0; k <= nz; ++k)
     for (int i = 0; i < nx; ++i) {
-      const int a = i + nx * std::max(k - 1, 0), b = i + nx * std::min(k, nz - 1);
-      face_z_rho_[i + nx * k] = 0.5 * (cell_rho_[a] + cell_rho_[b]);
+      const FaceCells c = grid_.face_z_cells(i, k);
+      face_z_rho_[grid_.face_z(i, k)] = 0.5 * (cell_rho_[c.a] + cell_rho_[c.b]);
     }
-}
-
-void VOFGrid::set_hydrostatic_pressure() {
-  update_phase_properties();
-  const double g = std::abs(params_.medium.gravity[1]);
-  const int nx = grid_.nx(), nz = grid_.nz();
-  for (int i = 0; i < nx; ++i) {
-    // the discrete balance of the projection: p_k - p_{k+1} = rho_face g (z_{k+1} - z_k), p = 0 on top
-    double p = cell_rho_[i + nx * (nz - 1)] * g * 0.5 * grid_.dz(nz - 1);
-    cell_p[i + nx * (nz - 1)] = p;
-    for (int k = nz - 2; k >= 0; --k) {
-      p += face_z_rho_[i + nx * (k + 1)] * g * (grid_.z_center(k + 1) - grid_.z_center(k));
-      cell_p[i + nx * k] = p;
-    }
-  }
-  for (int c = 0; c < grid_.ncell(); ++c)
-    if (cell_porosity[c] <= 0.0) cell_p[c] = 0.0;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -378,20 +324,20 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   double rate = max_cfl(1.0, kind, index);
   // the inlet flow the step will carry (q / dz of the lowest row when the inlet is dry)
   if (params_.inlet == InletBoundary::kDischarge) {
-    const int nx = grid_.nx(), sx = nx + 1;
     std::vector<double>& u_in = inlet_u_;
-    inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(), nx,
-                     u_in);
+    inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(),
+                     grid_.nx(), u_in);
     for (int k = 0; k < grid_.nz(); ++k) {
-      const double n = face_x_porosity[sx * k];
+      const double n = face_x_porosity[grid_.face_x(0, k)];
       if (n > 0.0) rate = std::max(rate, std::abs(u_in[k]) / (n * grid_.dx()));
     }
   }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
+  // the cell beside the binding face (inside the grid at a boundary face)
   if (index >= 0) {
-    const int nx = grid_.nx(), nz = grid_.nz();
-    s.advective_cell = kind == 1 ? std::min(index % (nx + 1), nx - 1) + nx * (index / (nx + 1))
-                                 : index % nx + nx * std::min(index / nx, nz - 1);
+    const int nx = grid_.nx();
+    s.advective_cell = kind == 1 ? grid_.face_x_cells(index % (nx + 1), index / (nx + 1)).b
+                                 : grid_.face_z_cells(index % nx, index / nx).b;
   }
   s.viscous = kInf;
   // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
@@ -503,29 +449,9 @@ void VOFGrid::check_finite(const char* stage, const char* name, const std::vecto
 
 void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   if (params_.inlet != InletBoundary::kDischarge) return;
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const double q = discharge_.at(t) / params_.flume_width;
-  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), nx, inlet_u_);
-  for (int k = 0; k < nz; ++k) u[sx * k] = inlet_u_[k];
-}
-
-double VOFGrid::outlet_pressure(int k) const {
-  // still fluid outside, hydrostatic from p = 0 at the top: an end face at p = 0 over its whole height
-  // would leave the air in the last columns unbalanced by rho_a g and let it fall through the domain
-  const double g = (params_.flags & kFlowGravity) ? std::abs(params_.medium.gravity[1]) : 0.0;
-  const double z = grid_.z_center(k);
-  const double top = grid_.z_face(grid_.nz());
-  // single phase: water outside too, up to the tailwater level or the top
-  if (!(params_.flags & kFlowFreeSurface))
-    return params_.medium.rho_water * g * ((params_.outlet == OutletBoundary::kTailwater ? params_.tailwater_level : top) - z);
-  double p = params_.medium.rho_air * g * (top - z);
-  if (params_.outlet == OutletBoundary::kTailwater && params_.tailwater_level > z)
-    p += (params_.medium.rho_water - params_.medium.rho_air) * g * (params_.tailwater_level - z);
-  return p;
-}
-
-double VOFGrid::inlet_discharge_per_width() const {
-  return params_.inlet == InletBoundary::kDischarge ? discharge_.at(time_) / params_.flume_width : 0.0;
+  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), grid_.nx(), inlet_u_);
+  for (int k = 0; k < grid_.nz(); ++k) u[grid_.face_x(0, k)] = inlet_u_[k];
 }
 
 void VOFGrid::stage_advect_vof(double dt) {
@@ -537,7 +463,7 @@ void VOFGrid::stage_advect_vof(double dt) {
   for (int k = 0; k < nz; ++k)
     vof_inflow_.right[k] = params_.outlet == OutletBoundary::kTailwater && grid_.z_center(k) < params_.tailwater_level;
   if (params_.inlet == InletBoundary::kDischarge)
-    for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[(grid_.nx() + 1) * k], 0.0) * grid_.dz(k) * dt;
+    for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[grid_.face_x(0, k)], 0.0) * grid_.dz(k) * dt;
   try {
     advect_vof(grid_, cell_porosity, face_u, face_w, vof_inflow_, dt, step_count_ % 2 == 0, cell_F, vof_scratch_);
   } catch (const CflBreach& e) {
@@ -547,12 +473,12 @@ void VOFGrid::stage_advect_vof(double dt) {
   }
   check_finite("advect_vof", "water fraction", cell_F, 0);
   // the water budget: what the two sweeps carried through the boundary faces (left, right, bed, top)
-  const int nx = grid_.nx(), sx = nx + 1;
+  const int nx = grid_.nx();
   const std::vector<double>& fx = vof_scratch_.face_flux_x;
   const std::vector<double>& fz = vof_scratch_.face_flux_z;
   double net = 0.0;
-  for (int k = 0; k < nz; ++k) net += fx[sx * k] - fx[nx + sx * k];
-  for (int i = 0; i < nx; ++i) net += fz[i] - fz[i + nx * nz];
+  for (int k = 0; k < nz; ++k) net += fx[grid_.face_x(0, k)] - fx[grid_.face_x(nx, k)];
+  for (int i = 0; i < nx; ++i) net += fz[grid_.face_z(i, 0)] - fz[grid_.face_z(i, nz)];
   net_inflow_volume_ += net;
   dilatation_volume_ += dilatation(dt);
   flux_dt_ = dt;
@@ -619,54 +545,16 @@ void VOFGrid::stage_momentum(double dt) {
 
 void VOFGrid::stage_porous_resistance(double dt) {
   ScopedStage timer(profile_, st_porous_);
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const bool lin = params_.flags & kFlowPorousDarcy, quad = params_.flags & kFlowPorousForchheimer;
-  const bool rel = params_.flags & kFlowRelativeVelocity;
-  const double k1 = params_.k1, k2 = params_.k2;
-  // R' = a + b |u_rel| from the velocity of the last step (Picard), then (1 + dt n R') u = u* + dt n R' n u_s
-  auto apply = [&](double n, double d, double rho, double mu, double u_rel_mag, double us, double& ustar, double& beta) {
-    if (n <= 0.0 || n >= 1.0) return;
-    const PorousCoefficients pc = porous_coefficients_unchecked(n, d, mu / rho, k1, k2);
-    const double r = (lin ? pc.linear : 0.0) + (quad ? pc.quadratic * u_rel_mag : 0.0);
-    const double denom = 1.0 + dt * n * r;
-    ustar = (ustar + (rel ? dt * n * r * n * us : 0.0)) / denom;
-    beta /= denom;
-  };
-  // eq. (5) uses the molecular viscosity nu, not nu_e = nu + nu_t: the eddy viscosity of the k-epsilon
-  // model (up to 1e4 nu in a weir) would make the Darcy term 1e4 times too large where the flow is turbulent
-  auto mu_face = [&](int a, int b) { return 0.5 * (cell_rho_[a] * cell_nu_[a] + cell_rho_[b] * cell_nu_[b]); };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const double n = face_x_porosity[j];
-      if (n <= 0.0 || n >= 1.0) continue;
-      const int a = std::max(i - 1, 0), b = std::min(i, nx - 1);
-      const double wm = 0.25 * (face_w[a + nx * k] + face_w[b + nx * k] + face_w[a + nx * (k + 1)] + face_w[b + nx * (k + 1)]);
-      double ur = face_u[j], wr = wm;
-      if (rel) {
-        ur -= n * face_x_solid_u[j];
-        wr -= n * 0.25 * (face_z_solid_w[a + nx * k] + face_z_solid_w[b + nx * k] + face_z_solid_w[a + nx * (k + 1)] +
-                          face_z_solid_w[b + nx * (k + 1)]);
-      }
-      apply(n, face_x_diameter_[j], face_x_rho_[j], mu_face(a + nx * k, b + nx * k), std::hypot(ur, wr),
-            face_x_solid_u[j], u_star_[j], face_x_beta_[j]);
-    }
-  for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const double n = face_z_porosity[j];
-      if (n <= 0.0 || n >= 1.0) continue;
-      const int a = std::max(k - 1, 0), b = std::min(k, nz - 1);
-      const double um = 0.25 * (face_u[i + sx * a] + face_u[i + 1 + sx * a] + face_u[i + sx * b] + face_u[i + 1 + sx * b]);
-      double ur = um, wr = face_w[j];
-      if (rel) {
-        wr -= n * face_z_solid_w[j];
-        ur -= n * 0.25 * (face_x_solid_u[i + sx * a] + face_x_solid_u[i + 1 + sx * a] + face_x_solid_u[i + sx * b] +
-                          face_x_solid_u[i + 1 + sx * b]);
-      }
-      apply(n, face_z_diameter_[j], face_z_rho_[j], mu_face(i + nx * a, i + nx * b), std::hypot(ur, wr),
-            face_z_solid_w[j], w_star_[j], face_z_beta_[j]);
-    }
+  const PorousStageFields f{face_u.data(),           face_w.data(),           face_x_porosity.data(),
+                            face_z_porosity.data(),  face_x_diameter_.data(), face_z_diameter_.data(),
+                            face_x_rho_.data(),      face_z_rho_.data(),      cell_rho_.data(),
+                            cell_nu_.data(),         face_x_solid_u.data(),   face_z_solid_w.data()};
+  PorousStageTerms t;
+  t.linear = params_.flags & kFlowPorousDarcy;
+  t.quadratic = params_.flags & kFlowPorousForchheimer;
+  t.relative = params_.flags & kFlowRelativeVelocity;
+  t.k1 = params_.k1, t.k2 = params_.k2;
+  porous_resistance_stage(grid_, f, t, dt, u_star_, w_star_, face_x_beta_, face_z_beta_);
   check_finite("porous_resistance", "x-velocity", u_star_, 1);
   check_finite("porous_resistance", "z-velocity", w_star_, 2);
 }
@@ -689,60 +577,27 @@ void VOFGrid::stage_turbulence(double dt) {
   check_finite("turbulence", "eddy viscosity", cell_nut, 0);
 }
 
+ProjectionFields VOFGrid::projection_fields() const {
+  return {face_x_porosity.data(), face_z_porosity.data(), face_x_beta_.data(), face_z_beta_.data(),
+          face_u.data(),          face_x_rho_.data(),     u_star_.data(),      w_star_.data(),
+          cell_porosity.data(),   cell_porosity_prev_.data()};
+}
+
+ProjectionBoundary VOFGrid::projection_boundary() const {
+  ProjectionBoundary bc;
+  bc.right_open = params_.outlet != OutletBoundary::kWall;
+  bc.tailwater = params_.outlet == OutletBoundary::kTailwater;
+  bc.tailwater_level = params_.tailwater_level;
+  bc.two_phase = params_.flags & kFlowFreeSurface;
+  bc.rho_water = params_.medium.rho_water;
+  bc.rho_air = params_.medium.rho_air;
+  bc.gravity = (params_.flags & kFlowGravity) ? std::abs(params_.medium.gravity[1]) : 0.0;
+  return bc;
+}
+
 void VOFGrid::stage_pressure(double dt) {
   ScopedStage timer(profile_, st_pressure_);
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const double dx = grid_.dx();
-  for (int c = 0; c < grid_.ncell(); ++c) problem_.cell_active[c] = cell_porosity[c] > 0.0;
-  // x-faces: a = beta dz / dx inside; an open end is a Dirichlet face half a cell from the centre
-  for (int k = 0; k < nz; ++k) {
-    const double dz = grid_.dz(k);
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      double a = 0.0;
-      if (face_x_porosity[j] > 0.0) {
-        if (i > 0 && i < nx) a = face_x_beta_[j] * dz / dx;
-        else if (i == nx && params_.outlet != OutletBoundary::kWall) a = face_x_beta_[j] * dz / (0.5 * dx);
-      }
-      problem_.face_x_coef[j] = a;
-      problem_.face_x_bc[j] = i == nx ? outlet_pressure(k) : 0.0;
-      // water drawn in from the still tailwater starts from rest: its static pressure at the end face is
-      // the outside pressure less 1/2 rho U^2 (a total-pressure inlet); a fixed static pressure lets the
-      // inflow run away (-25 m/s below a weir's jet)
-      if (i == nx && params_.outlet == OutletBoundary::kTailwater && face_u[j] < 0.0 && face_x_porosity[j] > 0.0) {
-        const double U = face_u[j] / face_x_porosity[j];
-        problem_.face_x_bc[j] -= 0.5 * face_x_rho_[j] * U * U;
-      }
-    }
-  }
-  for (int k = 0; k <= nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      double a = 0.0;
-      if (face_z_porosity[j] > 0.0) {
-        if (k > 0 && k < nz) a = face_z_beta_[j] * dx / (grid_.z_center(k) - grid_.z_center(k - 1));
-        else if (k == nz) a = face_z_beta_[j] * dx / (0.5 * grid_.dz(nz - 1));
-      }
-      problem_.face_z_coef[j] = a;
-      problem_.face_z_bc[j] = 0.0;
-    }
-  }
-  // b = net outflow of u* per metre of width [m^2/s], less the outflow the porosity change asks for:
-  // dn/dt + div u = 0, so the corrected velocities leave a cell at the rate -dn/dt dx dz
-  const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
-  for (int k = 0; k < nz; ++k) {
-    const double dz = grid_.dz(k);
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      double b = 0.0;
-      if (problem_.cell_active[c]) {
-        b = (u_star_[i + 1 + sx * k] - u_star_[i + sx * k]) * dz + (w_star_[c + nx] - w_star_[c]) * dx;
-        const double dn = cell_porosity[c] - cell_porosity_prev_[c];
-        if (dn != 0.0 && cell_porosity_prev_[c] > 0.0) b += dn * inv_dt * dx * dz;
-      }
-      rhs_[c] = b;
-    }
-  }
+  assemble_pressure_problem(grid_, projection_fields(), projection_boundary(), dt, problem_, rhs_);
   try {
     solver_->setup(grid_, problem_);
     pressure_stats_ = solver_->solve(rhs_, cell_p, params_.pressure_tol);
@@ -770,36 +625,7 @@ void VOFGrid::solve_pressure_directly(const std::string& why) {
 
 void VOFGrid::stage_correct() {
   ScopedStage timer(profile_, st_correct_);
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const double dx = grid_.dx();
-  for (int k = 0; k < nz; ++k) {
-    for (int i = 0; i <= nx; ++i) {
-      const int j = i + sx * k;
-      const double a = problem_.face_x_coef[j];
-      double u = u_star_[j];
-      if (a > 0.0) {
-        const double pl = i > 0 ? cell_p[i - 1 + nx * k] : 0.0;
-        const double pr = i < nx ? cell_p[i + nx * k] : problem_.face_x_bc[j];
-        const double dist = (i == 0 || i == nx) ? 0.5 * dx : dx;
-        u -= face_x_beta_[j] * (pr - pl) / dist;
-      }
-      face_u[j] = u;
-    }
-  }
-  for (int k = 0; k <= nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      const double a = problem_.face_z_coef[j];
-      double w = w_star_[j];
-      if (a > 0.0) {
-        const double pb = k > 0 ? cell_p[i + nx * (k - 1)] : 0.0;
-        const double pt = k < nz ? cell_p[i + nx * k] : problem_.face_z_bc[j];
-        const double dist = k == nz ? 0.5 * grid_.dz(nz - 1) : grid_.z_center(k) - grid_.z_center(k - 1);
-        w -= face_z_beta_[j] * (pt - pb) / dist;
-      }
-      face_w[j] = w;
-    }
-  }
+  correct_velocities(grid_, projection_fields(), problem_, cell_p, face_u, face_w);
   check_finite("correct", "x-velocity", face_u, 1);
   check_finite("correct", "z-velocity", face_w, 2);
 }
@@ -809,12 +635,20 @@ void VOFGrid::stage_checks(double dt) {
   for (int c = 0; c < grid_.ncell(); ++c)
     if (cell_F[c] < -kFractionSlack || cell_F[c] > 1.0 + kFractionSlack)
       fail("checks", "water fraction out of [0, 1] (" + format_value(cell_F[c]) + ")", 0, c);
+  check_cfl("checks", dt);
+}
+
+void VOFGrid::check_cfl(const char* stage, double dt) {
   int kind, index;
   const double cfl = max_cfl(dt, kind, index);
-  if (cfl > 1.0)
-    fail("checks", "CFL breach: the new velocity crosses " + format_value(cfl) + " cells in dt = " + format_value(dt) +
-                       " s",
-         kind, index, cfl);
+  if (!(cfl > 1.0)) return;
+  // before the step: the step asked for is too long; after it: the velocities it made are too fast
+  const std::string what = std::string(stage) == "step"
+                               ? "dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
+                                     " (pore velocity)"
+                               : "the new velocity crosses " + format_value(cfl) + " cells in dt = " +
+                                     format_value(dt) + " s";
+  fail(stage, "CFL breach: " + what, kind, index, cfl);
 }
 
 void VOFGrid::step(double dt) {
@@ -824,12 +658,7 @@ void VOFGrid::step(double dt) {
   check_finite("step", "x-velocity", face_u, 1);
   check_finite("step", "z-velocity", face_w, 2);
   check_finite("step", "water fraction", cell_F, 0);
-  int kind, index;
-  const double cfl = max_cfl(dt, kind, index);
-  if (cfl > 1.0)
-    fail("step", "CFL breach: dt = " + format_value(dt) + " s gives a Courant number " + format_value(cfl) +
-                     " (pore velocity)",
-         kind, index, cfl);
+  check_cfl("step", dt);
   update_phase_properties();
   stage_momentum(dt);
   if (params_.flags & kFlowPorousResistance) stage_porous_resistance(dt);
@@ -866,104 +695,24 @@ void VOFGrid::set_last_dt(double dt) {
 }
 
 long long VOFGrid::advance(double t_end) {
-  require_finite("t_end", t_end);
-  long long n = 0;
-  // a step shorter than this closes the remaining interval (avoids a last step of round-off size)
-  const double eps = 1e-12 * std::max(1.0, std::abs(t_end));
-  while (time_ < t_end - eps) {
-    const FlowStableDt s = stable_dt_terms();
-    double dt = s.min();
-    if (dt < params_.min_dt) {
-      int kind, index;
-      max_cfl(1.0, kind, index);
-      save_state();
-      fail("checks", "time step collapsed to " + format_value(dt) + " s (advective " + format_value(s.advective) +
-                         ", viscous " + format_value(s.viscous) + ")",
-           kind, index);
-    }
-    // the last steps split the remainder evenly rather than leaving a sliver
-    const double left = t_end - time_;
-    const double stable = dt;
-    if (dt >= left) dt = left;
-    else if (dt > 0.5 * left) dt = 0.5 * left;
-    const double taken =
-        step_with_retries(dt, params_.cfl, params_.min_dt, [this](double h) { step(h); }, [this](double) { ++retried_steps_; });
-    // a step cut to reach t_end is no stability decision: the growth goes on from the stable step
-    last_dt_ = taken < dt ? taken : std::max(dt, stable);
-    ++n;
-  }
-  return n;
-}
-
-// ---------------------------------------------------------------------------------------------
-// diagnostics
-
-void VOFGrid::pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const {
-  const int nx = grid_.nx(), sx = nx + 1;
-  U.assign(grid_.ncell(), 0.0);
-  W.assign(grid_.ncell(), 0.0);
-  for (int k = 0; k < grid_.nz(); ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      const double n = cell_porosity[c];
-      if (n <= 0.0) continue;
-      U[c] = 0.5 * (face_u[i + sx * k] + face_u[i + 1 + sx * k]) / n;
-      W[c] = 0.5 * (face_w[c] + face_w[c + nx]) / n;
-    }
-}
-
-void VOFGrid::pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const {
-  const int nx = grid_.nx(), nz = grid_.nz();
-  dpdx.assign(grid_.ncell(), 0.0);
-  dpdz.assign(grid_.ncell(), 0.0);
-  auto active = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_porosity[i + nx * k] > 0.0; };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      if (!active(i, k)) continue;
-      // central where both neighbours are fluid, one-sided next to a wall or a solid
-      const bool l = active(i - 1, k), r = active(i + 1, k);
-      if (l && r) dpdx[c] = (cell_p[c + 1] - cell_p[c - 1]) / (2.0 * grid_.dx());
-      else if (r) dpdx[c] = (cell_p[c + 1] - cell_p[c]) / grid_.dx();
-      else if (l) dpdx[c] = (cell_p[c] - cell_p[c - 1]) / grid_.dx();
-      const bool b = active(i, k - 1), t = active(i, k + 1);
-      if (b && t) dpdz[c] = (cell_p[c + nx] - cell_p[c - nx]) / (grid_.z_center(k + 1) - grid_.z_center(k - 1));
-      else if (t) dpdz[c] = (cell_p[c + nx] - cell_p[c]) / (grid_.z_center(k + 1) - grid_.z_center(k));
-      else if (b) dpdz[c] = (cell_p[c] - cell_p[c - nx]) / (grid_.z_center(k) - grid_.z_center(k - 1));
-    }
-}
-
-double VOFGrid::water_volume() const {
-  const int nx = grid_.nx();
-  double v = 0.0;
-  for (int k = 0; k < grid_.nz(); ++k) {
-    double row = 0.0;
-    for (int i = 0; i < nx; ++i) row += cell_porosity[i + nx * k] * cell_F[i + nx * k];
-    v += row * grid_.cell_area(k);
-  }
-  return v;
-}
-
-double VOFGrid::discharge_through(int i) const {
-  if (i < 0 || i > grid_.nx())
-    throw std::invalid_argument("i = " + std::to_string(i) + " is outside the allowed range [0, " +
-                                std::to_string(grid_.nx()) + "]");
-  const int nx = grid_.nx(), sx = nx + 1;
-  double q = 0.0;
-  const std::vector<double>& flux = vof_scratch_.face_flux_x;
-  if (flux_dt_ > 0.0 && flux.size() == static_cast<std::size_t>(grid_.nface_x())) {
-    for (int k = 0; k < grid_.nz(); ++k) q += flux[i + sx * k];
-    return q / flux_dt_;
-  }
-  for (int k = 0; k < grid_.nz(); ++k) {
-    const double u = face_u[i + sx * k];
-    // the fraction of the cell the flow leaves (the inflow fraction 1 at the inlet)
-    double f;
-    if (u >= 0.0) f = i > 0 ? cell_F[i - 1 + nx * k] : 1.0;
-    else f = i < nx ? cell_F[i + nx * k] : 0.0;
-    q += u * f * grid_.dz(k);
-  }
-  return q;
+  FlowStableDt s;
+  auto limits = [&] {
+    s = stable_dt_terms();
+    return AdvanceLimits{s.min(), params_.min_dt, params_.cfl};
+  };
+  auto collapse = [&](double dt) {
+    int kind, index;
+    max_cfl(1.0, kind, index);
+    save_state();
+    fail("checks", "time step collapsed to " + format_value(dt) + " s (advective " + format_value(s.advective) +
+                       ", viscous " + format_value(s.viscous) + ")",
+         kind, index);
+  };
+  // a step cut to reach t_end is no stability decision: the growth goes on from the stable step
+  auto stepped = [this](const AdvanceStep& a) { last_dt_ = a.taken < a.dt ? a.taken : std::max(a.dt, a.stable); };
+  return advance_until(
+      t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); },
+      [this](double) { ++retried_steps_; }, stepped);
 }
 
 }  // namespace vofdem

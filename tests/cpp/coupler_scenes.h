@@ -52,6 +52,22 @@ inline Scene tank(double width, double height, double h, double level, const std
   return s;
 }
 
+// the drag held over the step (explicit exchange, drag_relaxation 1e-3) and stone 0 moving at 0.3 m/s
+// through the still water, its forces exchanged; returns its mass with the added mass [kg], M + M' of
+// the drag's relaxation time (M + M') / slope
+inline double hold_the_drag_of_a_moving_stone(Scene& s) {
+  CouplerParams cp = s.sim->params();
+  cp.implicit_drag = false;
+  cp.drag_relaxation = 1e-3;
+  s.sim->set_params(cp);
+  s.stones->disc_vel[0] = 0.3;
+  s.sim->update_fluid_forces();
+  const DEMParams& dp = s.stones->params();
+  const double rho = s.fluid->params().medium.rho_water, w = s.stones->disc_wet[0];
+  const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
+  return s.stones->mass(0) + (added ? rho * dp.added_mass_coefficient * s.stones->volume(0) * w : 0.0);
+}
+
 // terminal velocity [m/s] of the force balance 1/2 rho A (0.4 v^2 + 24 nu v / d) = (rho_s - rho) V g
 inline double terminal_velocity(double d, double rho_s, double rho, double nu, double g) {
   const double a = 0.5 * rho * M_PI * d * d / 4.0, w = (rho_s - rho) * M_PI * d * d * d / 6.0 * g;

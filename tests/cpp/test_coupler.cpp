@@ -427,6 +427,20 @@ TEST(Coupler, TwoWayFallingStoneBalancesItsSubmergedWeight) {
   EXPECT_GT(s.sim->disc_force_pressure[1], 0.0);
 }
 
+TEST(Coupler, HeldDragBoundsTheStepByItsRelaxationTime) {
+  // a held drag: the step is at most drag_relaxation x (M + M') / slope, the slope 1/2 rho A_p (0.8 |v| +
+  // 24 nu / d) of eq. (18) at the last exchange's relative speed (drag.h), scaled by the wet fraction;
+  // pinned to the bit
+  Scene s = tank(0.2, 0.2, 0.01, 0.15, {0.1, 0.08}, 0.01, kCoupleOneWay);
+  const double mass = hold_the_drag_of_a_moving_stone(s);  // |U - u_p| = 0.3 m/s
+  const Medium& m = s.fluid->params().medium;
+  const double r = 0.01, w = s.stones->disc_wet[0];
+  ASSERT_GT(w, 0.99);
+  const double slope = w * 0.5 * m.rho_water * M_PI * r * r * (0.8 * 0.3 + 24.0 * m.nu_water / (2.0 * r));
+  EXPECT_EQ(s.sim->stable_dt(), s.sim->params().drag_relaxation * (mass / slope));
+  EXPECT_LT(s.sim->stable_dt(), s.fluid->stable_dt());
+}
+
 TEST(Coupler, LookupPorosityConservesWaterAndFollowsTheExactAreas) {
   std::vector<double> pos;
   for (int j = 0; j < 3; ++j) pos.push_back(0.1 + 0.003 * j), pos.push_back(0.25 + 0.05 * j);

@@ -69,6 +69,18 @@ TEST(CouplerPolygon, DragOfAGivenProjectedAreaByHand) {
   EXPECT_EQ(g.fz, h.fz);
 }
 
+TEST(CouplerPolygon, HeldDragBoundsTheStepByItsRelaxationTime) {
+  // a held drag on a polygon: the slope of eq. (18) with its mean projected area and nominal diameter
+  Scene s = box_tank(0.2, 0.2, 0.01, 0.15, {0.1, 0.08}, 0.01, 0.006, kCoupleOneWay);
+  const double mass = hold_the_drag_of_a_moving_stone(s);  // |U - u_p| = 0.3 m/s
+  const Medium& m = s.fluid->params().medium;
+  const double w = s.stones->disc_wet[0], d = s.stones->nominal_diameter(0);
+  ASSERT_GT(w, 0.99);
+  const double slope = w * 0.5 * m.rho_water * s.stones->projected_area(0) * (0.8 * 0.3 + 24.0 * m.nu_water / d);
+  EXPECT_EQ(s.sim->stable_dt(), s.sim->params().drag_relaxation * mass / slope);
+  EXPECT_LT(s.sim->stable_dt(), s.fluid->stable_dt());
+}
+
 TEST(CouplerPolygon, FlatStoneFallsAtTheTerminalVelocityOfItsProjectedArea) {
   // a 6 x 3 cm box falling flat: A_p = (pi/2) r_A W with W = 6 cm across the vertical fall,
   // V = (4/3) A r_A, Re on d = 2 r_A; force balance 1/2 rho A_p (0.4 v^2 + 24 nu v / d) = (rho_s - rho) V g

@@ -29,6 +29,28 @@ TEST(Grid2D, IndexingAndLocation) {
   EXPECT_EQ(g.locate_z(-1.0), 0);
 }
 
+TEST(Grid2D, FaceNeighbours) {
+  const Grid2D g = Grid2D::uniform(4, 3, 2.0, 0.6);
+  // an inner x-face between cells (0, 1) and (1, 1); the end faces have their one cell on both sides
+  EXPECT_EQ(g.face_x_cells(1, 1).a, g.cell(0, 1));
+  EXPECT_EQ(g.face_x_cells(1, 1).b, g.cell(1, 1));
+  EXPECT_EQ(g.face_x_cells(0, 2).a, g.cell(0, 2));
+  EXPECT_EQ(g.face_x_cells(0, 2).b, g.cell(0, 2));
+  EXPECT_EQ(g.face_x_cells(4, 0).a, g.cell(3, 0));
+  EXPECT_EQ(g.face_x_cells(4, 0).b, g.cell(3, 0));
+  // z-faces: below and above, the bed and the top with their one cell
+  EXPECT_EQ(g.face_z_cells(2, 1).a, g.cell(2, 0));
+  EXPECT_EQ(g.face_z_cells(2, 1).b, g.cell(2, 1));
+  EXPECT_EQ(g.face_z_cells(2, 0).a, g.cell(2, 0));
+  EXPECT_EQ(g.face_z_cells(2, 3).b, g.cell(2, 2));
+  // the z-faces and the cells below and above cell (2, 1)
+  const int c = g.cell(2, 1);
+  EXPECT_EQ(g.face_z_below(c), g.face_z(2, 1));
+  EXPECT_EQ(g.face_z_above(c), g.face_z(2, 2));
+  EXPECT_EQ(g.cell_below(c), g.cell(2, 0));
+  EXPECT_EQ(g.cell_above(c), g.cell(2, 2));
+}
+
 TEST(Grid2D, RefusesBadInput) {
   EXPECT_THROW(Grid2D(0, 0.1, {0.0, 1.0}), std::invalid_argument);
   EXPECT_THROW(Grid2D(2, -0.1, {0.0, 1.0}), std::invalid_argument);

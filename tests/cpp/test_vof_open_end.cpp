@@ -1,4 +1,4 @@
-// Open end faces hold the still air outside in hydrostatic balance (VOFGrid::outlet_pressure).
+// Open end faces hold the still air outside in hydrostatic balance (open_end_pressure, projection.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,6 +49,35 @@ TEST(VOFTimeStep, FirstStepOfMaxDtFromRestBreachesTheCfl) {
     EXPECT_NE(std::string(e.what()).find("CFL"), std::string::npos) << e.what();
   }
   EXPECT_EQ(flow.time(), 0.0);
+}
+
+TEST(VOFTimeStep, CflBreachesNameTheTooLongStepOrTheNewVelocity) {
+  auto breach = [](VOFGrid& flow) -> std::string {
+    try {
+      flow.step(0.01);
+    } catch (const CflBreach& e) {
+      EXPECT_GT(e.courant(), 1.0);
+      return e.what();
+    }
+    return "no exception";
+  };
+  // at the step's start: 0.2 m/s through pores of 0.05 cross 8 cells of 5 mm in 0.01 s
+  VOFGrid a(wall_grid(), FlowParams{});
+  column_against_wall(a);
+  a.face_u[wall_grid().face_x(40, 0)] = 0.2;
+  EXPECT_EQ(breach(a).rfind("VOFGrid stage 'step': CFL breach: dt = 0.01 s gives a Courant number 8 (pore velocity) "
+                            "at x-face (i=40, k=0",
+                            0),
+            0u);
+  // at its end (no free surface, so no advection to meet it first): the inflow made in the step
+  FlowParams p;
+  p.flags &= ~kFlowFreeSurface;
+  p.inlet = InletBoundary::kDischarge;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  VOFGrid b(wall_grid(), p);
+  column_against_wall(b);
+  b.set_discharge(DischargeTable::constant(0.2));
+  EXPECT_EQ(breach(b).rfind("VOFGrid stage 'checks': CFL breach: the new velocity crosses ", 0), 0u);
 }
 
 TEST(VOFTimeStep, RetriesShortenTheStepByTheCourantNumberReached) {
@@ -170,6 +200,48 @@ TEST(VOFTimeStep, AdvanceCutToItsEndKeepsTheStableStepForTheGrowth) {
   flow.advance(1e-3 + 1e-4);  // 1e-3, then cut to 1e-4 (the stable step is 1.2e-3)
   EXPECT_DOUBLE_EQ(flow.last_dt(), 1.2e-3);
   EXPECT_DOUBLE_EQ(flow.stable_dt_terms().growth, 1.44e-3);
+}
+
+TEST(VOFTimeStep, AdvanceSplitsTheLastIntervalEvenly) {
+  // stable steps 1e-3, 1.2e-3, 1.44e-3 from rest: 1e-3, then the 1.5e-3 left in two halves
+  const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
+  VOFGrid flow(g, FlowParams{});
+  flow.fill_water_below(0.05);
+  EXPECT_EQ(flow.advance(2.5e-3), 3);
+  EXPECT_DOUBLE_EQ(flow.time(), 2.5e-3);
+  EXPECT_DOUBLE_EQ(flow.last_dt(), 1.44e-3);  // the stable step of the cut last one
+  EXPECT_EQ(flow.advance(2.5e-3 + 1e-16), 0);  // a remainder of round-off size is no step
+}
+
+TEST(VOFTimeStep, ACollapsedStepIsAFailureThatNamesItsTerms) {
+  const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
+  FlowParams p;
+  p.min_dt = 2e-3;  // above the first step, 1e-3
+  VOFGrid flow(g, p);
+  flow.fill_water_below(0.05);
+  try {
+    flow.advance(0.1);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("VOFGrid stage 'checks': time step collapsed to 0.001 s (advective ", 0), 0u) << m;
+    EXPECT_NE(m.find("state restored to t = 0 s"), std::string::npos) << m;
+  }
+  EXPECT_EQ(flow.time(), 0.0);
+  EXPECT_THROW(flow.advance(NAN), std::invalid_argument);
+
+  test::Scene s = test::tank(0.2, 0.2, 0.01, 0.15, {0.1, 0.08}, 0.01, kCoupleOneWay);
+  CouplerParams cp = s.sim->params();
+  cp.min_dt = 2e-3;
+  s.sim->set_params(cp);
+  try {
+    s.sim->advance(0.1);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "Coupler stage 'step' at t = 0 s (step 0): time step collapsed to 0.001 s (below min_dt = "
+                           "0.002 s); coupled state restored to t = 0 s");
+  }
+  EXPECT_THROW(s.sim->advance(INFINITY), std::invalid_argument);
 }
 
 TEST(VOFTimeStep, BadParametersAreRefused) {

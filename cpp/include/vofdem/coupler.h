@@ -154,7 +154,8 @@ class Coupler {
   // one coupling step of stable_dt() / of dt [s]
   void step();
   void step(double dt);
-  // steps until time() reaches t_end [s]; returns the number of steps. progress (optional) is called
+  // steps of stable_dt() until time() reaches t_end [s] (the loop of advance.h, shared with
+  // VOFGrid::advance); returns the number of steps. progress (optional) is called
   // after every step with the time [s] (C++ callers; the Python front polls time between calls)
   long long advance(double t_end, const std::function<void(double)>& progress = nullptr);
 

@@ -9,9 +9,15 @@
 // The grid is a pure description: it holds no field and never changes after construction.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 namespace vofdem {
+
+// the two cells beside a face (Grid2D::face_x_cells, face_z_cells)
+struct FaceCells {
+  int a, b;  // left and right of an x-face, below and above a z-face
+};
 
 class Grid2D {
  public:
@@ -32,6 +38,16 @@ class Grid2D {
   int cell(int i, int k) const { return i + nx_ * k; }
   int face_x(int i, int k) const { return i + (nx_ + 1) * k; }
   int face_z(int i, int k) const { return i + nx_ * k; }
+
+  // the cells beside x-face (i, k), left and right, and beside z-face (i, k), below and above; a
+  // boundary face has its one cell on both sides
+  FaceCells face_x_cells(int i, int k) const { return {std::max(i - 1, 0) + nx_ * k, std::min(i, nx_ - 1) + nx_ * k}; }
+  FaceCells face_z_cells(int i, int k) const { return {i + nx_ * std::max(k - 1, 0), i + nx_ * std::min(k, nz_ - 1)}; }
+  // the z-faces below and above cell c, and the cells below and above it (which must exist)
+  int face_z_below(int c) const { return c; }
+  int face_z_above(int c) const { return c + nx_; }
+  int cell_below(int c) const { return c - nx_; }
+  int cell_above(int c) const { return c + nx_; }
 
   double dx() const { return dx_; }
   double dz(int k) const { return z_faces_[k + 1] - z_faces_[k]; }

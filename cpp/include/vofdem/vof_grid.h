@@ -66,6 +66,9 @@
 
 namespace vofdem {
 
+struct ProjectionFields;    // projection.h
+struct ProjectionBoundary;  // projection.h
+
 // physical effects of the flow solver, one bit each (FlowParams::flags)
 enum FlowEffect : std::uint32_t {
   kFlowFreeSurface = 1u << 0,         // two phases and VOF advection; off: water everywhere, F = 1
@@ -262,7 +265,7 @@ class VOFGrid {
   // the cell and the time after restoring the state of the step's start
   void step(double dt);
   // steps of stable_dt() until time() reaches t_end [s], a step that breaches the CFL taken again
-  // shorter (step_retry.h); returns the number of steps
+  // shorter (step_retry.h), the last interval split evenly (advance.h); returns the number of steps
   long long advance(double t_end);
   // steps advance() took again, shorter, since construction
   long long retried_steps() const { return retried_steps_; }
@@ -321,11 +324,15 @@ class VOFGrid {
   void solve_pressure_directly(const std::string& why);
   void stage_correct();
   void stage_checks(double dt);
+  // fails with a CflBreach where the velocities cross more than one cell in dt [s]: at the step's start
+  // (stage "step") or at its end (the new velocities)
+  void check_cfl(const char* stage, double dt);
   // inlet face velocities of Q(t) into u (face_u or u*)
   void apply_inlet(double t, std::vector<double>& u);
   MomentumFields momentum_fields() const;
   MomentumBoundary momentum_boundary() const;
-  double outlet_pressure(int k) const;
+  ProjectionFields projection_fields() const;
+  ProjectionBoundary projection_boundary() const;
   // kind: 0 = cell, 1 = x-face, 2 = z-face
   void check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind);
   // courant > 0: a CFL breach, thrown as CflBreach (a shorter step may pass)

@@ -1,0 +1,86 @@
+// The flow's diagnostics (vof_grid.h): pore velocity and pressure gradient at the cell centres (read by
+// the coupler's fluid forces), the water volume, the discharge through a column of faces and at the
+// inlet. None of them changes the state.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vofdem/vof_grid.h"
+
+namespace vofdem {
+
+void VOFGrid::pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const {
+  U.assign(grid_.ncell(), 0.0);
+  W.assign(grid_.ncell(), 0.0);
+  for (int k = 0; k < grid_.nz(); ++k)
+    for (int i = 0; i < grid_.nx(); ++i) {
+      const int c = grid_.cell(i, k);
+      const double n = cell_porosity[c];
+      if (n <= 0.0) continue;
+      U[c] = 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / n;
+      W[c] = 0.5 * (face_w[grid_.face_z_below(c)] + face_w[grid_.face_z_above(c)]) / n;
+    }
+}
+
+void VOFGrid::pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const {
+  const int nx = grid_.nx(), nz = grid_.nz();
+  dpdx.assign(grid_.ncell(), 0.0);
+  dpdz.assign(grid_.ncell(), 0.0);
+  auto active = [&](int i, int k) {
+    return i >= 0 && i < nx && k >= 0 && k < nz && cell_porosity[grid_.cell(i, k)] > 0.0;
+  };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int c = grid_.cell(i, k);
+      if (!active(i, k)) continue;
+      // central where both neighbours are fluid, one-sided next to a wall or a solid
+      const bool l = active(i - 1, k), r = active(i + 1, k);
+      if (l && r) dpdx[c] = (cell_p[c + 1] - cell_p[c - 1]) / (2.0 * grid_.dx());
+      else if (r) dpdx[c] = (cell_p[c + 1] - cell_p[c]) / grid_.dx();
+      else if (l) dpdx[c] = (cell_p[c] - cell_p[c - 1]) / grid_.dx();
+      const bool b = active(i, k - 1), t = active(i, k + 1);
+      const int above = grid_.cell_above(c), below = grid_.cell_below(c);
+      if (b && t) dpdz[c] = (cell_p[above] - cell_p[below]) / (grid_.z_center(k + 1) - grid_.z_center(k - 1));
+      else if (t) dpdz[c] = (cell_p[above] - cell_p[c]) / (grid_.z_center(k + 1) - grid_.z_center(k));
+      else if (b) dpdz[c] = (cell_p[c] - cell_p[below]) / (grid_.z_center(k) - grid_.z_center(k - 1));
+    }
+}
+
+double VOFGrid::water_volume() const {
+  const int nx = grid_.nx();
+  double v = 0.0;
+  for (int k = 0; k < grid_.nz(); ++k) {
+    double row = 0.0;
+    for (int i = 0; i < nx; ++i) row += cell_porosity[grid_.cell(i, k)] * cell_F[grid_.cell(i, k)];
+    v += row * grid_.cell_area(k);
+  }
+  return v;
+}
+
+double VOFGrid::discharge_through(int i) const {
+  if (i < 0 || i > grid_.nx())
+    throw std::invalid_argument("i = " + std::to_string(i) + " is outside the allowed range [0, " +
+                                std::to_string(grid_.nx()) + "]");
+  const int nx = grid_.nx();
+  double q = 0.0;
+  const std::vector<double>& flux = vof_scratch_.face_flux_x;
+  if (flux_dt_ > 0.0 && flux.size() == static_cast<std::size_t>(grid_.nface_x())) {
+    for (int k = 0; k < grid_.nz(); ++k) q += flux[grid_.face_x(i, k)];
+    return q / flux_dt_;
+  }
+  for (int k = 0; k < grid_.nz(); ++k) {
+    const double u = face_u[grid_.face_x(i, k)];
+    // the fraction of the cell the flow leaves (the inflow fraction 1 at the inlet)
+    double f;
+    if (u >= 0.0) f = i > 0 ? cell_F[grid_.cell(i - 1, k)] : 1.0;
+    else f = i < nx ? cell_F[grid_.cell(i, k)] : 0.0;
+    q += u * f * grid_.dz(k);
+  }
+  return q;
+}
+
+double VOFGrid::inlet_discharge_per_width() const {
+  return params_.inlet == InletBoundary::kDischarge ? discharge_.at(time_) / params_.flume_width : 0.0;
+}
+
+}  // namespace vofdem
