@@ -48,6 +48,21 @@
 
 namespace vofdem {
 
+namespace detail {
+// separating-axis cache of one polygon pair (dem_polygon.cpp): saves the full test while the pose has
+// not moved enough to change its answer; never changes a result, so it is no part of the state
+struct PolygonPairCache {
+  int flip = -1, edge = 0;  // the axis (flip -1: none)
+  double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
+  double sep = 0.0;         // a separating axis: its separation at the pose below [m]
+  double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
+  // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
+  // its lead over the next edge (in n . u) [-]; inc -1: none
+  int inc = -1, inc_flip = 0, inc_edge = 0;
+  double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
+};
+}  // namespace detail
+
 // effect flags of DEMParams::flags; each stage checks its bit first
 enum DEMFlag : unsigned {
   kDEMGravity = 1u << 0,        // gravity (and buoyancy if kDEMBuoyancy)
@@ -318,10 +333,6 @@ class DEMSystem {
   double reduced_stiffness_mass() const;
   // polygon stones (dem_polygon.cpp)
   void update_polygon_properties();
-  void polygon_world(int i);
-  struct SatCache;
-  bool polygon_reference(SatCache& cache, int i, int j, double dx, double dz, int& flip, int& edge);
-  int polygon_incident(SatCache& cache, int i, int j, int flip, int edge);
   void polygon_contact_forces(double dt);
   void polygon_wall_forces(double dt);
   double polygon_stable_dt() const;
@@ -380,19 +391,8 @@ class DEMSystem {
   std::vector<double> poly_world_, poly_world_normal_;  // world-frame vertices and normals
   std::vector<long long> poly_world_stamp_;  // the force evaluation whose world geometry a stone holds
   long long poly_eval_ = 0;                  // force evaluations so far (a cache key, not state)
-  // separating-axis cache of each polygon pair (dem_polygon.cpp): saves the full test while the pose has
-  // not moved enough to change its answer; never changes a result, so it is no part of the state
-  struct SatCache {
-    int flip = -1, edge = 0;  // the axis (flip -1: none)
-    double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
-    double sep = 0.0;         // a separating axis: its separation at the pose below [m]
-    double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
-    // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
-    // its lead over the next edge (in n . u) [-]; inc -1: none
-    int inc = -1, inc_flip = 0, inc_edge = 0;
-    double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
-  };
-  std::vector<SatCache> poly_sat_cache_;
+  // separating-axis cache of each polygon pair (dem_polygon.cpp)
+  std::vector<detail::PolygonPairCache> poly_sat_cache_;
   int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to
   std::vector<double> cached_poly_vertex_;
   std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
