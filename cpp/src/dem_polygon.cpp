@@ -154,14 +154,16 @@ struct PolygonFrame {
 };
 
 // the reference face (flip, edge) of pair (i, j), centre offset (dx, dz), and whether the two overlap.
-// The cache answers when it can prove the full separating-axis test would give the same: a cached
-// separating axis that still separates; or a cached reference axis that led every other by `margin`,
-// while no separation can have changed by more than
+// The cache answers when it can prove the full separating-axis test would give the same. No separation
+// can have changed since a pose 0 by more than
 //   b = |d - d0| + 2 (|theta_i - theta_i0| + |theta_j - theta_j0|) (R_i + R_j)
-// (a vertex moves relative to the other body's frame by at most that), with 2 b < margin; or a cached
-// separating axis whose separation sep exceeds b (apart without touching a vertex). Otherwise the
-// full test runs and refreshes the cache. Either way the same axis and the same arithmetic: bit-identical.
-// It brings both stones' world geometry up to date whenever it looks at a vertex.
+// (a vertex moves relative to the other body's frame by at most that). A cached separating axis that
+// separated by sep stays one while b < sep (no vertex touched), or while it still separates. A cached
+// reference axis that led every other by `margin` stays the answer while 2 b < margin; the pair then
+// overlaps if the separation s along it is negative, which holds without a vertex while b (since s was
+// measured) < -s, the depth. Otherwise the full test runs and refreshes the cache. Either way the same
+// axis and the same arithmetic: bit-identical. It brings both stones' world geometry up to date
+// whenever it may need a vertex.
 inline bool pair_reference(PolygonFrame& f, PairCache& sc, int i, int j, double dx, double dz, double reach, int& flip,
                            int& edge) {
   const double ai = f.angle[i], aj = f.angle[j];
@@ -178,23 +180,29 @@ inline bool pair_reference(PolygonFrame& f, PairCache& sc, int i, int j, double 
   const double *va = f.world + 2 * oi, *ua = f.world_normal + 2 * oi;
   const double *vb = f.world + 2 * oj, *ub = f.world_normal + 2 * oj;
   if (sc.flip >= 0) {
-    const double* v1 = sc.flip ? vb : va;
+    const double* v1 = (sc.flip ? vb : va) + 2 * sc.edge;
     const double* u1 = (sc.flip ? ub : ua) + 2 * sc.edge;
-    const double s = detail::min_projection(u1[0], u1[1], v1[2 * sc.edge], v1[2 * sc.edge + 1], sc.flip ? va : vb,
-                                            sc.flip ? ni : nj);
-    if (sc.margin <= 0.0 && s > 0.0) {  // still apart: its separation now is the new reference
-      sc.sep = s;
-      sc.dx = dx, sc.dz = dz, sc.ai = ai, sc.aj = aj;
-      return false;
-    }
-    if (sc.margin > 0.0) {
+    if (sc.margin <= 0.0) {
+      const double s = detail::min_projection(u1[0], u1[1], v1[0], v1[1], sc.flip ? va : vb, sc.flip ? ni : nj);
+      if (s > 0.0) {  // still apart: its separation now is the new reference
+        sc.sep = s;
+        sc.dx = dx, sc.dz = dz, sc.ai = ai, sc.aj = aj;
+        return false;
+      }
+    } else {
       const double ex = dx - sc.dx, ez = dz - sc.dz;  // sqrt, not hypot: no overflow here, and 5x cheaper
       const double b =
           std::sqrt(ex * ex + ez * ez) + 2.0 * (std::fabs(ai - sc.ai) + std::fabs(aj - sc.aj)) * reach;
       if (2.0 * b < sc.margin - 1e-12 * reach) {
         flip = sc.flip;
         edge = sc.edge;
-        return s < 0.0;
+        // the depth along the reference axis outlasts the motion since it was measured (|e_x| + |e_z| again)
+        const double bs = std::fabs(dx - sc.sx) + std::fabs(dz - sc.sz) +
+                          2.0 * (std::fabs(ai - sc.sai) + std::fabs(aj - sc.saj)) * reach;
+        if (bs < -sc.s - 1e-12 * reach) return true;
+        sc.s = detail::min_projection(u1[0], u1[1], v1[0], v1[1], sc.flip ? va : vb, sc.flip ? ni : nj);
+        sc.sx = dx, sc.sz = dz, sc.sai = ai, sc.saj = aj;
+        return sc.s < 0.0;
       }
     }
   }
@@ -203,10 +211,11 @@ inline bool pair_reference(PolygonFrame& f, PairCache& sc, int i, int j, double 
   sc.edge = r.edge;
   sc.margin = r.value < 0.0 ? r.margin : 0.0;
   sc.sep = r.value < 0.0 ? 0.0 : r.value;
-  sc.dx = dx;
-  sc.dz = dz;
-  sc.ai = ai;
-  sc.aj = aj;
+  sc.s = r.value;
+  sc.dx = sc.sx = dx;
+  sc.dz = sc.sz = dz;
+  sc.ai = sc.sai = ai;
+  sc.aj = sc.saj = aj;
   flip = r.flip;
   edge = r.edge;
   return r.value < 0.0;

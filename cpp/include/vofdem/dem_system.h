@@ -56,6 +56,8 @@ struct PolygonPairCache {
   double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
   double sep = 0.0;         // a separating axis: its separation at the pose below [m]
   double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
+  double s = 0.0;           // a reference axis: its separation [m] (< 0: the depth) at the pose below
+  double sx = 0.0, sz = 0.0, sai = 0.0, saj = 0.0;
   // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
   // its lead over the next edge (in n . u) [-]; inc -1: none
   int inc = -1, inc_flip = 0, inc_edge = 0;
