@@ -242,7 +242,7 @@ inline int pair_incident(const PolygonFrame& f, PairCache& sc, int i, int j, int
 }
 
 // the manifold of pair (i, j) with reference face (flip, edge) and incident edge inc (world geometry made)
-inline ContactManifold pair_manifold(const PolygonFrame& f, int i, int j, int flip, int edge, int inc) {
+inline detail::Manifold pair_manifold(const PolygonFrame& f, int i, int j, int flip, int edge, int inc) {
   const int ref = flip ? j : i, other = flip ? i : j;
   const int o1 = f.offset[ref], n1 = f.offset[ref + 1] - o1, o2 = f.offset[other], n2 = f.offset[other + 1] - o2;
   const int i12 = edge + 1 == n1 ? 0 : edge + 1, i22 = inc + 1 == n2 ? 0 : inc + 1;
@@ -292,7 +292,7 @@ void DEMSystem::polygon_contact_forces(double dt) {
       c.poly = PolygonHistory{};
       continue;
     }
-    const ContactManifold m = pair_manifold(f, i, j, flip, edge, pair_incident(f, cache, i, j, flip, edge));
+    const detail::Manifold m = pair_manifold(f, i, j, flip, edge, pair_incident(f, cache, i, j, flip, edge));
     const PolygonHistory prev = c.poly;
     c.poly = PolygonHistory{};  // written field by field below: no copy of a just-stored struct
     if (m.count > 0) ++ncontact;
