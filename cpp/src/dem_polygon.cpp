@@ -161,29 +161,36 @@ struct PolygonFrame {
 // separated by sep stays one while b < sep (no vertex touched), or while it still separates. A cached
 // reference axis that led every other by `margin` stays the answer while 2 b < margin; the pair then
 // overlaps if the separation s along it is negative, which holds without a vertex while b (since s was
-// measured) < -s, the depth. Otherwise the full test runs and refreshes the cache. Either way the same
-// axis and the same arithmetic: bit-identical. It brings both stones' world geometry up to date
+// measured) < -s, the depth. Two faces lying on each other lead the others together, by margin2, with
+// little between them: while 2 b < margin2 the answer is one of the two, and their two separations
+// decide it by the full test's rules. Otherwise the full test runs and refreshes the cache. Either way
+// the same axis and the same arithmetic: bit-identical. It brings both stones' world geometry up to date
 // whenever it may need a vertex.
 inline bool pair_reference(PolygonFrame& f, PairCache& sc, int i, int j, double dx, double dz, double reach, int& flip,
                            int& edge) {
   const double ai = f.angle[i], aj = f.angle[j];
-  if (sc.flip >= 0 && sc.margin <= 0.0) {
+  const double tol = 1e-12 * reach;
+  if (sc.flip >= 0 && sc.margin < 0.0) {
     // a separating axis that separated by sep: apart while the pose moved less than that, the bound b
     // with |e_x| + |e_z| >= |d - d0| (no sqrt); no vertex is touched
     const double b1 =
         std::fabs(dx - sc.dx) + std::fabs(dz - sc.dz) + 2.0 * (std::fabs(ai - sc.ai) + std::fabs(aj - sc.aj)) * reach;
-    if (b1 < sc.sep - 1e-12 * reach) return false;
+    if (b1 < sc.sep - tol) return false;
   }
   f.update(i);
   f.update(j);
   const int oi = f.offset[i], oj = f.offset[j], ni = f.offset[i + 1] - oi, nj = f.offset[j + 1] - oj;
   const double *va = f.world + 2 * oi, *ua = f.world_normal + 2 * oi;
   const double *vb = f.world + 2 * oj, *ub = f.world_normal + 2 * oj;
+  // the separation along edge k of A (flip 0) or of B (flip 1)
+  auto axis = [&](int fl, int k) {
+    const double* v1 = (fl ? vb : va) + 2 * k;
+    const double* u1 = (fl ? ub : ua) + 2 * k;
+    return detail::min_projection(u1[0], u1[1], v1[0], v1[1], fl ? va : vb, fl ? ni : nj);
+  };
   if (sc.flip >= 0) {
-    const double* v1 = (sc.flip ? vb : va) + 2 * sc.edge;
-    const double* u1 = (sc.flip ? ub : ua) + 2 * sc.edge;
-    if (sc.margin <= 0.0) {
-      const double s = detail::min_projection(u1[0], u1[1], v1[0], v1[1], sc.flip ? va : vb, sc.flip ? ni : nj);
+    if (sc.margin < 0.0) {
+      const double s = axis(sc.flip, sc.edge);
       if (s > 0.0) {  // still apart: its separation now is the new reference
         sc.sep = s;
         sc.dx = dx, sc.dz = dz, sc.ai = ai, sc.aj = aj;
@@ -193,32 +200,47 @@ inline bool pair_reference(PolygonFrame& f, PairCache& sc, int i, int j, double 
       const double ex = dx - sc.dx, ez = dz - sc.dz;  // sqrt, not hypot: no overflow here, and 5x cheaper
       const double b =
           std::sqrt(ex * ex + ez * ez) + 2.0 * (std::fabs(ai - sc.ai) + std::fabs(aj - sc.aj)) * reach;
-      if (2.0 * b < sc.margin - 1e-12 * reach) {
+      if (2.0 * b < sc.margin - tol) {
         flip = sc.flip;
         edge = sc.edge;
         // the depth along the reference axis outlasts the motion since it was measured (|e_x| + |e_z| again)
         const double bs = std::fabs(dx - sc.sx) + std::fabs(dz - sc.sz) +
                           2.0 * (std::fabs(ai - sc.sai) + std::fabs(aj - sc.saj)) * reach;
-        if (bs < -sc.s - 1e-12 * reach) return true;
-        sc.s = detail::min_projection(u1[0], u1[1], v1[0], v1[1], sc.flip ? va : vb, sc.flip ? ni : nj);
+        if (bs < -sc.s - tol) return true;
+        sc.s = axis(sc.flip, sc.edge);
         sc.sx = dx, sc.sz = dz, sc.sai = ai, sc.saj = aj;
         return sc.s < 0.0;
       }
+      if (2.0 * b < sc.margin2 - tol) {
+        // every other axis below both: overlapping if both are negative; the larger wins, a tie going to
+        // A's axis (other polygons) or to the lower edge (one polygon), as in polygon_sat
+        const double s1 = axis(sc.flip, sc.edge), s2 = axis(sc.flip2, sc.edge2);
+        if (!(s1 < 0.0 && s2 < 0.0)) return false;
+        const bool first1 = sc.flip != sc.flip2 ? sc.flip == 0 : sc.edge < sc.edge2;  // axis 1 wins ties
+        const bool take1 = first1 ? !(s2 > s1) : s1 > s2;
+        flip = take1 ? sc.flip : sc.flip2;
+        edge = take1 ? sc.edge : sc.edge2;
+        return true;
+      }
     }
   }
-  const SatResult r = polygon_sat(va, ua, ni, vb, ub, nj);
-  sc.flip = r.flip;
-  sc.edge = r.edge;
-  sc.margin = r.value < 0.0 ? r.margin : 0.0;
-  sc.sep = r.value < 0.0 ? 0.0 : r.value;
-  sc.s = r.value;
+  const detail::SatTop2 r = detail::sat_top2(va, ua, ni, vb, ub, nj);
+  const bool overlap = r.best.value < 0.0;
+  sc.flip = r.best.flip;
+  sc.edge = r.best.edge;
+  sc.margin = overlap ? r.best.margin : -1.0;
+  sc.flip2 = r.flip2;
+  sc.edge2 = r.edge2;
+  sc.margin2 = overlap ? r.margin2 : 0.0;
+  sc.sep = r.best.value;
+  sc.s = r.best.value;
   sc.dx = sc.sx = dx;
   sc.dz = sc.sz = dz;
   sc.ai = sc.sai = ai;
   sc.aj = sc.saj = aj;
-  flip = r.flip;
-  edge = r.edge;
-  return r.value < 0.0;
+  flip = r.best.flip;
+  edge = r.best.edge;
+  return overlap;
 }
 
 // the incident edge of pair (i, j) for the reference face (flip, edge), from the cache while no edge normal

@@ -11,32 +11,7 @@ namespace vofdem {
 
 namespace {
 
-using detail::min_projection;
-
-struct Separation {
-  int edge = 0;
-  double value = -INFINITY;
-  double second = -INFINITY;  // the largest separation of the other edges
-};
-
-// the edge of polygon 1 whose normal separates polygon 2 the most (branch-free inner minimum: faster on
-// these small polygons than walking the support vertex round, whose branches are unpredictable)
-Separation max_separation(const double* v1, const double* u1, int n1, const double* v2, int n2) {
-  Separation best;
-  for (int k = 0; k < n1; ++k) {
-    const double nx = u1[2 * k], nz = u1[2 * k + 1];
-    const double ox = v1[2 * k], oz = v1[2 * k + 1];
-    const double s = min_projection(nx, nz, ox, oz, v2, n2);
-    if (s > best.value) {
-      best.second = best.value;
-      best.value = s;
-      best.edge = k;
-    } else if (s > best.second) {
-      best.second = s;
-    }
-  }
-  return best;
-}
+using detail::max_separation;
 
 // the edge of polygon 2 most anti-parallel to n
 int incident_edge(const double* u2, int n2, double nx, double nz) { return detail::incident_edge(u2, n2, nx, nz, nullptr); }
@@ -59,21 +34,12 @@ void polygon_edge_normals(const double* v, int n, double* out) {
 }
 
 SatResult polygon_sat(const double* va, const double* ua, int na, const double* vb, const double* ub, int nb) {
-  SatResult r;
-  const Separation sa = max_separation(va, ua, na, vb, nb);
-  if (!(sa.value < 0.0)) return {sa.value, 0, sa.edge, 0.0};
-  const Separation sb = max_separation(vb, ub, nb, va, na);
-  if (!(sb.value < 0.0)) return {sb.value, 1, sb.edge, 0.0};
-  r.flip = sb.value > sa.value ? 1 : 0;
-  r.value = r.flip ? sb.value : sa.value;
-  r.edge = r.flip ? sb.edge : sa.edge;
-  r.margin = r.value - (r.flip ? std::max(sb.second, sa.value) : std::max(sa.second, sb.value));
-  return r;
+  return detail::sat_top2(va, ua, na, vb, ub, nb).best;
 }
 
 double polygon_axis_separation(const double* v1, const double* u1, int edge, const double* v2, int n2) {
   const double nx = u1[2 * edge], nz = u1[2 * edge + 1];
-  return min_projection(nx, nz, v1[2 * edge], v1[2 * edge + 1], v2, n2);
+  return detail::min_projection(nx, nz, v1[2 * edge], v1[2 * edge + 1], v2, n2);
 }
 
 ContactManifold collide_polygons(const double* va, const double* ua, int na, const double* vb, const double* ub,

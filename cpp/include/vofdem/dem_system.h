@@ -53,7 +53,9 @@ namespace detail {
 // not moved enough to change its answer; never changes a result, so it is no part of the state
 struct PolygonPairCache {
   int flip = -1, edge = 0;  // the axis (flip -1: none)
-  double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
+  int flip2 = 0, edge2 = 0; // overlapping: the runner-up axis
+  double margin = -1.0;     // overlapping: the axis's lead over every other [m] (>= 0); < 0: a separating axis
+  double margin2 = 0.0;     // overlapping: the runner-up's lead over every other axis but the first [m]
   double sep = 0.0;         // a separating axis: its separation at the pose below [m]
   double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
   double s = 0.0;           // a reference axis: its separation [m] (< 0: the depth) at the pose below
