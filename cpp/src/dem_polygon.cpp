@@ -293,6 +293,10 @@ void DEMSystem::polygon_contact_forces(double dt) {
                  poly_world_.data(),     poly_world_normal_.data(), poly_world_stamp_.data(),
                  poly_eval_,             disc_pos.data(),           disc_angle.data(),
                  disc_radius.data()};
+  // the stones that needed their world geometry at the last evaluation need it now, most likely: made
+  // first, in one pass (the pair loop then finds them made)
+  for (int i = 0; i < n_; ++i)
+    if (poly_world_stamp_[i] == poly_eval_ - 1) f.update(i);
   const double *pos = disc_pos.data(), *vel = disc_vel.data(), *omega = disc_omega.data();
   const double* radius = disc_radius.data();
   double *force = disc_force.data(), *torque = disc_torque.data();
