@@ -264,27 +264,22 @@ inline int pair_incident(const PolygonFrame& f, PairCache& sc, int i, int j, int
 }
 
 // the manifold of pair (i, j) with reference face (flip, edge) and incident edge inc (world geometry made)
-inline detail::Manifold pair_manifold(const PolygonFrame& f, int i, int j, int flip, int edge, int inc) {
+inline void pair_manifold(const PolygonFrame& f, int i, int j, int flip, int edge, int inc, ContactManifold& m) {
   const int ref = flip ? j : i, other = flip ? i : j;
   const int o1 = f.offset[ref], n1 = f.offset[ref + 1] - o1, o2 = f.offset[other], n2 = f.offset[other + 1] - o2;
   const int i12 = edge + 1 == n1 ? 0 : edge + 1, i22 = inc + 1 == n2 ? 0 : inc + 1;
   const double* v1 = f.world + 2 * o1;
   const double* v2 = f.world + 2 * o2;
   const double* u = f.world_normal + 2 * (o1 + edge);
-  return detail::clip_manifold(v1 + 2 * edge, v1 + 2 * i12, v2 + 2 * inc, v2 + 2 * i22, u[0], u[1], flip, edge, i12,
-                               inc, i22);
+  detail::clip_manifold(v1 + 2 * edge, v1 + 2 * i12, v2 + 2 * inc, v2 + 2 * i22, u[0], u[1], flip, edge, i12, inc, i22,
+                        m);
 }
 }  // namespace
 
-void DEMSystem::polygon_contact_forces(double dt) {
+// the narrow phase of every listed pair: the touching ones' manifolds into poly_contacts_ (in the pairs'
+// order), their count returned; the springs of the others cleared
+std::size_t DEMSystem::polygon_touching() {
   ++poly_eval_;  // the world geometry of the last evaluation is stale
-  const DEMParams& p = params_;
-  const bool friction = p.flags & kDEMFriction;
-  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
-  const double ct_factor = p.tangential_damping_factor;
-  const double kt = friction ? kt_ : 0.0, kn = kn_, mu = p.friction_stone;
-  double elastic = 0.0, dissipated = 0.0;
-  int ncontact = 0;
   if (poly_sat_builds_ != nbuilds_ || poly_sat_cache_.size() != pairs_.size()) {
     poly_sat_cache_.assign(pairs_.size(), PairCache{});  // a new list: new pairs
     poly_sat_builds_ = nbuilds_;
@@ -297,17 +292,18 @@ void DEMSystem::polygon_contact_forces(double dt) {
   // first, in one pass (the pair loop then finds them made)
   for (int i = 0; i < n_; ++i)
     if (poly_world_stamp_[i] == poly_eval_ - 1) f.update(i);
-  const double *pos = disc_pos.data(), *vel = disc_vel.data(), *omega = disc_omega.data();
+  const double* pos = disc_pos.data();
   const double* radius = disc_radius.data();
-  double *force = disc_force.data(), *torque = disc_torque.data();
   PairCache* caches = poly_sat_cache_.data();
   const std::size_t npairs = pairs_.size();
+  if (poly_contacts_.size() < npairs) poly_contacts_.resize(npairs);
+  detail::PolygonContact* contacts = poly_contacts_.data();
+  std::size_t ntouch = 0;
   for (std::size_t pc = 0; pc < npairs; ++pc) {
     Pair& c = pairs_[pc];
     PairCache& cache = caches[pc];
     const int i = c.i, j = c.j;
-    const double xi0 = pos[2 * i], zi0 = pos[2 * i + 1], xj0 = pos[2 * j], zj0 = pos[2 * j + 1];
-    const double dx = xj0 - xi0, dz = zj0 - zi0, rs = radius[i] + radius[j];
+    const double dx = pos[2 * j] - pos[2 * i], dz = pos[2 * j + 1] - pos[2 * i + 1], rs = radius[i] + radius[j];
     if (dx * dx + dz * dz >= rs * rs) {  // bounding discs apart
       c.poly = PolygonHistory{};
       cache.flip = -1;
@@ -318,10 +314,40 @@ void DEMSystem::polygon_contact_forces(double dt) {
       c.poly = PolygonHistory{};
       continue;
     }
-    const detail::Manifold m = pair_manifold(f, i, j, flip, edge, pair_incident(f, cache, i, j, flip, edge));
+    detail::PolygonContact& r = contacts[ntouch];
+    pair_manifold(f, i, j, flip, edge, pair_incident(f, cache, i, j, flip, edge), r.m);
+    if (r.m.count == 0) {  // overlapping by no point of the clipped edge: no spring kept
+      c.poly = PolygonHistory{};
+      continue;
+    }
+    r.pair = static_cast<int>(pc);
+    ++ntouch;
+  }
+  return ntouch;
+}
+
+// the forces of the touching pairs, in the pairs' order (a function of its own: fewer values live at once)
+void DEMSystem::polygon_contact_forces(double dt) {
+  const std::size_t ntouch = polygon_touching();
+  const DEMParams& p = params_;
+  const bool friction = p.flags & kDEMFriction;
+  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const double ct_factor = p.tangential_damping_factor;
+  const double kt = friction ? kt_ : 0.0, kn = kn_, mu = p.friction_stone;
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  const double *pos = disc_pos.data(), *vel = disc_vel.data(), *omega = disc_omega.data();
+  double *force = disc_force.data(), *torque = disc_torque.data();
+  const detail::PolygonContact* contacts = poly_contacts_.data();
+  for (std::size_t t = 0; t < ntouch; ++t) {
+    const detail::PolygonContact& r = contacts[t];
+    const ContactManifold& m = r.m;
+    Pair& c = pairs_[static_cast<std::size_t>(r.pair)];
+    const int i = c.i, j = c.j;
+    const double xi0 = pos[2 * i], zi0 = pos[2 * i + 1], xj0 = pos[2 * j], zj0 = pos[2 * j + 1];
     const PolygonHistory prev = c.poly;
     c.poly = PolygonHistory{};  // written field by field below: no copy of a just-stored struct
-    if (m.count > 0) ++ncontact;
+    ++ncontact;
     const double nx = m.normal[0], nz = m.normal[1];
     const double cn = m.count == 2 ? damp * c.sqrt_m * kSqrtHalf : damp * c.sqrt_m;
     for (int k = 0; k < m.count; ++k) {

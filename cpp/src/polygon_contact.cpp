@@ -60,13 +60,8 @@ ContactManifold polygon_manifold(const double* va, const double* ua, int na, con
   const int i11 = edge, i12 = i11 + 1 == n1 ? 0 : i11 + 1;
   const double nx = u1[2 * i11], nz = u1[2 * i11 + 1];
   const int i21 = incident >= 0 ? incident : incident_edge(u2, n2, nx, nz), i22 = i21 + 1 == n2 ? 0 : i21 + 1;
-  const detail::Manifold c =
-      detail::clip_manifold(v1 + 2 * i11, v1 + 2 * i12, v2 + 2 * i21, v2 + 2 * i22, nx, nz, flip, i11, i12, i21, i22);
   ContactManifold m;
-  m.count = c.count;
-  m.normal[0] = c.normal[0];
-  m.normal[1] = c.normal[1];
-  for (int k = 0; k < c.count; ++k) m.point[k] = c.point[k];
+  detail::clip_manifold(v1 + 2 * i11, v1 + 2 * i12, v2 + 2 * i21, v2 + 2 * i22, nx, nz, flip, i11, i12, i21, i22, m);
   return m;
 }
 

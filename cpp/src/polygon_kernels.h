@@ -129,14 +129,6 @@ inline int make_id(int flip, int ref_vertex, int inc_vertex) {
   return flip ? (inc_vertex << 8) | ref_vertex : (ref_vertex << 8) | inc_vertex;
 }
 
-// a manifold as clip_manifold makes it: ContactManifold without its zeroing (the contact loop makes
-// one per touching pair), point[k] defined for k < count
-struct Manifold {
-  int count;
-  double normal[2];
-  ContactManifold::Point point[2];
-};
-
 // adds the point p (separation s from the reference face of normal n) if it penetrates
 template <class M>
 inline void add_point(M& m, double px, double pz, double s, double nx, double nz, int id) {
@@ -151,10 +143,11 @@ inline void add_point(M& m, double px, double pz, double s, double nx, double nz
 // the manifold of the reference edge v11 -> v12 (vertices i11, i12 of the reference polygon, outward
 // normal n) and the incident edge v21 -> v22 (vertices i21, i22 of the other): the incident edge
 // clipped to the reference edge's extent, each clipped end below the reference face a point; flip 1
-// when the reference polygon is B (the normal is then turned to point from A to B)
-inline Manifold clip_manifold(const double* v11, const double* v12, const double* v21, const double* v22, double nx,
-                              double nz, int flip, int i11, int i12, int i21, int i22) {
-  Manifold m;
+// when the reference polygon is B (the normal is then turned to point from A to B); written into m (a
+// ContactManifold, not zeroed first: point[k] for k >= count keeps what it held)
+template <class M>
+inline void clip_manifold(const double* v11, const double* v12, const double* v21, const double* v22, double nx,
+                          double nz, int flip, int i11, int i12, int i21, int i22, M& m) {
   m.count = 0;
   // along the reference edge from v11 to v12; the incident edge runs the other way (v22 near v11)
   const double tx = -nz, tz = nx;
@@ -182,7 +175,6 @@ inline Manifold clip_manifold(const double* v11, const double* v12, const double
   // the normal from A to B
   m.normal[0] = flip ? -nx : nx;
   m.normal[1] = flip ? -nz : nz;
-  return m;
 }
 
 }  // namespace vofdem::detail

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "vofdem/polygon.h"
+#include "vofdem/polygon_contact.h"
 #include "vofdem/profile.h"
 
 namespace vofdem {
@@ -51,6 +52,12 @@ namespace vofdem {
 namespace detail {
 // separating-axis cache of one polygon pair (dem_polygon.cpp): saves the full test while the pose has
 // not moved enough to change its answer; never changes a result, so it is no part of the state
+// a touching polygon pair of one force evaluation: its index in the pair list and its manifold
+struct PolygonContact {
+  int pair = 0;
+  ContactManifold m;
+};
+
 struct PolygonPairCache {
   int flip = -1, edge = 0;  // the axis (flip -1: none)
   int flip2 = 0, edge2 = 0; // overlapping: the runner-up axis
@@ -337,6 +344,7 @@ class DEMSystem {
   double reduced_stiffness_mass() const;
   // polygon stones (dem_polygon.cpp)
   void update_polygon_properties();
+  std::size_t polygon_touching();
   void polygon_contact_forces(double dt);
   void polygon_wall_forces(double dt);
   double polygon_stable_dt() const;
@@ -397,6 +405,7 @@ class DEMSystem {
   long long poly_eval_ = 0;                  // force evaluations so far (a cache key, not state)
   // separating-axis cache of each polygon pair (dem_polygon.cpp)
   std::vector<detail::PolygonPairCache> poly_sat_cache_;
+  std::vector<detail::PolygonContact> poly_contacts_;  // the touching pairs of a force evaluation (scratch)
   int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to
   std::vector<double> cached_poly_vertex_;
   std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
