@@ -18,6 +18,7 @@
 // R the bounding radius (the largest lever arm); the step is pi / (10 omega) as for discs.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -142,10 +143,15 @@ struct PolygonFrame {
   long long* stamp;                     // the evaluation whose world geometry a stone holds
   long long eval;
   const double *pos, *angle, *radius;
+  const double* inv_mass;               // 0: fixed
+  const std::uint8_t* asleep;
 
   void update(int i) {
     if (stamp[i] == eval) return;
+    // a stone that has not moved since the last evaluation made it (fixed, or asleep) keeps it
+    const bool kept = stamp[i] == eval - 1 && (inv_mass[i] == 0.0 || asleep[i]);
     stamp[i] = eval;
+    if (kept) return;
     const int o = offset[i], n = offset[i + 1] - o;
     const double c = std::cos(angle[i]), s = std::sin(angle[i]);
     detail::to_world(vertex + 2 * o, n, pos[2 * i], pos[2 * i + 1], c, s, world + 2 * o);
@@ -287,7 +293,7 @@ std::size_t DEMSystem::polygon_touching() {
   PolygonFrame f{poly_offset.data(),     poly_vertex.data(),       poly_normal_.data(),
                  poly_world_.data(),     poly_world_normal_.data(), poly_world_stamp_.data(),
                  poly_eval_,             disc_pos.data(),           disc_angle.data(),
-                 disc_radius.data()};
+                 disc_radius.data(),     inv_mass_.data(),          disc_asleep.data()};
   // the stones that needed their world geometry at the last evaluation need it now, most likely: made
   // first, in one pass (the pair loop then finds them made)
   for (int i = 0; i < n_; ++i)
@@ -388,7 +394,7 @@ void DEMSystem::polygon_wall_forces(double dt) {
   PolygonFrame f{poly_offset.data(),     poly_vertex.data(),       poly_normal_.data(),
                  poly_world_.data(),     poly_world_normal_.data(), poly_world_stamp_.data(),
                  poly_eval_,             disc_pos.data(),           disc_angle.data(),
-                 disc_radius.data()};
+                 disc_radius.data(),     inv_mass_.data(),          disc_asleep.data()};
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
   for (std::size_t w = 0; w < nw; ++w) {

@@ -266,6 +266,8 @@ void DEMSystem::prepare() {
   check_params();  // C++ callers may have built the system from unchecked parameters
   // polygon vertices may have been edited through the views: their sections are derived again
   if (shape_ == StoneShape::kPolygon && cached_poly_vertex_ != poly_vertex) update_polygon_properties();
+  // and poses: no world geometry of a still stone is kept from before (dem_polygon.cpp)
+  poly_eval_ += 1;
   check_stones();
   const DEMParams& p = params_;
   if (p.stiffness_normal > 0.0) {
