@@ -336,10 +336,9 @@ std::size_t DEMSystem::polygon_touching() {
 void DEMSystem::polygon_contact_forces(double dt) {
   const std::size_t ntouch = polygon_touching();
   const DEMParams& p = params_;
-  const bool friction = p.flags & kDEMFriction;
-  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const auto [friction, damp, kt] = contact_law();
   const double ct_factor = p.tangential_damping_factor;
-  const double kt = friction ? kt_ : 0.0, kn = kn_, mu = p.friction_stone;
+  const double kn = kn_, mu = p.friction_stone;
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
   const double *pos = disc_pos.data(), *vel = disc_vel.data(), *omega = disc_omega.data();
@@ -387,9 +386,7 @@ void DEMSystem::polygon_contact_forces(double dt) {
 
 void DEMSystem::polygon_wall_forces(double dt) {
   const DEMParams& p = params_;
-  const bool friction = p.flags & kDEMFriction;
-  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
-  const double kt = friction ? kt_ : 0.0;
+  const auto [friction, damp, kt] = contact_law();
   const std::size_t nw = p.walls.size();
   PolygonFrame f{poly_offset.data(),     poly_vertex.data(),       poly_normal_.data(),
                  poly_world_.data(),     poly_world_normal_.data(), poly_world_stamp_.data(),
@@ -399,8 +396,7 @@ void DEMSystem::polygon_wall_forces(double dt) {
   int ncontact = 0;
   for (std::size_t w = 0; w < nw; ++w) {
     const DEMWall& wall = p.walls[w];
-    const double len = std::hypot(wall.normal[0], wall.normal[1]);
-    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    const auto [wx, wz] = wall_unit_normal(wall);
     for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
       const int i = wall_cand_[c];
       if (inv_mass_[i] == 0.0) continue;

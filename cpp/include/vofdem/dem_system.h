@@ -37,6 +37,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -324,6 +325,22 @@ class DEMSystem {
   double drag_kick_scale(int i, double dt) const;
   void remove_escaped();
   void body_forces(double dt);
+  // the constants of the contact law (dem_contact.h) in a force evaluation, the same for every contact of
+  // discs and polygons, stone-stone and stone-wall: the Coulomb cap on (kDEMFriction), c_n / sqrt(m*) =
+  // 2 zeta sqrt(k_n) (0 with the dashpots off), k_t (0 without friction)
+  struct ContactLaw {
+    bool friction;
+    double damp, kt;
+  };
+  ContactLaw contact_law() const {
+    const bool friction = params_.flags & kDEMFriction;
+    return {friction, (params_.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0, friction ? kt_ : 0.0};
+  }
+  // a wall's unit normal (wx, wz), out of the solid
+  static std::array<double, 2> wall_unit_normal(const DEMWall& wall) {
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    return {wall.normal[0] / len, wall.normal[1] / len};
+  }
   void contact_forces(double dt);
   void wall_forces(double dt);
   // rolling resistance (dem_rolling.cpp, law in rolling_resistance.h): whether a contact kind has it,
