@@ -203,10 +203,13 @@ inline bool pair_reference(PolygonFrame& f, PairCache& sc, int i, int j, double 
         return false;
       }
     } else {
-      const double ex = dx - sc.dx, ez = dz - sc.dz;  // sqrt, not hypot: no overflow here, and 5x cheaper
-      const double b =
-          std::sqrt(ex * ex + ez * ez) + 2.0 * (std::fabs(ai - sc.ai) + std::fabs(aj - sc.aj)) * reach;
-      if (2.0 * b < sc.margin - tol) {
+      // b with |e_x| + |e_z| >= |d - d0| first (no sqrt, whose latency the branch would wait for), with |d - d0|
+      // itself only where that does not prove the axis (sqrt, not hypot: no overflow here, and 5x cheaper)
+      const double ex = dx - sc.dx, ez = dz - sc.dz;
+      const double turn = 2.0 * (std::fabs(ai - sc.ai) + std::fabs(aj - sc.aj)) * reach;
+      const bool held = 2.0 * (std::fabs(ex) + std::fabs(ez) + turn) < sc.margin - tol;
+      const double b = held ? 0.0 : std::sqrt(ex * ex + ez * ez) + turn;
+      if (held || 2.0 * b < sc.margin - tol) {
         flip = sc.flip;
         edge = sc.edge;
         // the depth along the reference axis outlasts the motion since it was measured (|e_x| + |e_z| again)
