@@ -92,6 +92,8 @@ void DEMSystem::update_polygon_properties() {
   poly_world_.assign(poly_vertex.size(), 0.0);
   poly_world_normal_.assign(poly_vertex.size(), 0.0);
   poly_world_stamp_.assign(un, -1);
+  poly_todo_.assign(un, 0);
+  poly_cs_.assign(2 * un, 0.0);
   poly_sat_cache_.clear();  // its axes belong to the old shapes
   for (int i = 0; i < n_; ++i) {
     const int o = poly_offset[i], c = poly_offset[i + 1] - o;
@@ -146,16 +148,22 @@ struct PolygonFrame {
   const double* inv_mass;               // 0: fixed
   const std::uint8_t* asleep;
 
-  void update(int i) {
-    if (stamp[i] == eval) return;
-    // a stone that has not moved since the last evaluation made it (fixed, or asleep) keeps it
-    const bool kept = stamp[i] == eval - 1 && (inv_mass[i] == 0.0 || asleep[i]);
+  // a stone that has not moved since the last evaluation made its world geometry (fixed, or asleep)
+  bool kept(int i) const { return stamp[i] == eval - 1 && (inv_mass[i] == 0.0 || asleep[i]); }
+  void make(int i, double c, double s) {
     stamp[i] = eval;
-    if (kept) return;
     const int o = offset[i], n = offset[i + 1] - o;
-    const double c = std::cos(angle[i]), s = std::sin(angle[i]);
     detail::to_world(vertex + 2 * o, n, pos[2 * i], pos[2 * i + 1], c, s, world + 2 * o);
     detail::to_world(normal + 2 * o, n, 0.0, 0.0, c, s, world_normal + 2 * o);
+  }
+  void update(int i) {
+    if (stamp[i] == eval) return;
+    if (kept(i)) {
+      stamp[i] = eval;
+      return;
+    }
+    const double c = std::cos(angle[i]), s = std::sin(angle[i]);
+    make(i, c, s);
   }
 };
 
@@ -298,9 +306,25 @@ std::size_t DEMSystem::polygon_touching() {
                  poly_eval_,             disc_pos.data(),           disc_angle.data(),
                  disc_radius.data(),     inv_mass_.data(),          disc_asleep.data()};
   // the stones that needed their world geometry at the last evaluation need it now, most likely: made
-  // first, in one pass (the pair loop then finds them made)
-  for (int i = 0; i < n_; ++i)
-    if (poly_world_stamp_[i] == poly_eval_ - 1) f.update(i);
+  // first (the pair loop then finds them made), their cosines and sines in one pass (the calls back to
+  // back) and their vertices and normals in another
+  int* todo = poly_todo_.data();
+  double* cs = poly_cs_.data();
+  int ntodo = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (poly_world_stamp_[i] != poly_eval_ - 1) continue;
+    if (f.kept(i)) {
+      poly_world_stamp_[i] = poly_eval_;
+      continue;
+    }
+    todo[ntodo++] = i;
+  }
+  for (int k = 0; k < ntodo; ++k) {
+    const double a = disc_angle[todo[k]];
+    cs[2 * k] = std::cos(a);
+    cs[2 * k + 1] = std::sin(a);
+  }
+  for (int k = 0; k < ntodo; ++k) f.make(todo[k], cs[2 * k], cs[2 * k + 1]);
   const double* pos = disc_pos.data();
   const double* radius = disc_radius.data();
   PairCache* caches = poly_sat_cache_.data();

@@ -419,6 +419,8 @@ class DEMSystem {
   std::vector<double> poly_normal_;   // body-frame edge normals, as poly_vertex
   std::vector<double> poly_world_, poly_world_normal_;  // world-frame vertices and normals
   std::vector<long long> poly_world_stamp_;  // the force evaluation whose world geometry a stone holds
+  std::vector<int> poly_todo_;               // scratch: the stones whose world geometry is made first
+  std::vector<double> poly_cs_;              // scratch: their cosines and sines
   long long poly_eval_ = 0;                  // force evaluations so far (a cache key, not state)
   // separating-axis cache of each polygon pair (dem_polygon.cpp)
   std::vector<detail::PolygonPairCache> poly_sat_cache_;
