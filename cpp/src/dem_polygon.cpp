@@ -137,15 +137,16 @@ using PairCache = detail::PolygonPairCache;
 
 // the polygons of one force evaluation by raw pointers: body geometry, poses and the world geometry
 // made from them. World-frame vertices and edge normals are computed once per force evaluation and
-// only for the stones whose bounding disc touches another's or a wall (free-flying stones cost nothing).
+// only for the stones whose bounding disc touches another's or a wall (free-flying stones cost nothing);
+// a stone that has not moved since the last evaluation keeps what that one made.
 struct PolygonFrame {
   const int* offset;
-  const double *vertex, *normal;        // body frame
-  double *world, *world_normal;         // world frame
-  long long* stamp;                     // the evaluation whose world geometry a stone holds
+  const double *vertex, *normal;  // body frame
+  double *world, *world_normal;   // world frame
+  long long* stamp;               // the evaluation whose world geometry a stone holds
   long long eval;
-  const double *pos, *angle, *radius;
-  const double* inv_mass;               // 0: fixed
+  const double *pos, *angle;
+  const double* inv_mass;         // 0: fixed
   const std::uint8_t* asleep;
 
   // a stone that has not moved since the last evaluation made its world geometry (fixed, or asleep)
@@ -301,10 +302,9 @@ std::size_t DEMSystem::polygon_touching() {
     poly_sat_cache_.assign(pairs_.size(), PairCache{});  // a new list: new pairs
     poly_sat_builds_ = nbuilds_;
   }
-  PolygonFrame f{poly_offset.data(),     poly_vertex.data(),       poly_normal_.data(),
-                 poly_world_.data(),     poly_world_normal_.data(), poly_world_stamp_.data(),
-                 poly_eval_,             disc_pos.data(),           disc_angle.data(),
-                 disc_radius.data(),     inv_mass_.data(),          disc_asleep.data()};
+  PolygonFrame f{poly_offset.data(), poly_vertex.data(),        poly_normal_.data(),      poly_world_.data(),
+                 poly_world_normal_.data(), poly_world_stamp_.data(), poly_eval_,      disc_pos.data(),
+                 disc_angle.data(),  inv_mass_.data(),           disc_asleep.data()};
   // the stones that needed their world geometry at the last evaluation need it now, most likely: made
   // first (the pair loop then finds them made), their cosines and sines in one pass (the calls back to
   // back) and their vertices and normals in another
@@ -415,10 +415,9 @@ void DEMSystem::polygon_wall_forces(double dt) {
   const DEMParams& p = params_;
   const auto [friction, damp, kt] = contact_law();
   const std::size_t nw = p.walls.size();
-  PolygonFrame f{poly_offset.data(),     poly_vertex.data(),       poly_normal_.data(),
-                 poly_world_.data(),     poly_world_normal_.data(), poly_world_stamp_.data(),
-                 poly_eval_,             disc_pos.data(),           disc_angle.data(),
-                 disc_radius.data(),     inv_mass_.data(),          disc_asleep.data()};
+  PolygonFrame f{poly_offset.data(), poly_vertex.data(),        poly_normal_.data(),      poly_world_.data(),
+                 poly_world_normal_.data(), poly_world_stamp_.data(), poly_eval_,      disc_pos.data(),
+                 disc_angle.data(),  inv_mass_.data(),           disc_asleep.data()};
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
   for (std::size_t w = 0; w < nw; ++w) {

@@ -14,7 +14,9 @@ namespace {
 using detail::max_separation;
 
 // the edge of polygon 2 most anti-parallel to n
-int incident_edge(const double* u2, int n2, double nx, double nz) { return detail::incident_edge(u2, n2, nx, nz, nullptr); }
+int incident_edge(const double* u2, int n2, double nx, double nz) {
+  return detail::incident_edge(u2, n2, nx, nz, nullptr);
+}
 
 }  // namespace
 
