@@ -30,8 +30,7 @@ void DEMSystem::build_wall_candidates() {
   wall_cand_start_.assign(nw + 1, 0);
   for (std::size_t w = 0; w < nw; ++w) {
     const DEMWall& wall = params_.walls[w];
-    const double len = std::hypot(wall.normal[0], wall.normal[1]);
-    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    const auto [wx, wz] = wall_unit_normal(wall);
     for (int i = 0; i < n_; ++i) {
       if (!disc_active[i] || disc_fixed[i]) continue;
       const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;

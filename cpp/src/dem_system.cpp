@@ -264,6 +264,8 @@ void DEMSystem::prepare() {
   check_params();  // C++ callers may have built the system from unchecked parameters
   // polygon vertices may have been edited through the views: their sections are derived again
   if (shape_ == StoneShape::kPolygon && cached_poly_vertex_ != poly_vertex) update_polygon_properties();
+  // and poses: no world geometry of a still stone is kept from before (dem_polygon.cpp)
+  poly_eval_ += 1;
   check_stones();
   const DEMParams& p = params_;
   if (p.stiffness_normal > 0.0) {
@@ -568,10 +570,8 @@ void DEMSystem::body_forces(double dt) {
 
 void DEMSystem::contact_forces(double dt) {
   const DEMParams& p = params_;
-  const bool friction = p.flags & kDEMFriction;
-  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
+  const auto [friction, damp, kt] = contact_law();
   const double ct_factor = p.tangential_damping_factor;
-  const double kt = friction ? kt_ : 0.0;
   const bool rolling = rolling_stones();
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
@@ -623,17 +623,14 @@ void DEMSystem::contact_forces(double dt) {
 
 void DEMSystem::wall_forces(double dt) {
   const DEMParams& p = params_;
-  const bool friction = p.flags & kDEMFriction;
-  const double damp = (p.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0;
-  const double kt = friction ? kt_ : 0.0;
+  const auto [friction, damp, kt] = contact_law();
   const bool rolling = rolling_walls();
   const std::size_t nw = p.walls.size();
   double elastic = 0.0, dissipated = 0.0;
   int ncontact = 0;
   for (std::size_t w = 0; w < nw; ++w) {
     const DEMWall& wall = p.walls[w];
-    const double len = std::hypot(wall.normal[0], wall.normal[1]);
-    const double wx = wall.normal[0] / len, wz = wall.normal[1] / len;
+    const auto [wx, wz] = wall_unit_normal(wall);
     // contact normal from the stone into the wall
     const double nx = -wx, nz = -wz;
     for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "polygon_kernels.h"
 #include "vofdem/check.h"
 
 namespace vofdem {
@@ -186,11 +187,7 @@ void polygon_to_world(const double* v, int n, double x, double z, double angle, 
 }
 
 void polygon_to_world(const double* v, int n, double x, double z, double c, double s, double* out) {
-  for (int k = 0; k < n; ++k) {
-    const double bx = v[2 * k], bz = v[2 * k + 1];
-    out[2 * k] = x + c * bx - s * bz;
-    out[2 * k + 1] = z + s * bx + c * bz;
-  }
+  detail::to_world(v, n, x, z, c, s, out);
 }
 
 bool polygon_contains(const double* w, int n, double x, double z) {

@@ -37,6 +37,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -45,9 +46,35 @@
 
 #include "vofdem/medium.h"
 #include "vofdem/polygon.h"
+#include "vofdem/polygon_contact.h"
 #include "vofdem/profile.h"
 
 namespace vofdem {
+
+namespace detail {
+// separating-axis cache of one polygon pair (dem_polygon.cpp): saves the full test while the pose has
+// not moved enough to change its answer; never changes a result, so it is no part of the state
+// a touching polygon pair of one force evaluation: its index in the pair list and its manifold
+struct PolygonContact {
+  int pair = 0;
+  ContactManifold m;
+};
+
+struct PolygonPairCache {
+  int flip = -1, edge = 0;  // the axis (flip -1: none)
+  int flip2 = 0, edge2 = 0; // overlapping: the runner-up axis
+  double margin = -1.0;     // overlapping: the axis's lead over every other [m] (>= 0); < 0: a separating axis
+  double margin2 = 0.0;     // overlapping: the runner-up's lead over every other axis but the first [m]
+  double sep = 0.0;         // a separating axis: its separation at the pose below [m]
+  double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
+  double s = 0.0;           // a reference axis: its separation [m] (< 0: the depth) at the pose below
+  double sx = 0.0, sz = 0.0, sai = 0.0, saj = 0.0;
+  // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
+  // its lead over the next edge (in n . u) [-]; inc -1: none
+  int inc = -1, inc_flip = 0, inc_edge = 0;
+  double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
+};
+}  // namespace detail
 
 // effect flags of DEMParams::flags; each stage checks its bit first
 enum DEMFlag : unsigned {
@@ -301,6 +328,22 @@ class DEMSystem {
   double drag_kick_scale(int i, double dt) const;
   void remove_escaped();
   void body_forces(double dt);
+  // the constants of the contact law (dem_contact.h) in a force evaluation, the same for every contact of
+  // discs and polygons, stone-stone and stone-wall: the Coulomb cap on (kDEMFriction), c_n / sqrt(m*) =
+  // 2 zeta sqrt(k_n) (0 with the dashpots off), k_t (0 without friction)
+  struct ContactLaw {
+    bool friction;
+    double damp, kt;
+  };
+  ContactLaw contact_law() const {
+    const bool friction = params_.flags & kDEMFriction;
+    return {friction, (params_.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0, friction ? kt_ : 0.0};
+  }
+  // a wall's unit normal (wx, wz), out of the solid
+  static std::array<double, 2> wall_unit_normal(const DEMWall& wall) {
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    return {wall.normal[0] / len, wall.normal[1] / len};
+  }
   void contact_forces(double dt);
   void wall_forces(double dt);
   // rolling resistance (dem_rolling.cpp, law in rolling_resistance.h): whether a contact kind has it,
@@ -321,10 +364,7 @@ class DEMSystem {
   double reduced_stiffness_mass() const;
   // polygon stones (dem_polygon.cpp)
   void update_polygon_properties();
-  void polygon_world(int i);
-  struct SatCache;
-  bool polygon_reference(SatCache& cache, int i, int j, double dx, double dz, int& flip, int& edge);
-  int polygon_incident(SatCache& cache, int i, int j, int flip, int edge);
+  std::size_t polygon_touching();
   void polygon_contact_forces(double dt);
   void polygon_wall_forces(double dt);
   double polygon_stable_dt() const;
@@ -382,20 +422,12 @@ class DEMSystem {
   std::vector<double> poly_normal_;   // body-frame edge normals, as poly_vertex
   std::vector<double> poly_world_, poly_world_normal_;  // world-frame vertices and normals
   std::vector<long long> poly_world_stamp_;  // the force evaluation whose world geometry a stone holds
+  std::vector<int> poly_todo_;               // scratch: the stones whose world geometry is made first
+  std::vector<double> poly_cs_;              // scratch: their cosines and sines
   long long poly_eval_ = 0;                  // force evaluations so far (a cache key, not state)
-  // separating-axis cache of each polygon pair (dem_polygon.cpp): saves the full test while the pose has
-  // not moved enough to change its answer; never changes a result, so it is no part of the state
-  struct SatCache {
-    int flip = -1, edge = 0;  // the axis (flip -1: none)
-    double margin = 0.0;      // its lead over every other axis [m]; 0: a separating axis
-    double sep = 0.0;         // a separating axis: its separation at the pose below [m]
-    double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
-    // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
-    // its lead over the next edge (in n . u) [-]; inc -1: none
-    int inc = -1, inc_flip = 0, inc_edge = 0;
-    double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
-  };
-  std::vector<SatCache> poly_sat_cache_;
+  // separating-axis cache of each polygon pair (dem_polygon.cpp)
+  std::vector<detail::PolygonPairCache> poly_sat_cache_;
+  std::vector<detail::PolygonContact> poly_contacts_;  // the touching pairs of a force evaluation (scratch)
   int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to
   std::vector<double> cached_poly_vertex_;
   std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
