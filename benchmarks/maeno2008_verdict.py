@@ -333,14 +333,14 @@ def fig_cost(rows, path: Path) -> None:
     for ax, ev in zip(axes, EVENTS):
         rs = [r for r in rows if r["event"] == ev]
         shown = [r for r in rs if r["shift_lps"] is not None and math.isfinite(r["cpu_s_per_member"])]
-        for i, r in enumerate(shown):
+        for r, level in zip(*_label_levels(shown)):
             c = f"C{knobs.index(r['knob']) % 10}"
             lo, hi = r["shift_lo_lps"], r["shift_hi_lps"]
             err = None if math.isnan(lo) else [[r["shift_lps"] - lo], [hi - r["shift_lps"]]]
             ax.errorbar([r["cpu_s_per_member"]], [r["shift_lps"]], yerr=err, fmt="o", color=c, capsize=3,
                         label="reference" if r["setting"] == "reference" else r["knob"])
             ax.annotate(r["setting"], (r["cpu_s_per_member"], r["shift_lps"]), textcoords="offset points",
-                        xytext=(4, 3 - 9 * (i % 3)), fontsize=7)  # staggered: settings of like cost
+                        xytext=(4, 12 - 8 * level), fontsize=7)
         ax.axhline(0.0, color="0.5", lw=0.8)
         _spread_band(ax, next(r for r in rs if r["setting"] == "reference"))
         _not_reached(ax, rs, shown)
@@ -372,6 +372,18 @@ def _not_reached(ax, rows, shown) -> None:
                 va="bottom")
 
 
+def _label_levels(shown, ratio: float = 1.35):
+    """The points by cost and the line of each one's label: the settings within `ratio` in CPU time of
+    the first of their cluster take a line each, one under the other."""
+    pts = sorted(shown, key=lambda r: r["cpu_s_per_member"])
+    levels, start = [], None
+    for r in pts:
+        cpu = r["cpu_s_per_member"]
+        levels.append(0 if start is None or cpu > start * ratio else levels[-1] + 1)
+        start = cpu if levels[-1] == 0 else start
+    return pts, levels
+
+
 def _spread_band(ax, ref) -> None:
     """The reference's 16-84 % band about its median, open-ended where a quantile is not reached."""
     lo, hi = ref["spread_lo_lps"], ref["spread_hi_lps"]
@@ -380,7 +392,7 @@ def _spread_band(ax, ref) -> None:
     y0, y1 = ax.get_ylim()
     span = max(y1 - y0, 1.0)
     ax.axhspan(y0 - 10 * span if lo is None else lo, y1 + 10 * span if hi is None else hi, color="0.85", zorder=0,
-               label="packings' spread (16-84 %)" + (" (open: not reached)" if lo is None or hi is None else ""))
+               label="packings' spread (16-84 %; open where not reached)")
     ax.set_ylim(min(y0, lo if lo is not None else y0) - 0.1 * span, max(y1, hi if hi is not None else y1) + 0.1 * span)
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from vofdem.fragility import (censored_loglik, empirical_median, event_fragility, fit_lognormal, kaplan_meier,
-                              log_sf, mills_ratio)
+                              legend_columns, log_sf, mills_ratio)
 
 
 def _loglik_slow(mu, sigma, q_obs, q_cens, q_left=()):
@@ -174,3 +174,16 @@ def test_event_fragility_and_its_seeded_bootstrap():
     assert row["fit_q16_lps"] < row["fit_median_lps"] < row["fit_q84_lps"]
     never = event_fragility("stage3", [None, None], [25.0, 25.0], n_boot=50)
     assert never.fit is None and never.median_band == (math.inf, math.inf) and never.boot_left_out == 0.0
+
+
+def test_the_legend_keeps_to_the_figure_width():
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(9.0, 6.4))
+    short = ["reference", "grid", "ramp", "cfl"]
+    # 9 in at 8 pt: about 147 characters a row, so labels of 60 characters (68 with the handle) take 2
+    long_ = ["x" * 60] * 5
+    assert legend_columns(fig, short, 3) == 3
+    assert legend_columns(fig, long_, 3) == 2
+    assert legend_columns(fig, ["x" * 200], 3) == 1
+    assert legend_columns(fig, [], 3) == 1

@@ -36,6 +36,15 @@ def _frame(seeds, first, last=25.0, stages=None):
                          "first_discharge_lps": [10.06] * n})
 
 
+def test_the_cost_figure_puts_the_labels_of_neighbours_in_cost_one_under_the_other():
+    rows = [{"setting": n, "cpu_s_per_member": c} for n, c in
+            [("b", 12.0), ("a", 10.0), ("e", 31.0), ("c", 13.0), ("d", 30.0), ("f", 45.0)]]
+    pts, levels = _script()._label_levels(rows)
+    # 10 starts a cluster, 12 and 13 lie within 1.35x of it; 30 starts the next, 31 joins it, 45 does not
+    assert [r["setting"] for r in pts] == ["a", "b", "c", "d", "e", "f"]
+    assert levels == [0, 1, 2, 0, 1, 0]
+
+
 def test_kaplan_meier_quantiles_with_censoring_by_hand():
     # 12 and 14 l/s, one member standing to 25 l/s: F = 1/3 after 12, 2/3 after 14, never 1
     q, obs = np.array([12.0, 14.0, 25.0]), np.array([True, True, False])

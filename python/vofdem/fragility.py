@@ -437,7 +437,14 @@ def figure_legend(fig, axes, max_cols: int) -> None:
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    fig.legend(handles, labels, loc="outside lower center", ncols=min(max_cols, len(labels)), fontsize=8)
+    fig.legend(handles, labels, loc="outside lower center", ncols=legend_columns(fig, labels, max_cols), fontsize=8)
+
+
+def legend_columns(fig, labels, max_cols: int, fontsize: float = 8.0) -> int:
+    """Columns of a legend as wide as `fig` at most: a character of `fontsize` points is about 0.55 of it
+    wide, and each entry takes its handle and padding (about 8 characters) besides its label."""
+    fit = int(fig.get_figwidth() * 72.0 / (0.55 * fontsize) // (max(map(len, labels), default=1) + 8))
+    return max(1, min(max_cols, len(labels), fit))
 
 
 def _draw_event(ax, e: EventFragility, color: str, label: str, lo: float) -> None:
