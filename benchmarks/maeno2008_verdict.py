@@ -253,11 +253,12 @@ def cost_rows(res, n_boot: int):
 
 
 def _shown(path: Path) -> str:
-    """A path relative to the project when inside it."""
+    """A path relative to the project when inside it, else its last part only (no machine's path in a
+    committed page)."""
     try:
         return str(Path(path).resolve().relative_to(ROOT))
     except ValueError:
-        return str(path)
+        return Path(path).name
 
 
 def _median(df, col) -> float:

@@ -18,7 +18,8 @@ need their own steps per contact, docs/dem.md). Without a preset (the key unset,
 scene's own values are used. A scene at a preset holds exactly the preset's values: a scene file
 naming a preset and giving one of its keys with another value is refused, naming both (set the
 key, or drop the preset). ``--quick`` is the draft grid on a shortened flume under a hydrograph four
-times faster (Scene.quick); a scene at a preset becomes 'draft' under it.
+times faster (Scene.quick); a scene at a preset becomes 'draft' under it. Each preset's measured cost
+per member and shift of the answer from 'standard' are in docs/verdict.md (The fidelity presets).
 """
 from __future__ import annotations
 
