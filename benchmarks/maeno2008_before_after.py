@@ -6,8 +6,9 @@ bulk porosity mapping) it runs the scenario twice, one after the other in this p
 - before: the former numerics reached through the scene's parameters: forward-Euler convection
   (numerics.time_scheme = "euler"), point-implicit k-epsilon ("point_implicit"), the drag held over
   the exchange step ("held"), CFL 0.3, pressure tolerance 1e-8, the explicit viscous stresses in one step
-  (numerics.viscous_substeps = 1). (One change is not switchable: the stones' step limit per direction;
-  the former one bound both directions by the smallest cell.)
+  (numerics.viscous_substeps = 1). (Two changes are not switchable: the stones' step limit per
+  direction, where the former one bound both directions by the smallest cell; and the open end's
+  outflow, whose own momentum flux is now implicit and whose Courant number counts half in the step.)
 - after: the scene as it is (Adams-Bashforth 2, column-implicit k-epsilon, implicit drag exchange,
   CFL 0.5, pressure tolerance 1e-5, up to 8 viscous substeps).
 

@@ -261,6 +261,15 @@ void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumB
   }
 }
 
+// An open face's own momentum flux a u / n (a: its carrying velocity, u / n its pore velocity). Drawn in
+// (a < 0) it is explicit; carried out (a > 0) it is implicit in u, u* = (u + dt rest) / (1 + a dt / (n h)):
+// explicit, the outflow is stable only for a dt / (n h) below 1 (forward Euler) or 1/2 (AB2: the
+// term's eigenvalue is -2 a / (n h)), where the water leaving needs only 2 cfl (vof_advection.h).
+inline double open_inflow(double a, double pore) { return a < 0.0 ? a * pore : 0.0; }
+inline double open_outflow_keep(double a, double n, double dt_over_h) {
+  return a > 0.0 ? 1.0 / (1.0 + a * dt_over_h / n) : 1.0;
+}
+
 // every term in one step of dt (the viscous stresses explicit, or split with the column solves)
 void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
                    double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
@@ -303,11 +312,13 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
     if (bc.left_inlet) u_star[sx * k] = f.face_u[sx * k];
     const int je = nx + sx * k;
     if (bc.right_open && f.face_x_porosity[je] > 0.0) {
-      double rhs = f.face_x_porosity[je] * t.gravity_x;
-      if (t.convection)
-        rhs -= (fc.face_u[je] * s.pore_u[je] - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
+      double rhs = f.face_x_porosity[je] * t.gravity_x, keep = 1.0;
+      if (t.convection) {
+        rhs -= (open_inflow(fc.face_u[je], s.pore_u[je]) - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
                (s.corner_flux_u[nx + sx * (k + 1)] - s.corner_flux_u[nx + sx * k]) * inv_dz;
-      u_star[je] = f.face_u[je] + dt * rhs;
+        keep = open_outflow_keep(fc.face_u[je], f.face_x_porosity[je], dt * inv_dx);
+      }
+      u_star[je] = (f.face_u[je] + dt * rhs) * keep;
     }
   }
   // interior z-faces

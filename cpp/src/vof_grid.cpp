@@ -297,13 +297,18 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
   kind = 0;
   index = -1;
   // each row's Courant numbers first (a division per face, vectorised; closed faces give inf or nan,
-  // skipped below), then the largest of the open faces
+  // skipped below), then the largest of the open faces. Water leaving through an open boundary face
+  // counts half: the VOF sweep stays bounded up to 2 cfl on outflow faces (vof_advection.h) and the
+  // face's own momentum outflow is implicit (momentum.h); its limit would otherwise be a numerical
+  // one, the fast bed row at a free overfall's brink.
+  const bool right_open = params_.outlet != OutletBoundary::kWall;
   double* row = cfl_row_.data();
   for (int k = 0; k < nz; ++k) {
     const double inv_h = dt / grid_.dx();
     const double* u = face_u.data() + sx * k;
     const double* n = face_x_porosity.data() + sx * k;
     for (int i = 0; i <= nx; ++i) row[i] = std::abs(u[i]) / n[i] * inv_h;
+    if (right_open && u[nx] > 0.0) row[nx] *= 0.5;
     for (int i = 0; i <= nx; ++i)
       if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 1, index = i + sx * k;
   }

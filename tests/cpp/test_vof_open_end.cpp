@@ -1,4 +1,5 @@
-// Open end faces hold the still air outside in hydrostatic balance (open_end_pressure, projection.h).
+// Open end faces hold the still air outside in hydrostatic balance (open_end_pressure, projection.h);
+// the water leaving carries its own momentum out implicitly and sets the step at half its Courant number.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "vofdem/momentum.h"
 #include "vofdem/vof_grid.h"
 
 using namespace vofdem;
@@ -111,4 +113,47 @@ TEST(VOFOpenEnd, TailwaterInflowIsBoundedByItsHead) {
   EXPECT_GT(umax, 0.3);  // it does flow in
   EXPECT_LT(umax, 1.25);
   EXPECT_GT(flow.net_inflow_volume(), 0.0);
+}
+
+TEST(VOFOpenEnd, OutflowMomentumIsImplicitInTheEndFace) {
+  // one row of three 0.1 m cells, u = 0 (wall), 1, 1, 3 m/s (the end face), convection only: the last
+  // cell carries a = (1 + 3) / 2 = 2 m/s times the upwind 1 m/s (the limited slope is 0 there) into the
+  // end face's volume, which carries 3 u* out. At dt = 0.05 s (end-face Courant 1.5):
+  //   implicit  u* = (3 + 0.05 * 2 / 0.1) / (1 + 0.05 * 3 / 0.1) = 4 / 2.5 = 1.6 m/s
+  //   explicit  u* = 3 - 0.05 * (3 * 3 - 2) / 0.1 = -0.5 m/s (reversed: the step would be unstable)
+  const Grid2D g = Grid2D::uniform(3, 1, 0.3, 0.1);
+  const std::vector<double> u = {0.0, 1.0, 1.0, 3.0}, w(g.nface_z(), 0.0), nx(g.nface_x(), 1.0), nz(g.nface_z(), 1.0);
+  const std::vector<double> mu(g.ncell(), 0.0), rx(g.nface_x(), 1000.0), rz(g.nface_z(), 1000.0);
+  const MomentumFields f{u.data(), w.data(), nx.data(), nz.data(), mu.data(), rx.data(), rz.data()};
+  MomentumTerms t;
+  t.viscosity = false;
+  MomentumBoundary bc;
+  bc.right_open = true;
+  std::vector<double> us, ws;
+  MomentumScratch s;
+  momentum_explicit(g, f, t, bc, 0.05, us, ws, s);
+  EXPECT_NEAR(us[3], 1.6, 1e-12);
+  // water drawn in (u < 0) keeps the explicit flux: u* = -1 - 0.05 (1 - (-1) (-1)) / 0.1 = -1 with the
+  // interior at -1 (uniform inflow stays uniform)
+  const std::vector<double> u_in = {0.0, -1.0, -1.0, -1.0};
+  const MomentumFields fi{u_in.data(), w.data(), nx.data(), nz.data(), mu.data(), rx.data(), rz.data()};
+  momentum_explicit(g, fi, t, bc, 0.05, us, ws, s);
+  EXPECT_NEAR(us[3], -1.0, 1e-12);
+}
+
+TEST(VOFOpenEnd, WaterLeavingSetsTheStepAtHalfItsCourantNumber) {
+  // the end face carrying 2 m/s out of a 0.02 m cell bounds the step at cfl 0.02 / (2 / 2); the same
+  // speed drawn in, or on an interior face, at cfl 0.02 / 2
+  FlowParams p;
+  p.outlet = OutletBoundary::kFreeOverfall;
+  p.cfl = 0.4;
+  VOFGrid flow(Grid2D::uniform(20, 10, 0.4, 0.2), p);
+  const int end = flow.grid().face_x(20, 0);
+  flow.face_u[end] = 2.0;
+  EXPECT_NEAR(flow.stable_dt_terms().advective, 0.4 * 0.02 / 1.0, 1e-15);
+  flow.face_u[end] = -2.0;
+  EXPECT_NEAR(flow.stable_dt_terms().advective, 0.4 * 0.02 / 2.0, 1e-15);
+  flow.face_u[end] = 0.0;
+  flow.face_u[flow.grid().face_x(19, 0)] = 2.0;
+  EXPECT_NEAR(flow.stable_dt_terms().advective, 0.4 * 0.02 / 2.0, 1e-15);
 }

@@ -16,7 +16,8 @@
 //
 // Boundaries (ghost values): walls slip (zero shear) or no-slip (u = 0 at the wall), or the log-law
 // shear of the wall functions when the turbulence model supplies it; the inlet carries no vertical
-// velocity; open ends and the open top are zero-gradient and stress-free.
+// velocity; open ends and the open top are zero-gradient and stress-free, and an open face's own
+// outflow flux is implicit (backward Euler in that one term), so that it bounds no step.
 //
 // References: F. H. Harlow and J. E. Welch (1965), Phys. Fluids 8, 2182; B. van Leer (1979),
 // J. Comput. Phys. 32, 101.
