@@ -17,6 +17,12 @@ double open_end_pressure(const Grid2D& grid, const ProjectionBoundary& bc, int k
 
 namespace {
 
+// 1/2 rho U^2 [Pa] of fluid entering an open face at the superficial velocity v (U = v / n)
+inline double drawn_in_head(double rho, double v, double n) {
+  const double U = v / n;
+  return 0.5 * rho * U * U;
+}
+
 // x-faces: a = beta dz / dx inside; an open end is a Dirichlet face half a cell from the centre
 void assemble_x_faces(const Grid2D& g, const ProjectionFields& f, const ProjectionBoundary& bc, PressureProblem& pb) {
   const int nx = g.nx(), nz = g.nz();
@@ -32,11 +38,9 @@ void assemble_x_faces(const Grid2D& g, const ProjectionFields& f, const Projecti
       }
       pb.face_x_coef[j] = a;
       pb.face_x_bc[j] = i == nx ? open_end_pressure(g, bc, k) : 0.0;
-      // water drawn in from the still tailwater: the outside pressure less 1/2 rho U^2 (see the top)
-      if (i == nx && bc.tailwater && f.face_u[j] < 0.0 && f.face_x_porosity[j] > 0.0) {
-        const double U = f.face_u[j] / f.face_x_porosity[j];
-        pb.face_x_bc[j] -= 0.5 * f.face_x_rho[j] * U * U;
-      }
+      // fluid drawn in from the still outside: the outside pressure less 1/2 rho U^2 (see the header)
+      if (i == nx && a > 0.0 && f.face_u[j] < 0.0)
+        pb.face_x_bc[j] -= drawn_in_head(f.face_x_rho[j], f.face_u[j], f.face_x_porosity[j]);
     }
   }
 }
@@ -55,6 +59,8 @@ void assemble_z_faces(const Grid2D& g, const ProjectionFields& f, PressureProble
       }
       pb.face_z_coef[j] = a;
       pb.face_z_bc[j] = 0.0;
+      // air drawn in through the open top starts from rest, as the water at an open end
+      if (k == nz && a > 0.0 && f.face_w && f.face_w[j] < 0.0) pb.face_z_bc[j] = -drawn_in_head(f.face_z_rho[j], f.face_w[j], f.face_z_porosity[j]);
     }
   }
 }

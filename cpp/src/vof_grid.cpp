@@ -585,7 +585,7 @@ void VOFGrid::stage_turbulence(double dt) {
 ProjectionFields VOFGrid::projection_fields() const {
   return {face_x_porosity.data(), face_z_porosity.data(), face_x_beta_.data(), face_z_beta_.data(),
           face_u.data(),          face_x_rho_.data(),     u_star_.data(),      w_star_.data(),
-          cell_porosity.data(),   cell_porosity_prev_.data()};
+          cell_porosity.data(),   cell_porosity_prev_.data(), face_w.data(),       face_z_rho_.data()};
 }
 
 ProjectionBoundary VOFGrid::projection_boundary() const {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "vofdem/momentum.h"
+#include "vofdem/projection.h"
 #include "vofdem/vof_grid.h"
 
 using namespace vofdem;
@@ -156,4 +157,31 @@ TEST(VOFOpenEnd, WaterLeavingSetsTheStepAtHalfItsCourantNumber) {
   flow.face_u[end] = 0.0;
   flow.face_u[flow.grid().face_x(19, 0)] = 2.0;
   EXPECT_NEAR(flow.stable_dt_terms().advective, 0.4 * 0.02 / 2.0, 1e-15);
+}
+
+TEST(VOFOpenEnd, FluidDrawnInStartsFromRestAtEveryOpenFace) {
+  // a 2 x 2 grid of 0.1 m cells, porosity 0.5 on the faces, air (1.2 kg/m3) everywhere: the open end's
+  // lower face draws air in at u = -0.2 m/s (U = -0.4 m/s), the top's left face at w = -0.3 m/s (W =
+  // -0.6 m/s); the faces carrying air out keep the still outside's static pressure
+  const Grid2D g = Grid2D::uniform(2, 2, 0.2, 0.2);
+  std::vector<double> nfx(g.nface_x(), 0.5), nfz(g.nface_z(), 0.5), beta_x(g.nface_x(), 1e-3),
+      beta_z(g.nface_z(), 1e-3), u(g.nface_x(), 0.0), w(g.nface_z(), 0.0), rx(g.nface_x(), 1.2),
+      rz(g.nface_z(), 1.2), us(g.nface_x(), 0.0), ws(g.nface_z(), 0.0), n(g.ncell(), 1.0);
+  u[g.face_x(2, 0)] = -0.2, u[g.face_x(2, 1)] = 0.1;
+  w[g.face_z(0, 2)] = -0.3, w[g.face_z(1, 2)] = 0.3;
+  ProjectionFields f{nfx.data(), nfz.data(), beta_x.data(), beta_z.data(), u.data(), rx.data(),
+                     us.data(),  ws.data(),  n.data(),      n.data(),      w.data(), rz.data()};
+  ProjectionBoundary bc;
+  bc.right_open = true;
+  bc.rho_water = 998.2, bc.rho_air = 1.2, bc.gravity = 9.81;
+  PressureProblem pb;
+  pb.resize(g);
+  std::vector<double> rhs(g.ncell(), 0.0);
+  assemble_pressure_problem(g, f, bc, 0.0, pb, rhs);
+  // outside: 1.2 * 9.81 * (0.2 - 0.05) = 1.7658 Pa at row 0, 0.5886 Pa at row 1; 1/2 1.2 0.4^2 = 0.096 Pa
+  EXPECT_NEAR(pb.face_x_bc[g.face_x(2, 0)], 1.7658 - 0.096, 1e-12);
+  EXPECT_NEAR(pb.face_x_bc[g.face_x(2, 1)], 0.5886, 1e-12);
+  // top: p = 0 outside, 1/2 1.2 0.6^2 = 0.216 Pa
+  EXPECT_NEAR(pb.face_z_bc[g.face_z(0, 2)], -0.216, 1e-12);
+  EXPECT_EQ(pb.face_z_bc[g.face_z(1, 2)], 0.0);
 }

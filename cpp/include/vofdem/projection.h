@@ -15,9 +15,11 @@
 //
 // Open end (free overfall or tailwater): the end face is Dirichlet with the still fluid outside,
 // hydrostatic from p = 0 at the top: air above, water below the tailwater level (a single-phase flow:
-// water up to that level, or to the top). Water drawn in from the still tailwater starts from rest: its
-// static pressure at the end face is the outside pressure less 1/2 rho U^2 (a total-pressure inlet); a
-// fixed static pressure lets the inflow run away (-25 m/s below a weir's jet).
+// water up to that level, or to the top). Fluid drawn in through an open face (the end, or the open top)
+// starts from rest outside: its static pressure there is the outside pressure less 1/2 rho U^2 (a
+// total-pressure inlet, U the pore velocity at the step's start). A fixed static pressure lets the
+// inflow run away: -25 m/s of tailwater below a weir's jet; a wind of air drawn in over a free overfall
+// and out through the top over the inlet at 1 m/s, which set a quarter of a weir run's steps.
 //
 // References: A. J. Chorin (1968), Math. Comp. 22, 745-762 (projection); F. H. Harlow and J. E. Welch
 // (1965), Phys. Fluids 8, 2182 (MAC grid).
@@ -53,6 +55,8 @@ struct ProjectionFields {
   const double* w_star;              // w*, nface_z [m/s]
   const double* cell_porosity;       // n, ncell [-]
   const double* cell_porosity_prev;  // n of the last step, ncell [-]
+  const double* face_w = nullptr;      // w^n, nface_z [m/s]: the open top's inflow (null: none)
+  const double* face_z_rho = nullptr;  // nface_z [kg/m^3]
 };
 
 // the pressure [Pa] of the still fluid outside an open end at the centre of row k
