@@ -7,7 +7,8 @@ in one process, the two writers alternated snapshot by snapshot so that both see
 - 'SWMR': the earlier writer (libver 'latest', SWMR mode, chunked gzip datasets resized per snapshot,
   one flush, XDMF rewritten), which readers of HDF5 1.10 and plain h5py refuse after a kill.
 Also: making the file (its virtual datasets), closing it (the copy that replaces it), and a checkpoint
-(sim.export_state() and checkpoint.py's write, after every snapshot). The solver's own cost
+(sim.export_state() and checkpoint.py's write, timed after every snapshot; runs write one every
+30 s of wall time). The solver's own cost
 per snapshot on this grid is from benchmarks/results/maeno2008_full_realtime.md (119 s for 281).
 Writes benchmarks/results/output_cost.md.
 

@@ -20,7 +20,8 @@ ENV = dict(os.environ, PYTHONPATH=str(Path(vofdem.__file__).resolve().parents[1]
            + os.environ.get("PYTHONPATH", ""))
 ROOT = Path(__file__).resolve().parents[1]
 # a scene's quick variant to 8 s: 17 snapshots, the stones held during the 5 s spin-up and released
-OPTIONS = ["--quick", "--end-time", "8", "--no-figures", "--no-animation", "--no-progress"]
+# (a checkpoint after every snapshot: the kill then leaves one from the middle of the run)
+OPTIONS = ["--quick", "--end-time", "8", "--no-figures", "--no-animation", "--no-progress", "--checkpoint-seconds", "0"]
 RUN = ["run", "maeno2008", *OPTIONS]
 SCENES = {"discs": "maeno2008", "polygons": str(ROOT / "scenes" / "maeno2008_polygons.toml")}
 SNAPSHOTS = 17

@@ -83,3 +83,35 @@ def test_a_stop_request_survives_a_swallowed_interrupt(tmp_path):
     assert d.attrs["status"] == "interrupted"
     run_scene(s, tmp_path / "again", sim=FakeSimulation(s), progress=False, figures=False, animation=False)
     assert RunData(tmp_path / "again" / "run.h5").attrs["status"] == "completed"
+
+
+def test_checkpoints_come_after_the_first_and_last_snapshot_and_every_interval(tmp_path, monkeypatch):
+    import vofdem.run as run_mod
+
+    clock = [0.0]  # a wall clock that advances 5 s at each reading
+    saved = []
+    real = run_mod.save_checkpoint
+
+    def save(path, ck):
+        saved.append(ck.snapshots)
+        real(path, ck)
+
+    def perf_counter():
+        clock[0] += 5.0
+        return clock[0]
+
+    monkeypatch.setattr(run_mod, "save_checkpoint", save)
+    monkeypatch.setattr(run_mod._time, "perf_counter", perf_counter)
+    s = short_scene()
+    run_scene(s, tmp_path / "a", sim=FakeSimulation(s), progress=False, figures=False, animation=False,
+              checkpoint_seconds=25.0)
+    n = RunData(tmp_path / "a" / "run.h5").times.size
+    assert saved[0] == 1 and saved[-1] == n and 2 < len(saved) < n
+    # the clock advances by the same readings per snapshot: checkpoints evenly spaced, more than one apart
+    assert len({b - a for a, b in zip(saved, saved[1:-1])}) == 1 and saved[1] - saved[0] > 1
+    saved.clear()
+    run_scene(s, tmp_path / "b", sim=FakeSimulation(s), progress=False, figures=False, animation=False,
+              checkpoint_seconds=0.0)
+    assert saved == list(range(1, n + 1))
+    with pytest.raises(ValueError, match=r"checkpoint_seconds = -1.0 is out of range \(allowed: >= 0 s\)"):
+        run_scene(s, tmp_path / "c", sim=FakeSimulation(s), progress=False, checkpoint_seconds=-1.0)

@@ -23,7 +23,10 @@ def _parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="run a scene and write HDF5/XDMF output, stage tables, figures, animation")
     r.add_argument("scene", nargs="?", help="TOML scene file, or a ready scene: " + ", ".join(READY))
     r.add_argument("--resume", type=Path, default=None, metavar="DIR",
-                   help="continue the killed run in DIR from its last checkpoint (written after every snapshot)")
+                   help="continue the killed run in DIR from its last checkpoint (see --checkpoint-seconds)")
+    r.add_argument("--checkpoint-seconds", type=float, default=None, metavar="S",
+                   help="wall time between checkpoints (default 30 s; 0: after every snapshot): a killed run "
+                        "resumes from the last one")
     r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes: the "
                    "draft grid on a shortened flume under a hydrograph four times faster")
     _fidelity_argument(r)
@@ -204,6 +207,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             seeds = [scene.seed]
         if seeds is None and (getattr(args, "workers", None) is not None or getattr(args, "scheduler", None)):
             raise ValueError("--workers and --scheduler are for ensembles (--seeds or --vary)")
+        if seeds is not None and getattr(args, "checkpoint_seconds", None) is not None:
+            raise ValueError("--checkpoint-seconds is for single runs (an ensemble's members checkpoint every 30 s)")
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
@@ -229,7 +234,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
                 print((out / "until_failure.md").read_text(encoding="utf-8"))
             print(f"output: {out}/ (ensemble.md/.csv, fragility.csv/.png, one run directory per member)")
             return 0
-        res = run_scene(scene, out, resume=args.resume is not None, **opts)
+        ck = {} if args.checkpoint_seconds is None else dict(checkpoint_seconds=args.checkpoint_seconds)
+        res = run_scene(scene, out, resume=args.resume is not None, **ck, **opts)
     except SolverError as e:
         print(f"vofdem: {e}", file=sys.stderr)
         return 1

@@ -9,9 +9,9 @@ The loop talks to the coupled simulation only through these names:
 
 A solver failure (RuntimeError while stepping) closes the output with everything written so far,
 marks it failed and raises ``SolverError`` with the solver's message. A failing write (disk full)
-raises ``OutputError`` naming the file, with the snapshots written before it kept. After every
-snapshot the loop writes a checkpoint (checkpoint.py); ``run_scene(..., resume=True)`` continues a
-killed run from it.
+raises ``OutputError`` naming the file, with the snapshots written before it kept. The loop writes a
+checkpoint after the first and the last snapshot and every ``checkpoint_seconds`` of wall time
+(checkpoint.py); ``run_scene(..., resume=True)`` continues a killed run from the last one.
 """
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ from typing import Callable, List, Optional
 import numpy as np
 
 from .analysis import FailureAnalysis, analyse
-from .checkpoint import CHECKPOINT_EVERY, CHECKPOINT_NAME, Checkpoint, load_checkpoint, save_checkpoint
+from .checkpoint import CHECKPOINT_NAME, CHECKPOINT_SECONDS, Checkpoint, load_checkpoint, save_checkpoint
 from .io import OutputError, RunData, RunWriter, cell_velocities, check_writable
 from .polygon_output import stone_diameters, stone_polygons
 from .scene import Scene
@@ -141,16 +141,19 @@ class _Recorder:
 
 def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: Optional[bool] = None,
               animation: Optional[bool] = None, build: Optional[Callable] = None, log=print,
-              resume: bool = False) -> RunResult:
+              resume: bool = False, checkpoint_seconds: float = CHECKPOINT_SECONDS) -> RunResult:
     """Runs a scene to its end, writing ``out_dir``/run.h5 + run.xmf, the stage tables, the figures,
     the animation and the per-stage cost table. Returns a RunResult; raises SolverError on a solver
     failure (after closing the output), OutputError on a failing write, ValueError (before the run) if
     the output directory is not writable. resume: continue the killed run in ``out_dir`` from its
-    checkpoint (the scene must be the run's own: ``out_dir``/scene.toml)."""
+    checkpoint (the scene must be the run's own: ``out_dir``/scene.toml). checkpoint_seconds: wall time
+    [s] between checkpoints (>= 0; 0: after every snapshot)."""
     from . import __version__
 
     global _stop_requested
     _stop_requested = False
+    if not checkpoint_seconds >= 0.0:
+        raise ValueError(f"checkpoint_seconds = {checkpoint_seconds} is out of range (allowed: >= 0 s)")
     scene.validate()
     out = Path(out_dir)
     ck = load_checkpoint(out / CHECKPOINT_NAME) if resume else None
@@ -173,7 +176,7 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table(np.asarray(t_tab, float), np.asarray(q_tab, float))
-    loop = _Loop(sim, scene, out, __version__, ck)
+    loop = _Loop(sim, scene, out, __version__, ck, checkpoint_seconds)
     duration = scene.duration
     bar = _progress_bar(duration, progress)
     try:
@@ -230,10 +233,12 @@ class _Loop:
     """The run loop's state: the writer, the snapshot times, the held stones, the checkpoints and the
     cost so far (a resumed run adds the killed run's profile and wall time to its own)."""
 
-    def __init__(self, sim, scene: Scene, out: Path, version: str, ck: Optional[Checkpoint]):
+    def __init__(self, sim, scene: Scene, out: Path, version: str, ck: Optional[Checkpoint],
+                 checkpoint_seconds: float = CHECKPOINT_SECONDS):
         self.sim, self.scene, self.out = sim, scene, out
         st = sim.stones
         self.wall0 = _time.perf_counter()
+        self.checkpoint_seconds, self.last_checkpoint = checkpoint_seconds, None
         if ck is None:
             self.fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
             ramp = scene.hydrograph.ramp_start
@@ -283,9 +288,13 @@ class _Loop:
             self.hold = False
 
     def snapshot(self) -> None:
-        """Records a snapshot, then (every CHECKPOINT_EVERY snapshots) the checkpoint."""
+        """Records a snapshot, then the checkpoint: after this loop's first snapshot, the run's last one,
+        and any that comes checkpoint_seconds of wall time after the last checkpoint."""
         self.rec.record()
-        if self.writer.count % CHECKPOINT_EVERY == 0 or self.writer.count == 1 + len(self.targets):
+        now = _time.perf_counter()
+        if (self.last_checkpoint is None or self.writer.count == 1 + len(self.targets)
+                or now - self.last_checkpoint >= self.checkpoint_seconds):
+            self.last_checkpoint = now
             names, seconds, calls = self.profile_tuple()
             save_checkpoint(self.out / CHECKPOINT_NAME, Checkpoint(
                 dict(self.sim.export_state()), self.writer.count, self.targets, self.hold, self.scene.to_toml(),
