@@ -199,6 +199,7 @@ class RunWriter:
         self.count = 0
         self._times: List[float] = []
         self._xdmf_steps: Dict[str, List[str]] = {"fields": [], "stones": [], "stone_polygons": []}
+        self._datasets: Dict[str, h5py.Dataset] = {}
 
     def _series(self, f, name, tail, dtype, fill):
         """A time series (capacity, *tail), contiguous, allocated and filled at once, with a virtual
@@ -256,23 +257,23 @@ class RunWriter:
         """Appends one snapshot: fields {name: (nz, nx)}, stones {pos, vel, force_drag, force_pressure:
         (n, 2), active: (n,)}. The values are flushed, then the time (the mark of a completed snapshot),
         then the XDMF files are rewritten. Raises OutputError if a write fails (earlier snapshots kept)."""
-        f, k = self.file, self.count
+        f, k, ds = self.file, self.count, self._dataset
         if k >= self.capacity:
             raise ValueError(f"snapshot {k + 1} is beyond the file's capacity of {self.capacity} snapshots")
         try:
-            f["discharge"][k] = discharge
-            f["upstream_level"][k] = upstream_level
+            ds("discharge")[k] = discharge
+            ds("upstream_level")[k] = upstream_level
             if self.write_fields:
                 for name in FIELD_NAMES:
-                    f[f"fields/{name}"][k] = np.asarray(fields[name]).reshape(self.nz, self.nx)
+                    ds(f"fields/{name}")[k] = np.asarray(fields[name]).reshape(self.nz, self.nx)
             if self.n:
                 for name in STONE_VECTORS:
-                    f[f"stones/{name}"][k] = np.asarray(stones[name]).reshape(self.n, 2)
-                f["stones/active"][k] = np.asarray(stones["active"]).astype(np.uint8)
+                    ds(f"stones/{name}")[k] = np.asarray(stones[name]).reshape(self.n, 2)
+                ds("stones/active")[k] = np.asarray(stones["active"]).astype(np.uint8)
             if self.polygons is not None:
                 polygon_output.write_snapshot(f, k, *self.polygons, stones["pos"], stones["angle"])
             f.flush()
-            f["time"][k] = t
+            ds("time")[k] = t
             f.flush()
         except (OSError, ValueError, RuntimeError) as e:
             failed = _system_errno(e)
@@ -282,6 +283,12 @@ class RunWriter:
         self.count += 1
         self._times.append(float(t))
         self.write_xdmf()
+
+    def _dataset(self, name: str):
+        """The open file's dataset `name`, looked up once (a lookup costs as much as a field's write)."""
+        if name not in self._datasets:
+            self._datasets[name] = self.file[name]
+        return self._datasets[name]
 
     def write_xdmf(self) -> None:
         """Rewrites the XDMF files for the snapshots written so far (write, then rename: atomic)."""
