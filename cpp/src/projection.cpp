@@ -60,7 +60,8 @@ void assemble_z_faces(const Grid2D& g, const ProjectionFields& f, PressureProble
       pb.face_z_coef[j] = a;
       pb.face_z_bc[j] = 0.0;
       // air drawn in through the open top starts from rest, as the water at an open end
-      if (k == nz && a > 0.0 && f.face_w && f.face_w[j] < 0.0) pb.face_z_bc[j] = -drawn_in_head(f.face_z_rho[j], f.face_w[j], f.face_z_porosity[j]);
+      if (k == nz && a > 0.0 && f.face_w && f.face_w[j] < 0.0)
+        pb.face_z_bc[j] = -drawn_in_head(f.face_z_rho[j], f.face_w[j], f.face_z_porosity[j]);
     }
   }
 }

@@ -208,7 +208,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
         if seeds is None and (getattr(args, "workers", None) is not None or getattr(args, "scheduler", None)):
             raise ValueError("--workers and --scheduler are for ensembles (--seeds or --vary)")
         if seeds is not None and getattr(args, "checkpoint_seconds", None) is not None:
-            raise ValueError("--checkpoint-seconds is for single runs (an ensemble's members checkpoint every 30 s)")
+            raise ValueError("--checkpoint-seconds is for single runs (an ensemble's members checkpoint at the "
+                             "default interval)")
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
