@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -155,6 +156,32 @@ TEST(VOFGrid, NaNIsCaughtWithStageCellAndTime) {
   EXPECT_EQ(flow.time(), t);
   EXPECT_TRUE(std::isnan(flow.face_u[g.face_x(3, 4)]));
   EXPECT_EQ(flow.cell_F, F);
+}
+
+TEST(VOFGrid, EveryNonFiniteValueOfTheStateIsRefusedBeforeTheStep) {
+  // NaN and both infinities in each array the step checks first, at its first, a middle and its last entry
+  const Grid2D g = Grid2D::uniform(10, 10, 0.1, 0.1);
+  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  for (int which = 0; which < 3; ++which) {
+    for (double v : bad) {
+      VOFGrid flow(g, FlowParams{});
+      flow.fill_water_below(0.05);
+      std::vector<double>& a = which == 0 ? flow.face_u : which == 1 ? flow.face_w : flow.cell_F;
+      for (std::size_t j : {std::size_t{0}, a.size() / 2, a.size() - 1}) {
+        const double keep = a[j];
+        a[j] = v;
+        try {
+          flow.step(1e-3);
+          FAIL() << "no error for " << v << " in array " << which << " at " << j;
+        } catch (const std::runtime_error& e) {
+          EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(flow.time(), 0.0);
+        a[j] = keep;
+      }
+    }
+  }
 }
 
 TEST(VOFGrid, CflBreachIsRefused) {
