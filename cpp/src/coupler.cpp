@@ -261,12 +261,14 @@ void Coupler::stage_fluid_forces() {
   if (!csr_current_) map_stones();
   const unsigned fl = params_.flags;
   const FlowParams& fp = fluid_->params();
-  fluid_->pore_velocity_at_cells(cell_U_, cell_W_);
-  // without the pressure-gradient effect the sample's gradient is unused: zeros
-  if (fl & kCouplePressureGradient) fluid_->pressure_gradient_at_cells(cell_dpdx_, cell_dpdz_);
-  else std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
   const std::vector<int>& off = mapper_->disc_cell_offsets();
   const std::vector<int>& idx = mapper_->disc_cell_index();
+  // the flow is sampled in the stones' cells only (the other entries are not read)
+  const int ncs = off[n_];
+  fluid_->pore_velocity_at_cells(ncs, idx.data(), cell_U_, cell_W_);
+  // without the pressure-gradient effect the sample's gradient is unused: zeros
+  if (fl & kCouplePressureGradient) fluid_->pressure_gradient_at_cells(ncs, idx.data(), cell_dpdx_, cell_dpdz_);
+  else std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
   const std::vector<double>& area = mapper_->disc_cell_area();
   const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
   const bool bed = params_.stone_drag == StoneDragModel::kBed;

@@ -9,41 +9,64 @@
 
 namespace vofdem {
 
+void VOFGrid::pore_velocity_at(int c, double& U, double& W) const {
+  const double n = cell_porosity[c];
+  if (n <= 0.0) return;
+  const int nx = grid_.nx(), i = c % nx, k = c / nx;
+  U = 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / n;
+  W = 0.5 * (face_w[grid_.face_z_below(c)] + face_w[grid_.face_z_above(c)]) / n;
+}
+
+void VOFGrid::pressure_gradient_at(int c, double& dpdx, double& dpdz) const {
+  const int nx = grid_.nx(), nz = grid_.nz(), i = c % nx, k = c / nx;
+  auto active = [&](int ii, int kk) {
+    return ii >= 0 && ii < nx && kk >= 0 && kk < nz && cell_porosity[grid_.cell(ii, kk)] > 0.0;
+  };
+  if (!active(i, k)) return;
+  // central where both neighbours are fluid, one-sided next to a wall or a solid
+  const bool l = active(i - 1, k), r = active(i + 1, k);
+  if (l && r) dpdx = (cell_p[c + 1] - cell_p[c - 1]) / (2.0 * grid_.dx());
+  else if (r) dpdx = (cell_p[c + 1] - cell_p[c]) / grid_.dx();
+  else if (l) dpdx = (cell_p[c] - cell_p[c - 1]) / grid_.dx();
+  const bool b = active(i, k - 1), t = active(i, k + 1);
+  const int above = grid_.cell_above(c), below = grid_.cell_below(c);
+  if (b && t) dpdz = (cell_p[above] - cell_p[below]) / (grid_.z_center(k + 1) - grid_.z_center(k - 1));
+  else if (t) dpdz = (cell_p[above] - cell_p[c]) / (grid_.z_center(k + 1) - grid_.z_center(k));
+  else if (b) dpdz = (cell_p[c] - cell_p[below]) / (grid_.z_center(k) - grid_.z_center(k - 1));
+}
+
 void VOFGrid::pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const {
   U.assign(grid_.ncell(), 0.0);
   W.assign(grid_.ncell(), 0.0);
-  for (int k = 0; k < grid_.nz(); ++k)
-    for (int i = 0; i < grid_.nx(); ++i) {
-      const int c = grid_.cell(i, k);
-      const double n = cell_porosity[c];
-      if (n <= 0.0) continue;
-      U[c] = 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / n;
-      W[c] = 0.5 * (face_w[grid_.face_z_below(c)] + face_w[grid_.face_z_above(c)]) / n;
-    }
+  for (int c = 0; c < grid_.ncell(); ++c) pore_velocity_at(c, U[c], W[c]);
 }
 
 void VOFGrid::pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const {
-  const int nx = grid_.nx(), nz = grid_.nz();
   dpdx.assign(grid_.ncell(), 0.0);
   dpdz.assign(grid_.ncell(), 0.0);
-  auto active = [&](int i, int k) {
-    return i >= 0 && i < nx && k >= 0 && k < nz && cell_porosity[grid_.cell(i, k)] > 0.0;
-  };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = grid_.cell(i, k);
-      if (!active(i, k)) continue;
-      // central where both neighbours are fluid, one-sided next to a wall or a solid
-      const bool l = active(i - 1, k), r = active(i + 1, k);
-      if (l && r) dpdx[c] = (cell_p[c + 1] - cell_p[c - 1]) / (2.0 * grid_.dx());
-      else if (r) dpdx[c] = (cell_p[c + 1] - cell_p[c]) / grid_.dx();
-      else if (l) dpdx[c] = (cell_p[c] - cell_p[c - 1]) / grid_.dx();
-      const bool b = active(i, k - 1), t = active(i, k + 1);
-      const int above = grid_.cell_above(c), below = grid_.cell_below(c);
-      if (b && t) dpdz[c] = (cell_p[above] - cell_p[below]) / (grid_.z_center(k + 1) - grid_.z_center(k - 1));
-      else if (t) dpdz[c] = (cell_p[above] - cell_p[c]) / (grid_.z_center(k + 1) - grid_.z_center(k));
-      else if (b) dpdz[c] = (cell_p[c] - cell_p[below]) / (grid_.z_center(k) - grid_.z_center(k - 1));
-    }
+  for (int c = 0; c < grid_.ncell(); ++c) pressure_gradient_at(c, dpdx[c], dpdz[c]);
+}
+
+void VOFGrid::pore_velocity_at_cells(int count, const int* cells, std::vector<double>& U,
+                                     std::vector<double>& W) const {
+  U.resize(grid_.ncell(), 0.0);
+  W.resize(grid_.ncell(), 0.0);
+  for (int m = 0; m < count; ++m) {
+    const int c = cells[m];
+    U[c] = W[c] = 0.0;
+    pore_velocity_at(c, U[c], W[c]);
+  }
+}
+
+void VOFGrid::pressure_gradient_at_cells(int count, const int* cells, std::vector<double>& dpdx,
+                                         std::vector<double>& dpdz) const {
+  dpdx.resize(grid_.ncell(), 0.0);
+  dpdz.resize(grid_.ncell(), 0.0);
+  for (int m = 0; m < count; ++m) {
+    const int c = cells[m];
+    dpdx[c] = dpdz[c] = 0.0;
+    pressure_gradient_at(c, dpdx[c], dpdz[c]);
+  }
 }
 
 double VOFGrid::water_volume() const {

@@ -184,6 +184,35 @@ TEST(VOFGrid, EveryNonFiniteValueOfTheStateIsRefusedBeforeTheStep) {
   }
 }
 
+TEST(VOFGrid, FlowSampledAtListedCellsEqualsTheWholeGridsAndLeavesTheRest) {
+  // a flow with porous, solid and water/air cells; the listed cells (repeats, solids, edges, corners)
+  // take the whole-grid values bit for bit, every other entry keeps what it held
+  const Grid2D g = Grid2D::uniform(12, 9, 0.3, 0.18);
+  VOFGrid flow(g, FlowParams{});
+  flow.fill_water_below(0.1);
+  flow.set_porosity_box(0.1, 0.2, 0.0, 0.06, 0.4, 0.01);
+  flow.set_porosity_box(0.25, 0.3, 0.0, 0.03, 0.0, 0.01);
+  flow.advance(0.05);
+  for (std::size_t j = 0; j < flow.face_u.size(); ++j) flow.face_u[j] += 0.01 * std::sin(1.3 * j);
+  for (int c = 0; c < g.ncell(); ++c) flow.cell_p[c] += 3.0 * std::cos(0.7 * c);
+  std::vector<double> U, W, gx, gz;
+  flow.pore_velocity_at_cells(U, W);
+  flow.pressure_gradient_at_cells(gx, gz);
+  const std::vector<int> cells = {0, 11, 5, 5, g.cell(11, 0), g.cell(10, 1), g.cell(4, 3), g.ncell() - 1, g.cell(6, 8)};
+  std::vector<double> u(g.ncell(), -7.0), w(g.ncell(), -7.0), px(g.ncell(), -7.0), pz(g.ncell(), -7.0);
+  flow.pore_velocity_at_cells(static_cast<int>(cells.size()), cells.data(), u, w);
+  flow.pressure_gradient_at_cells(static_cast<int>(cells.size()), cells.data(), px, pz);
+  for (int c = 0; c < g.ncell(); ++c) {
+    const bool listed = std::find(cells.begin(), cells.end(), c) != cells.end();
+    EXPECT_EQ(u[c], listed ? U[c] : -7.0) << c;
+    EXPECT_EQ(w[c], listed ? W[c] : -7.0) << c;
+    EXPECT_EQ(px[c], listed ? gx[c] : -7.0) << c;
+    EXPECT_EQ(pz[c], listed ? gz[c] : -7.0) << c;
+  }
+  EXPECT_EQ(U[g.cell(10, 0)], 0.0);  // solid
+  EXPECT_NE(gx[g.cell(4, 3)], 0.0);
+}
+
 TEST(VOFGrid, CflBreachIsRefused) {
   const Grid2D g = Grid2D::uniform(10, 10, 0.1, 0.1);
   VOFGrid flow(g, FlowParams{});

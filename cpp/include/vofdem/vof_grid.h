@@ -275,6 +275,11 @@ class VOFGrid {
   void pore_velocity_at_cells(std::vector<double>& U, std::vector<double>& W) const;
   // pressure gradient dp/dx, dp/dz at cell centres [Pa/m] (central, one-sided at walls and solids)
   void pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<double>& dpdz) const;
+  // the same two at the listed cells only (count indices into the cell arrays, repeats allowed): the
+  // other entries of the ncell-sized outputs are left as they were (the coupler's stones' cells)
+  void pore_velocity_at_cells(int count, const int* cells, std::vector<double>& U, std::vector<double>& W) const;
+  void pressure_gradient_at_cells(int count, const int* cells, std::vector<double>& dpdx,
+                                  std::vector<double>& dpdz) const;
   // water volume sum(n F V) per metre of flume width [m^2]
   double water_volume() const;
   // discharge per unit width [m^2/s] through x-face column i: the water the VOF advection carried
@@ -320,6 +325,9 @@ class VOFGrid {
   int viscous_substeps(double dt) const;
   void stage_porous_resistance(double dt);
   void stage_turbulence(double dt);
+  // pore velocity and pressure gradient of cell c into the four values (unchanged in a solid cell)
+  void pore_velocity_at(int c, double& U, double& W) const;
+  void pressure_gradient_at(int c, double& dpdx, double& dpdz) const;
   void stage_pressure(double dt);
   void solve_pressure_directly(const std::string& why);
   void stage_correct();
