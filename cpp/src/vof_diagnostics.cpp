@@ -47,26 +47,29 @@ void VOFGrid::pressure_gradient_at_cells(std::vector<double>& dpdx, std::vector<
   for (int c = 0; c < grid_.ncell(); ++c) pressure_gradient_at(c, dpdx[c], dpdz[c]);
 }
 
-void VOFGrid::pore_velocity_at_cells(int count, const int* cells, std::vector<double>& U,
-                                     std::vector<double>& W) const {
-  U.resize(grid_.ncell(), 0.0);
-  W.resize(grid_.ncell(), 0.0);
+namespace {
+// the two values of each listed cell from at(c, x, y), zeroed first (a solid cell's stay 0)
+template <class At>
+void at_listed_cells(int ncell, int count, const int* cells, std::vector<double>& x, std::vector<double>& y, At at) {
+  x.resize(ncell, 0.0);
+  y.resize(ncell, 0.0);
   for (int m = 0; m < count; ++m) {
     const int c = cells[m];
-    U[c] = W[c] = 0.0;
-    pore_velocity_at(c, U[c], W[c]);
+    x[c] = y[c] = 0.0;
+    at(c, x[c], y[c]);
   }
+}
+}  // namespace
+
+void VOFGrid::pore_velocity_at_cells(int count, const int* cells, std::vector<double>& U,
+                                     std::vector<double>& W) const {
+  at_listed_cells(grid_.ncell(), count, cells, U, W, [this](int c, double& u, double& w) { pore_velocity_at(c, u, w); });
 }
 
 void VOFGrid::pressure_gradient_at_cells(int count, const int* cells, std::vector<double>& dpdx,
                                          std::vector<double>& dpdz) const {
-  dpdx.resize(grid_.ncell(), 0.0);
-  dpdz.resize(grid_.ncell(), 0.0);
-  for (int m = 0; m < count; ++m) {
-    const int c = cells[m];
-    dpdx[c] = dpdz[c] = 0.0;
-    pressure_gradient_at(c, dpdx[c], dpdz[c]);
-  }
+  at_listed_cells(grid_.ncell(), count, cells, dpdx, dpdz,
+                  [this](int c, double& gx, double& gz) { pressure_gradient_at(c, gx, gz); });
 }
 
 double VOFGrid::water_volume() const {
