@@ -125,6 +125,30 @@ def test_xdmf_is_version_3_cell_centred_and_matches_the_hdf5(tmp_path):
     assert check_xdmf(tmp_path / "stones.xmf") == 4 * 9
 
 
+def _listed(xmf):
+    return len(ET.parse(xmf).getroot().find("Domain").find("Grid").findall("Grid"))
+
+
+def test_the_xdmf_files_list_the_first_snapshot_then_every_xdmf_seconds_and_all_at_the_end(tmp_path):
+    with pytest.raises(ValueError, match=r"xdmf_seconds = -1.0 is out of range \(allowed: >= 0 s\)"):
+        RunWriter(tmp_path / "x.h5", XF, ZF, [], [], capacity=1, xdmf_seconds=-1.0)
+    w = RunWriter(tmp_path / "run.h5", XF, ZF, [0.04, 0.048, 0.05], [True, False, False], capacity=4,
+                  xdmf_seconds=3600.0)
+    for k in range(3):
+        w.write_snapshot(0.5 * k, 0.0, 0.3, *_snapshot(k))
+        with open_run(tmp_path / "run.h5") as f:  # the HDF5 file completes each snapshot at once
+            assert completed_snapshots(f["time"][()]) == k + 1
+    assert _listed(tmp_path / "run.xmf") == 1 and _listed(tmp_path / "stones.xmf") == 1
+    w.close()
+    assert _listed(tmp_path / "run.xmf") == 3 and check_xdmf(tmp_path / "stones.xmf") == 3 * 9
+    w = RunWriter.reopen(tmp_path / "run.h5", 2, xdmf_seconds=3600.0)  # a resumed run lists its snapshots
+    assert _listed(tmp_path / "run.xmf") == 2
+    w.write_snapshot(1.0, 0.0, 0.3, *_snapshot(2))
+    assert _listed(tmp_path / "run.xmf") == 2
+    w.close("failed: test")
+    assert _listed(tmp_path / "run.xmf") == 3
+
+
 def test_check_xdmf_catches_a_wrong_shape_and_a_wrong_time_count(tmp_path):
     _write(tmp_path / "run.h5", 2)
     xmf = tmp_path / "run.xmf"
@@ -156,13 +180,13 @@ def test_cell_velocities_average_the_faces():
 
 
 # a writer that writes snapshots as fast as it can (the file is in the middle of a write nearly all the
-# time), each snapshot's values a function of its index k
+# time), each snapshot's values a function of its index k; the XDMF files rewritten every argv[2] s
 WRITER = """
 import sys, numpy as np
 from vofdem.io import RunWriter
-nx, nz, n, T = 30, 20, 40, 120
+nx, nz, n, T = 30, 20, 40, 400
 w = RunWriter(sys.argv[1], np.linspace(0, 1, nx + 1), np.linspace(0, 1, nz + 1), np.full(n, 0.05), np.zeros(n, bool),
-              capacity=T)
+              capacity=T, xdmf_seconds=float(sys.argv[2]))
 print("ready", flush=True)
 for k in range(T):
     f = {name: np.full((nz, nx), k + i, np.float32) for i, name in enumerate(("F", "p", "porosity", "u", "w"))}
@@ -178,7 +202,9 @@ def test_a_writer_killed_at_random_moments_leaves_a_file_plain_readers_open(tmp_
     for trial in range(8):
         path = tmp_path / f"kill{trial}" / "run.h5"
         path.parent.mkdir()
-        p = subprocess.Popen([sys.executable, "-c", WRITER, str(path)], env=ENV, stdout=subprocess.PIPE, text=True)
+        xdmf_seconds = 0.0 if trial % 2 else 0.02  # after every snapshot, or every few dozen
+        p = subprocess.Popen([sys.executable, "-c", WRITER, str(path), str(xdmf_seconds)], env=ENV,
+                             stdout=subprocess.PIPE, text=True)
         assert p.stdout.readline().strip() == "ready"
         time.sleep(rng.uniform(0.01, 0.3))
         p.send_signal(signal.SIGKILL)
@@ -192,7 +218,8 @@ def test_a_writer_killed_at_random_moments_leaves_a_file_plain_readers_open(tmp_
                 assert (f["fields/porosity"][k] == k + 2).all() and (f["snapshots/%06d/u" % k][()] == k + 3).all()
                 assert (f["stones/force_pressure"][k] == k + 1.5).all()
         counts.append(T)
-        listed = len(ET.parse(path.with_suffix(".xmf")).getroot().find("Domain").find("Grid").findall("Grid"))
-        assert T - 1 <= listed <= T  # the XDMF is renamed in after the snapshot's time is written
+        listed = _listed(path.with_suffix(".xmf"))
+        # the XDMF is renamed in after the snapshot's time is written; the first snapshot at once
+        assert (T - 1 if xdmf_seconds == 0.0 else min(T, 1)) <= listed <= T, (xdmf_seconds, listed, T)
         assert RunData(path).times.size == T
     assert min(counts) >= 1 and len(set(counts)) > 1, counts  # killed at different snapshots

@@ -27,6 +27,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--checkpoint-seconds", type=float, default=None, metavar="S",
                    help="wall time between checkpoints (default 30 s; 0: after every snapshot): a killed run "
                         "resumes from the last one")
+    r.add_argument("--xdmf-seconds", type=float, default=None, metavar="S",
+                   help="wall time between rewrites of run.xmf and stones.xmf during the run (default 2 s; 0: "
+                        "after every snapshot): what ParaView shows of a running or killed run")
     r.add_argument("--quick", action="store_true", help="shorter, coarser variant that runs in a few minutes: the "
                    "draft grid on a shortened flume under a hydrograph four times faster")
     _fidelity_argument(r)
@@ -207,9 +210,10 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             seeds = [scene.seed]
         if seeds is None and (getattr(args, "workers", None) is not None or getattr(args, "scheduler", None)):
             raise ValueError("--workers and --scheduler are for ensembles (--seeds or --vary)")
-        if seeds is not None and getattr(args, "checkpoint_seconds", None) is not None:
-            raise ValueError("--checkpoint-seconds is for single runs (an ensemble's members checkpoint at the "
-                             "default interval)")
+        for opt in ("checkpoint_seconds", "xdmf_seconds"):
+            if seeds is not None and getattr(args, opt, None) is not None:
+                raise ValueError(f"--{opt.replace('_', '-')} is for single runs (an ensemble's members use the "
+                                 "default interval)")
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2
@@ -235,8 +239,8 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
                 print((out / "until_failure.md").read_text(encoding="utf-8"))
             print(f"output: {out}/ (ensemble.md/.csv, fragility.csv/.png, one run directory per member)")
             return 0
-        ck = {} if args.checkpoint_seconds is None else dict(checkpoint_seconds=args.checkpoint_seconds)
-        res = run_scene(scene, out, resume=args.resume is not None, **ck, **opts)
+        every = {k: getattr(args, k) for k in ("checkpoint_seconds", "xdmf_seconds") if getattr(args, k) is not None}
+        res = run_scene(scene, out, resume=args.resume is not None, **every, **opts)
     except SolverError as e:
         print(f"vofdem: {e}", file=sys.stderr)
         return 1

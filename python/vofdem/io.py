@@ -32,12 +32,18 @@ exists, and no HDF5 metadata changes until the end of the run. So a writer kille
 SIGKILL) leaves a file that plain readers open (``h5py.File(p, "r")``, ParaView), with every completed
 snapshot intact: the superblock of this format has no open-for-write flag, and its metadata on disk is
 the one flushed when the file was made. A snapshot is complete when its time is written; the time is
-written last, after the other values were flushed. The end of a run (status, profile) is written into
-a copy that replaces the file atomically. The XDMF files are rewritten after each snapshot (write,
-then rename) and list exactly the completed snapshots: ``run.xmf`` (the fields on the quadrilateral
-mesh, cell-centred, the stones as a point cloud and, for polygon stones, their outlines as polygons;
-open it in ParaView) and ``stones.xmf`` (the stones alone, for meshio, whose time-series reader takes
-one collection per file: the last one, so the fields come last in ``run.xmf``).
+written last, after the other values were flushed. The file is reopened once made, so that HDF5's
+metadata cache holds only the series written and a flush walks those alone. The end of a run (status,
+profile) is written into a copy that replaces the file atomically. The XDMF files (write, then rename)
+list the completed snapshots: ``run.xmf`` (the fields on the quadrilateral mesh, cell-centred, the
+stones as a point cloud and, for polygon stones, their outlines as polygons; open it in ParaView) and
+``stones.xmf`` (the stones alone, for meshio, whose time-series reader takes one collection per file:
+the last one, so the fields come last in ``run.xmf``). They are rewritten at the first snapshot, at the
+first one ``XDMF_SECONDS`` of wall time after the last rewrite and at the end: a rewrite's cost grows
+with the snapshots listed (a replacing rename writes the new file back at once), so rewriting after
+every snapshot would cost a long run time quadratic in its snapshots. After a kill they may lack the
+snapshots of the last ``XDMF_SECONDS``; ``RunWriter.reopen`` (a resumed run) lists every completed one
+again.
 """
 from __future__ import annotations
 
@@ -46,6 +52,7 @@ import errno
 import os
 import re
 import shutil
+import time as _time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence
@@ -58,6 +65,8 @@ from . import polygon_output
 # the HDF5 format written: the oldest object versions ('earliest': superblock 0, which has no
 # open-for-write flag), and nothing newer than HDF5 1.10 reads (virtual datasets need 1.10)
 HDF5_LIBVER = ("earliest", "v110")
+# wall time [s] between rewrites of the XDMF files during a run
+XDMF_SECONDS = 2.0
 
 FIELD_NAMES = ("F", "p", "porosity", "u", "w")
 STONE_VECTORS = ("pos", "vel", "force_drag", "force_pressure")
@@ -132,14 +141,18 @@ class RunWriter:
 
     capacity: the number of snapshots the file holds (the run's snapshot times are known in advance);
     a snapshot beyond it raises ValueError. polygons: (body-frame vertices (m, 2) [m], offsets (n + 1))
-    of polygon stones (polygon_output.py), None for discs; each snapshot then needs stones["angle"]."""
+    of polygon stones (polygon_output.py), None for discs; each snapshot then needs stones["angle"].
+    xdmf_seconds: wall time [s] between rewrites of the XDMF files (>= 0; 0: after every snapshot)."""
 
     def __init__(self, path, x_faces: Sequence[float], z_faces: Sequence[float], diameters: Sequence[float],
                  fixed: Sequence[bool], capacity: int, scene_toml: str = "", seed: int = 0, version: str = "",
-                 write_fields: bool = True, polygons=None):
+                 write_fields: bool = True, polygons=None, xdmf_seconds: float = XDMF_SECONDS):
         if not int(capacity) >= 1:
             raise ValueError(f"capacity = {capacity} snapshots is out of range (allowed: >= 1)")
+        if not xdmf_seconds >= 0.0:
+            raise ValueError(f"xdmf_seconds = {xdmf_seconds} is out of range (allowed: >= 0 s)")
         self.path = Path(path)
+        self.xdmf_seconds = float(xdmf_seconds)
         self._geometry(np.asarray(x_faces, float), np.asarray(z_faces, float), len(diameters), write_fields,
                        int(capacity), polygons)
         self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -147,7 +160,8 @@ class RunWriter:
         try:
             f = self.file = _open(self.path, "w")
             self._make(f, np.asarray(diameters, float), np.asarray(fixed, bool), scene_toml, seed, version)
-            f.flush()
+            f.close()
+            self.file = _open(self.path, "r+")
         except (OSError, ValueError, RuntimeError) as e:
             failed = _system_errno(e)
             if failed is None:
@@ -157,11 +171,12 @@ class RunWriter:
         self.write_xdmf()
 
     @classmethod
-    def reopen(cls, path, count: int) -> "RunWriter":
+    def reopen(cls, path, count: int, xdmf_seconds: float = XDMF_SECONDS) -> "RunWriter":
         """The writer of an existing run file, continuing after its first `count` snapshots (a resumed
         run): later snapshots are marked incomplete (time NaN) and will be written again."""
         self = cls.__new__(cls)
         self.path = Path(path)
+        self.xdmf_seconds = float(xdmf_seconds)
         f = self.file = _open(self.path, "r+")
         T = int(f.attrs["capacity"])
         if not 0 < count <= T:
@@ -197,9 +212,10 @@ class RunWriter:
         self.write_fields = write_fields
         self.capacity = capacity
         self.count = 0
+        self._xdmf_at = -np.inf  # wall time of the last XDMF rewrite
         self._times: List[float] = []
         self._xdmf_steps: Dict[str, List[str]] = {"fields": [], "stones": [], "stone_polygons": []}
-        self._datasets: Dict[str, h5py.Dataset] = {}
+        self._rows: Dict[str, tuple] = {}  # per series: dataset id, type, row shape, memory space
 
     def _series(self, f, name, tail, dtype, fill):
         """A time series (capacity, *tail), contiguous, allocated and filled at once, with a virtual
@@ -256,24 +272,25 @@ class RunWriter:
                        stones: Optional[Dict] = None) -> None:
         """Appends one snapshot: fields {name: (nz, nx)}, stones {pos, vel, force_drag, force_pressure:
         (n, 2), active: (n,)}. The values are flushed, then the time (the mark of a completed snapshot),
-        then the XDMF files are rewritten. Raises OutputError if a write fails (earlier snapshots kept)."""
-        f, k, ds = self.file, self.count, self._dataset
+        then the XDMF files are rewritten if xdmf_seconds have passed since their last rewrite. Raises
+        OutputError if a write fails (earlier snapshots kept)."""
+        f, k, put = self.file, self.count, self._put
         if k >= self.capacity:
             raise ValueError(f"snapshot {k + 1} is beyond the file's capacity of {self.capacity} snapshots")
         try:
-            ds("discharge")[k] = discharge
-            ds("upstream_level")[k] = upstream_level
+            put("discharge", k, discharge)
+            put("upstream_level", k, upstream_level)
             if self.write_fields:
                 for name in FIELD_NAMES:
-                    ds(f"fields/{name}")[k] = np.asarray(fields[name]).reshape(self.nz, self.nx)
+                    put(f"fields/{name}", k, fields[name])
             if self.n:
                 for name in STONE_VECTORS:
-                    ds(f"stones/{name}")[k] = np.asarray(stones[name]).reshape(self.n, 2)
-                ds("stones/active")[k] = np.asarray(stones["active"]).astype(np.uint8)
+                    put(f"stones/{name}", k, stones[name])
+                put("stones/active", k, stones["active"])
             if self.polygons is not None:
                 polygon_output.write_snapshot(f, k, *self.polygons, stones["pos"], stones["angle"])
             f.flush()
-            ds("time")[k] = t
+            put("time", k, t)
             f.flush()
         except (OSError, ValueError, RuntimeError) as e:
             failed = _system_errno(e)
@@ -282,13 +299,20 @@ class RunWriter:
             raise OutputError(failed, f"writing snapshot {k} (t = {t:.6g} s) to '{self.path}' failed: {e}") from e
         self.count += 1
         self._times.append(float(t))
-        self.write_xdmf()
+        if not self._xdmf_steps["fields"] or _time.perf_counter() - self._xdmf_at >= self.xdmf_seconds:
+            self.write_xdmf()
 
-    def _dataset(self, name: str):
-        """The open file's dataset `name`, looked up once (a lookup costs as much as a field's write)."""
-        if name not in self._datasets:
-            self._datasets[name] = self.file[name]
-        return self._datasets[name]
+    def _put(self, name: str, k: int, values) -> None:
+        """Writes `values` as row k of the series `name` (converted to its type; h5py's low-level write,
+        the series looked up once: the high-level item assignment costs five times as much)."""
+        if name not in self._rows:
+            d = self.file[name]
+            row = (1,) + d.shape[1:]
+            self._rows[name] = (d.id, d.dtype, row, h5py.h5s.create_simple(row))
+        dsid, dtype, row, mspace = self._rows[name]
+        fspace = dsid.get_space()
+        fspace.select_hyperslab((k,) + (0,) * (len(row) - 1), row)
+        dsid.write(mspace, fspace, np.ascontiguousarray(values, dtype).reshape(row))
 
     def write_xdmf(self) -> None:
         """Rewrites the XDMF files for the snapshots written so far (write, then rename: atomic)."""
@@ -308,15 +332,18 @@ class RunWriter:
         _replace_text(self.xmf_path, xdmf_document(both))
         if self.n:
             _replace_text(self.stones_xmf_path, xdmf_document([("stones", steps["stones"])]))
+        self._xdmf_at = _time.perf_counter()
 
     def close(self, status: Optional[str] = None, profile=None, extra_attrs: Optional[Dict] = None) -> None:
-        """Closes the file; then records status ('completed', 'failed: ...'), the profile and extras in a
-        copy of it that replaces it (so that a kill meanwhile leaves the file as it was). Raises
-        OutputError if that fails (disk full): the file is then kept as it was, status 'running'."""
+        """Closes the file and lists every snapshot in the XDMF files; then records status ('completed',
+        'failed: ...'), the profile and extras in a copy of it that replaces it (so that a kill meanwhile
+        leaves the file as it was). Raises OutputError if that fails (disk full): the file is then kept
+        as it was, status 'running'."""
         if self.file is None:
             return
         self.file.close()
         self.file = None
+        self.write_xdmf()
         tmp = self.path.with_name(self.path.name + ".tmp")
         try:
             shutil.copyfile(self.path, tmp)

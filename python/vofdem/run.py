@@ -25,7 +25,7 @@ import numpy as np
 
 from .analysis import FailureAnalysis, analyse
 from .checkpoint import CHECKPOINT_NAME, CHECKPOINT_SECONDS, Checkpoint, load_checkpoint, save_checkpoint
-from .io import OutputError, RunData, RunWriter, cell_velocities, check_writable
+from .io import XDMF_SECONDS, OutputError, RunData, RunWriter, cell_velocities, check_writable
 from .polygon_output import stone_diameters, stone_polygons
 from .scene import Scene
 
@@ -141,19 +141,23 @@ class _Recorder:
 
 def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: Optional[bool] = None,
               animation: Optional[bool] = None, build: Optional[Callable] = None, log=print,
-              resume: bool = False, checkpoint_seconds: float = CHECKPOINT_SECONDS) -> RunResult:
+              resume: bool = False, checkpoint_seconds: float = CHECKPOINT_SECONDS,
+              xdmf_seconds: float = XDMF_SECONDS) -> RunResult:
     """Runs a scene to its end, writing ``out_dir``/run.h5 + run.xmf, the stage tables, the figures,
     the animation and the per-stage cost table. Returns a RunResult; raises SolverError on a solver
     failure (after closing the output), OutputError on a failing write, ValueError (before the run) if
     the output directory is not writable. resume: continue the killed run in ``out_dir`` from its
     checkpoint (the scene must be the run's own: ``out_dir``/scene.toml). checkpoint_seconds: wall time
-    [s] between checkpoints (>= 0; 0: after every snapshot)."""
+    [s] between checkpoints (>= 0; 0: after every snapshot). xdmf_seconds: wall time [s] between rewrites
+    of the XDMF files during the run (>= 0; 0: after every snapshot; io.py)."""
     from . import __version__
 
     global _stop_requested
     _stop_requested = False
     if not checkpoint_seconds >= 0.0:
         raise ValueError(f"checkpoint_seconds = {checkpoint_seconds} is out of range (allowed: >= 0 s)")
+    if not xdmf_seconds >= 0.0:
+        raise ValueError(f"xdmf_seconds = {xdmf_seconds} is out of range (allowed: >= 0 s)")
     scene.validate()
     out = Path(out_dir)
     ck = load_checkpoint(out / CHECKPOINT_NAME) if resume else None
@@ -176,7 +180,7 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table(np.asarray(t_tab, float), np.asarray(q_tab, float))
-    loop = _Loop(sim, scene, out, __version__, ck, checkpoint_seconds)
+    loop = _Loop(sim, scene, out, __version__, ck, checkpoint_seconds, xdmf_seconds)
     duration = scene.duration
     bar = _progress_bar(duration, progress)
     try:
@@ -234,7 +238,7 @@ class _Loop:
     cost so far (a resumed run adds the killed run's profile and wall time to its own)."""
 
     def __init__(self, sim, scene: Scene, out: Path, version: str, ck: Optional[Checkpoint],
-                 checkpoint_seconds: float = CHECKPOINT_SECONDS):
+                 checkpoint_seconds: float = CHECKPOINT_SECONDS, xdmf_seconds: float = XDMF_SECONDS):
         self.sim, self.scene, self.out = sim, scene, out
         st = sim.stones
         self.wall0 = _time.perf_counter()
@@ -249,14 +253,14 @@ class _Loop:
             x_faces, z_faces = grid_faces(sim.fluid.grid)
             self.writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), self.fixed0,
                                     capacity=1 + len(self.targets), scene_toml=scene.to_toml(), seed=scene.seed,
-                                    version=version, polygons=stone_polygons(st))
+                                    version=version, polygons=stone_polygons(st), xdmf_seconds=xdmf_seconds)
             if self.hold:
                 st.disc_fixed[:] = True
             self.base_profile, self.base_wall, pos0 = {}, 0.0, None
         else:
             sim.import_state(ck.state)
             self.targets, self.hold = ck.targets, ck.hold
-            self.writer = RunWriter.reopen(out / "run.h5", ck.snapshots)
+            self.writer = RunWriter.reopen(out / "run.h5", ck.snapshots, xdmf_seconds)
             data = RunData(self.writer.path)
             self.fixed0, pos0 = data.fixed, data.pos[0]
             self.t_start = float(data.times[0])
