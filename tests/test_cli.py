@@ -101,11 +101,13 @@ def test_sigterm_closes_the_output_as_interrupted(tmp_path):
     assert d.attrs["status"] == "interrupted" and d.times.size >= 1 and d.profile is not None
 
 
-def test_checkpoint_seconds_is_checked_and_for_single_runs(tmp_path, capsys):
-    assert main(["run", "maeno2008", "--seeds", "0-1", "--checkpoint-seconds", "5"]) == 2
-    assert "--checkpoint-seconds is for single runs" in capsys.readouterr().err
+@pytest.mark.parametrize("option", ["checkpoint_seconds", "xdmf_seconds"])
+def test_the_wall_time_intervals_are_checked_and_for_single_runs(tmp_path, capsys, option):
+    flag = "--" + option.replace("_", "-")
+    assert main(["run", "maeno2008", "--seeds", "0-1", flag, "5"]) == 2
+    assert f"{flag} is for single runs" in capsys.readouterr().err
     built = []
-    assert main(["run", "maeno2008", "--quick", "--out", str(tmp_path / "out"), "--checkpoint-seconds", "-1",
+    assert main(["run", "maeno2008", "--quick", "--out", str(tmp_path / "out"), flag, "-1",
                  "--no-progress"], build=lambda s: built.append(s) or FakeSimulation(s)) == 2
-    assert "checkpoint_seconds = -1.0 is out of range (allowed: >= 0 s)" in capsys.readouterr().err
+    assert f"{option} = -1.0 is out of range (allowed: >= 0 s)" in capsys.readouterr().err
     assert not built  # refused before the simulation is built
