@@ -42,22 +42,22 @@ void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, dou
   // 1 / eddy once per cell rather than at each of its four corners (the same values; unused where 0)
   if (eddy)
     for (int c = 0; c < g.ncell(); ++c) inv_eddy[c] = eddy[c] > 0.0 ? 1.0 / eddy[c] : 0.0;
+  // the corner between cells a0, a1 (row below) and b0, b1 (row above); the same operations for the
+  // row's inner corners (one loop without branches, vectorised) and its two end corners (the cells repeated)
+  auto corner = [&](int a0, int a1, int b0, int b1) {
+    const double mean = 0.25 * (mu[a0] + mu[a1] + mu[b0] + mu[b1]);
+    if (!eddy) return mean;
+    const double emean = 0.25 * (eddy[a0] + eddy[a1] + eddy[b0] + eddy[b1]);
+    const bool all = eddy[a0] > 0.0 && eddy[a1] > 0.0 && eddy[b0] > 0.0 && eddy[b1] > 0.0;
+    const double eh = all ? 4.0 / (inv_eddy[a0] + inv_eddy[a1] + inv_eddy[b0] + inv_eddy[b1]) : 0.0;
+    return mean - emean + eh;
+  };
   for (int kk = 0; kk <= nz; ++kk) {
-    const int k0 = std::max(kk - 1, 0), k1 = std::min(kk, nz - 1);
-    for (int ii = 0; ii <= nx; ++ii) {
-      const int i0 = std::max(ii - 1, 0), i1 = std::min(ii, nx - 1);
-      const int c[4] = {i0 + nx * k0, i1 + nx * k0, i0 + nx * k1, i1 + nx * k1};
-      const double mean = 0.25 * (mu[c[0]] + mu[c[1]] + mu[c[2]] + mu[c[3]]);
-      if (!eddy) {
-        cm[ii + sx * kk] = mean;
-        continue;
-      }
-      const double e[4] = {eddy[c[0]], eddy[c[1]], eddy[c[2]], eddy[c[3]]};
-      const double emean = 0.25 * (e[0] + e[1] + e[2] + e[3]);
-      const bool all = e[0] > 0.0 && e[1] > 0.0 && e[2] > 0.0 && e[3] > 0.0;
-      const double eh = all ? 4.0 / (inv_eddy[c[0]] + inv_eddy[c[1]] + inv_eddy[c[2]] + inv_eddy[c[3]]) : 0.0;
-      cm[ii + sx * kk] = mean - emean + eh;
-    }
+    const int r0 = nx * std::max(kk - 1, 0), r1 = nx * std::min(kk, nz - 1);
+    double* row = cm + sx * kk;
+    row[0] = corner(r0, r0, r1, r1);
+    row[nx] = corner(r0 + nx - 1, r0 + nx - 1, r1 + nx - 1, r1 + nx - 1);
+    for (int ii = 1; ii < nx; ++ii) row[ii] = corner(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
   }
 }
 
@@ -434,38 +434,44 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   // whose row of a face is twice its diagonal plus the u-w cross terms
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  // corners first, then the per-cell work values of the corner viscosity
+  // corners first, then the per-cell work values of the corner viscosity, then a row of rates
   const std::size_t ncorner = static_cast<std::size_t>(sx) * (nz + 1);
-  cm.resize(ncorner + g.ncell());
+  cm.resize(ncorner + g.ncell() + sx);
   corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm.data(), cm.data() + ncorner);
+  double* rate = cm.data() + ncorner + g.ncell();
   double worst = 0.0;
   int where = -1;
+  // each row's rates first (divisions without a branch, vectorised), then the largest of its open faces
+  auto scan = [&](const double* porosity, int i0, int i1, int k) {
+    for (int i = i0; i < i1; ++i)
+      if (porosity[i] > 0.0 && rate[i] > worst) worst = rate[i], where = i + nx * k;
+  };
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);
+    const double* mu = f.cell_mu + nx * k;  // mu[i - 1], mu[i]: the cells left and right of x-face i
+    const double* mn = cm.data() + sx * (k + 1);
+    const double* ms = cm.data() + sx * k;
+    const double* rho = f.face_x_rho + sx * k;
     for (int i = 1; i < nx; ++i) {
-      const int j = i + sx * k;
-      if (f.face_x_porosity[j] <= 0.0) continue;
-      const double ml = f.cell_mu[i - 1 + nx * k], mr = f.cell_mu[i + nx * k];
-      const double mn = cm[i + sx * (k + 1)], ms = cm[i + sx * k];
-      const double diag = 2.0 * (ml + mr) / (dx * dx) + zf * (mn + ms) / (dz * dz);
-      const double cross = 2.0 * (mn + ms) / (dx * dz);
-      const double rate = (2.0 * diag + cross) / f.face_x_rho[j];
-      if (rate > worst) worst = rate, where = i + nx * k;
+      const double diag = 2.0 * (mu[i - 1] + mu[i]) / (dx * dx) + zf * (mn[i] + ms[i]) / (dz * dz);
+      const double cross = 2.0 * (mn[i] + ms[i]) / (dx * dz);
+      rate[i] = (2.0 * diag + cross) / rho[i];
     }
+    scan(f.face_x_porosity + sx * k, 1, nx, k);
   }
   for (int k = 1; k < nz; ++k) {
     const double dzc = g.z_center(k) - g.z_center(k - 1);
     const double hz = std::min(g.dz(k), g.dz(k - 1));
+    const double* mb = f.cell_mu + nx * (k - 1);
+    const double* mt = f.cell_mu + nx * k;
+    const double* mw = cm.data() + sx * k;  // mw[i]: the corner left of z-face i; mw[i + 1] right of it
+    const double* rho = f.face_z_rho + nx * k;
     for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      if (f.face_z_porosity[j] <= 0.0) continue;
-      const double mb = f.cell_mu[i + nx * (k - 1)], mt = f.cell_mu[i + nx * k];
-      const double me = cm[i + 1 + sx * k], mw = cm[i + sx * k];
-      const double diag = zf * 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
-      const double cross = 2.0 * (me + mw) / (dx * hz);
-      const double rate = (2.0 * diag + cross) / f.face_z_rho[j];
-      if (rate > worst) worst = rate, where = i + nx * k;
+      const double diag = zf * 2.0 * (mb[i] + mt[i]) / (dzc * hz) + (mw[i + 1] + mw[i]) / (dx * dx);
+      const double cross = 2.0 * (mw[i + 1] + mw[i]) / (dx * hz);
+      rate[i] = (2.0 * diag + cross) / rho[i];
     }
+    scan(f.face_z_porosity + nx * k, 0, nx, k);
   }
   if (cell) *cell = where;
   return worst > 0.0 ? 2.0 / worst : std::numeric_limits<double>::infinity();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -407,4 +408,83 @@ TEST(ImplicitViscosity, RowWiseTridiagonalSolveMatchesTheSingleColumnSolveBitFor
     if (i >= i0 && i < i1) solve_tridiagonal(m, ac.data(), bc.data(), cc.data(), dc.data());
     for (int k = 0; k < m; ++k) EXPECT_EQ(d[i + stride * k], dc[k]) << "column " << i << " row " << k;
   }
+}
+
+namespace {
+
+// the corner viscosity and the viscous step limit written face by face, as plainly as they read: the
+// reference of the row-wise kernels (momentum.cpp), which must give the same bits
+double reference_corner(const Grid2D& g, const double* mu, const double* eddy, int ii, int kk) {
+  const int nx = g.nx(), nz = g.nz();
+  const int i0 = std::max(ii - 1, 0), i1 = std::min(ii, nx - 1), k0 = std::max(kk - 1, 0), k1 = std::min(kk, nz - 1);
+  const int c[4] = {i0 + nx * k0, i1 + nx * k0, i0 + nx * k1, i1 + nx * k1};
+  const double mean = 0.25 * (mu[c[0]] + mu[c[1]] + mu[c[2]] + mu[c[3]]);
+  if (!eddy) return mean;
+  const double emean = 0.25 * (eddy[c[0]] + eddy[c[1]] + eddy[c[2]] + eddy[c[3]]);
+  bool all = true;
+  double inv = 0.0;
+  for (int q : c) {
+    all = all && eddy[q] > 0.0;
+    inv += eddy[q] > 0.0 ? 1.0 / eddy[q] : 0.0;
+  }
+  return mean - emean + (all ? 4.0 / inv : 0.0);
+}
+
+double reference_viscous_limit(const Grid2D& g, const MomentumFields& f, bool implicit, int* cell) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  const double dx = g.dx(), zf = implicit ? 0.0 : 1.0;
+  auto cm = [&](int ii, int kk) { return reference_corner(g, f.cell_mu, f.cell_mu_eddy, ii, kk); };
+  double worst = 0.0;
+  *cell = -1;
+  for (int k = 0; k < nz; ++k)
+    for (int i = 1; i < nx; ++i) {
+      if (f.face_x_porosity[i + sx * k] <= 0.0) continue;
+      const double dz = g.dz(k), ml = f.cell_mu[i - 1 + nx * k], mr = f.cell_mu[i + nx * k];
+      const double mn = cm(i, k + 1), ms = cm(i, k);
+      const double diag = 2.0 * (ml + mr) / (dx * dx) + zf * (mn + ms) / (dz * dz);
+      const double rate = (2.0 * diag + 2.0 * (mn + ms) / (dx * dz)) / f.face_x_rho[i + sx * k];
+      if (rate > worst) worst = rate, *cell = i + nx * k;
+    }
+  for (int k = 1; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      if (f.face_z_porosity[i + nx * k] <= 0.0) continue;
+      const double dzc = g.z_center(k) - g.z_center(k - 1), hz = std::min(g.dz(k), g.dz(k - 1));
+      const double mb = f.cell_mu[i + nx * (k - 1)], mt = f.cell_mu[i + nx * k], me = cm(i + 1, k), mw = cm(i, k);
+      const double diag = zf * 2.0 * (mb + mt) / (dzc * hz) + (me + mw) / (dx * dx);
+      const double rate = (2.0 * diag + 2.0 * (me + mw) / (dx * hz)) / f.face_z_rho[i + nx * k];
+      if (rate > worst) worst = rate, *cell = i + nx * k;
+    }
+  return worst > 0.0 ? 2.0 / worst : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+TEST(ViscousLimit, RowWiseKernelsMatchTheFaceByFaceReferenceBitForBit) {
+  // a graded grid, random viscosities with an eddy part (some cells without), densities and closed faces
+  const Grid2D g = Grid2D::graded(13, 0.325, 0.11, 0.01, 0.004, 0.02);
+  Column c(g, 1e-3);
+  unsigned seed = 11;
+  auto unit = [&seed] { return (seed = seed * 1103515245u + 12345u) / 4294967296.0; };
+  std::vector<double> eddy(g.ncell());
+  for (int cc = 0; cc < g.ncell(); ++cc) {
+    eddy[cc] = unit() < 0.2 ? 0.0 : 10.0 * unit();
+    c.mu[cc] = 1e-3 * (0.01 + unit()) + eddy[cc];
+  }
+  for (double& r : c.rx) r = 1.2 + 1000.0 * unit();
+  for (double& r : c.rz) r = 1.2 + 1000.0 * unit();
+  for (double& n : c.nx_) n = unit() < 0.1 ? 0.0 : unit();
+  for (double& n : c.nz_) n = unit() < 0.1 ? 0.0 : unit();
+  for (bool implicit : {false, true})
+    for (bool with_eddy : {false, true}) {
+      MomentumFields f = c.fields();
+      f.cell_mu_eddy = with_eddy ? eddy.data() : nullptr;
+      std::vector<double> cm;
+      int cell = -2, ref_cell = -3;
+      const double dt = viscous_stable_dt(g, f, cm, implicit, &cell);
+      EXPECT_EQ(dt, reference_viscous_limit(g, f, implicit, &ref_cell)) << implicit << with_eddy;
+      EXPECT_EQ(cell, ref_cell);
+      for (int kk = 0; kk <= g.nz(); ++kk)
+        for (int ii = 0; ii <= g.nx(); ++ii)
+          ASSERT_EQ(cm[ii + (g.nx() + 1) * kk], reference_corner(g, f.cell_mu, f.cell_mu_eddy, ii, kk)) << ii << " " << kk;
+    }
 }
