@@ -21,16 +21,33 @@ inline double carried(const double* p, int s, int j, int m, double a) {
   return muscl_value(p[(j + 2) * s], up, p[j * s]);
 }
 
+// van Leer's face value without a branch: the limited value computed, then kept or not (the same value
+// as muscl_value, in a form the compiler vectorises)
+inline double muscl_select(double far, double up, double down) {
+  const double d = down - up, b = up - far;
+  const double v = up + d * b / (d + b);
+  return d * b <= 0.0 ? up : v;
+}
+
+// carried() where both second upwind values exist (1 <= j <= m - 3): both directions computed, one taken
+inline double carried_inner(const double* p, int s, int j, double a) {
+  const double pos = muscl_select(p[(j - 1) * s], p[j * s], p[(j + 1) * s]);
+  const double neg = muscl_select(p[(j + 2) * s], p[(j + 1) * s], p[j * s]);
+  return a >= 0.0 ? pos : neg;
+}
+
 void pore_velocities(const Grid2D& g, const MomentumFields& f, MomentumScratch& s) {
   s.pore_u.resize(g.nface_x());
   s.pore_w.resize(g.nface_z());
+  // every face divided, the closed ones' quotients (inf or nan) then dropped: a division under a
+  // condition is not vectorised (it could raise a flag the condition avoids)
   for (int j = 0; j < g.nface_x(); ++j) {
-    const double n = f.face_x_porosity[j];
-    s.pore_u[j] = n > 0.0 ? f.face_u[j] / n : 0.0;
+    const double n = f.face_x_porosity[j], q = f.face_u[j] / n;
+    s.pore_u[j] = n > 0.0 ? q : 0.0;
   }
   for (int j = 0; j < g.nface_z(); ++j) {
-    const double n = f.face_z_porosity[j];
-    s.pore_w[j] = n > 0.0 ? f.face_w[j] / n : 0.0;
+    const double n = f.face_z_porosity[j], q = f.face_w[j] / n;
+    s.pore_w[j] = n > 0.0 ? q : 0.0;
   }
 }
 
@@ -144,21 +161,31 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
   s.tri_a.resize(size), s.tri_b.resize(size), s.tri_c.resize(size), s.tri_d.resize(size);
   double *a = s.tri_a.data(), *b = s.tri_b.data(), *c = s.tri_c.data(), *d = s.tri_d.data();
   const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
-  // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear
+  // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear.
+  // A closed face's row is the identity (it stays 0); a closed neighbour is a known zero, its coefficient
+  // drops out. Each row computes every face's values and then selects (vectorised; the same values)
   for (int k = 0; k < nz; ++k) {
     const double dz_lo = k > 0 ? g.z_center(k) - g.z_center(k - 1) : 0.0;
     const double dz_up = k < nz - 1 ? g.z_center(k + 1) - g.z_center(k) : 0.0;
+    const double dzk = g.dz(k), dz0 = g.dz(0);
+    const bool has_lo = k > 0, has_up = k < nz - 1;
+    const double* n = f.face_x_porosity + sx * k;
+    const double* n_lo = has_lo ? n - sx : n;  // unused on the bed row
+    const double* n_up = has_up ? n + sx : n;  // unused on the top row
+    const double* mu_lo = s.corner_mu.data() + sx * k;
+    const double* mu_up = s.corner_mu.data() + sx * (has_up ? k + 1 : k);
+    const double* rho = f.face_x_rho + sx * k;
+    const double* u = f.face_u + sx * k;
     for (int i = 1; i < nx; ++i) {
       const int j = i + sx * k;
-      a[j] = c[j] = 0.0, b[j] = 1.0, d[j] = f.face_u[j];
-      if (f.face_x_porosity[j] <= 0.0) continue;
-      const double r = dt / (f.face_x_rho[j] * g.dz(k));
-      const double lo = k > 0 ? s.corner_mu[i + sx * k] / dz_lo : (bed_no_slip ? 2.0 * s.corner_mu[i] / g.dz(0) : 0.0);
-      const double up = k < nz - 1 ? s.corner_mu[i + sx * (k + 1)] / dz_up : 0.0;
-      b[j] = 1.0 + r * (lo + up);
-      // a closed neighbour is a known zero: its coefficient drops out of the system
-      if (k > 0 && f.face_x_porosity[j - sx] > 0.0) a[j] = -r * lo;
-      if (k < nz - 1 && f.face_x_porosity[j + sx] > 0.0) c[j] = -r * up;
+      const double r = dt / (rho[i] * dzk);
+      const double lo = has_lo ? mu_lo[i] / dz_lo : (bed_no_slip ? 2.0 * mu_lo[i] / dz0 : 0.0);
+      const double up = has_up ? mu_up[i] / dz_up : 0.0;
+      const bool open = n[i] > 0.0;
+      b[j] = open ? 1.0 + r * (lo + up) : 1.0;
+      a[j] = open && has_lo && n_lo[i] > 0.0 ? -r * lo : 0.0;
+      c[j] = open && has_up && n_up[i] > 0.0 ? -r * up : 0.0;
+      d[j] = u[i];
     }
   }
   solve_tridiagonal_rows(nz, 1, nx, sx, a, b, c, d);
@@ -172,19 +199,25 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
   const int m = nz - 1;
   for (int k = 1; k < nz; ++k) {
     const double dzc = g.z_center(k) - g.z_center(k - 1);
+    const double dz_lo = g.dz(k - 1), dz_up = g.dz(k);
+    const bool has_lo = k > 1, top = k == nz - 1;
+    const double* n = f.face_z_porosity + nx * k;
+    const double* n_lo = n - nx;
+    const double* n_up = top ? n : n + nx;  // unused on the top row
+    const double* mu_lo = f.cell_mu + nx * (k - 1);
+    const double* mu_up = f.cell_mu + nx * k;
+    const double* rho = f.face_z_rho + nx * k;
+    const double* w = f.face_w + nx * k;
+    const double* w_top = f.face_w + nx * (k + 1);  // the top face's w^n, known (0 under a lid)
     for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k, r0 = i + sx * (k - 1);
-      a[r0] = c[r0] = 0.0, b[r0] = 1.0, d[r0] = f.face_w[j];
-      if (f.face_z_porosity[j] <= 0.0) continue;
-      const double r = dt / (f.face_z_rho[j] * dzc);
-      const double lo = 2.0 * f.cell_mu[j - nx] / g.dz(k - 1), up = 2.0 * f.cell_mu[j] / g.dz(k);
-      b[r0] = 1.0 + r * (lo + up);
-      if (k > 1 && f.face_z_porosity[j - nx] > 0.0) a[r0] = -r * lo;
-      if (k < nz - 1) {
-        if (f.face_z_porosity[j + nx] > 0.0) c[r0] = -r * up;
-      } else {
-        d[r0] += r * up * f.face_w[j + nx];  // top face: known (0 under a lid)
-      }
+      const int r0 = i + sx * (k - 1);
+      const double r = dt / (rho[i] * dzc);
+      const double lo = 2.0 * mu_lo[i] / dz_lo, up = 2.0 * mu_up[i] / dz_up;
+      const bool open = n[i] > 0.0;
+      b[r0] = open ? 1.0 + r * (lo + up) : 1.0;
+      a[r0] = open && has_lo && n_lo[i] > 0.0 ? -r * lo : 0.0;
+      c[r0] = open && !top && n_up[i] > 0.0 ? -r * up : 0.0;
+      d[r0] = open && top ? w[i] + r * up * w_top[i] : w[i];
     }
   }
   solve_tridiagonal_rows(m, 0, nx, sx, a, b, c, d);
@@ -202,23 +235,53 @@ void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumB
   s.corner_flux_w.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
   const double* pu = s.pore_u.data();
   const double* pw = s.pore_w.data();
-  // x-flux of u at cell centres; z-flux of w at cell centres
+  // (the lines' inner values by carried_inner in loops of their own, the ends by carried: the same values)
+  // x-flux of u at cell centres
   for (int k = 0; k < nz; ++k) {
     const double* u = f.face_u + sx * k;
-    for (int i = 0; i < nx; ++i) {
+    const double* p = pu + sx * k;
+    double* flux = s.cell_flux_u.data() + nx * k;
+    for (int i = 0; i < nx; i += std::max(nx - 1, 1)) {
       const double a = 0.5 * (u[i] + u[i + 1]);
-      s.cell_flux_u[i + nx * k] = a * carried(pu + sx * k, 1, i, nx + 1, a);
-      const int c = i + nx * k;
-      const double b = 0.5 * (f.face_w[c] + f.face_w[c + nx]);
-      s.cell_flux_w[c] = b * carried(pw + i, nx, k, nz + 1, b);
+      flux[i] = a * carried(p, 1, i, nx + 1, a);
+    }
+    for (int i = 1; i < nx - 1; ++i) {
+      const double a = 0.5 * (u[i] + u[i + 1]);
+      flux[i] = a * carried_inner(p, 1, i, a);
+    }
+  }
+  // z-flux of w at cell centres
+  for (int k = 0; k < nz; ++k) {
+    const double* w = f.face_w + nx * k;
+    double* flux = s.cell_flux_w.data() + nx * k;
+    if (k >= 1 && k <= nz - 2) {
+      for (int i = 0; i < nx; ++i) {
+        const double b = 0.5 * (w[i] + w[i + nx]);
+        flux[i] = b * carried_inner(pw + i, nx, k, b);
+      }
+    } else {
+      for (int i = 0; i < nx; ++i) {
+        const double b = 0.5 * (w[i] + w[i + nx]);
+        flux[i] = b * carried(pw + i, nx, k, nz + 1, b);
+      }
     }
   }
   // z-flux of u at interior corners (x-face ii, z-face kk); the open top is zero-gradient
-  for (int kk = 1; kk < nz; ++kk)
-    for (int ii = 1; ii < nx; ++ii) {
-      const double a = 0.5 * (f.face_w[ii - 1 + nx * kk] + f.face_w[ii + nx * kk]);
-      s.corner_flux_u[ii + sx * kk] = a * carried(pu + ii, sx, kk - 1, nz, a);
+  for (int kk = 1; kk < nz; ++kk) {
+    const double* w = f.face_w + nx * kk;
+    double* flux = s.corner_flux_u.data() + sx * kk;
+    if (kk >= 2 && kk <= nz - 2) {
+      for (int ii = 1; ii < nx; ++ii) {
+        const double a = 0.5 * (w[ii - 1] + w[ii]);
+        flux[ii] = a * carried_inner(pu + ii, sx, kk - 1, a);
+      }
+    } else {
+      for (int ii = 1; ii < nx; ++ii) {
+        const double a = 0.5 * (w[ii - 1] + w[ii]);
+        flux[ii] = a * carried(pu + ii, sx, kk - 1, nz, a);
+      }
     }
+  }
   if (bc.top_open)
     for (int ii = 1; ii < nx; ++ii) {
       const double a = 0.5 * (f.face_w[ii - 1 + nx * nz] + f.face_w[ii + nx * nz]);
@@ -250,13 +313,19 @@ void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumB
     const double* u0 = f.face_u + sx * (kk - 1);
     const double* u1 = f.face_u + sx * kk;
     const double* prow = pw + nx * kk;
+    double* flux = s.corner_flux_w.data() + sx * kk;
     for (int ii = 0; ii <= nx; ++ii) {
+      if (ii == 2) ii = std::max(2, nx - 1);  // the inner corners below
       const double a = wl * u0[ii] + wu * u1[ii];
       double v;
       if (ii == 0) v = a > 0.0 ? 0.0 : prow[0];  // the inlet brings no vertical momentum
       else if (ii == nx) v = prow[nx - 1];       // open end: zero gradient (a = 0 at a wall)
       else v = carried(prow, 1, ii - 1, nx, a);
-      s.corner_flux_w[ii + sx * kk] = a * v;
+      flux[ii] = a * v;
+    }
+    for (int ii = 2; ii < nx - 1; ++ii) {
+      const double a = wl * u0[ii] + wu * u1[ii];
+      flux[ii] = a * carried_inner(prow, 1, ii - 1, a);
     }
   }
 }
