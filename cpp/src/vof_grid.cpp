@@ -302,29 +302,43 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
   double worst = 0.0;
   kind = 0;
   index = -1;
-  // each row's Courant numbers first (a division per face, vectorised; closed faces give inf or nan,
-  // skipped below), then the largest of the open faces. Water leaving through an open boundary face
-  // counts half: the VOF sweep stays bounded up to 2 cfl on outflow faces (vof_advection.h) and the
-  // face's own momentum outflow is implicit (momentum.h); its limit would otherwise be a numerical
-  // one, the fast bed row at a free overfall's brink.
+  // each row's Courant numbers first (a division per face, vectorised; closed faces 0), then the row's
+  // largest, and where it beats the largest so far its first face. Water leaving through an open
+  // boundary face counts half: the VOF sweep stays bounded up to 2 cfl on outflow faces
+  // (vof_advection.h) and the face's own momentum outflow is implicit (momentum.h); its limit would
+  // otherwise be a numerical one, the fast bed row at a free overfall's brink.
   const bool right_open = params_.outlet != OutletBoundary::kWall;
   double* row = cfl_row_.data();
+  auto take_row = [&](int count, int row_kind, int first_face) {
+    // two running maxima (a NaN never taken, as a comparison with it is false), then the first face at it
+    double m0 = 0.0, m1 = 0.0;
+    int i = 0;
+    for (; i + 1 < count; i += 2) m0 = row[i] > m0 ? row[i] : m0, m1 = row[i + 1] > m1 ? row[i + 1] : m1;
+    if (i < count) m0 = row[i] > m0 ? row[i] : m0;
+    const double m = m1 > m0 ? m1 : m0;
+    if (!(m > worst)) return;
+    worst = m, kind = row_kind, index = first_face + static_cast<int>(std::find(row, row + count, m) - row);
+  };
   for (int k = 0; k < nz; ++k) {
     const double inv_h = dt / grid_.dx();
     const double* u = face_u.data() + sx * k;
     const double* n = face_x_porosity.data() + sx * k;
-    for (int i = 0; i <= nx; ++i) row[i] = std::abs(u[i]) / n[i] * inv_h;
+    for (int i = 0; i <= nx; ++i) {
+      const double c = std::abs(u[i]) / n[i] * inv_h;
+      row[i] = n[i] > 0.0 ? c : 0.0;
+    }
     if (right_open && u[nx] > 0.0) row[nx] *= 0.5;
-    for (int i = 0; i <= nx; ++i)
-      if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 1, index = i + sx * k;
+    take_row(sx, 1, sx * k);
   }
   for (int k = 0; k <= nz; ++k) {
     const double h = std::min(grid_.dz(std::max(k - 1, 0)), grid_.dz(std::min(k, nz - 1)));
     const double* w = face_w.data() + nx * k;
     const double* n = face_z_porosity.data() + nx * k;
-    for (int i = 0; i < nx; ++i) row[i] = std::abs(w[i]) / n[i] * dt / h;
-    for (int i = 0; i < nx; ++i)
-      if (n[i] > 0.0 && row[i] > worst) worst = row[i], kind = 2, index = i + nx * k;
+    for (int i = 0; i < nx; ++i) {
+      const double c = std::abs(w[i]) / n[i] * dt / h;
+      row[i] = n[i] > 0.0 ? c : 0.0;
+    }
+    take_row(nx, 2, nx * k);
   }
   return worst;
 }
