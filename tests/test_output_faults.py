@@ -47,9 +47,11 @@ def _full_disk_after(monkeypatch, calls: int):
 
 def test_a_full_disk_stops_the_run_at_the_failing_write_and_keeps_the_snapshots(tmp_path, monkeypatch, capsys):
     s = short_scene()
-    _full_disk_after(monkeypatch, 14)  # scene.toml, two XDMF files when made, two per snapshot: snapshot 5
+    # the XDMF files rewritten after every snapshot (xdmf_seconds = 0): scene.toml, the two XDMF files
+    # when made, two per snapshot: the 14th write is snapshot 5's
+    _full_disk_after(monkeypatch, 14)
     with pytest.raises(OutputError, match=r"writing '.*\.xmf' failed: \[Errno 28\] No space left on device") as e:
-        run_scene(s, tmp_path / "out", sim=FakeSimulation(s), progress=False)
+        run_scene(s, tmp_path / "out", sim=FakeSimulation(s), progress=False, xdmf_seconds=0.0)
     assert e.value.errno == errno.ENOSPC
     monkeypatch.undo()
     with h5py.File(tmp_path / "out" / "run.h5", "r") as f:  # plain h5py
@@ -59,8 +61,8 @@ def test_a_full_disk_stops_the_run_at_the_failing_write_and_keeps_the_snapshots(
     assert not list((tmp_path / "out").glob("*.tmp"))
     # the command line: one line, exit 1
     _full_disk_after(monkeypatch, 6)
-    code = main(["run", "maeno2008", "--quick", "--end-time", "5", "--out", str(tmp_path / "cli"), "--no-progress"],
-                build=FakeSimulation)
+    code = main(["run", "maeno2008", "--quick", "--end-time", "5", "--out", str(tmp_path / "cli"), "--no-progress",
+                 "--xdmf-seconds", "0"], build=FakeSimulation)
     assert code == 1
     err = capsys.readouterr().err
     assert err.startswith("vofdem: output error: writing '") and "No space left on device" in err
@@ -87,9 +89,11 @@ def test_a_real_full_disk(tmp_path):
         subprocess.run(["umount", "-l", str(small)], check=True)
     _mount_tmpfs(medium, "1150k")
     try:
-        # the file fits, the XDMF files and the checkpoints fill the rest during the run
+        # the file fits, the XDMF files (rewritten after every snapshot) and the checkpoints fill the rest
+        # during the run
         with pytest.raises(OutputError, match="No space left on device") as e:
-            run_scene(s, medium / "out", sim=FakeSimulation(s), progress=False, figures=False, animation=False)
+            run_scene(s, medium / "out", sim=FakeSimulation(s), progress=False, figures=False, animation=False,
+                      xdmf_seconds=0.0)
         assert e.value.errno == errno.ENOSPC
         with h5py.File(medium / "out" / "run.h5", "r") as f:
             T = completed_snapshots(f["time"][()])

@@ -335,15 +335,14 @@ class RunWriter:
         self._xdmf_at = _time.perf_counter()
 
     def close(self, status: Optional[str] = None, profile=None, extra_attrs: Optional[Dict] = None) -> None:
-        """Closes the file and lists every snapshot in the XDMF files; then records status ('completed',
-        'failed: ...'), the profile and extras in a copy of it that replaces it (so that a kill meanwhile
-        leaves the file as it was). Raises OutputError if that fails (disk full): the file is then kept
-        as it was, status 'running'."""
+        """Closes the file; then records status ('completed', 'failed: ...'), the profile and extras in a
+        copy of it that replaces it (so that a kill meanwhile leaves the file as it was), and lists every
+        snapshot in the XDMF files. Raises OutputError if that fails (disk full): the file is then kept
+        as it was, status 'running' (or, if only the XDMF files failed, with its status)."""
         if self.file is None:
             return
         self.file.close()
         self.file = None
-        self.write_xdmf()
         tmp = self.path.with_name(self.path.name + ".tmp")
         try:
             shutil.copyfile(self.path, tmp)
@@ -362,6 +361,7 @@ class RunWriter:
         except OSError as e:
             tmp.unlink(missing_ok=True)
             raise OutputError(e.errno, f"closing '{self.path}' failed (its snapshots are kept): {e}") from e
+        self.write_xdmf()
 
 
 def _system_errno(e: BaseException) -> Optional[int]:
