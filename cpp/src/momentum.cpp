@@ -60,21 +60,27 @@ void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, dou
   if (eddy)
     for (int c = 0; c < g.ncell(); ++c) inv_eddy[c] = eddy[c] > 0.0 ? 1.0 / eddy[c] : 0.0;
   // the corner between cells a0, a1 (row below) and b0, b1 (row above); the same operations for the
-  // row's inner corners (one loop without branches, vectorised) and its two end corners (the cells repeated)
-  auto corner = [&](int a0, int a1, int b0, int b1) {
-    const double mean = 0.25 * (mu[a0] + mu[a1] + mu[b0] + mu[b1]);
-    if (!eddy) return mean;
+  // row's inner corners (a loop without branches, vectorised) and its two end corners (the cells
+  // repeated). Bitwise ands: a short-circuit would be a branch
+  auto mean = [&](int a0, int a1, int b0, int b1) { return 0.25 * (mu[a0] + mu[a1] + mu[b0] + mu[b1]); };
+  auto with_eddy = [&](int a0, int a1, int b0, int b1) {
     const double emean = 0.25 * (eddy[a0] + eddy[a1] + eddy[b0] + eddy[b1]);
-    const bool all = eddy[a0] > 0.0 && eddy[a1] > 0.0 && eddy[b0] > 0.0 && eddy[b1] > 0.0;
-    const double eh = all ? 4.0 / (inv_eddy[a0] + inv_eddy[a1] + inv_eddy[b0] + inv_eddy[b1]) : 0.0;
-    return mean - emean + eh;
+    const bool all = (eddy[a0] > 0.0) & (eddy[a1] > 0.0) & (eddy[b0] > 0.0) & (eddy[b1] > 0.0);
+    const double h = 4.0 / (inv_eddy[a0] + inv_eddy[a1] + inv_eddy[b0] + inv_eddy[b1]);
+    return mean(a0, a1, b0, b1) - emean + (all ? h : 0.0);
   };
   for (int kk = 0; kk <= nz; ++kk) {
-    const int r0 = nx * std::max(kk - 1, 0), r1 = nx * std::min(kk, nz - 1);
+    const int r0 = nx * std::max(kk - 1, 0), r1 = nx * std::min(kk, nz - 1), e = nx - 1;
     double* row = cm + sx * kk;
-    row[0] = corner(r0, r0, r1, r1);
-    row[nx] = corner(r0 + nx - 1, r0 + nx - 1, r1 + nx - 1, r1 + nx - 1);
-    for (int ii = 1; ii < nx; ++ii) row[ii] = corner(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
+    if (eddy) {
+      row[0] = with_eddy(r0, r0, r1, r1);
+      row[nx] = with_eddy(r0 + e, r0 + e, r1 + e, r1 + e);
+      for (int ii = 1; ii < nx; ++ii) row[ii] = with_eddy(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
+    } else {
+      row[0] = mean(r0, r0, r1, r1);
+      row[nx] = mean(r0 + e, r0 + e, r1 + e, r1 + e);
+      for (int ii = 1; ii < nx; ++ii) row[ii] = mean(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
+    }
   }
 }
 
@@ -163,12 +169,15 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
   const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
   // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear.
   // A closed face's row is the identity (it stays 0); a closed neighbour is a known zero, its coefficient
-  // drops out. Each row computes every face's values and then selects (vectorised; the same values)
+  // drops out. Each face's values computed, then selected (no branch; the same values)
   for (int k = 0; k < nz; ++k) {
     const double dz_lo = k > 0 ? g.z_center(k) - g.z_center(k - 1) : 0.0;
     const double dz_up = k < nz - 1 ? g.z_center(k + 1) - g.z_center(k) : 0.0;
-    const double dzk = g.dz(k), dz0 = g.dz(0);
+    const double dzk = g.dz(k);
     const bool has_lo = k > 0, has_up = k < nz - 1;
+    // lo = c mu / h below and above (the same operations as mu / h, 2 mu / dz0 on a no-slip bed, or 0)
+    const double lo_c = has_lo ? 1.0 : (bed_no_slip ? 2.0 : 0.0), lo_h = has_lo ? dz_lo : g.dz(0);
+    const double up_c = has_up ? 1.0 : 0.0, up_h = has_up ? dz_up : 1.0;
     const double* n = f.face_x_porosity + sx * k;
     const double* n_lo = has_lo ? n - sx : n;  // unused on the bed row
     const double* n_up = has_up ? n + sx : n;  // unused on the top row
@@ -179,12 +188,12 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
     for (int i = 1; i < nx; ++i) {
       const int j = i + sx * k;
       const double r = dt / (rho[i] * dzk);
-      const double lo = has_lo ? mu_lo[i] / dz_lo : (bed_no_slip ? 2.0 * mu_lo[i] / dz0 : 0.0);
-      const double up = has_up ? mu_up[i] / dz_up : 0.0;
+      const double lo = lo_c * mu_lo[i] / lo_h, up = up_c * mu_up[i] / up_h;
+      const double diag = 1.0 + r * (lo + up), below = -r * lo, above = -r * up;
       const bool open = n[i] > 0.0;
-      b[j] = open ? 1.0 + r * (lo + up) : 1.0;
-      a[j] = open && has_lo && n_lo[i] > 0.0 ? -r * lo : 0.0;
-      c[j] = open && has_up && n_up[i] > 0.0 ? -r * up : 0.0;
+      b[j] = open ? diag : 1.0;
+      a[j] = open & has_lo & (n_lo[i] > 0.0) ? below : 0.0;
+      c[j] = open & has_up & (n_up[i] > 0.0) ? above : 0.0;
       d[j] = u[i];
     }
   }
@@ -192,7 +201,8 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
   for (int k = 0; k < nz; ++k)
     for (int i = 1; i < nx; ++i) {
       const int j = i + sx * k;
-      if (f.face_x_porosity[j] > 0.0) u_star[j] += d[j] - f.face_u[j];
+      const double old = u_star[j], diffused = old + (d[j] - f.face_u[j]);
+      u_star[j] = f.face_x_porosity[j] > 0.0 ? diffused : old;
     }
   // w on the interior z-faces k = 1..nz-1 (system row k - 1); bed w = 0 and the top face's w^n are known
   if (nz < 2) return;
@@ -213,17 +223,22 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
       const int r0 = i + sx * (k - 1);
       const double r = dt / (rho[i] * dzc);
       const double lo = 2.0 * mu_lo[i] / dz_lo, up = 2.0 * mu_up[i] / dz_up;
+      const double diag = 1.0 + r * (lo + up), below = -r * lo, above = -r * up, known = w[i] + r * up * w_top[i];
       const bool open = n[i] > 0.0;
-      b[r0] = open ? 1.0 + r * (lo + up) : 1.0;
-      a[r0] = open && has_lo && n_lo[i] > 0.0 ? -r * lo : 0.0;
-      c[r0] = open && !top && n_up[i] > 0.0 ? -r * up : 0.0;
-      d[r0] = open && top ? w[i] + r * up * w_top[i] : w[i];
+      b[r0] = open ? diag : 1.0;
+      a[r0] = open & has_lo & (n_lo[i] > 0.0) ? below : 0.0;
+      c[r0] = open & !top & (n_up[i] > 0.0) ? above : 0.0;
+      d[r0] = open & top ? known : w[i];
     }
   }
   solve_tridiagonal_rows(m, 0, nx, sx, a, b, c, d);
   for (int k = 1; k < nz; ++k)
     for (int i = 0; i < nx; ++i)
-      if (f.face_z_porosity[i + nx * k] > 0.0) w_star[i + nx * k] += d[i + sx * (k - 1)] - f.face_w[i + nx * k];
+    {
+      const int j = i + nx * k;
+      const double old = w_star[j], diffused = old + (d[i + sx * (k - 1)] - f.face_w[j]);
+      w_star[j] = f.face_z_porosity[j] > 0.0 ? diffused : old;
+    }
 }
 
 // convective fluxes of both momentum components: cell centres and corners
