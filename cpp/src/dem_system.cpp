@@ -197,25 +197,37 @@ void DEMSystem::update_properties() {
 
 // effective mass, weight and inverse inertia of stone i from its size, density and wet fraction
 void DEMSystem::update_stone_properties(int i) {
+  update_stone_masses(i);
+  const DEMParams& p = params_;
+  const double m = disc_density[i] * volume(i);  // the matching 3D stone's volume for a polygon
+  const bool mobile = disc_active[i] && !disc_fixed[i];
+  const double inertia = shape_ == StoneShape::kPolygon ? 2.0 * p.inertia_factor * m * poly_jratio_[i]
+                                                        : p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+  inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
+}
+
+// the parts that follow the wet fraction (eqs. 8-9): M + M', buoyant weight, 1/(M + M')
+void DEMSystem::update_stone_masses(int i) {
   const DEMParams& p = params_;
   const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
   const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
-  const bool poly = shape_ == StoneShape::kPolygon;
-  const double v = volume(i);  // the matching 3D stone's for a polygon
+  const double v = volume(i);
   const double m = disc_density[i] * v;
   const double wv = v * disc_wet[i];
   mass_eff_[i] = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
   weight_[i] = m - (buoy ? p.water_density() * wv : 0.0);
   const bool mobile = disc_active[i] && !disc_fixed[i];
   inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
-  const double inertia =
-      poly ? 2.0 * p.inertia_factor * m * poly_jratio_[i] : p.inertia_factor * m * disc_radius[i] * disc_radius[i];
-  inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
 }
 
 void DEMSystem::set_wet_fraction(int i, double w) {
   if (i < 0 || i >= n_) require_in_closed("i", i, 0, n_ - 1);
   require_in_closed("disc_wet", w, 0.0, 1.0);
+  change_wet_fraction(i, w);
+}
+
+// set_wet_fraction without its checks (w in [0, 1] from disc_wet_fraction)
+void DEMSystem::change_wet_fraction(int i, double w) {
   const double w_old = disc_wet[i];
   if (w == w_old) return;
   const DEMParams& p = params_;
@@ -232,7 +244,7 @@ void DEMSystem::set_wet_fraction(int i, double w) {
   }
   disc_wet[i] = w;
   // masses derived already (within a step): refreshed now; else the next step derives them
-  if (mass_eff_.size() == static_cast<std::size_t>(n_)) update_stone_properties(i);
+  if (mass_eff_.size() == static_cast<std::size_t>(n_)) update_stone_masses(i);
 }
 
 // the wet fraction of a stone given a water level follows its height (wet_fraction.h); within a step
@@ -241,7 +253,7 @@ void DEMSystem::set_wet_fraction(int i, double w) {
 void DEMSystem::follow_water_level(int i) {
   const double w = disc_wet_fraction((disc_water_level[i] - disc_pos[2 * i + 1]) / disc_radius[i]);
   if (w == disc_wet[i]) return;
-  set_wet_fraction(i, w);
+  change_wet_fraction(i, w);
   if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);
 }
 
@@ -349,7 +361,8 @@ void DEMSystem::advance_checked(double dt, long long nsub) {
   export_state(backup_);
   update_kick_scale(dt);
   try {
-    for (long long s = 0; s < nsub; ++s) substep(dt);
+    StageLaps laps(profile_);
+    for (long long s = 0; s < nsub; ++s) substep(dt, laps);
   } catch (const std::runtime_error&) {
     import_state(backup_);
     throw;
@@ -371,32 +384,33 @@ double DEMSystem::drag_kick_scale(int i, double dt) const {
   return x > 0.0 ? 1.0 - 0.5 * x : 1.0;
 }
 
-// body, contact and wall forces at the current positions (dt: step of the history springs)
-void DEMSystem::evaluate_forces(double dt, bool body) {
+// body, contact and wall forces at the current positions (dt: step of the history springs); each
+// stage's time is the lap that ends it
+void DEMSystem::evaluate_forces(double dt, bool body, StageLaps& laps) {
   if (body) {
-    ScopedStage s(profile_, kStageBodyForces);
     body_forces(dt);
+    laps.lap(kStageBodyForces);
   }
   const bool poly = shape_ == StoneShape::kPolygon;
-  {
-    ScopedStage s(profile_, kStageContacts);
-    if (poly) polygon_contact_forces(dt);
-    else contact_forces(dt);
-  }
+  if (poly) polygon_contact_forces(dt);
+  else contact_forces(dt);
+  laps.lap(kStageContacts);
   if (!params_.walls.empty()) {
-    ScopedStage s(profile_, kStageWalls);
     if (poly) polygon_wall_forces(dt);
     else wall_forces(dt);
+    laps.lap(kStageWalls);
   }
 }
 
-// one velocity-Verlet step: kick-drift, forces at the new positions, kick
-void DEMSystem::substep(double dt) {
+// one velocity-Verlet step: kick-drift, forces at the new positions, kick (the time since the last
+// lap of the previous substep counts to this one's integration)
+void DEMSystem::substep(double dt, StageLaps& laps) {
   const unsigned f = params_.flags;
   if (!forces_valid_) {
     // a fresh start: the first kick needs the accelerations of the initial state
     if (rebuild_ || neighbours_stale()) build_neighbours();
-    evaluate_forces(0.0, true);
+    laps.lap(kStageNeighbours);
+    evaluate_forces(0.0, true, laps);
     for (int i = 0; i < n_; ++i) {
       disc_acc[2 * i] = disc_force[2 * i] * inv_mass_[i];
       disc_acc[2 * i + 1] = disc_force[2 * i + 1] * inv_mass_[i];
@@ -405,29 +419,24 @@ void DEMSystem::substep(double dt) {
     forces_valid_ = true;
   }
   // one pass: kick, drift, body forces, escape and neighbour-list checks
-  FirstHalf pass;
-  {
-    ScopedStage s(profile_, kStageIntegrate);
-    pass = integrate_first_half(dt);
-  }
+  const FirstHalf pass = integrate_first_half(dt);
+  laps.lap(kStageIntegrate);
   if (pass.escaped) {
-    ScopedStage s(profile_, kStageRemoval);
     remove_escaped();
+    laps.lap(kStageRemoval);
   }
   if (rebuild_ || pass.stale) {
-    ScopedStage s(profile_, kStageNeighbours);
     build_neighbours();
+    laps.lap(kStageNeighbours);
   }
-  evaluate_forces(dt, false);
+  evaluate_forces(dt, false, laps);
   time_ += dt;
   ++steps_;
-  {
-    ScopedStage s(profile_, kStageChecks);
-    integrate_second_half(dt);
-  }
+  integrate_second_half(dt);
+  laps.lap(kStageChecks);
   if (f & kDEMSleeping) {
-    ScopedStage s(profile_, kStageSleep);
     sleep_update(dt);
+    laps.lap(kStageSleep);
   }
 }
 

@@ -311,12 +311,14 @@ class DEMSystem {
   void check_stones() const;
   void update_properties();
   void update_stone_properties(int i);
+  void update_stone_masses(int i);
+  void change_wet_fraction(int i, double w);
   void follow_water_level(int i);
   void build_neighbours();
   bool neighbours_stale() const;
   void advance_checked(double dt, long long nsub);
-  void substep(double dt);
-  void evaluate_forces(double dt, bool body);
+  void substep(double dt, StageLaps& laps);
+  void evaluate_forces(double dt, bool body, StageLaps& laps);
   bool moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
   void build_wall_candidates();
   struct FirstHalf {
