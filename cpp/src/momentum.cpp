@@ -154,91 +154,39 @@ void explicit_part_for_u(const Grid2D& g, const MomentumFields& f, const Momentu
   }
 }
 
-// backward Euler of the vertical diffusion, column by column, split from the other terms:
-// (I - dt/rho d/dz mu d/dz) v = u^n, u* += v - u^n. Diffusing u^n rather than u* keeps the gravity
-// increment (balanced by the pressure only afterwards) out of the viscous stress, so still water
-// stays still. Closed faces stay 0 and act as u = 0 neighbours, as in the explicit stencil
-void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
-                                 std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
-  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  // the systems of all columns, row-major (row k of column i at i + sx k), solved together row by row:
-  // the same operations per column as solve_tridiagonal, in an order the compiler can vectorise
-  const std::size_t size = static_cast<std::size_t>(sx) * (nz + 1);
-  s.tri_a.resize(size), s.tri_b.resize(size), s.tri_c.resize(size), s.tri_d.resize(size);
-  double *a = s.tri_a.data(), *b = s.tri_b.data(), *c = s.tri_c.data(), *d = s.tri_d.data();
-  const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
-  // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear.
-  // A closed face's row is the identity (it stays 0); a closed neighbour is a known zero, its coefficient
-  // drops out. Each face's values computed, then selected (no branch; the same values)
-  for (int k = 0; k < nz; ++k) {
-    const double dz_lo = k > 0 ? g.z_center(k) - g.z_center(k - 1) : 0.0;
-    const double dz_up = k < nz - 1 ? g.z_center(k + 1) - g.z_center(k) : 0.0;
-    const double dzk = g.dz(k);
-    const bool has_lo = k > 0, has_up = k < nz - 1;
-    // lo = c mu / h below and above (the same operations as mu / h, 2 mu / dz0 on a no-slip bed, or 0)
-    const double lo_c = has_lo ? 1.0 : (bed_no_slip ? 2.0 : 0.0), lo_h = has_lo ? dz_lo : g.dz(0);
-    const double up_c = has_up ? 1.0 : 0.0, up_h = has_up ? dz_up : 1.0;
-    const double* n = f.face_x_porosity + sx * k;
-    const double* n_lo = has_lo ? n - sx : n;  // unused on the bed row
-    const double* n_up = has_up ? n + sx : n;  // unused on the top row
-    const double* mu_lo = s.corner_mu.data() + sx * k;
-    const double* mu_up = s.corner_mu.data() + sx * (has_up ? k + 1 : k);
-    const double* rho = f.face_x_rho + sx * k;
-    const double* u = f.face_u + sx * k;
-    for (int i = 1; i < nx; ++i) {
-      const int j = i + sx * k;
-      const double r = dt / (rho[i] * dzk);
-      const double lo = lo_c * mu_lo[i] / lo_h, up = up_c * mu_up[i] / up_h;
-      const double diag = 1.0 + r * (lo + up), below = -r * lo, above = -r * up;
-      const bool open = n[i] > 0.0;
-      b[j] = open ? diag : 1.0;
-      a[j] = open & has_lo & (n_lo[i] > 0.0) ? below : 0.0;
-      c[j] = open & has_up & (n_up[i] > 0.0) ? above : 0.0;
-      d[j] = u[i];
-    }
+// one row of the vertical diffusion's systems (the open neighbours not yet checked): r = dt / (rho h),
+// lo = c_lo mu_lo / h_lo, up = c_up mu_up / h_up; diagonal 1 + r (lo + up) on an open face (1 on a
+// closed one), below -r lo, above -r up, right-hand side v. The arrays never overlap (restrict: GCC
+// vectorises no loop that needs this many overlap checks)
+struct DiffusionRowScales {
+  double dt, h, lo_c, lo_h, up_c, up_h;
+};
+void diffusion_row(int i0, int i1, const DiffusionRowScales& q, const double* __restrict rho,
+                   const double* __restrict mu_lo, const double* __restrict mu_up, const double* __restrict n,
+                   const double* __restrict v, double* __restrict a, double* __restrict b, double* __restrict c,
+                   double* __restrict d) {
+  const double dt = q.dt, h = q.h, lo_c = q.lo_c, lo_h = q.lo_h, up_c = q.up_c, up_h = q.up_h;
+  for (int i = i0; i < i1; ++i) {
+    const double r = dt / (rho[i] * h);
+    const double lo = lo_c * mu_lo[i] / lo_h, up = up_c * mu_up[i] / up_h;
+    b[i] = n[i] > 0.0 ? 1.0 + r * (lo + up) : 1.0;
+    a[i] = -r * lo;
+    c[i] = -r * up;
+    d[i] = v[i];
   }
-  solve_tridiagonal_rows(nz, 1, nx, sx, a, b, c, d);
-  for (int k = 0; k < nz; ++k)
-    for (int i = 1; i < nx; ++i) {
-      const int j = i + sx * k;
-      const double old = u_star[j], diffused = old + (d[j] - f.face_u[j]);
-      u_star[j] = f.face_x_porosity[j] > 0.0 ? diffused : old;
-    }
-  // w on the interior z-faces k = 1..nz-1 (system row k - 1); bed w = 0 and the top face's w^n are known
-  if (nz < 2) return;
-  const int m = nz - 1;
-  for (int k = 1; k < nz; ++k) {
-    const double dzc = g.z_center(k) - g.z_center(k - 1);
-    const double dz_lo = g.dz(k - 1), dz_up = g.dz(k);
-    const bool has_lo = k > 1, top = k == nz - 1;
-    const double* n = f.face_z_porosity + nx * k;
-    const double* n_lo = n - nx;
-    const double* n_up = top ? n : n + nx;  // unused on the top row
-    const double* mu_lo = f.cell_mu + nx * (k - 1);
-    const double* mu_up = f.cell_mu + nx * k;
-    const double* rho = f.face_z_rho + nx * k;
-    const double* w = f.face_w + nx * k;
-    const double* w_top = f.face_w + nx * (k + 1);  // the top face's w^n, known (0 under a lid)
-    for (int i = 0; i < nx; ++i) {
-      const int r0 = i + sx * (k - 1);
-      const double r = dt / (rho[i] * dzc);
-      const double lo = 2.0 * mu_lo[i] / dz_lo, up = 2.0 * mu_up[i] / dz_up;
-      const double diag = 1.0 + r * (lo + up), below = -r * lo, above = -r * up, known = w[i] + r * up * w_top[i];
-      const bool open = n[i] > 0.0;
-      b[r0] = open ? diag : 1.0;
-      a[r0] = open & has_lo & (n_lo[i] > 0.0) ? below : 0.0;
-      c[r0] = open & !top & (n_up[i] > 0.0) ? above : 0.0;
-      d[r0] = open & top ? known : w[i];
-    }
+}
+
+// a row's sub- and superdiagonal kept where the face and its neighbour below / above are open, else 0
+// (a closed face's row is the identity, a closed neighbour a known zero). A loop of its own: with the
+// assembly's select on the face alone in the same loop, GCC 12 finds control flow and vectorises neither
+void keep_open_neighbours(int i0, int i1, bool has_lo, bool has_up, const double* n, const double* n_lo,
+                          const double* n_up, double* a, double* c) {
+  for (int i = i0; i < i1; ++i) {
+    const bool open = n[i] > 0.0;
+    const double below = a[i], above = c[i];
+    a[i] = open & has_lo & (n_lo[i] > 0.0) ? below : 0.0;
+    c[i] = open & has_up & (n_up[i] > 0.0) ? above : 0.0;
   }
-  solve_tridiagonal_rows(m, 0, nx, sx, a, b, c, d);
-  for (int k = 1; k < nz; ++k)
-    for (int i = 0; i < nx; ++i)
-    {
-      const int j = i + nx * k;
-      const double old = w_star[j], diffused = old + (d[i + sx * (k - 1)] - f.face_w[j]);
-      w_star[j] = f.face_z_porosity[j] > 0.0 ? diffused : old;
-    }
 }
 
 // convective fluxes of both momentum components: cell centres and corners
@@ -467,6 +415,81 @@ void add_viscous_substeps(const Grid2D& g, const MomentumFields& f, const Moment
 }
 
 }  // namespace
+
+// backward Euler of the vertical diffusion, column by column, split from the other terms:
+// (I - dt/rho d/dz mu d/dz) v = u^n, u* += v - u^n. Diffusing u^n rather than u* keeps the gravity
+// increment (balanced by the pressure only afterwards) out of the viscous stress, so still water
+// stays still. Closed faces stay 0 and act as u = 0 neighbours, as in the explicit stencil
+void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
+                                 std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  // the systems of all columns, row-major (row k of column i at i + sx k), solved together row by row:
+  // the same operations per column as solve_tridiagonal, in an order the compiler can vectorise
+  const std::size_t size = static_cast<std::size_t>(sx) * (nz + 1);
+  s.tri_a.resize(size), s.tri_b.resize(size), s.tri_c.resize(size), s.tri_d.resize(size);
+  double *a = s.tri_a.data(), *b = s.tri_b.data(), *c = s.tri_c.data(), *d = s.tri_d.data();
+  const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
+  // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear.
+  // A closed face's row is the identity (it stays 0); a closed neighbour is a known zero, its coefficient
+  // drops out. Each face's values computed, then selected (no branch; the same values)
+  for (int k = 0; k < nz; ++k) {
+    const double dz_lo = k > 0 ? g.z_center(k) - g.z_center(k - 1) : 0.0;
+    const double dz_up = k < nz - 1 ? g.z_center(k + 1) - g.z_center(k) : 0.0;
+    const double dzk = g.dz(k);
+    const bool has_lo = k > 0, has_up = k < nz - 1;
+    // lo = c mu / h below and above (the same operations as mu / h, 2 mu / dz0 on a no-slip bed, or 0)
+    const double lo_c = has_lo ? 1.0 : (bed_no_slip ? 2.0 : 0.0), lo_h = has_lo ? dz_lo : g.dz(0);
+    const double up_c = has_up ? 1.0 : 0.0, up_h = has_up ? dz_up : 1.0;
+    const double* n = f.face_x_porosity + sx * k;
+    const double* n_lo = has_lo ? n - sx : n;  // unused on the bed row
+    const double* n_up = has_up ? n + sx : n;  // unused on the top row
+    const double* mu_lo = s.corner_mu.data() + sx * k;
+    const double* mu_up = s.corner_mu.data() + sx * (has_up ? k + 1 : k);
+    const double* rho = f.face_x_rho + sx * k;
+    const double* u = f.face_u + sx * k;
+    const std::size_t row = static_cast<std::size_t>(sx) * k;
+    diffusion_row(1, nx, {dt, dzk, lo_c, lo_h, up_c, up_h}, rho, mu_lo, mu_up, n, u, a + row, b + row, c + row, d + row);
+    keep_open_neighbours(1, nx, has_lo, has_up, n, n_lo, n_up, a + row, c + row);
+  }
+  solve_tridiagonal_rows(nz, 1, nx, sx, a, b, c, d);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 1; i < nx; ++i) {
+      const int j = i + sx * k;
+      const double old = u_star[j], diffused = old + (d[j] - f.face_u[j]);
+      u_star[j] = f.face_x_porosity[j] > 0.0 ? diffused : old;
+    }
+  // w on the interior z-faces k = 1..nz-1 (system row k - 1); bed w = 0 and the top face's w^n are known
+  if (nz < 2) return;
+  const int m = nz - 1;
+  for (int k = 1; k < nz; ++k) {
+    const double dzc = g.z_center(k) - g.z_center(k - 1);
+    const double dz_lo = g.dz(k - 1), dz_up = g.dz(k);
+    const bool has_lo = k > 1, top = k == nz - 1;
+    const double* n = f.face_z_porosity + nx * k;
+    const double* n_lo = n - nx;
+    const double* n_up = top ? n : n + nx;  // unused on the top row
+    const double* mu_lo = f.cell_mu + nx * (k - 1);
+    const double* mu_up = f.cell_mu + nx * k;
+    const double* rho = f.face_z_rho + nx * k;
+    const double* w = f.face_w + nx * k;
+    const double* w_top = f.face_w + nx * (k + 1);  // the top face's w^n, known (0 under a lid)
+    const std::size_t row = static_cast<std::size_t>(sx) * (k - 1);
+    diffusion_row(0, nx, {dt, dzc, 2.0, dz_lo, 2.0, dz_up}, rho, mu_lo, mu_up, n, w, a + row, b + row, c + row,
+                  d + row);
+    // an open top row: the top face's w^n is known, w + r up w_top (c = -r up, not yet dropped)
+    if (top)
+      for (int i = 0; i < nx; ++i) d[row + i] = n[i] > 0.0 ? w[i] - c[row + i] * w_top[i] : w[i];
+    keep_open_neighbours(0, nx, has_lo, !top, n, n_lo, n_up, a + row, c + row);
+  }
+  solve_tridiagonal_rows(m, 0, nx, sx, a, b, c, d);
+  for (int k = 1; k < nz; ++k)
+    for (int i = 0; i < nx; ++i)
+    {
+      const int j = i + nx * k;
+      const double old = w_star[j], diffused = old + (d[i + sx * (k - 1)] - f.face_w[j]);
+      w_star[j] = f.face_z_porosity[j] > 0.0 ? diffused : old;
+    }
+}
 
 void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
                        double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {

@@ -103,6 +103,12 @@ inline double muscl_value(double far, double up, double down) {
   return up + d * b / (d + b);
 }
 
+// the backward Euler of the vertical diffusion (terms.implicit_vertical): adds v - u^n to u* and w* on
+// open faces, v the column systems' solution with the corner viscosities in s.corner_mu (set by the
+// caller); momentum_explicit's kernel, declared for its face-by-face reference test
+void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
+                                 std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s);
+
 // largest stable explicit viscous step [s] (Gershgorin bound of the stress operator, face by face);
 // corner_mu: work array (resized on first use). implicit_vertical: the bound of the explicit part
 // only (x-diffusion and cross terms), the vertical diffusion being backward Euler; cell (optional)
