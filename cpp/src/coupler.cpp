@@ -363,7 +363,9 @@ void Coupler::stage_dem(double dt) {
 void Coupler::stage_fluid(double dt) {
   ScopedStage timer(profile_, st_fluid_);
   try {
-    fluid_->step(dt);
+    // the guard's snapshot holds the whole start: the flow need not copy its own
+    if (snapshot_valid_) fluid_->step_guarded(dt);
+    else fluid_->step(dt);
   } catch (const CflBreach& e) {
     fail("fluid", e.what(), e.courant());
   } catch (const std::runtime_error& e) {
@@ -466,12 +468,12 @@ void Coupler::save() {
   snapshot_valid_ = false;
   if (!(fluid_ && has_stones())) return;  // one module: it restores itself
   ScopedStage timer(profile_, st_snapshot_);
-  export_state(snapshot_);
+  export_state(snapshot_, false);
   snapshot_valid_ = true;
 }
 
 void Coupler::restore() {
-  if (snapshot_valid_) import_state(snapshot_);
+  if (snapshot_valid_) import_state(snapshot_, false);
 }
 
 void Coupler::fail(const std::string& stage, const std::string& what, double courant) {

@@ -17,7 +17,11 @@ using state::entry;
 using state::StateMap;
 }  // namespace
 
-void Coupler::export_state(CouplerState& s) const {
+void Coupler::export_state(CouplerState& s) const { export_state(s, true); }
+
+void Coupler::import_state(const CouplerState& s) { import_state(s, true); }
+
+void Coupler::export_state(CouplerState& s, bool with_base) const {
   s.time = time_;
   s.steps = steps_;
   s.mapped = mapped_;
@@ -28,14 +32,16 @@ void Coupler::export_state(CouplerState& s) const {
   s.has_drag_slope = params_.stone_drag == StoneDragModel::kBed;
   if (s.has_drag_slope) s.disc_drag_slope = disc_drag_slope_;
   if (fluid_) {
-    s.cell_base_porosity = cell_base_porosity;
-    s.cell_base_diameter = cell_base_diameter;
+    if (with_base) {
+      s.cell_base_porosity = cell_base_porosity;
+      s.cell_base_diameter = cell_base_diameter;
+    }
     fluid_->export_state(s.fluid);
   }
   if (stones_) stones_->export_state(s.stones);
 }
 
-void Coupler::import_state(const CouplerState& s) {
+void Coupler::import_state(const CouplerState& s, bool with_base) {
   const std::size_t n = static_cast<std::size_t>(n_);
   // check every part before writing anything
   require_size("coupler/disc_force_drag", s.disc_force_drag, 2 * n);
@@ -44,14 +50,18 @@ void Coupler::import_state(const CouplerState& s) {
   if (s.has_drag_slope) require_size("coupler/disc_drag_slope", s.disc_drag_slope, n);
   if (fluid_) {
     const std::size_t nc = static_cast<std::size_t>(fluid_->grid().ncell());
-    require_size("coupler/cell_base_porosity", s.cell_base_porosity, nc);
-    require_size("coupler/cell_base_diameter", s.cell_base_diameter, nc);
+    if (with_base) {
+      require_size("coupler/cell_base_porosity", s.cell_base_porosity, nc);
+      require_size("coupler/cell_base_diameter", s.cell_base_diameter, nc);
+    }
     fluid_->check_state(s.fluid);
   }
   if (stones_) stones_->check_state(s.stones);
   if (fluid_) {
-    state::copy_into(cell_base_porosity, s.cell_base_porosity);
-    state::copy_into(cell_base_diameter, s.cell_base_diameter);
+    if (with_base) {
+      state::copy_into(cell_base_porosity, s.cell_base_porosity);
+      state::copy_into(cell_base_diameter, s.cell_base_diameter);
+    }
     fluid_->import_state(s.fluid);
   }
   if (stones_) stones_->import_state(s.stones);

@@ -393,20 +393,28 @@ void VOFGrid::save_state() {
   Snapshot& s = *snapshot_;
   s.face_u = face_u;
   s.face_w = face_w;
+  s.time = time_;
+  s.inlet_volume = inlet_volume_;
+  s.net_inflow_volume = net_inflow_volume_;
+  s.dilatation_volume = dilatation_volume_;
+  if (guarded_) return;
   s.cell_p = cell_p;
   s.cell_F = cell_F;
   s.cell_nut = cell_nut;
   s.cell_k = turbulence_->cell_k;
   s.cell_eps = turbulence_->cell_eps;
-  s.time = time_;
-  s.inlet_volume = inlet_volume_;
-  s.net_inflow_volume = net_inflow_volume_;
-  s.dilatation_volume = dilatation_volume_;
   s.cell_porosity_prev = cell_porosity_prev_;
 }
 
 void VOFGrid::restore_state() {
   Snapshot& s = *snapshot_;
+  turbulence_->time = s.time;
+  time_ = s.time;
+  inlet_volume_ = s.inlet_volume;
+  net_inflow_volume_ = s.net_inflow_volume;
+  dilatation_volume_ = s.dilatation_volume;
+  flux_dt_ = 0.0;  // the fluxes in the scratch are not those of a completed step
+  if (guarded_) return;  // the caller restores the fields
   face_u = s.face_u;
   face_w = s.face_w;
   cell_p = s.cell_p;
@@ -415,12 +423,6 @@ void VOFGrid::restore_state() {
   turbulence_->cell_k = s.cell_k;
   turbulence_->cell_eps = s.cell_eps;
   turbulence_->cell_nut = s.cell_nut;
-  turbulence_->time = s.time;
-  time_ = s.time;
-  inlet_volume_ = s.inlet_volume;
-  net_inflow_volume_ = s.net_inflow_volume;
-  dilatation_volume_ = s.dilatation_volume;
-  flux_dt_ = 0.0;  // the fluxes in the scratch are not those of a completed step
   cell_porosity_prev_ = s.cell_porosity_prev;
 }
 
@@ -700,6 +702,17 @@ void VOFGrid::step(double dt) {
   time_ += dt;
   ++step_count_;
   last_dt_ = dt;
+}
+
+void VOFGrid::step_guarded(double dt) {
+  guarded_ = true;
+  try {
+    step(dt);
+  } catch (...) {
+    guarded_ = false;
+    throw;
+  }
+  guarded_ = false;
 }
 
 void VOFGrid::set_prev_dt(double dt) {

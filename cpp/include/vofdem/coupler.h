@@ -210,6 +210,9 @@ class Coupler {
   void map_stones();
   void save();
   void restore();
+  // the state without what no step changes (the base porosity and diameter): the guard's copy
+  void export_state(CouplerState& s, bool with_base) const;
+  void import_state(const CouplerState& s, bool with_base);
   // courant > 0: a CFL breach, thrown as CflBreach (a shorter step may pass)
   [[noreturn]] void fail(const std::string& stage, const std::string& what, double courant = 0.0);
   bool has_fluid() const { return fluid_ != nullptr; }

@@ -264,6 +264,10 @@ class VOFGrid {
   // one step of dt [s] (stages: see the top of this file); throws std::runtime_error naming the stage,
   // the cell and the time after restoring the state of the step's start
   void step(double dt);
+  // step() for a caller that restores the whole flow state itself (import_state) when the step throws,
+  // as the coupler's guard does: the step's own snapshot then keeps only u^n and w^n (the AB2 history),
+  // not the other fields of its start
+  void step_guarded(double dt);
   // steps of stable_dt() until time() reaches t_end [s], a step that breaches the CFL taken again
   // shorter (step_retry.h), the last interval split evenly (advance.h); returns the number of steps
   long long advance(double t_end);
@@ -347,6 +351,7 @@ class VOFGrid {
   [[noreturn]] void fail(const std::string& stage, const std::string& what, int kind, int index, double courant = 0.0);
   void save_state();
   void restore_state();
+  bool guarded_ = false;  // within step_guarded(): save_state() / restore_state() leave the fields to the caller
   // largest directional Courant number |u| dt / (n_f h) and where it is (kind 1 = x-face, 2 = z-face)
   double max_cfl(double dt, int& kind, int& index) const;
 
