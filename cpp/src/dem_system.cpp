@@ -408,8 +408,10 @@ void DEMSystem::substep(double dt, StageLaps& laps) {
   const unsigned f = params_.flags;
   if (!forces_valid_) {
     // a fresh start: the first kick needs the accelerations of the initial state
-    if (rebuild_ || neighbours_stale()) build_neighbours();
-    laps.lap(kStageNeighbours);
+    if (rebuild_ || neighbours_stale()) {
+      build_neighbours();
+      laps.lap(kStageNeighbours);
+    }
     evaluate_forces(0.0, true, laps);
     for (int i = 0; i < n_; ++i) {
       disc_acc[2 * i] = disc_force[2 * i] * inv_mass_[i];
