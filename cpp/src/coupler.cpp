@@ -528,6 +528,8 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
     if (fluid_ && (params_.flags & kCoupleFluid) && a.dt < a.stable && !retried) fluid_->set_last_dt(a.stable);
     if (progress) progress(time_);
   };
+  // a progress callback may write the flow's fields between the steps: then every limit is measured afresh
+  const StepEndCourantReuse reuse(fluid_ && !progress ? fluid_ : nullptr);
   return advance_until(
       t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); }, [](double) {}, stepped);
 }

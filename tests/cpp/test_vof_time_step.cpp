@@ -327,3 +327,27 @@ TEST(VOFTimeStep, AdvectiveLimitIsTheFaceByFaceReferenceBitForBit) {
     }
   }
 }
+
+TEST(VOFTimeStep, AdvanceMeasuresItsFirstLimitAfreshAfterTheFieldsWereWritten) {
+  // within advance() a step's end Courant rate is the next step's advective limit; a new advance() must
+  // not take the last one's, as the fields may have been written through the views in between
+  const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
+  VOFGrid flow(g, FlowParams{});
+  flow.fill_water_box(0.0, 0.08, 0.0, 0.08);
+  flow.advance(0.05);
+  for (double& u : flow.face_u) u *= 10.0;  // as a user would through the view: the advective limit binds
+  FlowState written;
+  flow.export_state(written);
+  VOFGrid fresh(g, FlowParams{});  // nothing measured before
+  fresh.import_state(written);
+  flow.advance(0.07);
+  fresh.advance(0.07);
+  FlowState a, b;
+  flow.export_state(a);
+  fresh.export_state(b);
+  EXPECT_EQ(a.step_count, b.step_count);
+  EXPECT_EQ(a.face_u, b.face_u);
+  EXPECT_EQ(a.face_w, b.face_w);
+  EXPECT_EQ(a.cell_F, b.cell_F);
+  EXPECT_EQ(a.time, b.time);
+}

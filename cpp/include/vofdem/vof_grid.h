@@ -268,6 +268,12 @@ class VOFGrid {
   // as the coupler's guard does: the step's own snapshot then keeps only u^n and w^n (the AB2 history),
   // not the other fields of its start
   void step_guarded(double dt);
+  // for a driver that steps in a loop and writes none of the flow's fields between its steps (advance(),
+  // the coupler's advance()): on, the largest Courant rate measured at a step's end (its last check) is
+  // the next step's advective limit instead of a second pass over the same faces (the same value); off
+  // (the default, and whenever a caller may write through the views) every limit is measured afresh.
+  // Switching it on forgets any rate measured before
+  void reuse_step_end_courant(bool on);
   // steps of stable_dt() until time() reaches t_end [s], a step that breaches the CFL taken again
   // shorter (step_retry.h), the last interval split evenly (advance.h); returns the number of steps
   long long advance(double t_end);
@@ -396,12 +402,36 @@ class VOFGrid {
   mutable double viscous_limit_ = 0.0;
   mutable long long viscous_limit_step_ = -1;
   mutable std::vector<double> cfl_row_;     // Courant numbers of one row of faces (max_cfl)
+  // max_cfl(1.0) at the end of the step that made step_count_ = step (see reuse_step_end_courant)
+  struct StepEndCourant {
+    long long step = -1;
+    double rate = 0.0;
+    int kind = 0, index = -1;
+  };
+  StepEndCourant step_end_courant_;
+  bool reuse_step_end_courant_ = false;
   std::vector<double> cell_porosity_prev_;   // porosity of the last step (the reference of dn)
   void make_turbulence_model();
   const std::vector<double>& turbulence_cells_F() const;
 
   StageProfile profile_;
   int st_advect_, st_momentum_, st_porous_, st_turbulence_, st_pressure_, st_correct_, st_checks_;
+};
+
+// VOFGrid::reuse_step_end_courant on for its lifetime (a driver's loop; none: nothing), off after it
+class StepEndCourantReuse {
+ public:
+  explicit StepEndCourantReuse(VOFGrid* flow) : flow_(flow) {
+    if (flow_) flow_->reuse_step_end_courant(true);
+  }
+  ~StepEndCourantReuse() {
+    if (flow_) flow_->reuse_step_end_courant(false);
+  }
+  StepEndCourantReuse(const StepEndCourantReuse&) = delete;
+  StepEndCourantReuse& operator=(const StepEndCourantReuse&) = delete;
+
+ private:
+  VOFGrid* flow_;
 };
 
 }  // namespace vofdem
