@@ -1,0 +1,142 @@
+"""Is a looser pressure tolerance within the packings' spread? The same Maeno scenes over the same seeds
+at two relative tolerances of the pressure solve, compared with the spread between packings.
+
+A whole run of the weir is chaotic in its stones: any change of the numerics, down to the last bit,
+moves the stones of a seed differently, so the stage table of one seed cannot tell a change of the
+numerics from a change of the packing. What can: the distribution over packings. For each scene this
+runs an ensemble over --seeds at each of --tolerances (`vofdem.ensemble`, on a local Dask cluster;
+resumable), then writes benchmarks/results/pressure_tolerance_spread.md with
+  - per tolerance, the fragility tables of the events (`vofdem.fragility`), and the mean, median and
+    members' 16-84 % range of the stones removed and the crest lowering, with the permutation p-value
+    of the difference of their means;
+  - the same seed at the two tolerances against two packings at one tolerance: the mean absolute
+    difference of the stones removed between the two runs of a seed, and between seeds i and i + 1;
+  - the flow alone (stones held, the first 20 s, seed 0): the largest difference of the water depth
+    over the flume between the tolerances, against that between seeds 0 and 1 at the first tolerance,
+    and the water the solve's residual divergence made per step (VOFGrid.dilatation_volume).
+
+    OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/pressure_tolerance_spread.py [--seeds 0-19]
+"""
+import argparse
+import dataclasses
+import time
+from pathlib import Path
+
+import numpy as np
+
+from vofdem.builder import build_simulation
+from vofdem.cluster import default_workers
+from vofdem.ensemble import parse_seeds, run_ensemble
+from vofdem.fragility import combination_of, fragility_by_combination, fragility_markdown
+from vofdem.scene import load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+KEY = "numerics.pressure_tolerance"
+
+
+def _band(values):
+    """median [16-84 %] of the members' values"""
+    v = np.asarray(values, dtype=float)
+    return f"{np.median(v):.1f} [{np.percentile(v, 16):.1f}-{np.percentile(v, 84):.1f}]"
+
+
+def permutation_p(a, b, n: int = 10000, seed: int = 0) -> float:
+    """two-sided p-value of the difference of the means of a and b under random relabelling"""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    pooled = np.concatenate([a, b])
+    observed = abs(a.mean() - b.mean())
+    rng = np.random.default_rng(seed)
+    hits = 0
+    for _ in range(n):
+        rng.shuffle(pooled)
+        hits += abs(pooled[:a.size].mean() - pooled[a.size:].mean()) >= observed - 1e-12
+    return (hits + 1) / (n + 1)
+
+
+def compare_members(frame, tolerances):
+    """Markdown: each tolerance's fragility tables, then the stones and crest per tolerance with the
+    permutation p-value of their means' difference, and the paired differences."""
+    done = frame[frame["status"] == "completed"]
+    combos = {t: f"{KEY}={t!r}" for t in tolerances}
+    by = {t: done[[combination_of(m) == c for m in done["member"]]].sort_values("seed") for t, c in combos.items()}
+    t0, t1 = tolerances[:2]
+    lines = [fragility_markdown(fragility_by_combination(done)),
+             "| measure | " + " | ".join(f"tolerance {t:g}" for t in tolerances) + " | means' difference: p |",
+             "|---|" + "---|" * (len(tolerances) + 1)]
+    for col, label in (("removed", "stones removed"), ("crest_lowering_mm", "crest lowering [mm]"),
+                       ("stages", "stages")):
+        a, b = by[t0][col].astype(float), by[t1][col].astype(float)
+        lines.append(f"| {label}: mean, median [members' 16-84 %] | " +
+                     " | ".join(f"{by[t][col].astype(float).mean():.1f}, {_band(by[t][col])}" for t in tolerances) +
+                     f" | {permutation_p(a, b):.2f} |")
+    for n in (2, 3):
+        lines.append(f"| members with {n} stages or more | " +
+                     " | ".join(f"{int((by[t]['stages'] >= n).sum())} of {len(by[t])}" for t in tolerances) + " | |")
+    lines.append("| CPU per member [s] (mean; two members at a time) | " +
+                 " | ".join(f"{by[t]['cpu_seconds'].mean():.1f}" for t in tolerances) + " | |")
+    a, b = (by[t].set_index("seed")["removed"].astype(float) for t in (t0, t1))
+    seeds = a.index.intersection(b.index)
+    paired = np.abs(a[seeds] - b[seeds])
+    across = np.abs(np.diff(a.to_numpy()))
+    lines += ["", f"p: the share of 10,000 random relabellings of the members between the tolerances whose means "
+              f"differ at least as much (a small p: a shift beyond the packings' spread). Stones removed, the same "
+              f"seed at {t0:g} and {t1:g}: mean absolute difference {paired.mean():.1f} ({int((paired == 0).sum())} "
+              f"of {len(seeds)} seeds equal); two packings (seeds i and i + 1) at {t0:g}: {across.mean():.1f}."]
+    return "\n".join(lines)
+
+
+def flow_alone_run(scene, t_end):
+    """the water depth [m] of every column after the flow alone (stones held) to t_end, and the water
+    the pressure solve's residual divergence made per step, relative to the water volume"""
+    sim = build_simulation(scene)
+    sim.stones.disc_fixed[:] = True
+    sim.advance(t_end)
+    f = sim.fluid
+    g = f.grid
+    F = np.asarray(f.cell_F).reshape(g.nz, g.nx)
+    dz = np.diff(np.asarray(g.z_faces))
+    return (F * dz[:, None]).sum(axis=0), abs(f.dilatation_volume) / f.water_volume() / sim.step_count
+
+
+def flow_alone(scene, tolerances, t_end):
+    """the flow's difference between tolerances against that between packings (markdown)"""
+    tol = [scene.replace(numerics=dataclasses.replace(scene.numerics, pressure_tolerance=t)) for t in tolerances]
+    d0, made0 = flow_alone_run(tol[0].replace(seed=0), t_end)
+    d_tol, made1 = flow_alone_run(tol[1].replace(seed=0), t_end)
+    d_seed, _ = flow_alone_run(tol[0].replace(seed=1), t_end)
+    return (f"The flow alone (stones held, seed 0, t = {t_end:g} s): the water depth differs by at most "
+            f"{1e3 * np.abs(d_tol - d0).max():.3f} mm over the flume between the tolerances "
+            f"(mean {1e3 * np.abs(d_tol - d0).mean():.4f} mm); between seeds 0 and 1 at {tolerances[0]:g}, "
+            f"by {1e3 * np.abs(d_seed - d0).max():.3f} mm (mean {1e3 * np.abs(d_seed - d0).mean():.4f} mm). "
+            f"Water made by the residual divergence, per step and relative to the water volume: "
+            f"{made0:.1e} at {tolerances[0]:g}, {made1:.1e} at {tolerances[1]:g}.")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--scenes", nargs="+", default=["maeno2008", "maeno2008_consistent"])
+    p.add_argument("--seeds", default="0-19")
+    p.add_argument("--tolerances", nargs=2, type=float, default=[1e-5, 1e-4])
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: one per core)")
+    p.add_argument("--spin-up", type=float, default=20.0, help="the flow-alone comparison's end [s]")
+    p.add_argument("--out", type=Path, default=ROOT / "out", help="ensembles in OUT/tol_spread_<scene>")
+    p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results" / "pressure_tolerance_spread.md")
+    args = p.parse_args(argv)
+    seeds = parse_seeds(args.seeds)
+    workers = args.workers if args.workers is not None else default_workers()
+    parts = [f"# Pressure tolerance {args.tolerances[0]:g} against {args.tolerances[1]:g}: the packings' spread", "",
+             f"Generated by `benchmarks/pressure_tolerance_spread.py` on "
+             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: seeds {args.seeds} at each tolerance, the "
+             f"whole scene (140 s), {workers} local Dask worker(s).", ""]
+    for name in args.scenes:
+        scene = load_scene(ROOT / "scenes" / f"{name}.toml")
+        frame = run_ensemble(scene, seeds, args.out / f"tol_spread_{name}", vary={KEY: list(args.tolerances)},
+                             workers=workers, progress=False)
+        parts += [f"## {name}", "", compare_members(frame, args.tolerances), "",
+                  flow_alone(scene, args.tolerances, args.spin_up), ""]
+    args.results.write_text("\n".join(parts), encoding="utf-8")
+    print(args.results)
+
+
+if __name__ == "__main__":
+    main()
