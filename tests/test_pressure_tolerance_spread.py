@@ -1,0 +1,39 @@
+"""benchmarks/pressure_tolerance_spread.py, the source of the README's pressure-tolerance row: its
+permutation test by hand, and the script at a tiny size."""
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+PATH = Path(__file__).resolve().parents[1] / "benchmarks" / "pressure_tolerance_spread.py"
+
+
+@pytest.fixture(scope="module")
+def spread():
+    spec = importlib.util.spec_from_file_location("pressure_tolerance_spread", PATH)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_the_permutation_p_value_by_hand(spread):
+    # identical samples: every relabelling differs at least as much (0 >= 0)
+    assert spread.permutation_p([3, 3, 3], [3, 3, 3], n=200) == 1.0
+    # {0, 0} against {1, 1}: of the 6 ways to split {0, 0, 1, 1} in two pairs, 2 differ by 1 in the means
+    assert spread.permutation_p([0, 0], [1, 1], n=20000) == pytest.approx(2 / 6, abs=0.01)
+    # 5 zeros against 5 tens: only the 2 of 252 splits that keep the groups apart differ by 10
+    assert spread.permutation_p([0] * 5, [10] * 5, n=20000) == pytest.approx(2 / 252, abs=0.003)
+
+
+def test_the_script_at_a_tiny_size(spread, tmp_path):
+    md = spread.main(["--quick", "--seeds", "0", "--end-time", "2", "--spin-up", "0.5", "--workers", "0",
+                      "--scenes", "maeno2008", "--out", str(tmp_path / "ens"),
+                      "--results", str(tmp_path / "spread.md")])
+    text = md.read_text()
+    assert "## maeno2008_quick" in text
+    assert "**numerics.pressure_tolerance=1e-05**: 1 completed members" in text
+    assert "**numerics.pressure_tolerance=0.0001**: 1 completed members" in text
+    assert "| stones removed: mean, median [members' 16-84 %] | 0.0, 0.0 [0.0-0.0] | 0.0, 0.0 [0.0-0.0] | 1.00 |" in text
+    assert "two packings (seeds i and i + 1) at 1e-05: - (one seed)" in text
+    assert "The flow alone (stones held, seed 0, t = 0.5 s)" in text
+    assert len(list((tmp_path / "ens" / "tol_spread_maeno2008_quick").glob("*/seed0/outcome.json"))) == 2
