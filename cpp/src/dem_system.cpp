@@ -197,17 +197,17 @@ void DEMSystem::update_properties() {
 
 // effective mass, weight and inverse inertia of stone i from its size, density and wet fraction
 void DEMSystem::update_stone_properties(int i) {
-  update_stone_masses(i);
+  const double m = update_stone_masses(i);
   const DEMParams& p = params_;
-  const double m = disc_density[i] * volume(i);  // the matching 3D stone's volume for a polygon
   const bool mobile = disc_active[i] && !disc_fixed[i];
   const double inertia = shape_ == StoneShape::kPolygon ? 2.0 * p.inertia_factor * m * poly_jratio_[i]
                                                         : p.inertia_factor * m * disc_radius[i] * disc_radius[i];
   inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
 }
 
-// the parts that follow the wet fraction (eqs. 8-9): M + M', buoyant weight, 1/(M + M')
-void DEMSystem::update_stone_masses(int i) {
+// the parts that follow the wet fraction (eqs. 8-9): M + M', buoyant weight, 1/(M + M'); returns the
+// dry mass M [kg] (of the matching 3D stone for a polygon)
+double DEMSystem::update_stone_masses(int i) {
   const DEMParams& p = params_;
   const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
   const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
@@ -218,6 +218,7 @@ void DEMSystem::update_stone_masses(int i) {
   weight_[i] = m - (buoy ? p.water_density() * wv : 0.0);
   const bool mobile = disc_active[i] && !disc_fixed[i];
   inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
+  return m;
 }
 
 void DEMSystem::set_wet_fraction(int i, double w) {

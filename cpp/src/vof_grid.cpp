@@ -733,14 +733,13 @@ void VOFGrid::step(double dt) {
 }
 
 void VOFGrid::step_guarded(double dt) {
-  guarded_ = true;
-  try {
-    step(dt);
-  } catch (...) {
-    guarded_ = false;
-    throw;
-  }
-  guarded_ = false;
+  // on for this step only, also when it throws
+  struct Guarded {
+    bool& on;
+    explicit Guarded(bool& flag) : on(flag) { on = true; }
+    ~Guarded() { on = false; }
+  } guarded(guarded_);
+  step(dt);
 }
 
 void VOFGrid::set_prev_dt(double dt) {

@@ -311,7 +311,7 @@ class DEMSystem {
   void check_stones() const;
   void update_properties();
   void update_stone_properties(int i);
-  void update_stone_masses(int i);
+  double update_stone_masses(int i);
   void change_wet_fraction(int i, double w);
   void follow_water_level(int i);
   void build_neighbours();
