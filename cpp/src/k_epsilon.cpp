@@ -538,6 +538,11 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
   half_cell_resistances(cell_porosity, cell_F, cell_nu, lines);
   double rate_max = 0.0;
   int worst = -1;
+  if (lines) {
+    rate_max = lines_stable_rate(face_u, cell_porosity, cell_F, worst);
+    if (cell) *cell = worst;
+    return rate_max > 0.0 ? params_.cfl / rate_max : std::numeric_limits<double>::infinity();
+  }
   FaceCoef fc[4];
   for (int k = 0; k < grid_.nz(); ++k) {
     for (int i = 0; i < grid_.nx(); ++i) {

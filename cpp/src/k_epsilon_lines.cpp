@@ -22,6 +22,77 @@
 
 namespace vofdem {
 
+namespace {
+
+// stable_dt()'s rates [1/s] of one row (u: its x-faces, the other arrays its cells; g_k, g_eps: nx - 1
+// work values): the sums of face_coefficients() in the same operations and order (the same bits),
+// inactive neighbours' faces and inactive cells 0. A face's diffusion conductance first (the same from
+// both sides, as a sum commutes), then the sums by selects without a branch (both loops vectorised);
+// the end cells have no neighbour beyond the flume's ends
+template <bool kAdv, bool kDif>
+void lines_row_rates(int nx, double dx, const double* u, const double* n, const double* act, const double* res_k,
+                     const double* res_eps, double* g_k, double* g_eps, double* rate) {
+  if (kDif)
+    for (int i = 0; i + 1 < nx; ++i) {
+      g_k[i] = 1.0 / (dx * (res_k[i] + res_k[i + 1]));
+      g_eps[i] = 1.0 / (dx * (res_eps[i] + res_eps[i + 1]));
+    }
+  // the coefficient of a face with inflow vin and conductance g, open or not
+  auto coef = [&](double vin, double g, bool open) {
+    const double a_adv = kAdv ? std::max(vin, 0.0) / dx : 0.0;
+    const double a = kDif ? a_adv + g : a_adv;
+    return open ? a : 0.0;
+  };
+  auto at = [&](int i, double gw_k, double gw_eps, double ge_k, double ge_eps, bool w_open, bool e_open) {
+    double sk = 0.0, se = 0.0;
+    sk += coef(u[i], gw_k, w_open), se += coef(u[i], gw_eps, w_open);
+    sk += coef(-u[i + 1], ge_k, e_open), se += coef(-u[i + 1], ge_eps, e_open);
+    const double r = std::max(sk, se) / n[i];
+    return act[i] != 0.0 ? r : 0.0;
+  };
+  if (nx == 1) {
+    rate[0] = at(0, 0.0, 0.0, 0.0, 0.0, false, false);
+    return;
+  }
+  const int e = nx - 1;
+  rate[0] = at(0, 0.0, 0.0, g_k[0], g_eps[0], false, act[1] != 0.0);
+  for (int i = 1; i < e; ++i)
+    rate[i] = at(i, g_k[i - 1], g_eps[i - 1], g_k[i], g_eps[i], act[i - 1] != 0.0, act[i + 1] != 0.0);
+  rate[e] = at(e, g_k[e - 1], g_eps[e - 1], 0.0, 0.0, act[e - 1] != 0.0, false);
+}
+
+}  // namespace
+
+// row by row (vectorised), the rows' largest taken in order: the first cell at the largest rate
+double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const std::vector<double>& cell_porosity,
+                                        const std::vector<double>& cell_F, int& cell) const {
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const bool adv = (params_.flags & kKEpsAdvection) != 0u, dif = (params_.flags & kKEpsDiffusion) != 0u;
+  auto row_rates = adv ? (dif ? lines_row_rates<true, true> : lines_row_rates<true, false>)
+                       : (dif ? lines_row_rates<false, true> : lines_row_rates<false, false>);
+  const double dx = grid_.dx(), fmin = params_.water_fraction_min;
+  row_rate_.resize(static_cast<std::size_t>(nx));
+  row_active_.resize(static_cast<std::size_t>(nx));
+  row_conductance_.resize(2 * static_cast<std::size_t>(nx));
+  double* rate = row_rate_.data();
+  double* act = row_active_.data();
+  double worst = 0.0;
+  cell = -1;
+  for (int k = 0; k < nz; ++k) {
+    const int row = nx * k;
+    const double* n = cell_porosity.data() + row;
+    if (cell_F.empty())
+      for (int i = 0; i < nx; ++i) act[i] = n[i] > 0.0 ? 1.0 : 0.0;
+    else
+      for (int i = 0; i < nx; ++i) act[i] = (n[i] > 0.0) & (cell_F[row + i] >= fmin) ? 1.0 : 0.0;
+    row_rates(nx, dx, face_u.data() + sx * k, n, act, half_res_x_[0].data() + row, half_res_x_[1].data() + row,
+              row_conductance_.data(), row_conductance_.data() + nx, rate);
+    int at;
+    if (take_row_maximum(rate, nx, worst, at)) cell = row + at;
+  }
+  return worst;
+}
+
 void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& face_u,
                                           const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
                                           const std::vector<double>& cell_F, const std::vector<double>& cell_nu) {

@@ -548,10 +548,10 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   double* rate = cm.data() + ncorner + g.ncell();
   double worst = 0.0;
   int where = -1;
-  // each row's rates first (divisions without a branch, vectorised), then the largest of its open faces
-  auto scan = [&](const double* porosity, int i0, int i1, int k) {
-    for (int i = i0; i < i1; ++i)
-      if (porosity[i] > 0.0 && rate[i] > worst) worst = rate[i], where = i + nx * k;
+  // each row's rates first (divisions without a branch, closed faces 0: vectorised), then its largest
+  auto scan = [&](int i0, int i1, int k) {
+    int at;
+    if (take_row_maximum(rate + i0, i1 - i0, worst, at)) where = i0 + at + nx * k;
   };
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k);
@@ -559,12 +559,14 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
     const double* mn = cm.data() + sx * (k + 1);
     const double* ms = cm.data() + sx * k;
     const double* rho = f.face_x_rho + sx * k;
+    const double* n = f.face_x_porosity + sx * k;
     for (int i = 1; i < nx; ++i) {
       const double diag = 2.0 * (mu[i - 1] + mu[i]) / (dx * dx) + zf * (mn[i] + ms[i]) / (dz * dz);
       const double cross = 2.0 * (mn[i] + ms[i]) / (dx * dz);
-      rate[i] = (2.0 * diag + cross) / rho[i];
+      const double r = (2.0 * diag + cross) / rho[i];
+      rate[i] = n[i] > 0.0 ? r : 0.0;
     }
-    scan(f.face_x_porosity + sx * k, 1, nx, k);
+    scan(1, nx, k);
   }
   for (int k = 1; k < nz; ++k) {
     const double dzc = g.z_center(k) - g.z_center(k - 1);
@@ -573,12 +575,14 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
     const double* mt = f.cell_mu + nx * k;
     const double* mw = cm.data() + sx * k;  // mw[i]: the corner left of z-face i; mw[i + 1] right of it
     const double* rho = f.face_z_rho + nx * k;
+    const double* n = f.face_z_porosity + nx * k;
     for (int i = 0; i < nx; ++i) {
       const double diag = zf * 2.0 * (mb[i] + mt[i]) / (dzc * hz) + (mw[i + 1] + mw[i]) / (dx * dx);
       const double cross = 2.0 * (mw[i + 1] + mw[i]) / (dx * hz);
-      rate[i] = (2.0 * diag + cross) / rho[i];
+      const double r = (2.0 * diag + cross) / rho[i];
+      rate[i] = n[i] > 0.0 ? r : 0.0;
     }
-    scan(f.face_z_porosity + nx * k, 0, nx, k);
+    scan(0, nx, k);
   }
   if (cell) *cell = where;
   return worst > 0.0 ? 2.0 / worst : std::numeric_limits<double>::infinity();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -161,6 +162,57 @@ TEST(KEpsilonLines, StableDtIgnoresTheVerticalFaces) {
   q.time_scheme = KEpsilonTimeScheme::kPointImplicit;
   KEpsilonModel point(g, q, b);
   EXPECT_NEAR(point.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu), 0.5 * 0.05 / 2.0, 1e-15);
+}
+
+// the horizontal limit (vectorised row by row) against the obvious cell-by-cell sum of the two
+// horizontal faces' coefficients: random flow, porosity (solid cells), water fraction (air cells) and
+// eddy viscosity, one to nine columns; the same step and binding cell to the bit
+TEST(KEpsilonLines, StableDtMatchesTheCellByCellReferenceBitForBit) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int nx : {1, 2, 3, 9}) {
+    for (unsigned flags : {vofdem::kKEpsAdvection | vofdem::kKEpsDiffusion, unsigned(vofdem::kKEpsAdvection),
+                           unsigned(vofdem::kKEpsDiffusion)}) {
+      const Grid2D g = Grid2D::graded(nx, 0.05 * nx, 0.06, 0.02, 0.01, 0.02);
+      KEpsilonParams p = lines();
+      p.flags = flags;
+      KEpsilonModel m(g, p, KEpsilonBoundaries{});
+      Flow f(g);
+      for (double& u : f.face_u) u = 2.0 * unit(rng) - 1.0;
+      for (int c = 0; c < g.ncell(); ++c) {
+        const double r = unit(rng);
+        f.porosity[c] = r < 0.15 ? 0.0 : r < 0.5 ? 0.3 + 0.6 * unit(rng) : 1.0;
+        f.F[c] = unit(rng) < 0.2 ? 0.05 : unit(rng) < 0.5 ? p.water_fraction_min : 1.0;
+        m.cell_nut[c] = 1e-4 * unit(rng);
+      }
+      auto active = [&](int c) { return f.porosity[c] > 0.0 && f.F[c] >= p.water_fraction_min; };
+      const bool adv = flags & vofdem::kKEpsAdvection, dif = flags & vofdem::kKEpsDiffusion;
+      const double dx = g.dx(), inv_sigma[2] = {1.0 / p.sigma_k, 1.0 / p.sigma_eps};
+      auto res = [&](int e, int c) { return 0.5 * dx / (f.porosity[c] * (f.nu[c] + m.cell_nut[c] * inv_sigma[e])); };
+      double worst = 0.0;
+      int where = -1;
+      for (int k = 0; k < g.nz(); ++k)
+        for (int i = 0; i < nx; ++i) {
+          const int c = g.cell(i, k);
+          if (!active(c)) continue;
+          double sum[2] = {0.0, 0.0};
+          for (int e = 0; e < 2; ++e) {
+            if (i > 0 && active(c - 1))
+              sum[e] += (adv ? std::max(f.face_u[g.face_x(i, k)], 0.0) / dx : 0.0) +
+                        (dif ? 1.0 / (dx * (res(e, c) + res(e, c - 1))) : 0.0);
+            if (i + 1 < nx && active(c + 1))
+              sum[e] += (adv ? std::max(-f.face_u[g.face_x(i + 1, k)], 0.0) / dx : 0.0) +
+                        (dif ? 1.0 / (dx * (res(e, c) + res(e, c + 1))) : 0.0);
+          }
+          const double rate = std::max(sum[0], sum[1]) / f.porosity[c];
+          if (rate > worst) worst = rate, where = c;
+        }
+      int cell = -2;
+      const double dt = m.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu, &cell);
+      EXPECT_EQ(dt, worst > 0.0 ? p.cfl / worst : std::numeric_limits<double>::infinity()) << nx << " " << flags;
+      EXPECT_EQ(cell, where) << nx << " " << flags;
+    }
+  }
 }
 
 TEST(KEpsilonLines, StaysPositiveUnderHugeStepsAndExtremeStrain) {

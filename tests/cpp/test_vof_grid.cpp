@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -571,4 +572,68 @@ TEST(VOFGrid, AMultigridSolveThatCannotConvergeIsRedoneByTheDirectSolver) {
   double du = 0.0;
   for (std::size_t j = 0; j < mg->face_u.size(); ++j) du = std::max(du, std::abs(mg->face_u[j] - direct->face_u[j]));
   EXPECT_LT(du, 1e-12);
+}
+
+// the face porosity the flow derives from its cells (update_face_porosity, vectorised) against the
+// obvious face-by-face loop: random porosities (closed, equal neighbours, open) on every boundary
+// combination; the same values to the bit, and a bad cell refused naming it
+TEST(VOFGrid, FacePorosityMatchesTheFaceByFaceReferenceBitForBit) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double levels[] = {0.0, 0.35, 0.6, 1.0};
+  for (int case_ = 0; case_ < 8; ++case_) {
+    const Grid2D g = Grid2D::uniform(case_ == 0 ? 1 : 7 + case_, 5, 0.4, 0.2);
+    FlowParams p;
+    p.inlet = case_ % 2 ? InletBoundary::kDischarge : InletBoundary::kWall;
+    p.outlet = static_cast<OutletBoundary>(case_ % 3);
+    p.top = case_ % 4 < 2 ? TopBoundary::kOpen : TopBoundary::kWall;
+    VOFGrid flow(g, p);
+    for (int c = 0; c < g.ncell(); ++c) {
+      flow.cell_porosity[c] = unit(rng) < 0.7 ? levels[static_cast<int>(4 * unit(rng))] : unit(rng);
+      flow.cell_stone_diameter[c] = 0.01 + 0.05 * unit(rng);
+    }
+    for (double& u : flow.face_u) u = unit(rng) - 0.5;
+    for (double& w : flow.face_w) w = unit(rng) - 0.5;
+    std::vector<double> nx_ref(g.nface_x()), nz_ref(g.nface_z()), u_ref = flow.face_u, w_ref = flow.face_w;
+    auto tighter = [&](FaceCells c) { return std::min(flow.cell_porosity[c.a], flow.cell_porosity[c.b]); };
+    for (int k = 0; k < g.nz(); ++k)
+      for (int i = 0; i <= g.nx(); ++i) {
+        const int j = g.face_x(i, k);
+        nx_ref[j] = tighter(g.face_x_cells(i, k));
+        const bool open_end = (i == 0 && p.inlet == InletBoundary::kDischarge) ||
+                              (i == g.nx() && p.outlet != OutletBoundary::kWall);
+        if ((i == 0 || i == g.nx()) && !open_end) nx_ref[j] = 0.0;
+        if (nx_ref[j] == 0.0) u_ref[j] = 0.0;
+      }
+    for (int k = 0; k <= g.nz(); ++k)
+      for (int i = 0; i < g.nx(); ++i) {
+        const int j = g.face_z(i, k);
+        nz_ref[j] = tighter(g.face_z_cells(i, k));
+        if (k == 0 || (k == g.nz() && p.top == TopBoundary::kWall)) nz_ref[j] = 0.0;
+        if (nz_ref[j] == 0.0) w_ref[j] = 0.0;
+      }
+    flow.update_face_porosity();
+    EXPECT_EQ(flow.face_x_porosity, nx_ref) << "case " << case_;
+    EXPECT_EQ(flow.face_z_porosity, nz_ref) << "case " << case_;
+    EXPECT_EQ(flow.face_u, u_ref) << "case " << case_;
+    EXPECT_EQ(flow.face_w, w_ref) << "case " << case_;
+  }
+  // a porous cell without a stone diameter, and a porosity above 1: refused, naming the field
+  VOFGrid flow(Grid2D::uniform(6, 4, 0.3, 0.2), FlowParams{});
+  flow.cell_porosity[9] = 0.4;
+  flow.cell_stone_diameter[9] = 0.0;
+  try {
+    flow.update_face_porosity();
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cell_stone_diameter"), std::string::npos) << e.what();
+  }
+  flow.cell_stone_diameter[9] = 0.02;
+  flow.cell_porosity[3] = 1.5;
+  try {
+    flow.update_face_porosity();
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cell_porosity"), std::string::npos) << e.what();
+  }
 }

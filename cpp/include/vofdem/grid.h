@@ -72,4 +72,19 @@ class Grid2D {
   std::vector<double> z_faces_;
 };
 
+// a row of rates (non-negative; a NaN is never taken, as a comparison with it is false): when its largest
+// beats `worst`, that value into `worst` and its first index into `first`. Two running maxima without a
+// branch (vectorised), then a search for the first index at them
+inline bool take_row_maximum(const double* row, int count, double& worst, int& first) {
+  double m0 = 0.0, m1 = 0.0;
+  int i = 0;
+  for (; i + 1 < count; i += 2) m0 = row[i] > m0 ? row[i] : m0, m1 = row[i + 1] > m1 ? row[i + 1] : m1;
+  if (i < count) m0 = row[i] > m0 ? row[i] : m0;
+  const double m = m1 > m0 ? m1 : m0;
+  if (!(m > worst)) return false;
+  worst = m;
+  first = static_cast<int>(std::find(row, row + count, m) - row);
+  return true;
+}
+
 }  // namespace vofdem

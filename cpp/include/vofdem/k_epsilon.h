@@ -240,6 +240,10 @@ class KEpsilonModel {
   void solve_transport_lines(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                              const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                              const std::vector<double>& cell_nu);
+  // kVerticalLines: stable_dt()'s largest rate [1/s] (cfl / dt) and its first cell (-1: none), from the
+  // half-cell resistances of this call
+  double lines_stable_rate(const std::vector<double>& face_u, const std::vector<double>& cell_porosity,
+                           const std::vector<double>& cell_F, int& cell) const;
   // passes 1..sweeps of the Jacobi iteration; the last pass writes target
   void jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
                      std::vector<double>& scratch) const;
@@ -262,6 +266,8 @@ class KEpsilonModel {
   std::vector<double> tri_[2][4];              // kVerticalLines: sub, diagonal, super, rhs of k and eps
   // half a cell over its conductance n (nu + nu_t / sigma) [s/m], along x and along z, for k and for eps
   mutable std::vector<double> half_res_x_[2], half_res_z_[2];
+  // one row's rates, active cells and faces' conductances of k and eps (lines_stable_rate)
+  mutable std::vector<double> row_rate_, row_active_, row_conductance_;
 };
 
 }  // namespace vofdem
