@@ -176,6 +176,8 @@ class KEpsilonModel {
   // holds it, since the next step starts a cell that has just filled from its neighbours
   std::vector<double> cell_roles() const;
   void cell_roles(std::vector<double>& out) const;  // into out (its storage reused)
+  // the production P [m^2/s^3] of each cell in the last step (0 where not solved), ncell
+  const std::vector<double>& cell_production() const { return cell_prod_; }
   // sets those roles (values 0, 1, 2; ncell of them), as cell_roles() gave them
   void set_cell_roles(const std::vector<double>& roles);
   const StageProfile& profile() const { return profile_; }
@@ -222,10 +224,10 @@ class KEpsilonModel {
   bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const {
     return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
   }
-  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond;
-  // x_only: the first alone)
-  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
-                             const std::vector<double>& cell_nu, bool x_only = false) const;
+  // half-cell diffusion resistances for face_coefficients (0.5 dx / cond, 0.5 dz / cond; x_only: the
+  // first alone), of every cell (those of active cells are the ones read)
+  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_nu,
+                             bool x_only = false) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
   // coefficients (per unit volume) of the 4 faces of cell (i, k) (west, east, south, north), for k and
   // for eps; x_only: the first two alone
@@ -259,6 +261,8 @@ class KEpsilonModel {
   // work arrays, allocated at construction
   std::vector<std::uint8_t> cell_role_, cell_role_prev_;
   std::vector<double> cell_prod_;             // P [m^2/s^3]
+  // compute_production's per-cell work values: centred pore velocities, usable and solved (1 or 0), zeros
+  std::vector<double> prod_uc_, prod_wc_, prod_use_, prod_solved_, prod_zero_;
   std::vector<double> k_old_, eps_old_, nut_old_;  // state before the step (restored on failure)
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
