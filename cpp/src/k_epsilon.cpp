@@ -283,101 +283,47 @@ void KEpsilonModel::apply_wall_functions(const std::vector<double>& face_u, cons
   }
 }
 
-namespace {
-
-// one row's production (solved cells; 0 elsewhere) from the centred pore velocities uc, wc of its cells
-// and of the rows below (dn) and above (up), the usable neighbours (1) or not (0) and their heights: the
-// cross derivatives one-sided where a neighbour is not usable, as the cell-by-cell form had them, in
-// the same operations (the same bits). Selects without a branch (vectorised); the end cells have no
-// neighbour beyond the flume's ends
-struct ProductionRow {
-  const double *u, *w_lo, *w_hi, *n, *nut, *eps, *uc, *uc_dn, *uc_up, *use_dn, *use_up, *wc, *use, *solved;
-  double dx, dz, z, z_dn, z_up, limit;
-};
-
-template <bool kKatoLaunder, bool kLimit>
-void production_row(int nx, const ProductionRow& r, double* __restrict prod) {
-  // the masks stay doubles compared in each select (GCC 12 vectorises no bool arithmetic on them); the
-  // row's scalars held apart from the struct
-  const double dx = r.dx, dz = r.dz, z = r.z, z_dn = r.z_dn, z_up = r.z_up, limit = r.limit;
-  auto at = [&, dx, dz, z, z_dn, z_up, limit](int i, double wc_w, double wc_e, double w_ok, double e_ok) {
-    const double n = r.n[i], u0 = r.u[i], u1 = r.u[i + 1], w0 = r.w_lo[i], w1 = r.w_hi[i];
-    const double s = r.use_dn[i], nn = r.use_up[i], solved = r.solved[i];
-    const double uc = r.uc[i], uc_up = r.uc_up[i], uc_dn = r.uc_dn[i], wc = r.wc[i];  // loaded before the selects
-    const double nut = r.nut[i], eps = r.eps[i];
-    const double dudx = (u1 - u0) / (n * dx);
-    const double dwdz = (w1 - w0) / (n * dz);
-    const double u_a = nn != 0.0 ? uc_up : uc, u_b = s != 0.0 ? uc_dn : uc;
-    const double z_a = nn != 0.0 ? z_up : z, z_b = s != 0.0 ? z_dn : z;
-    const double dudz_any = (u_a - u_b) / (z_a - z_b);
-    const double dudz = s + nn != 0.0 ? dudz_any : 0.0;
-    const double w_a = e_ok != 0.0 ? wc_e : wc, w_b = w_ok != 0.0 ? wc_w : wc;
-    const double span = e_ok + w_ok;  // cells between the two values: 1 or 2 (0: no cross derivative)
-    const double dwdx_any = (w_a - w_b) / (dx * span);
-    const double dwdx = span != 0.0 ? dwdx_any : 0.0;
-    const double shear = dudz + dwdx;
-    const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
-    double p = kKatoLaunder ? nut * std::sqrt(s2) * std::abs(dudz - dwdx) : nut * s2;
-    if (kLimit) {
-      const double cap = limit * eps;
-      p = cap < p ? cap : p;
-    }
-    return solved != 0.0 ? p : 0.0;
-  };
-  if (nx == 1) {
-    prod[0] = at(0, 0.0, 0.0, 0.0, 0.0);
-    return;
-  }
-  const int last = nx - 1;
-  prod[0] = at(0, 0.0, r.wc[1], 0.0, r.use[1]);
-  for (int i = 1; i < last; ++i) prod[i] = at(i, r.wc[i - 1], r.wc[i + 1], r.use[i - 1], r.use[i + 1]);
-  prod[last] = at(last, r.wc[last - 1], 0.0, r.use[last - 1], 0.0);
-}
-
-}  // namespace
-
 void KEpsilonModel::compute_production(const std::vector<double>& face_u, const std::vector<double>& face_w,
                                        const std::vector<double>& cell_porosity) {
-  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1, nc = grid_.ncell();
-  // per cell first: the centred pore velocities (a solid cell's are never used), usable (holding water,
-  // wall cells included) and solved; a row of zeros stands for the rows beyond the bed and the top
-  prod_uc_.resize(nc), prod_wc_.resize(nc), prod_use_.resize(nc), prod_solved_.resize(nc);
-  prod_zero_.assign(nx, 0.0);
-  for (int k = 0; k < nz; ++k)
+  const int nx = grid_.nx(), nz = grid_.nz();
+  const double dx = grid_.dx();
+  auto uc = [&](int i, int k) {
+    return 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / cell_porosity[grid_.cell(i, k)];
+  };
+  auto wc = [&](int i, int k) {
+    return 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / cell_porosity[grid_.cell(i, k)];
+  };
+  auto usable = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_role_[grid_.cell(i, k)]; };
+  for (int k = 0; k < nz; ++k) {
     for (int i = 0; i < nx; ++i) {
       const int c = grid_.cell(i, k);
+      if (cell_role_[c] != kSolved) {
+        cell_prod_[c] = 0.0;
+        continue;
+      }
       const double n = cell_porosity[c];
-      prod_uc_[c] = 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / n;
-      prod_wc_[c] = 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / n;
+      const double dudx = (face_u[grid_.face_x(i + 1, k)] - face_u[grid_.face_x(i, k)]) / (n * dx);
+      const double dwdz = (face_w[grid_.face_z(i, k + 1)] - face_w[grid_.face_z(i, k)]) / (n * grid_.dz(k));
+      // cross derivatives from the centred pore velocities of neighbours holding water (one-sided at
+      // walls, air and the domain edge)
+      const bool s = usable(i, k - 1), nn = usable(i, k + 1), w = usable(i - 1, k), e = usable(i + 1, k);
+      double dudz = 0.0, dwdx = 0.0;
+      if (s || nn) {
+        const int ka = nn ? k + 1 : k, kb = s ? k - 1 : k;
+        dudz = (uc(i, ka) - uc(i, kb)) / (grid_.z_center(ka) - grid_.z_center(kb));
+      }
+      if (w || e) {
+        const int ia = e ? i + 1 : i, ib = w ? i - 1 : i;
+        dwdx = (wc(ia, k) - wc(ib, k)) / (dx * (ia - ib));
+      }
+      const double shear = dudz + dwdx;
+      const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
+      double prod = params_.production == KEpsilonProduction::kKatoLaunder
+                        ? cell_nut[c] * std::sqrt(s2) * std::abs(dudz - dwdx)
+                        : cell_nut[c] * s2;
+      if (params_.production_limit > 0.0) prod = std::min(prod, params_.production_limit * cell_eps[c]);
+      cell_prod_[c] = prod;
     }
-  for (int c = 0; c < nc; ++c) {
-    prod_use_[c] = cell_role_[c] != kInactive ? 1.0 : 0.0;
-    prod_solved_[c] = cell_role_[c] == kSolved ? 1.0 : 0.0;
-  }
-  const bool kato = params_.production == KEpsilonProduction::kKatoLaunder, limit = params_.production_limit > 0.0;
-  auto row_of = kato ? (limit ? production_row<true, true> : production_row<true, false>)
-                     : (limit ? production_row<false, true> : production_row<false, false>);
-  for (int k = 0; k < nz; ++k) {
-    const int c = nx * k, dn = nx * std::max(k - 1, 0), up = nx * std::min(k + 1, nz - 1);
-    ProductionRow r;
-    r.u = face_u.data() + sx * k;
-    r.w_lo = face_w.data() + nx * k;
-    r.w_hi = face_w.data() + nx * (k + 1);
-    r.n = cell_porosity.data() + c;
-    r.nut = cell_nut.data() + c;
-    r.eps = cell_eps.data() + c;
-    r.uc = prod_uc_.data() + c;
-    r.uc_dn = prod_uc_.data() + dn;
-    r.uc_up = prod_uc_.data() + up;
-    r.use_dn = k > 0 ? prod_use_.data() + dn : prod_zero_.data();
-    r.use_up = k + 1 < nz ? prod_use_.data() + up : prod_zero_.data();
-    r.wc = prod_wc_.data() + c;
-    r.use = prod_use_.data() + c;
-    r.solved = prod_solved_.data() + c;
-    r.dx = grid_.dx(), r.dz = grid_.dz(k), r.z = grid_.z_center(k);
-    r.z_dn = grid_.z_center(std::max(k - 1, 0)), r.z_up = grid_.z_center(std::min(k + 1, nz - 1));
-    r.limit = params_.production_limit;
-    row_of(nx, r, cell_prod_.data() + c);
   }
 }
 

@@ -261,8 +261,6 @@ class KEpsilonModel {
   // work arrays, allocated at construction
   std::vector<std::uint8_t> cell_role_, cell_role_prev_;
   std::vector<double> cell_prod_;             // P [m^2/s^3]
-  // compute_production's per-cell work values: centred pore velocities, usable and solved (1 or 0), zeros
-  std::vector<double> prod_uc_, prod_wc_, prod_use_, prod_solved_, prod_zero_;
   std::vector<double> k_old_, eps_old_, nut_old_;  // state before the step (restored on failure)
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
