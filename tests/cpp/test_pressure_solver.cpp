@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "vofdem/grid.h"
@@ -217,6 +220,58 @@ TEST(PressureSolver, RefusesBadInput) {
   EXPECT_THROW(s->solve(rhs, p, 0.0), std::invalid_argument);
   std::vector<double> short_p(2, 0.0);
   EXPECT_THROW(s->solve(rhs, short_p, 1e-8), std::invalid_argument);
+}
+
+// each kind of bad value, on interior and boundary faces of both directions, refused naming its field
+// (the checks run row by row and, when one fails, again face by face for the message); a good problem
+// after a refused one is set up as if none had been
+TEST(PressureSolver, RefusesEachBadValueNamingItsField) {
+  const Grid2D g = Grid2D::uniform(4, 3, 4.0, 3.0);
+  PressureProblem pb;
+  pb.resize(g);
+  for (double& a : pb.face_x_coef) a = 1.0;
+  for (double& a : pb.face_z_coef) a = 1.0;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  struct Bad {
+    const char* field;
+    std::function<void(PressureProblem&)> make;
+  };
+  const std::vector<Bad> cases = {
+      {"face_x_coef", [&](PressureProblem& q) { q.face_x_coef[g.face_x(2, 1)] = -1.0; }},
+      {"face_x_coef", [&](PressureProblem& q) { q.face_x_coef[g.face_x(0, 2)] = nan; }},
+      {"face_x_coef", [&](PressureProblem& q) { q.face_x_coef[g.face_x(4, 0)] = inf; }},
+      {"face_z_coef", [&](PressureProblem& q) { q.face_z_coef[g.face_z(1, 3)] = -2.0; }},
+      {"face_z_coef", [&](PressureProblem& q) { q.face_z_coef[g.face_z(3, 1)] = nan; }},
+      {"face_x_coef", [&](PressureProblem& q) { q.cell_active[g.cell(1, 1)] = 0; }},  // open faces beside it
+      {"face_z_coef", [&](PressureProblem& q) {
+         for (int i = 0; i <= g.nx(); ++i) q.face_x_coef[g.face_x(i, 0)] = 0.0;
+         q.cell_active[g.cell(2, 0)] = 0;
+       }},
+      {"face_x_bc", [&](PressureProblem& q) { q.face_x_bc[g.face_x(4, 1)] = nan; }},
+      {"face_z_bc", [&](PressureProblem& q) { q.face_z_bc[g.face_z(2, 0)] = inf; }},
+      {"cell_active", [&](PressureProblem& q) { q.cell_active[g.cell(3, 2)] = 2; }},
+  };
+  for (auto kind : kAllKinds) {
+    auto s = make_pressure_solver(kind);
+    std::vector<double> rhs(g.ncell(), 0.0), p_ref(g.ncell(), 0.0), p(g.ncell(), 0.0);
+    rhs[0] = 1.0, rhs[g.ncell() - 1] = -1.0;
+    s->setup(g, pb);
+    s->solve(rhs, p_ref, 1e-12);
+    for (const Bad& c : cases) {
+      PressureProblem q = pb;
+      c.make(q);
+      try {
+        s->setup(g, q);
+        ADD_FAILURE() << c.field << ": no throw";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(c.field, 0), 0u) << c.field << ": " << e.what();
+      }
+      s->setup(g, pb);
+      std::fill(p.begin(), p.end(), 0.0);
+      s->solve(rhs, p, 1e-12);
+      EXPECT_EQ(p, p_ref) << "after " << c.field;
+    }
+  }
 }
 
 TEST(PressureSolver, DirectSolutionSatisfiesTheEquationsOnRandomProblems) {
