@@ -166,38 +166,23 @@ void KEpsilonModel::check_sizes(const std::vector<double>& face_u, const std::ve
   require_size("cell_nu", cell_nu.size(), grid_.ncell());
 }
 
-namespace {
-
-// count cells' half-cell resistances along x and z for k and eps (rz_k, rz_eps null: x alone); the
-// arrays never overlap (restrict: GCC would version the loop for 16 pairs)
-void half_cell_row(int count, double half_x, double half_z, double inv_sigma_k, double inv_sigma_eps,
-                   const double* __restrict n, const double* __restrict nu, const double* __restrict nut,
-                   double* __restrict rx_k, double* __restrict rx_eps, double* __restrict rz_k,
-                   double* __restrict rz_eps) {
-  for (int i = 0; i < count; ++i) {
-    const double cond_k = n[i] * (nu[i] + nut[i] * inv_sigma_k);
-    const double cond_eps = n[i] * (nu[i] + nut[i] * inv_sigma_eps);
-    rx_k[i] = half_x / cond_k;
-    rx_eps[i] = half_x / cond_eps;
-    if (rz_k) rz_k[i] = half_z / cond_k, rz_eps[i] = half_z / cond_eps;
-  }
-}
-
-}  // namespace
-
-void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_nu,
-                                          bool x_only) const {
+void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                                          const std::vector<double>& cell_nu, bool x_only) const {
   if (!has(params_.flags, kKEpsDiffusion)) return;
-  // every cell, without a branch (vectorised): only those of active cells are read (face_coefficients),
-  // the others' values (a solid cell's infinite) are never used
+  const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
   const double half_x = 0.5 * grid_.dx();
-  const int nx = grid_.nx();
   for (int k = 0; k < grid_.nz(); ++k) {
-    const int r = nx * k;
-    half_cell_row(nx, half_x, 0.5 * grid_.dz(k), 1.0 / params_.sigma_k, 1.0 / params_.sigma_eps,
-                  cell_porosity.data() + r, cell_nu.data() + r, cell_nut.data() + r, half_res_x_[0].data() + r,
-                  half_res_x_[1].data() + r, x_only ? nullptr : half_res_z_[0].data() + r,
-                  x_only ? nullptr : half_res_z_[1].data() + r);
+    const double half_z = 0.5 * grid_.dz(k);
+    for (int i = 0; i < grid_.nx(); ++i) {
+      const int c = grid_.cell(i, k);
+      if (!is_active(c, cell_porosity, cell_F)) continue;  // neither a solved cell nor a neighbour
+      const double n = cell_porosity[c];
+      for (int e = 0; e < 2; ++e) {
+        const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
+        half_res_x_[e][c] = half_x / cond;
+        if (!x_only) half_res_z_[e][c] = half_z / cond;
+      }
+    }
   }
 }
 
@@ -408,7 +393,7 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
   // balance alone (the uniform decay still exact). Passes 1..sweeps are Jacobi sweeps of the
   // backward-Euler system. Every pass is a convex combination of positive values plus a
   // non-negative source. Passes alternate between target and scratch; the last writes target.
-  half_cell_resistances(cell_porosity, cell_nu);
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
   rows_k_.clear();  // capacity ncell reserved at construction: no allocation here
   rows_eps_.clear();
   std::vector<JacobiRow>* rows[2] = {&rows_k_, &rows_eps_};
@@ -550,7 +535,7 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
   // the column solves take the vertical faces (and the boundary inflow) implicitly
   const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines;
   const int nfaces = lines ? 2 : 4;
-  half_cell_resistances(cell_porosity, cell_nu, lines);
+  half_cell_resistances(cell_porosity, cell_F, cell_nu, lines);
   double rate_max = 0.0;
   int worst = -1;
   if (lines) {

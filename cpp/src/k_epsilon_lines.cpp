@@ -111,7 +111,7 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
     scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
   }
   const std::vector<double>* start[2] = {&scratch_, &scratch_eps_};
-  half_cell_resistances(cell_porosity, cell_nu);
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
   FaceCoef fc[4];
   for (int k = 0; k < nz; ++k) {
     for (int i = 0; i < nx; ++i) {

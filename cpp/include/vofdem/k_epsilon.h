@@ -224,10 +224,10 @@ class KEpsilonModel {
   bool is_active(int c, const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) const {
     return cell_porosity[c] > 0.0 && (cell_F.empty() || cell_F[c] >= params_.water_fraction_min);
   }
-  // half-cell diffusion resistances for face_coefficients (0.5 dx / cond, 0.5 dz / cond; x_only: the
-  // first alone), of every cell (those of active cells are the ones read)
-  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_nu,
-                             bool x_only = false) const;
+  // half-cell diffusion resistances of the active cells for face_coefficients (0.5 dx / cond, 0.5 dz / cond;
+  // x_only: the first alone)
+  void half_cell_resistances(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                             const std::vector<double>& cell_nu, bool x_only = false) const;
   bool is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const;
   // coefficients (per unit volume) of the 4 faces of cell (i, k) (west, east, south, north), for k and
   // for eps; x_only: the first two alone
