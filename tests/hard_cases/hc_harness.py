@@ -153,7 +153,8 @@ def budget_error(fluid, v0: float) -> float:
 
 # the water the pressure solve's residual divergence may make over a case, as a share of the volume per
 # unit of its relative tolerance: measured at most 0.06 over the catalogue at 1e-5 (the scenes'), 0.02-0.03
-# at 1e-6 to 1e-8, scaling with the tolerance
+# at 1e-6 to 1e-8, scaling with the tolerance there; above 1e-5 it grows faster than the tolerance (at
+# 1e-4 one case makes 0.12: docs/pressure_solver.md)
 RESIDUAL_WATER_PER_TOLERANCE = 0.1
 
 
