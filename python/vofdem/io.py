@@ -216,6 +216,7 @@ class RunWriter:
         self._times: List[float] = []
         self._xdmf_steps: Dict[str, List[str]] = {"fields": [], "stones": [], "stone_polygons": []}
         self._rows: Dict[str, tuple] = {}  # per series: dataset id, type, row shape, memory space
+        self._snapshot_groups: list = []  # the ids of /snapshots/<k>, k < capacity (_series)
 
     def _series(self, f, name, tail, dtype, fill):
         """A time series (capacity, *tail), contiguous, allocated and filled at once, with a virtual
@@ -231,12 +232,14 @@ class RunWriter:
         src_space, space = h5py.h5s.create_simple((T,) + tail), h5py.h5s.create_simple(tail)
         fill_value = np.array(fill, dtype)
         leaf = name.split("/")[-1].encode()
-        for k in range(T):
+        if len(self._snapshot_groups) != T:  # each snapshot's group looked up once for every series
+            self._snapshot_groups = [f.require_group(f"snapshots/{k:06d}").id for k in range(T)]
+        for k, group in enumerate(self._snapshot_groups):
             vcpl = h5py.h5p.create(h5py.h5p.DATASET_CREATE)
             vcpl.set_fill_value(fill_value)
             src_space.select_hyperslab((k,) + (0,) * len(tail), (1,) + tail)
             vcpl.set_virtual(space, b".", name.encode(), src_space)
-            h5py.h5d.create(f.require_group(f"snapshots/{k:06d}").id, leaf, h5type, space, dcpl=vcpl)
+            h5py.h5d.create(group, leaf, h5type, space, dcpl=vcpl)
 
     def _make(self, f, diameters, fixed, scene_toml, seed, version):
         f.attrs.update(scene_toml=scene_toml, vofdem_version=version, seed=int(seed), status="running",
