@@ -234,17 +234,19 @@ def cost_rows(res, n_boot: int):
     ref_df = res["verdict"][res["cost_scene"]]
     entries = [("reference", "-", "the reference", ref_df)]
     entries += [(st.name, st.knob, st.label, res["cost"][st.name]) for st in res["settings"]]
-    ref_cpu = _median(ref_df, "cpu_seconds")
     rows = []
     for name, knob, label, df in entries:
         cpu = _median(df, "cpu_seconds")
+        # the ratio is paired: the reference's members at the seeds this setting completed
+        done = df.loc[df["status"] == "completed", "seed"] if "seed" in df else []
+        ref_cpu = _median(ref_df[ref_df["seed"].isin(done)], "cpu_seconds") if len(done) else math.nan
         for ev in EVENTS:
             sh = median_shift(ref_df, df, ev, n_boot=n_boot)
             s = event_summary(ref_df, ev)
             rows.append({"setting": name, "knob": knob, "label": label, "event": ev,
                          "completed": int((df["status"] == "completed").sum()), "members": len(df),
                          "cpu_s_per_member": cpu, "wall_s_per_member": _median(df, "wall_seconds"),
-                         "cost_ratio": cpu / ref_cpu if ref_cpu else math.nan, "median_lps": sh.setting,
+                         "cost_ratio": cpu / ref_cpu if ref_cpu > 0 else math.nan, "median_lps": sh.setting,
                          "reference_median_lps": sh.reference, "shift_lps": sh.shift, "shift_lo_lps": sh.lo,
                          "shift_hi_lps": sh.hi, "boot_left_out": sh.left_out, "seeds": sh.seeds,
                          "spread_lo_lps": _minus(s["km_q16_lps"], s["km_median_lps"]),
@@ -451,7 +453,7 @@ def write_results(res, args, wall: float) -> Path:
              f"One knob at a time over the same seeds ({_seed_range(res['knob_seeds'])}): the shift of each event's "
              "Kaplan-Meier median from the "
              "reference's [l/s], with its paired bootstrap 16-84 % interval over the seeds, and the median CPU time "
-             "per member (its ratio to the reference's, measured in the same run).", ""] + _cost_md(crows)
+             "per member (its ratio to the reference's median over the same seeds, measured in the same run).", ""] + _cost_md(crows)
     text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "
              "vofdem/fidelity.py) that the reference or a setting of this study ran, with their measured cost and "
              "shift from the reference:", ""] + _presets_md(res, crows)

@@ -77,6 +77,19 @@ def test_the_paired_bootstrap_of_a_shift_against_its_exact_distribution():
     assert part.seeds == 2 and (part.reference, part.setting) == (12.0, 12.0)
 
 
+def test_the_cost_ratio_is_paired_with_the_references_members_at_the_same_seeds():
+    mod = _script()
+    ref = _frame([0, 1, 2, 3, 4], [12.0] * 5).assign(cpu_seconds=[10.0, 20.0, 30.0, 40.0, 50.0], wall_seconds=1.0)
+    fast = _frame([0, 1], [12.0, 12.0]).assign(cpu_seconds=[5.0, 7.0], wall_seconds=1.0)
+    res = {"verdict": {"s": ref}, "cost_scene": "s", "cost": {"cfl=0.25": fast},
+           "settings": knob_settings(load_scene(ROOT / "scenes" / "maeno2008_rolling.toml"), "tiny", ["cfl"])}
+    rows = {r["setting"]: r for r in mod.cost_rows(res, n_boot=0) if r["event"] == "first_removal"}
+    # the reference's median over all its members is 30 s; over seeds 0 and 1 it is 15 s: 6 / 15
+    assert rows["reference"]["cpu_s_per_member"] == 30.0 and rows["reference"]["cost_ratio"] == 1.0
+    assert rows["cfl=0.25"]["cpu_s_per_member"] == 6.0
+    assert rows["cfl=0.25"]["cost_ratio"] == pytest.approx(0.4, abs=1e-12)
+
+
 def test_knob_settings_are_scene_keys_relative_to_the_reference():
     ref = load_scene(ROOT / "scenes" / "maeno2008_rolling.toml")
     by = {s.name: s for s in knob_settings(ref, "full")}
