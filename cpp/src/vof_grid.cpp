@@ -499,8 +499,8 @@ void VOFGrid::stage_advect_vof(double dt) {
     vof_inflow_.right[k] = params_.outlet == OutletBoundary::kTailwater && grid_.z_center(k) < params_.tailwater_level;
   if (params_.inlet == InletBoundary::kDischarge)
     for (int k = 0; k < nz; ++k) inlet_volume_ += std::max(face_u[grid_.face_x(0, k)], 0.0) * grid_.dz(k) * dt;
-  const long long clips = vof_scratch_.clip_count;
-  const double clip_max = vof_scratch_.clip_max;
+  // the grid reads the clipping report of this step alone: a clipped step is taken again
+  vof_scratch_.clip_count = 0;
   vof_scratch_.clip_max = 0.0;
   try {
     advect_vof(grid_, cell_porosity, face_u, face_w, vof_inflow_, dt, step_count_ % 2 == 0, cell_F, vof_scratch_);
@@ -509,16 +509,14 @@ void VOFGrid::stage_advect_vof(double dt) {
   } catch (const std::runtime_error& e) {
     fail("advect_vof", e.what(), 0, -1);
   }
-  const double step_clip = vof_scratch_.clip_max;
-  vof_scratch_.clip_max = std::max(clip_max, step_clip);
   // F beyond [0, 1] by more than round-off: the split advection was not bounded in this step (its second
   // sweep's correction is frozen at the step's start, and an iterative pressure solve leaves a residual
   // divergence), and the clipping would make or lose water that no budget counts. The step is taken
   // again, half as long, as a CFL breach is (step_retry.h: the breach's Courant number 2 cfl)
-  if (vof_scratch_.clip_count != clips)
+  if (vof_scratch_.clip_count != 0)
     fail("advect_vof",
-         "the water fraction left [0, 1] by " + format_value(step_clip) + " in " +
-             std::to_string(vof_scratch_.clip_count - clips) + " cell update(s) (the split advection is not bounded "
+         "the water fraction left [0, 1] by " + format_value(vof_scratch_.clip_max) + " in " +
+             std::to_string(vof_scratch_.clip_count) + " cell update(s) (the split advection is not bounded "
              "at this step; clipping would make or lose water)",
          0, -1, 2.0 * params_.cfl);
   check_finite("advect_vof", "water fraction", cell_F, 0);
