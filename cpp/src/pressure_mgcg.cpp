@@ -100,17 +100,6 @@ void MultigridCGPressureSolver::project(double* v) const {
   }
 }
 
-// |v|^2 once v's mean over each singular group is removed: the residual along a group's constant is the
-// round-off of the source's projection (PressureSystem::source), which no iteration can reduce
-double MultigridCGPressureSolver::projected_norm2(double* v) const {
-  project(v);
-  const MultigridLevel& f = mg_.level(0);
-  double s = 0.0;
-  for (int k = 0; k < f.nz; ++k)
-    for (int i = 0; i < f.nx; ++i) s += v[f.index(i, k)] * v[f.index(i, k)];
-  return s;
-}
-
 void MultigridCGPressureSolver::fail(int iterations, double residual, double tol, double fnorm) const {
   // the cell with the largest residual locates the trouble
   const MultigridLevel& f = mg_.level(0);
@@ -182,7 +171,6 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
         r_[j] = b_[j] - q_[j];
         rr += r_[j] * r_[j];
       }
-    if (group_start_.size() > 1) rr = projected_norm2(r_.data());
     rel = std::sqrt(rr) / fnorm;
     if (rel <= tol) break;
     if (it >= params_.max_iterations || restart >= 3 || !std::isfinite(rel)) fail(it, rel, tol, fnorm);

@@ -26,8 +26,6 @@ class MultigridCGPressureSolver final : public PressureSolver {
  private:
   // removes the group means of a padded vector
   void project(double* v) const;
-  // projects v and returns its squared norm over the fine level's cells
-  double projected_norm2(double* v) const;
   [[noreturn]] void fail(int iterations, double residual, double tol, double fnorm) const;
 
   PressureSolverParams params_;
