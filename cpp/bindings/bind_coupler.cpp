@@ -55,6 +55,9 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("drag_relaxation", &CouplerParams::drag_relaxation,
                      "held drag: step at most this fraction of its relaxation time [-], 0.5")
       .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
+      .def_readwrite("wet_fraction_tolerance", &CouplerParams::wet_fraction_tolerance,
+                     "a stone measured this close to wet (dry) is taken as under water (in the air) [-], [0, 0.5], "
+                     "1e-6; 0: every measured wet fraction is followed")
       .def("validate", &CouplerParams::validate);
 
   bind_state_class<CouplerState>(m, "CouplerState",

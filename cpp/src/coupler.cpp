@@ -36,6 +36,7 @@ void CouplerParams::validate() const {
   require_in_open_closed("stone_cfl", stone_cfl, 0.0, 1.0);
   require_positive("drag_relaxation", drag_relaxation);
   require_positive("min_dt", min_dt);
+  require_in_closed("wet_fraction_tolerance", wet_fraction_tolerance, 0.0, 0.5);
   const int model = static_cast<int>(stone_drag);
   if (model < 0 || model > 1)
     throw std::invalid_argument("stone_drag = " + std::to_string(model) +
@@ -334,7 +335,7 @@ void Coupler::stage_fluid_forces() {
                                non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
     if (fl & kCoupleWetFraction) {
       // w now, and the level that gives it, so that w follows the stone over the DEM's substeps
-      const double w = std::clamp(s.wet, 0.0, 1.0);
+      const double w = snapped_wet_fraction(std::clamp(s.wet, 0.0, 1.0), params_.wet_fraction_tolerance);
       stones_->set_wet_fraction(j, w);
       stones_->disc_water_level[j] =
           water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);

@@ -2223,6 +2223,14 @@ class CouplerParams:
     @stone_drag.setter
     def stone_drag(self, arg0: StoneDragModel) -> None:
         ...
+    @property
+    def wet_fraction_tolerance(self) -> float:
+        """
+        a stone measured this close to wet (dry) is taken as under water (in the air) [-], [0, 0.5], 1e-6; 0: every measured wet fraction is followed
+        """
+    @wet_fraction_tolerance.setter
+    def wet_fraction_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class CouplerState:
     """
     A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, the stones' and the coupler's own; set_state() returns to it.

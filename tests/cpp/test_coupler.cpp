@@ -541,6 +541,31 @@ TEST(Coupler, SwitchingBothFluidForcesOffMidRunLeavesNoStaleForce) {
   EXPECT_NE(s.stones->disc_force_ext[1], 0.0);
 }
 
+TEST(Coupler, TracesOfAirUnderWaterDoNotMakeAStoneFollowALevel) {
+  // water cells at F = 1 - 1e-7 (the VOF's traces of air): the stone is taken as under water, its level
+  // +infinity (nothing to follow); with no tolerance it follows a level just below its top
+  for (double tol : {1e-6, 0.0}) {
+    Scene s = tank(0.2, 0.3, 0.01, 0.25, {0.1, 0.1}, 0.024, kCoupleOneWay);
+    CouplerParams cp = s.sim->params();
+    cp.wet_fraction_tolerance = tol;
+    s.sim->set_params(cp);
+    for (double& f : s.fluid->cell_F)
+      if (f == 1.0) f = 1.0 - 1e-7;
+    s.sim->update_fluid_forces();
+    const double w = s.stones->disc_wet[0], level = s.stones->disc_water_level[0];
+    if (tol > 0.0) {
+      EXPECT_EQ(w, 1.0);
+      EXPECT_EQ(level, std::numeric_limits<double>::infinity());
+    } else {
+      EXPECT_GT(w, 1.0 - 1e-6);
+      EXPECT_LT(w, 1.0);
+      const double top = s.stones->disc_pos[1] + 0.024;
+      EXPECT_LT(level, top);
+      EXPECT_GT(level, top - 1e-4);
+    }
+  }
+}
+
 TEST(Coupler, CheckpointCarriesTheFlowsLastStepAndOlderOnesStartAgain) {
   Scene a = tank(0.2, 0.3, 0.01, 0.2, {0.1, 0.15}, 0.024, kCoupleTwoWay);
   a.sim->advance(0.05);

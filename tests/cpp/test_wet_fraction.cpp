@@ -35,6 +35,19 @@ TEST(WetFraction, ShareOfADiscBelowALevel) {
   EXPECT_EQ(water_level_of_wet_fraction(0.2, kR, 0.0), -std::numeric_limits<double>::infinity());
 }
 
+TEST(WetFraction, AMeasuredValueWithinTheToleranceOfWetOrDryIsTakenAsWetOrDry) {
+  EXPECT_EQ(snapped_wet_fraction(1.0 - 1e-7, 1e-6), 1.0);
+  EXPECT_EQ(snapped_wet_fraction(1e-7, 1e-6), 0.0);
+  EXPECT_EQ(snapped_wet_fraction(1.0 - 2e-6, 1e-6), 1.0 - 2e-6);
+  EXPECT_EQ(snapped_wet_fraction(2e-6, 1e-6), 2e-6);
+  EXPECT_EQ(snapped_wet_fraction(0.5, 0.5), 0.5);
+  EXPECT_EQ(snapped_wet_fraction(1.0, 1e-6), 1.0);
+  EXPECT_EQ(snapped_wet_fraction(0.0, 1e-6), 0.0);
+  // no tolerance: every value as measured
+  EXPECT_EQ(snapped_wet_fraction(1.0 - 1e-7, 0.0), 1.0 - 1e-7);
+  EXPECT_EQ(snapped_wet_fraction(1e-300, 0.0), 1e-300);
+}
+
 TEST(WetFraction, WaterTakenOnStartsAtRest) {
   DEMParams p;
   p.submerged = true;

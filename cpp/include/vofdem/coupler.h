@@ -98,6 +98,9 @@ struct CouplerParams {
   bool implicit_drag = true;
   double drag_relaxation = 0.5;           // held drag: step at most this fraction of its relaxation time [-]; 0.5
   double min_dt = 1e-7;                   // a stable step below this is a failure [s]; 1e-7
+  // a stone whose measured wet fraction is within this of 1 (of 0) is taken as under water (in the air)
+  // [-], [0, 0.5]; 1e-6 (wet_fraction.h: traces of air under water; 0: every measured value is followed)
+  double wet_fraction_tolerance = 1e-6;
 
   // throws std::invalid_argument naming the first bad parameter
   void validate() const;
