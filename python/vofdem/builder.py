@@ -357,6 +357,7 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.max_dt = scene.numerics.max_dt
     p.implicit_drag = scene.numerics.drag_exchange == "implicit"
     p.lookup_m = scene.numerics.lookup_m
+    p.wet_fraction_tolerance = scene.numerics.wet_fraction_tolerance
     flags = _core.CouplerEffect.FLUID | _core.CouplerEffect.CHECKS
     if fx.dem:
         flags |= _core.CouplerEffect.DEM

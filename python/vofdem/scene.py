@@ -357,6 +357,9 @@ class Numerics(_Section):
     drag_exchange: str = _choice("implicit", ("implicit", "held"),
                                  "stone drag: linearised in the stone's velocity, implicit in the DEM, or held "
                                  "over the step (bounded by its relaxation time)")
+    wet_fraction_tolerance: float = _p(1e-6, None, 0.0, 0.5, "a stone measured this close to wet (dry) is taken "
+                                       "as under water (in the air) [-]; 1e-6 (the VOF's traces of air under "
+                                       "water); 0: every measured wet fraction is followed", "[]")
     fidelity: Optional[str] = _choice(None, ("draft", "standard", "fine"),
                                       "a preset of the grid, CFL and porosity method (fidelity.py; the scene must "
                                       "hold its values); unset: the scene's own values")
