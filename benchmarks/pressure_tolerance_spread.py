@@ -1,24 +1,26 @@
-"""Is a looser pressure tolerance within the packings' spread? The same Maeno scenes over the same seeds
-at two relative tolerances of the pressure solve, compared with the spread between packings.
+"""Is a change of the numerics within the packings' spread? The same Maeno scenes over the same seeds
+at two values of one numerics key (by default the pressure solve's relative tolerance), compared with
+the spread between packings.
 
 A whole run of the weir is chaotic in its stones: any change of the numerics, down to the last bit,
 moves the stones of a seed differently, so the stage table of one seed cannot tell a change of the
 numerics from a change of the packing. What can: the distribution over packings. For each scene this
-runs an ensemble over --seeds at each of --tolerances (`vofdem.ensemble`, on a local Dask cluster;
-resumable), then writes benchmarks/results/pressure_tolerance_spread.md with
-  - per tolerance, the fragility tables of the events (`vofdem.fragility`), and the mean, median and
+runs an ensemble over --seeds at each of --values of --key (`vofdem.ensemble`, on a local Dask cluster;
+resumable), then writes benchmarks/results/<key's name>_spread.md with
+  - per value, the fragility tables of the events (`vofdem.fragility`), and the mean, median and
     members' 16-84 % range of the stones removed and the crest lowering, with the permutation p-value
     of the difference of their means;
-  - the same seed at the two tolerances against two packings at one tolerance: the mean absolute
+  - the same seed at the two values against two packings at one value: the mean absolute
     difference of the stones removed between the two runs of a seed, and between seeds i and i + 1;
   - the flow alone (stones held, the first 20 s, seed 0): the largest difference of the water depth
-    over the flume between the tolerances, against that between seeds 0 and 1 at the first tolerance,
-    and the water the solve's residual divergence made per step (VOFGrid.dilatation_volume).
+    over the flume between the values, against that between seeds 0 and 1 at the first value, and the
+    water the solve's residual divergence made per step (VOFGrid.dilatation_volume).
 
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/pressure_tolerance_spread.py [--seeds 0-19]
+    OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/pressure_tolerance_spread.py \
+        --key numerics.wet_fraction_tolerance --values 0 1e-6 --scenes maeno2008_rolling_consistent maeno2008_rolling
 """
 import argparse
-import dataclasses
 import time
 from pathlib import Path
 
@@ -31,7 +33,7 @@ from vofdem.fragility import combination_of, fragility_by_combination, fragility
 from vofdem.scene import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
-KEY = "numerics.pressure_tolerance"
+KEY = "numerics.pressure_tolerance"  # the default key
 
 
 def _band(values):
@@ -53,15 +55,16 @@ def permutation_p(a, b, n: int = 10000, seed: int = 0) -> float:
     return (hits + 1) / (n + 1)
 
 
-def compare_members(frame, tolerances):
-    """Markdown: each tolerance's fragility tables, then the stones and crest per tolerance with the
+def compare_members(frame, tolerances, key=KEY):
+    """Markdown: each value's fragility tables, then the stones and crest per value of `key` with the
     permutation p-value of their means' difference, and the paired differences."""
     done = frame[frame["status"] == "completed"]
-    combos = {t: f"{KEY}={t!r}" for t in tolerances}
+    name = key.rpartition(".")[2]
+    combos = {t: f"{key}={t!r}" for t in tolerances}
     by = {t: done[[combination_of(m) == c for m in done["member"]]].sort_values("seed") for t, c in combos.items()}
     t0, t1 = tolerances[:2]
     lines = [fragility_markdown(fragility_by_combination(done)),
-             "| measure | " + " | ".join(f"tolerance {t:g}" for t in tolerances) + " | means' difference: p |",
+             "| measure | " + " | ".join(f"{name} {t:g}" for t in tolerances) + " | means' difference: p |",
              "|---|" + "---|" * (len(tolerances) + 1)]
     for col, label in (("removed", "stones removed"), ("crest_lowering_mm", "crest lowering [mm]"),
                        ("stages", "stages")):
@@ -79,7 +82,7 @@ def compare_members(frame, tolerances):
     paired = np.abs(a[seeds] - b[seeds])
     across = np.abs(np.diff(a.to_numpy()))
     across_text = f"{across.mean():.1f}" if across.size else "- (one seed)"
-    lines += ["", f"p: the share of 10,000 random relabellings of the members between the tolerances whose means "
+    lines += ["", f"p: the share of 10,000 random relabellings of the members between the values whose means "
               f"differ at least as much (a small p: a shift beyond the packings' spread). Stones removed, the same "
               f"seed at {t0:g} and {t1:g}: mean absolute difference {paired.mean():.1f} ({int((paired == 0).sum())} "
               f"of {len(seeds)} seeds equal); two packings (seeds i and i + 1) at {t0:g}: {across_text}."]
@@ -99,14 +102,14 @@ def flow_alone_run(scene, t_end):
     return (F * dz[:, None]).sum(axis=0), abs(f.dilatation_volume) / f.water_volume() / sim.step_count
 
 
-def flow_alone(scene, tolerances, t_end):
-    """the flow's difference between tolerances against that between packings (markdown)"""
-    tol = [scene.replace(numerics=dataclasses.replace(scene.numerics, pressure_tolerance=t)) for t in tolerances]
+def flow_alone(scene, tolerances, t_end, key=KEY):
+    """the flow's difference between two values of `key` against that between packings (markdown)"""
+    tol = [scene.with_value(key, t) for t in tolerances]
     d0, made0 = flow_alone_run(tol[0].replace(seed=0), t_end)
     d_tol, made1 = flow_alone_run(tol[1].replace(seed=0), t_end)
     d_seed, _ = flow_alone_run(tol[0].replace(seed=1), t_end)
     return (f"The flow alone (stones held, seed 0, t = {t_end:g} s): the water depth differs by at most "
-            f"{1e3 * np.abs(d_tol - d0).max():.3f} mm over the flume between the tolerances "
+            f"{1e3 * np.abs(d_tol - d0).max():.3f} mm over the flume between the values "
             f"(mean {1e3 * np.abs(d_tol - d0).mean():.4f} mm); between seeds 0 and 1 at {tolerances[0]:g}, "
             f"by {1e3 * np.abs(d_seed - d0).max():.3f} mm (mean {1e3 * np.abs(d_seed - d0).mean():.4f} mm). "
             f"Water made by the residual divergence, per step and relative to the water volume: "
@@ -117,20 +120,33 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--scenes", nargs="+", default=["maeno2008", "maeno2008_consistent"])
     p.add_argument("--seeds", default="0-19")
-    p.add_argument("--tolerances", nargs=2, type=float, default=[1e-5, 1e-4])
+    p.add_argument("--key", default=KEY, help=f"the numerics key compared (default {KEY})")
+    p.add_argument("--values", "--tolerances", dest="values", nargs=2, type=float, default=None,
+                   help="its two values (default 1e-5 1e-4 for the pressure tolerance)")
     p.add_argument("--workers", type=int, default=None,
                    help="local worker processes (default: one per core; 0: no Dask, in this process)")
     p.add_argument("--quick", action="store_true", help="the scenes' quick variants (coarser, ramp 4x faster)")
     p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s] (for tests)")
     p.add_argument("--spin-up", type=float, default=20.0, help="the flow-alone comparison's end [s]")
-    p.add_argument("--out", type=Path, default=ROOT / "out", help="ensembles in OUT/tol_spread_<scene>")
-    p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results" / "pressure_tolerance_spread.md")
+    p.add_argument("--out", type=Path, default=ROOT / "out",
+                   help="ensembles in OUT/tol_spread_<scene> (another key: OUT/<its name>_spread_<scene>)")
+    p.add_argument("--results", type=Path, default=None,
+                   help="default benchmarks/results/<the key's name>_spread.md")
     args = p.parse_args(argv)
+    name = args.key.rpartition(".")[2]
+    if args.values is None:
+        if args.key != KEY:
+            raise ValueError(f"--values: two values of {args.key} are needed")
+        args.values = [1e-5, 1e-4]
+    args.tolerances = args.values
+    results = args.results or ROOT / "benchmarks" / "results" / f"{name}_spread.md"
+    prefix = "tol_spread" if args.key == KEY else f"{name}_spread"
     seeds = parse_seeds(args.seeds)
     workers = args.workers if args.workers is not None else default_workers()
-    parts = [f"# Pressure tolerance {args.tolerances[0]:g} against {args.tolerances[1]:g}: the packings' spread", "",
+    title = "Pressure tolerance" if args.key == KEY else f"`{args.key}`"
+    parts = [f"# {title} {args.tolerances[0]:g} against {args.tolerances[1]:g}: the packings' spread", "",
              f"Generated by `benchmarks/pressure_tolerance_spread.py` on "
-             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: seeds {args.seeds} at each tolerance, the "
+             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: seeds {args.seeds} at each value, the "
              f"scene to its end, " + (f"{workers} local Dask worker(s)." if workers else "in this process, one member after "
                                      "the other."), ""]
     for name in args.scenes:
@@ -138,13 +154,13 @@ def main(argv=None):
         scene = scene.quick() if args.quick else scene
         if args.end_time is not None:
             scene = scene.replace(end_time=args.end_time)
-        frame = run_ensemble(scene, seeds, args.out / f"tol_spread_{scene.name}", vary={KEY: list(args.tolerances)},
+        frame = run_ensemble(scene, seeds, args.out / f"{prefix}_{scene.name}", vary={args.key: list(args.tolerances)},
                              workers=workers, progress=False)
-        parts += [f"## {scene.name}", "", compare_members(frame, args.tolerances), "",
-                  flow_alone(scene, args.tolerances, args.spin_up), ""]
-    args.results.write_text("\n".join(parts), encoding="utf-8")
-    print(args.results)
-    return args.results
+        parts += [f"## {scene.name}", "", compare_members(frame, args.tolerances, args.key), "",
+                  flow_alone(scene, args.tolerances, args.spin_up, args.key), ""]
+    results.write_text("\n".join(parts), encoding="utf-8")
+    print(results)
+    return results
 
 
 if __name__ == "__main__":

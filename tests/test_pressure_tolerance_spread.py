@@ -37,3 +37,16 @@ def test_the_script_at_a_tiny_size(spread, tmp_path):
     assert "two packings (seeds i and i + 1) at 1e-05: - (one seed)" in text
     assert "The flow alone (stones held, seed 0, t = 0.5 s)" in text
     assert len(list((tmp_path / "ens" / "tol_spread_maeno2008_quick").glob("*/seed0/outcome.json"))) == 2
+
+
+def test_another_numerics_key_at_a_tiny_size(spread, tmp_path):
+    with pytest.raises(ValueError, match="--values"):
+        spread.main(["--key", "numerics.wet_fraction_tolerance", "--seeds", "0", "--workers", "0"])
+    md = spread.main(["--key", "numerics.wet_fraction_tolerance", "--values", "0", "1e-6", "--quick", "--seeds", "0",
+                      "--end-time", "2", "--spin-up", "0.5", "--workers", "0", "--scenes", "maeno2008",
+                      "--out", str(tmp_path / "ens"), "--results", str(tmp_path / "spread.md")])
+    text = md.read_text()
+    assert text.startswith("# `numerics.wet_fraction_tolerance` 0 against 1e-06: the packings' spread")
+    assert "**numerics.wet_fraction_tolerance=1e-06**: 1 completed members" in text
+    assert "| measure | wet_fraction_tolerance 0 | wet_fraction_tolerance 1e-06 | means' difference: p |" in text
+    assert len(list((tmp_path / "ens" / "wet_fraction_tolerance_spread_maeno2008_quick").glob("*/seed0/outcome.json"))) == 2
