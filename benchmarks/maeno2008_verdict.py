@@ -274,6 +274,8 @@ def _minus(a, b):
 
 
 def _shift_cell(r) -> str:
+    if r["completed"] == 0:
+        return "not run"
     if r["shift_lps"] is None:
         return "median not reached" if r["median_lps"] is None or r["reference_median_lps"] is None else "-"
     band = "" if math.isnan(r["shift_lo_lps"]) else f" [{r['shift_lo_lps']:+.2f} to {r['shift_hi_lps']:+.2f}]"

@@ -88,6 +88,9 @@ def test_the_cost_ratio_is_paired_with_the_references_members_at_the_same_seeds(
     assert rows["reference"]["cpu_s_per_member"] == 30.0 and rows["reference"]["cost_ratio"] == 1.0
     assert rows["cfl=0.25"]["cpu_s_per_member"] == 6.0
     assert rows["cfl=0.25"]["cost_ratio"] == pytest.approx(0.4, abs=1e-12)
+    # a setting none of whose members finished is said to be not run, not to have a median not reached
+    res["cost"]["cfl=0.25"] = fast.iloc[0:0]
+    assert "| cfl: 0.25 | 0 of 0 | - (x-) | not run | not run | not run | not run |" in mod._cost_md(mod.cost_rows(res, 0))
 
 
 def test_knob_settings_are_scene_keys_relative_to_the_reference():
