@@ -370,11 +370,13 @@ def _not_reached(ax, rows, shown) -> None:
                 transform=ax.transAxes, ha="center", va="center", fontsize=8)
         ax.set_yticks([])
         return
-    missing = [r["setting"] for r in rows if r not in shown]
-    if missing:
-        lines = [", ".join(missing[i:i + 3]) for i in range(0, len(missing), 3)]
-        ax.text(0.02, 0.02, "median not reached: " + "\n".join(lines), transform=ax.transAxes, fontsize=7,
-                va="bottom")
+    text = []
+    for label, names in (("median not reached", [r["setting"] for r in rows if r not in shown and r["completed"]]),
+                         ("not run", [r["setting"] for r in rows if not r["completed"]])):
+        if names:
+            text.append(f"{label}: " + "\n".join(", ".join(names[i:i + 3]) for i in range(0, len(names), 3)))
+    if text:
+        ax.text(0.02, 0.02, "; ".join(text), transform=ax.transAxes, fontsize=7, va="bottom")
 
 
 def _label_levels(shown, ratio: float = 1.35):
