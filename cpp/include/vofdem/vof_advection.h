@@ -39,7 +39,8 @@ struct VofScratch {
   std::vector<double> face_flux_x, face_flux_z;
   std::vector<double> cell_c;  // divergence-correction indicator of the last step (0 or 1)
   // F leaves [0, 1] only by round-off when the CFL limit holds; such excursions are clipped silently.
-  // Larger ones (beyond kVofClipTolerance) are clipped too but counted here, summed over all steps:
+  // Larger ones (beyond kVofClipTolerance) are clipped too but counted here, summed over the steps since
+  // the caller last set them to 0 (VOFGrid does so before each step's advection):
   long long clip_count = 0;  // number of cell updates clipped by more than kVofClipTolerance
   double clip_max = 0.0;     // largest such excursion [-]
 };
