@@ -58,6 +58,9 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("wet_fraction_tolerance", &CouplerParams::wet_fraction_tolerance,
                      "a stone measured this close to wet (dry) is taken as under water (in the air) [-], [0, 0.5], "
                      "1e-6; 0: every measured wet fraction is followed")
+      .def_readwrite("max_snapshot_interval", &CouplerParams::max_snapshot_interval,
+                     "within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096], 32; "
+                     "a failing step replays the steps since it (the same bits); 1: every step")
       .def("validate", &CouplerParams::validate);
 
   bind_state_class<CouplerState>(m, "CouplerState",
@@ -95,6 +98,8 @@ void bind_coupler(py::module_& m) {
           },
           "{term: steps bound in each cell (ncell counts, a copy)}")
       .def("clear_step_limits", &Coupler::clear_step_limits)
+      .def_property_readonly("replayed_steps", &Coupler::replayed_steps,
+                             "steps taken again from the guard's snapshot after a failure (a diagnostic)")
       .def("step", py::overload_cast<>(&Coupler::step), py::call_guard<py::gil_scoped_release>())
       .def("step", py::overload_cast<double>(&Coupler::step), py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", [](Coupler& c, double t_end) { return c.advance(t_end); }, py::arg("t_end"),

@@ -37,6 +37,9 @@ void CouplerParams::validate() const {
   require_positive("drag_relaxation", drag_relaxation);
   require_positive("min_dt", min_dt);
   require_in_closed("wet_fraction_tolerance", wet_fraction_tolerance, 0.0, 0.5);
+  if (max_snapshot_interval < 1 || max_snapshot_interval > 4096)
+    throw std::invalid_argument("max_snapshot_interval = " + std::to_string(max_snapshot_interval) +
+                                " is outside the allowed range [1, 4096]");
   const int model = static_cast<int>(stone_drag);
   if (model < 0 || model > 1)
     throw std::invalid_argument("stone_drag = " + std::to_string(model) +
@@ -466,20 +469,67 @@ void Coupler::clear_step_limits() {
 void Coupler::step() { step(stable_dt()); }
 
 void Coupler::save() {
-  snapshot_valid_ = false;
-  if (!(fluid_ && has_stones())) return;  // one module: it restores itself
+  if (!(fluid_ && has_stones())) {  // one module: it restores itself
+    snapshot_valid_ = false;
+    return;
+  }
+  const double last_dt = fluid_->last_dt();
+  if (sparse_snapshots_ && snapshot_valid_ && static_cast<int>(replay_.size()) < snapshot_interval_) {
+    replay_.push_back({std::numeric_limits<double>::quiet_NaN(), last_dt});
+    return;
+  }
+  // a whole interval without a failure (not the first snapshot): the next one may be twice as long
+  if (sparse_snapshots_ && snapshot_valid_)
+    snapshot_interval_ = std::min(2 * snapshot_interval_, params_.max_snapshot_interval);
   ScopedStage timer(profile_, st_snapshot_);
   export_state(snapshot_, false);
   snapshot_valid_ = true;
+  replay_.assign(1, {std::numeric_limits<double>::quiet_NaN(), last_dt});
 }
 
 void Coupler::restore() {
-  if (snapshot_valid_) import_state(snapshot_, false);
+  if (!snapshot_valid_) return;
+  import_state(snapshot_, false);
+  if (replay_.size() > 1) {
+    replay();
+    // the retries of this step start from here: a snapshot of its start, the interval back to 1
+    ScopedStage timer(profile_, st_snapshot_);
+    export_state(snapshot_, false);
+    snapshot_interval_ = 1;
+  }
+  replay_.clear();
+}
+
+// the steps since the snapshot (all but the failing one) as they were taken: the flow's last_dt set
+// between them as the advance loop set it, and the stable step measured before each (it prepares
+// what the step reads, e.g. the phases' viscosities)
+void Coupler::replay() {
+  replaying_ = true;
+  try {
+    for (std::size_t s = 0; s + 1 < replay_.size(); ++s) {
+      fluid_->set_last_dt(replay_[s].fluid_last_dt);
+      stable_dt_limits(nullptr, nullptr);
+      run_stages(replay_[s].dt);
+      ++replayed_steps_;
+    }
+  } catch (...) {
+    replaying_ = false;
+    throw;
+  }
+  replaying_ = false;
+  fluid_->set_last_dt(replay_.back().fluid_last_dt);
 }
 
 void Coupler::fail(const std::string& stage, const std::string& what, double courant) {
   const double t = time_;
+  // the steps replayed were taken before without a failure: this one is a bug, not a retry
+  if (replaying_)
+    throw std::logic_error("Coupler: replaying the steps since the guard's snapshot failed at t = " +
+                           format_value(t) + " s in stage '" + stage + "': " + what);
   restore();
+  if (time_ != t)
+    throw std::logic_error("Coupler: the guard restored t = " + format_value(time_) + " s for a step that started at " +
+                           format_value(t) + " s");
   std::ostringstream os;
   os << "Coupler stage '" << stage << "' at t = " << format_value(t) << " s (step " << steps_ << "): " << what
      << "; coupled state restored to t = " << format_value(time_) << " s";
@@ -492,10 +542,15 @@ void Coupler::step(double dt) {
   if (stones_ && stones_->n() != n_)
     throw std::invalid_argument("stones.n = " + std::to_string(stones_->n()) + " changed since the coupler was built (" +
                                 std::to_string(n_) + "): build a new Coupler after a resize");
+  save();
+  run_stages(dt);
+  if (snapshot_valid_) replay_.back().dt = dt;
+}
+
+void Coupler::run_stages(double dt) {
   share_medium();
   const unsigned fl = params_.flags;
   const bool stones_move = has_stones() && (fl & kCoupleDEM);
-  save();
   csr_current_ = false;
   // the force stage skipped: the stones must not keep the last fluid force it wrote
   if (forces_applied_ && !(fl & kCoupleForces) && stones_) clear_fluid_forces();
@@ -530,9 +585,22 @@ long long Coupler::advance(double t_end, const std::function<void(double)>& prog
     if (progress) progress(time_);
   };
   // a progress callback may write the flow's fields between the steps: then every limit is measured afresh
+  // and the snapshot is taken every step (a replay would not see what it wrote)
   const StepEndCourantReuse reuse(fluid_ && !progress ? fluid_ : nullptr);
+  const SparseSnapshots sparse(*this, !progress);
   return advance_until(
       t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); }, [](double) {}, stepped);
+}
+
+// the state may be written between two calls of advance(): the first snapshot of a call is taken afresh
+Coupler::SparseSnapshots::SparseSnapshots(Coupler& c, bool on) : c_(c) {
+  c_.snapshot_valid_ = false;
+  c_.sparse_snapshots_ = on;
+}
+
+Coupler::SparseSnapshots::~SparseSnapshots() {
+  c_.snapshot_valid_ = false;
+  c_.sparse_snapshots_ = false;
 }
 
 }  // namespace vofdem

@@ -2192,6 +2192,14 @@ class CouplerParams:
     def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def max_snapshot_interval(self) -> int:
+        """
+        within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096], 32; a failing step replays the steps since it (the same bits); 1: every step
+        """
+    @max_snapshot_interval.setter
+    def max_snapshot_interval(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
     def min_dt(self) -> float:
         """
         a stable step below this is a failure [s], 1e-7
@@ -2323,6 +2331,11 @@ class Coupler:
     @property
     def redistributed_volume(self) -> float:
         ...
+    @property
+    def replayed_steps(self) -> int:
+        """
+        steps taken again from the guard's snapshot after a failure (a diagnostic)
+        """
     @property
     def step_count(self) -> int:
         ...

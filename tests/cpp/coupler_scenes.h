@@ -2,12 +2,29 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
 #include <memory>
 #include <vector>
 
 #include "vofdem/coupler.h"
 
 namespace vofdem::test {
+
+// two exported states hold the same keys and the same bits; else the first key that differs
+inline bool same_bits(const std::map<std::string, std::vector<double>>& a, const std::map<std::string, std::vector<double>>& b,
+               std::string* first_diff) {
+  if (a.size() != b.size()) return *first_diff = "entry count", false;
+  for (const auto& kv : a) {
+    auto it = b.find(kv.first);
+    if (it == b.end() || it->second.size() != kv.second.size() ||
+        (!kv.second.empty() &&
+        std::memcmp(kv.second.data(), it->second.data(), kv.second.size() * sizeof(double)) != 0))
+      return *first_diff = kv.first, false;
+  }
+  return true;
+}
 
 struct Scene {
   std::unique_ptr<VOFGrid> fluid;

@@ -15,19 +15,6 @@ using namespace vofdem::test;
 
 namespace {
 
-bool same_bits(const std::map<std::string, std::vector<double>>& a, const std::map<std::string, std::vector<double>>& b,
-               std::string* first_diff) {
-  if (a.size() != b.size()) return *first_diff = "entry count", false;
-  for (const auto& kv : a) {
-    auto it = b.find(kv.first);
-    if (it == b.end() || it->second.size() != kv.second.size() ||
-        (!kv.second.empty() &&
-        std::memcmp(kv.second.data(), it->second.data(), kv.second.size() * sizeof(double)) != 0))
-      return *first_diff = kv.first, false;
-  }
-  return true;
-}
-
 // the falling-stone ODE of the force balance, (M + M') dv/dt = (M - rho V) g - D(v), by RK4 [m/s]
 double ode_velocity(double d, double rho_s, double rho, double nu, double cm, double t) {
   const double V = M_PI * d * d * d / 6.0, A = M_PI * d * d / 4.0, g = 9.81;

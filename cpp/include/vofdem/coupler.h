@@ -32,7 +32,12 @@
 // Guards: a failure in any stage (non-finite value, CFL breach, ...) restores the state of the start of
 // the step (fluid, stones, porosity, forces) and throws std::runtime_error naming the stage, the stone
 // or cell and the time. advance() takes a step whose flow breaches the CFL again, shorter (step_retry.h). The snapshot is taken only when both modules are stepped; a scene with one
-// module relies on that module's own restore and pays nothing extra.
+// module relies on that module's own restore and pays nothing extra. Within advance() (no progress
+// callback) the snapshot is taken every few steps only, up to max_snapshot_interval: a failing step
+// restores the last snapshot and takes the steps since then again, with the same steps and the same
+// state between them (the run is deterministic), so the state restored is the same to the bit as with
+// a snapshot every step. The interval doubles after each one without a failure and falls back to 1 at
+// a failure; a retried step thus replays at most the steps of one interval.
 //
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using a
 // VOF-DEM coupled model, ICHE 2008, Nagoya.
@@ -101,6 +106,9 @@ struct CouplerParams {
   // a stone whose measured wet fraction is within this of 1 (of 0) is taken as under water (in the air)
   // [-], [0, 0.5]; 1e-6 (wet_fraction.h: traces of air under water; 0: every measured value is followed)
   double wet_fraction_tolerance = 1e-6;
+  // within advance(), the guard's snapshot is taken at most this many steps apart [steps], [1, 4096];
+  // 32 (1: every step). A copy costs about 5 % of a flow step on the weir scenes; a failure replays up to this many
+  int max_snapshot_interval = 32;
 
   // throws std::invalid_argument naming the first bad parameter
   void validate() const;
@@ -152,6 +160,8 @@ class Coupler {
   // centre; empty without a fluid). A diagnostic: not part of the checkpoint, cleared by
   // clear_step_limits()
   const std::map<std::string, long long>& step_limits() const { return limit_steps_; }
+  // steps taken again from the guard's snapshot after a failure (advance(): see max_snapshot_interval)
+  long long replayed_steps() const { return replayed_steps_; }
   const std::map<std::string, std::vector<long long>>& step_limit_cells() const { return limit_cells_; }
   void clear_step_limits();
   // one coupling step of stable_dt() / of dt [s]
@@ -212,7 +222,11 @@ class Coupler {
   void solid_velocity_at_faces();
   void map_stones();
   void save();
+  // back to the state at the start of the step being taken: the snapshot, then the steps since it again
   void restore();
+  void replay();
+  // the stages of one step (step() without the guard's bookkeeping)
+  void run_stages(double dt);
   // the state without what no step changes (the base porosity and diameter): the guard's copy
   void export_state(CouplerState& s, bool with_base) const;
   void import_state(const CouplerState& s, bool with_base);
@@ -234,8 +248,28 @@ class Coupler {
 
   std::unique_ptr<PorosityMapper> mapper_;
   std::unique_ptr<WaterRedistribution> redistribution_;
-  CouplerState snapshot_;  // state at the start of the step (guards)
+  CouplerState snapshot_;  // state at the start of the step (guards), or of the first of replay_
   bool snapshot_valid_ = false;
+  // the steps since the snapshot, the one being taken last: its dt [s] (NaN while it runs) and the
+  // flow's last_dt at its start [s] (the advance loop sets it between steps)
+  struct ReplayStep {
+    double dt, fluid_last_dt;
+  };
+  std::vector<ReplayStep> replay_;
+  bool sparse_snapshots_ = false;  // within advance() without a progress callback
+  class SparseSnapshots {  // sparse_snapshots_ on for advance()'s lifetime
+   public:
+    SparseSnapshots(Coupler& c, bool on);
+    ~SparseSnapshots();
+    SparseSnapshots(const SparseSnapshots&) = delete;
+    SparseSnapshots& operator=(const SparseSnapshots&) = delete;
+
+   private:
+    Coupler& c_;
+  };
+  bool replaying_ = false;
+  long long replayed_steps_ = 0;
+  int snapshot_interval_ = 1;  // [steps], doubles up to max_snapshot_interval
   bool csr_current_ = false;  // the mapper's per-stone cell lists match the stones' positions
   // scratch (sized at construction)
   std::vector<double> disc_x_, disc_z_;
