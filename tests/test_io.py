@@ -214,7 +214,8 @@ def test_a_writer_killed_at_random_moments_leaves_a_file_plain_readers_open(tmp_
             times = f["time"][()]
             T = completed_snapshots(times)
             assert np.array_equal(times[:T], 0.1 * np.arange(T)) and np.isnan(times[T:]).all()
-            for k in sorted({0, T // 2, T - 1}) if T else ():  # on a loaded machine a kill may come before the first
+            # on a loaded machine the kill may come before the first snapshot (T = 0)
+            for k in sorted({0, T // 2, T - 1}) if T else ():
                 assert (f["fields/porosity"][k] == k + 2).all() and (f["snapshots/%06d/u" % k][()] == k + 3).all()
                 assert (f["stones/force_pressure"][k] == k + 1.5).all()
         counts.append(T)

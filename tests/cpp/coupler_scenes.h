@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "vofdem/coupler.h"
@@ -13,8 +13,8 @@
 namespace vofdem::test {
 
 // two exported states hold the same keys and the same bits; else the first key that differs
-inline bool same_bits(const std::map<std::string, std::vector<double>>& a, const std::map<std::string, std::vector<double>>& b,
-               std::string* first_diff) {
+inline bool same_bits(const std::map<std::string, std::vector<double>>& a,
+                      const std::map<std::string, std::vector<double>>& b, std::string* first_diff) {
   if (a.size() != b.size()) return *first_diff = "entry count", false;
   for (const auto& kv : a) {
     auto it = b.find(kv.first);
