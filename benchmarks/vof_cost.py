@@ -4,8 +4,7 @@ Scenes: the Martin & Moyce dam break (two-phase, closed tank, open top) at about
 cells, and the seed paper's flume (2.5 cm x 1 cm cells, 0.5 cm at the bed) with a rubble mound weir
 (n = 0.41, D = 4.8 cm) under 10 l/s. Each run first advances a short warm-up, then times a fixed
 simulated interval; figures are microseconds per cell per step (wall time / steps / cells) on one
-core. Writes benchmarks/results/vof_cost.md. The peers' stored runs are read from ../shared/peers/results
-(relative to the project root; set VOFDEM_PEERS to use another folder).
+core. Writes benchmarks/results/vof_cost.md.
 
 Usage: PYTHONPATH=python python3 benchmarks/vof_cost.py [--quick]
 """
@@ -21,9 +20,6 @@ import numpy as np
 
 import vofdem
 from vofdem import flow as vflow
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from peers import peers_dir  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SOLVERS = [("Eigen LDLT", vofdem.PressureSolverKind.EIGEN_DIRECT),
@@ -57,68 +53,6 @@ def weir_flume(kind) -> vofdem.VOFGrid:
     f.fill_water_below(0.15)
     f.discharge = vofdem.DischargeTable.constant(0.010)
     return f
-
-
-PEERS = peers_dir() / "results"
-MM_T = np.array([0.41, 0.84, 1.19, 1.43, 1.63, 1.83, 1.98, 2.20, 2.32, 2.51, 2.65, 2.83, 2.98, 3.11, 3.33])
-MM_Z = np.array([1.11, 1.22, 1.44, 1.67, 1.89, 2.11, 2.33, 2.56, 2.78, 3.00, 3.22, 3.44, 3.67, 3.89, 4.11])
-
-
-def front(xs: np.ndarray, alpha: np.ndarray) -> float:
-    """0.5 crossing of the water fraction on the bottom row (the peers' definition)."""
-    wet = np.nonzero(alpha >= 0.5)[0]
-    if wet.size == 0:
-        return float("nan")
-    i = wet[-1]
-    if i + 1 < xs.size and alpha[i] > alpha[i + 1]:
-        return xs[i] + (alpha[i] - 0.5) / (alpha[i] - alpha[i + 1]) * (xs[i + 1] - xs[i])
-    return xs[i]
-
-
-def peer_case(n: int) -> tuple[float, int, np.ndarray]:
-    """The peers' dam break (8a x 2.5a, no-slip, rho_a = 1, t_end = 0.2 s): wall s, steps, Z at MM_T."""
-    a = 0.05715
-    p = vofdem.FlowParams()
-    p.rho_water, p.nu_water, p.rho_air, p.nu_air = 1000.0, 1e-6, 1.0, 1.48e-5
-    p.walls = vofdem.WallCondition.NO_SLIP
-    p.cfl = 0.45
-    t0 = time.perf_counter()
-    f = vflow.dam_break(a=a, cells_per_a=n, length_in_a=8.0, height_in_a=2.5, params=p)
-    xs = (np.arange(f.grid.nx) + 0.5) * f.grid.dx
-    z = []
-    for T in MM_T:
-        f.advance(T / np.sqrt(2 * 9.81 / a))
-        z.append(front(xs, f.cell_F[0]) / a)
-    f.advance(0.2)
-    return time.perf_counter() - t0, f.step_count, np.array(z)
-
-
-def peer_rows(n: int) -> list[str]:
-    wall, steps, z = peer_case(n)
-    cells = 8 * n * (5 * n // 2)
-    rms = float(np.sqrt(np.mean((z - MM_Z) ** 2)))
-    rows = [f"| vofdem (multigrid CG) | {n} | {cells} | {steps} | {wall:.2f} | {wall / steps / cells * 1e6:.2f} | "
-            f"1.00 | {rms:.3f} |"]
-    table = PEERS / "walltimes.csv"
-    if not table.exists():
-        return rows
-    import csv
-    latest = {}
-    for r in csv.DictReader(open(table)):
-        if r["case"] == "dambreak" and int(r["size"]) == n and "walls=slip" not in r["note"]:
-            latest[r["peer"]] = r
-    for peer, r in sorted(latest.items()):
-        csv_path = PEERS / f"dambreak_{peer.replace('2D', '')}_n{n}.csv"
-        if not csv_path.exists():
-            continue
-        body = [ln for ln in open(csv_path) if not ln.startswith("#")]
-        data = list(csv.DictReader(body))
-        zp = np.interp(MM_T, [float(d["T"]) for d in data], [float(d["Z"]) for d in data])
-        prms = float(np.sqrt(np.mean((zp - MM_Z) ** 2)))
-        w, st = float(r["wall_s"]), int(r["steps"])
-        rows.append(f"| {peer} (stored run) | {n} | {cells} | {st} | {w:.2f} | {w / st / cells * 1e6:.2f} | "
-                    f"{w / wall:.1f} | {prms:.3f} |")
-    return rows
 
 
 def measure(f: vofdem.VOFGrid, warm: float, span: float) -> dict:
@@ -191,20 +125,9 @@ def main() -> None:
     ]
     lines += [
         "",
-        "## Against the peers on their dam break",
-        "",
-        "Same case as `../shared/peers` (a = 5.715 cm column in an 8a x 2.5a tank, no-slip walls, water",
-        "1000 kg/m^3 / air 1 kg/m^3, t_end = 0.2 s, Courant 0.45 here, 0.5 for the peers). vofdem runs now",
-        "(construction included); the peers' wall times and fronts are their stored runs on this machine",
-        "(`results/walltimes.csv`, serial). Time ratio = peer wall / vofdem wall; error = RMS of Z = x/a",
-        "against Martin & Moyce's 15 points (raw time, front = 0.5 crossing on the bottom row).",
-        "",
-        "| code | N per a | cells | steps | wall s | us/cell-step | time ratio | RMS error in Z |",
-        "|---|---|---|---|---|---|---|---|",
+        "Against the peer codes, every code timed as a whole process on the same dam break:",
+        "`benchmarks/peer_dambreak.py` (`benchmarks/results/peer_dambreak.md`).",
     ]
-    for n in ([16] if quick else [16, 32]):
-        lines += peer_rows(n)
-        print("\n".join(lines[-4:]), flush=True)
     out = ROOT / "benchmarks" / "results" / "vof_cost.md"
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text("\n".join(lines) + "\n")
