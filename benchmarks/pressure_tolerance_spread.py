@@ -19,6 +19,9 @@ resumable), then writes benchmarks/results/<key's name>_spread.md with
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/pressure_tolerance_spread.py [--seeds 0-19]
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/pressure_tolerance_spread.py \
         --key numerics.wet_fraction_tolerance --values 0 1e-6 --scenes maeno2008_rolling_consistent maeno2008_rolling
+    OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/pressure_tolerance_spread.py \
+        --key numerics.viscous_scheme --values implicit_vertical_from_start implicit_vertical \
+        --scenes maeno2008 maeno2008_consistent maeno2008_rolling maeno2008_rolling_consistent
 """
 import argparse
 import time
@@ -34,6 +37,18 @@ from vofdem.scene import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 KEY = "numerics.pressure_tolerance"  # the default key
+
+
+def _v(value) -> str:
+    """a value of the key as the tables print it (a number in %g, a choice as it is)"""
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def _number_or_choice(text: str):
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 def _band(values):
@@ -60,11 +75,11 @@ def compare_members(frame, tolerances, key=KEY):
     permutation p-value of their means' difference, and the paired differences."""
     done = frame[frame["status"] == "completed"]
     name = key.rpartition(".")[2]
-    combos = {t: f"{key}={t!r}" for t in tolerances}
+    combos = {t: f"{key}={t!r}" if isinstance(t, float) else f"{key}={t}" for t in tolerances}  # the members' names
     by = {t: done[[combination_of(m) == c for m in done["member"]]].sort_values("seed") for t, c in combos.items()}
     t0, t1 = tolerances[:2]
     lines = [fragility_markdown(fragility_by_combination(done)),
-             "| measure | " + " | ".join(f"{name} {t:g}" for t in tolerances) + " | means' difference: p |",
+             "| measure | " + " | ".join(f"{name} {_v(t)}" for t in tolerances) + " | means' difference: p |",
              "|---|" + "---|" * (len(tolerances) + 1)]
     for col, label in (("removed", "stones removed"), ("crest_lowering_mm", "crest lowering [mm]"),
                        ("stages", "stages")):
@@ -84,8 +99,8 @@ def compare_members(frame, tolerances, key=KEY):
     across_text = f"{across.mean():.1f}" if across.size else "- (one seed)"
     lines += ["", f"p: the share of 10,000 random relabellings of the members between the values whose means "
               f"differ at least as much (a small p: a shift beyond the packings' spread). Stones removed, the same "
-              f"seed at {t0:g} and {t1:g}: mean absolute difference {paired.mean():.1f} ({int((paired == 0).sum())} "
-              f"of {len(seeds)} seeds equal); two packings (seeds i and i + 1) at {t0:g}: {across_text}."]
+              f"seed at {_v(t0)} and {_v(t1)}: mean absolute difference {paired.mean():.1f} ({int((paired == 0).sum())} "
+              f"of {len(seeds)} seeds equal); two packings (seeds i and i + 1) at {_v(t0)}: {across_text}."]
     return "\n".join(lines)
 
 
@@ -110,10 +125,10 @@ def flow_alone(scene, tolerances, t_end, key=KEY):
     d_seed, _ = flow_alone_run(tol[0].replace(seed=1), t_end)
     return (f"The flow alone (stones held, seed 0, t = {t_end:g} s): the water depth differs by at most "
             f"{1e3 * np.abs(d_tol - d0).max():.3f} mm over the flume between the values "
-            f"(mean {1e3 * np.abs(d_tol - d0).mean():.4f} mm); between seeds 0 and 1 at {tolerances[0]:g}, "
+            f"(mean {1e3 * np.abs(d_tol - d0).mean():.4f} mm); between seeds 0 and 1 at {_v(tolerances[0])}, "
             f"by {1e3 * np.abs(d_seed - d0).max():.3f} mm (mean {1e3 * np.abs(d_seed - d0).mean():.4f} mm). "
             f"Water made by the residual divergence, per step and relative to the water volume: "
-            f"{made0:.1e} at {tolerances[0]:g}, {made1:.1e} at {tolerances[1]:g}.")
+            f"{made0:.1e} at {_v(tolerances[0])}, {made1:.1e} at {_v(tolerances[1])}.")
 
 
 def main(argv=None):
@@ -121,8 +136,9 @@ def main(argv=None):
     p.add_argument("--scenes", nargs="+", default=["maeno2008", "maeno2008_consistent"])
     p.add_argument("--seeds", default="0-19")
     p.add_argument("--key", default=KEY, help=f"the numerics key compared (default {KEY})")
-    p.add_argument("--values", "--tolerances", dest="values", nargs=2, type=float, default=None,
-                   help="its two values (default 1e-5 1e-4 for the pressure tolerance)")
+    p.add_argument("--values", "--tolerances", dest="values", nargs=2, type=_number_or_choice,
+                   default=None, help="its two values, numbers or choices (default 1e-5 1e-4 for the pressure "
+                   "tolerance)")
     p.add_argument("--workers", type=int, default=None,
                    help="local worker processes (default: one per core; 0: no Dask, in this process)")
     p.add_argument("--quick", action="store_true", help="the scenes' quick variants (coarser, ramp 4x faster)")
@@ -144,7 +160,7 @@ def main(argv=None):
     seeds = parse_seeds(args.seeds)
     workers = args.workers if args.workers is not None else default_workers()
     title = "Pressure tolerance" if args.key == KEY else f"`{args.key}`"
-    parts = [f"# {title} {args.tolerances[0]:g} against {args.tolerances[1]:g}: the packings' spread", "",
+    parts = [f"# {title} {_v(args.tolerances[0])} against {_v(args.tolerances[1])}: the packings' spread", "",
              f"Generated by `benchmarks/pressure_tolerance_spread.py` on "
              f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: seeds {args.seeds} at each value, the "
              f"scene to its end, " + (f"{workers} local Dask worker(s)." if workers else "in this process, one member after "

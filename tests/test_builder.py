@@ -64,10 +64,13 @@ def test_fluid_of_the_scene():
     # the numerics of the step count: second-order convection, column-implicit k-epsilon
     assert p.time_scheme == vofdem.MomentumTimeScheme.ADAMS_BASHFORTH2
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.VERTICAL_LINES
+    assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL
     s.numerics.time_scheme, s.numerics.turbulence_scheme = "euler", "point_implicit"
+    s.numerics.viscous_scheme = "implicit_vertical_from_start"
     p = build_fluid(s.validate()).params
     assert p.time_scheme == vofdem.MomentumTimeScheme.EULER
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.POINT_IMPLICIT
+    assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL_FROM_START
     assert f.discharge.at(0.0) == pytest.approx(0.010) and f.discharge.at(140.0) == pytest.approx(0.025)
     # water at rest upstream of the crest up to the critical-depth estimate for 10 l/s over 0.5 m
     assert initial_level(s) == pytest.approx(0.25 + 1.5 * (0.02 ** 2 / 9.81) ** (1 / 3))

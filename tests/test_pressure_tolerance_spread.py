@@ -50,3 +50,17 @@ def test_another_numerics_key_at_a_tiny_size(spread, tmp_path):
     assert "**numerics.wet_fraction_tolerance=1e-06**: 1 completed members" in text
     assert "| measure | wet_fraction_tolerance 0 | wet_fraction_tolerance 1e-06 | means' difference: p |" in text
     assert len(list((tmp_path / "ens" / "wet_fraction_tolerance_spread_maeno2008_quick").glob("*/seed0/outcome.json"))) == 2
+
+
+def test_a_choice_key_at_a_tiny_size(spread, tmp_path):
+    # choices are compared as they are (no %g), under the members' names the ensemble gives them
+    md = spread.main(["--key", "numerics.viscous_scheme", "--values", "implicit_vertical_from_start",
+                      "implicit_vertical", "--quick", "--seeds", "0", "--end-time", "1", "--spin-up", "0.5",
+                      "--workers", "0", "--scenes", "maeno2008", "--out", str(tmp_path / "ens"),
+                      "--results", str(tmp_path / "spread.md")])
+    text = md.read_text()
+    assert text.startswith("# `numerics.viscous_scheme` implicit_vertical_from_start against implicit_vertical")
+    assert "**numerics.viscous_scheme=implicit_vertical**: 1 completed members" in text
+    assert ("| measure | viscous_scheme implicit_vertical_from_start | viscous_scheme implicit_vertical | "
+            "means' difference: p |") in text
+    assert "| stones removed: mean, median [members' 16-84 %] | 0.0, 0.0 [0.0-0.0] | 0.0, 0.0 [0.0-0.0] | 1.00 |" in text

@@ -68,7 +68,8 @@ void bind_vof(py::module_& m) {
   py::enum_<WallCondition>(m, "WallCondition").value("SLIP", WallCondition::kSlip).value("NO_SLIP", WallCondition::kNoSlip);
   py::enum_<ViscousScheme>(m, "ViscousScheme")
       .value("EXPLICIT", ViscousScheme::kExplicit)
-      .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical);
+      .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical)
+      .value("IMPLICIT_VERTICAL_FROM_START", ViscousScheme::kImplicitVerticalFromStart);
   py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
       .value("STRAIN", KEpsilonProduction::kStrain)
       .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
@@ -156,6 +157,12 @@ void bind_vof(py::module_& m) {
       .def_readonly("turbulence", &FlowStableDt::turbulence)
       .def_readonly("max_dt", &FlowStableDt::max_dt)
       .def_readonly("growth", &FlowStableDt::growth)
+      .def_readonly("advective_cell", &FlowStableDt::advective_cell,
+                    "the cell beside the face that binds the advective limit (-1: none)")
+      .def_readonly("turbulence_cell", &FlowStableDt::turbulence_cell,
+                    "the cell that binds the k-epsilon limit (-1: none)")
+      .def_readonly("viscous_cell", &FlowStableDt::viscous_cell,
+                    "the cell beside the face that binds the viscous limit (-1: none)")
       .def("min", &FlowStableDt::min);
 
   bind_state_class<FlowState>(m, "FlowState",

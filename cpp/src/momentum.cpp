@@ -319,7 +319,14 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
   }
   const bool implicit = t.viscosity && t.implicit_vertical;
   if (t.viscosity) corner_shear(g, f, bc, s);
+  // the columns start from the velocities after the explicit stresses (the former scheme: from u^n)
+  const bool stressed = implicit && !t.vertical_from_start;
   if (implicit) explicit_part_for_u(g, f, bc, s);
+  if (stressed) {
+    // every face the column solves read is written below (a closed face: u^n)
+    s.stressed_u.resize(g.nface_x());
+    s.stressed_w.resize(g.nface_z());
+  }
   const double* tau_u = implicit ? s.corner_tau_u.data() : s.corner_tau.data();
   const double* mu = f.cell_mu;
   // x-faces
@@ -327,7 +334,10 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
     const double dz = g.dz(k), inv_dz = 1.0 / dz;
     for (int i = 1; i < nx; ++i) {
       const int j = i + sx * k, c = i + nx * k;
-      if (f.face_x_porosity[j] <= 0.0) continue;
+      if (f.face_x_porosity[j] <= 0.0) {
+        if (stressed) s.stressed_u[j] = f.face_u[j];
+        continue;
+      }
       double rhs = f.face_x_porosity[j] * t.gravity_x;
       if (t.convection)
         rhs -= (s.cell_flux_u[c] - s.cell_flux_u[c - 1]) * inv_dx +
@@ -335,7 +345,10 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
       if (t.viscosity) {
         const double txx_e = 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
         const double txx_w = 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
-        rhs += ((txx_e - txx_w) * inv_dx + (tau_u[i + sx * (k + 1)] - tau_u[i + sx * k]) * inv_dz) / f.face_x_rho[j];
+        const double visc =
+            ((txx_e - txx_w) * inv_dx + (tau_u[i + sx * (k + 1)] - tau_u[i + sx * k]) * inv_dz) / f.face_x_rho[j];
+        rhs += visc;
+        if (stressed) s.stressed_u[j] = f.face_u[j] + dt * visc;
       }
       u_star[j] = f.face_u[j] + dt * rhs;
     }
@@ -359,7 +372,10 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
     const double inv_dz0 = 1.0 / g.dz(k - 1), inv_dz1 = 1.0 / g.dz(k);
     for (int i = 0; i < nx; ++i) {
       const int j = i + nx * k;
-      if (f.face_z_porosity[j] <= 0.0) continue;
+      if (f.face_z_porosity[j] <= 0.0) {
+        if (stressed) s.stressed_w[j] = f.face_w[j];
+        continue;
+      }
       double rhs = f.face_z_porosity[j] * t.gravity_z;
       if (t.convection)
         rhs -= (s.corner_flux_w[i + 1 + sx * k] - s.corner_flux_w[i + sx * k]) * inv_dx +
@@ -367,8 +383,11 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
       if (t.viscosity) {
         const double tzz_n = implicit ? 0.0 : 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
         const double tzz_s = implicit ? 0.0 : 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
-        rhs += ((s.corner_tau[i + 1 + sx * k] - s.corner_tau[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
-               f.face_z_rho[j];
+        const double visc =
+            ((s.corner_tau[i + 1 + sx * k] - s.corner_tau[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
+            f.face_z_rho[j];
+        rhs += visc;
+        if (stressed) s.stressed_w[j] = f.face_w[j] + dt * visc;
       }
       w_star[j] = f.face_w[j] + dt * rhs;
     }
@@ -386,7 +405,9 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
       w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
-  if (implicit) implicit_vertical_diffusion(g, f, bc, dt, u_star, w_star, s);
+  if (implicit)
+    implicit_vertical_diffusion(g, f, bc, dt, stressed ? s.stressed_u.data() : f.face_u,
+                                stressed ? s.stressed_w.data() : f.face_w, u_star, w_star, s);
 }
 
 // the viscous increment of m substeps of dt / m added to u*, w* (open faces only: the boundary and
@@ -416,12 +437,14 @@ void add_viscous_substeps(const Grid2D& g, const MomentumFields& f, const Moment
 
 }  // namespace
 
-// backward Euler of the vertical diffusion, column by column, split from the other terms:
-// (I - dt/rho d/dz mu d/dz) v = u^n, u* += v - u^n. Diffusing u^n rather than u* keeps the gravity
-// increment (balanced by the pressure only afterwards) out of the viscous stress, so still water
-// stays still. Closed faces stay 0 and act as u = 0 neighbours, as in the explicit stencil
+// backward Euler of the vertical diffusion, column by column, after the explicit stresses:
+// (I - dt/rho d/dz mu d/dz) v = u0, u* += v - u0, u0 = u^n + dt (explicit viscous term). Diffusing u0
+// rather than u* keeps the gravity increment (balanced by the pressure only afterwards) out of the
+// viscous stress, so still water stays still. Closed faces stay 0 and act as u = 0 neighbours, as in
+// the explicit stencil
 void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
-                                 std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
+                                 const double* u0, const double* w0, std::vector<double>& u_star,
+                                 std::vector<double>& w_star, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   // the systems of all columns, row-major (row k of column i at i + sx k), solved together row by row:
   // the same operations per column as solve_tridiagonal, in an order the compiler can vectorise
@@ -446,7 +469,7 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
     const double* mu_lo = s.corner_mu.data() + sx * k;
     const double* mu_up = s.corner_mu.data() + sx * (has_up ? k + 1 : k);
     const double* rho = f.face_x_rho + sx * k;
-    const double* u = f.face_u + sx * k;
+    const double* u = u0 + sx * k;
     const std::size_t row = static_cast<std::size_t>(sx) * k;
     diffusion_row(1, nx, {dt, dzk, lo_c, lo_h, up_c, up_h}, rho, mu_lo, mu_up, n, u, a + row, b + row, c + row, d + row);
     keep_open_neighbours(1, nx, has_lo, has_up, n, n_lo, n_up, a + row, c + row);
@@ -455,7 +478,7 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
   for (int k = 0; k < nz; ++k)
     for (int i = 1; i < nx; ++i) {
       const int j = i + sx * k;
-      const double old = u_star[j], diffused = old + (d[j] - f.face_u[j]);
+      const double old = u_star[j], diffused = old + (d[j] - u0[j]);
       u_star[j] = f.face_x_porosity[j] > 0.0 ? diffused : old;
     }
   // w on the interior z-faces k = 1..nz-1 (system row k - 1); bed w = 0 and the top face's w^n are known
@@ -471,7 +494,7 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
     const double* mu_lo = f.cell_mu + nx * (k - 1);
     const double* mu_up = f.cell_mu + nx * k;
     const double* rho = f.face_z_rho + nx * k;
-    const double* w = f.face_w + nx * k;
+    const double* w = w0 + nx * k;
     const double* w_top = f.face_w + nx * (k + 1);  // the top face's w^n, known (0 under a lid)
     const std::size_t row = static_cast<std::size_t>(sx) * (k - 1);
     diffusion_row(0, nx, {dt, dzc, 2.0, dz_lo, 2.0, dz_up}, rho, mu_lo, mu_up, n, w, a + row, b + row, c + row,
@@ -486,7 +509,7 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
     for (int i = 0; i < nx; ++i)
     {
       const int j = i + nx * k;
-      const double old = w_star[j], diffused = old + (d[i + sx * (k - 1)] - f.face_w[j]);
+      const double old = w_star[j], diffused = old + (d[i + sx * (k - 1)] - w0[j]);
       w_star[j] = f.face_z_porosity[j] > 0.0 ? diffused : old;
     }
 }

@@ -380,7 +380,7 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
     viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                       params_.viscous_scheme == ViscousScheme::kImplicitVertical, &s.viscous_cell);
+                                       params_.implicit_vertical(), &s.viscous_cell);
     viscous_limit_step_ = step_count_;
     s.viscous = params_.viscous_substeps * viscous_limit_;
   }
@@ -555,7 +555,7 @@ int VOFGrid::viscous_substeps(double dt) const {
   // the limit stable_dt_terms() found before this step (the phases it saw are this step's), else anew
   if (viscous_limit_step_ != step_count_) {
     viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                       params_.viscous_scheme == ViscousScheme::kImplicitVertical, nullptr);
+                                       params_.implicit_vertical(), nullptr);
     viscous_limit_step_ = step_count_;
   }
   if (!(dt > viscous_limit_)) return 1;
@@ -567,7 +567,8 @@ void VOFGrid::stage_momentum(double dt) {
   MomentumTerms terms;
   terms.convection = params_.flags & kFlowConvection;
   terms.viscosity = params_.flags & kFlowViscosity;
-  terms.implicit_vertical = params_.viscous_scheme == ViscousScheme::kImplicitVertical;
+  terms.implicit_vertical = params_.implicit_vertical();
+  terms.vertical_from_start = params_.viscous_scheme == ViscousScheme::kImplicitVerticalFromStart;
   if (params_.flags & kFlowGravity) terms.gravity_x = params_.medium.gravity[0], terms.gravity_z = params_.medium.gravity[1];
   if (terms.viscosity && params_.viscous_substeps > 1) terms.viscous_substeps = viscous_substeps(dt);
   const bool ab2 = params_.time_scheme == MomentumTimeScheme::kAdamsBashforth2 && prev_dt_ > 0.0;

@@ -1342,9 +1342,12 @@ class ViscousScheme:
       EXPLICIT
     
       IMPLICIT_VERTICAL
+    
+      IMPLICIT_VERTICAL_FROM_START
     """
     EXPLICIT: typing.ClassVar[ViscousScheme]
     IMPLICIT_VERTICAL: typing.ClassVar[ViscousScheme]
+    IMPLICIT_VERTICAL_FROM_START: typing.ClassVar[ViscousScheme]
     __members__: typing.ClassVar[dict[str, ViscousScheme]]
     @typing.overload
     def __eq__(self, other: ViscousScheme) -> bool:
@@ -1823,6 +1826,11 @@ class FlowStableDt:
     def advective(self) -> float:
         ...
     @property
+    def advective_cell(self) -> int:
+        """
+        the cell beside the face that binds the advective limit (-1: none)
+        """
+    @property
     def gravity(self) -> float:
         ...
     @property
@@ -1835,8 +1843,18 @@ class FlowStableDt:
     def turbulence(self) -> float:
         ...
     @property
+    def turbulence_cell(self) -> int:
+        """
+        the cell that binds the k-epsilon limit (-1: none)
+        """
+    @property
     def viscous(self) -> float:
         ...
+    @property
+    def viscous_cell(self) -> int:
+        """
+        the cell beside the face that binds the viscous limit (-1: none)
+        """
 class FlowState:
     """
     A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.

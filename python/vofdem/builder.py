@@ -228,6 +228,9 @@ def flow_params(scene: Scene):
                          "direct": _core.PressureSolverKind.EIGEN_DIRECT}[n.pressure_solver]
     p.pressure_tol = n.pressure_tolerance
     p.viscous_substeps = n.viscous_substeps
+    p.viscous_scheme = {"implicit_vertical": _core.ViscousScheme.IMPLICIT_VERTICAL,
+                        "implicit_vertical_from_start": _core.ViscousScheme.IMPLICIT_VERTICAL_FROM_START,
+                        "explicit": _core.ViscousScheme.EXPLICIT}[n.viscous_scheme]
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,

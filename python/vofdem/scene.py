@@ -352,6 +352,11 @@ class Numerics(_Section):
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
                                      "faces) or point-implicit (bounded by all faces)")
+    viscous_scheme: str = _choice("implicit_vertical", ("implicit_vertical", "implicit_vertical_from_start",
+                                                        "explicit"),
+                                  "viscous stresses: vertical diffusion by column solves after the explicit "
+                                  "rest, the former splitting from the step's start (unstable above about 0.7 "
+                                  "of the limit; to reproduce earlier runs), or all explicit (the reference)")
     viscous_substeps: int = _p(8, None, 1, 64, "the explicit viscous stresses in up to this many substeps of a "
                                "fluid step longer than their limit [-]; 8 (1: one step, the limit binds)")
     drag_exchange: str = _choice("implicit", ("implicit", "held"),

@@ -59,15 +59,28 @@ TEST(DiscPins, CoupledDiscsInATank) {
   // substeps (wet_fraction.h), then the implicit drag exchange and Adams-Bashforth 2 (drag_exchange.h,
   // momentum.h), each time the same hash as the disc-only code with that change; then the still air's
   // total pressure where the open top draws air in (projection.h: the flow alone changed); then the
-  // wet fraction's tolerance (wet_fraction.h), with which off the former hash is kept
-  for (double tol : {0.0, CouplerParams().wet_fraction_tolerance}) {
-    auto sc = test::tank(0.3, 0.3, 0.01, 0.2, {0.1, 0.15, 0.16, 0.12, 0.2, 0.05}, 0.02, kCoupleDefault);
+  // wet fraction's tolerance (wet_fraction.h), with which off the former hash is kept; then the
+  // column solves of the viscous stresses after their explicit part (momentum.h), with the former
+  // splitting (ViscousScheme::kImplicitVerticalFromStart) the former hashes
+  struct Pin {
+    ViscousScheme scheme;
+    double tol;
+    std::uint64_t hash;
+  };
+  const double tol = CouplerParams().wet_fraction_tolerance;
+  for (const Pin& pin : {Pin{ViscousScheme::kImplicitVerticalFromStart, 0.0, 5615575716851011222ull},
+                         Pin{ViscousScheme::kImplicitVerticalFromStart, tol, 5962126411014851550ull},
+                         Pin{ViscousScheme::kImplicitVertical, 0.0, 10472922950744682249ull},
+                         Pin{ViscousScheme::kImplicitVertical, tol, 5539174150878618620ull}}) {
+    FlowParams fp;
+    fp.viscous_scheme = pin.scheme;
+    auto sc = test::tank(0.3, 0.3, 0.01, 0.2, {0.1, 0.15, 0.16, 0.12, 0.2, 0.05}, 0.02, kCoupleDefault, fp);
     CouplerParams cp = sc.sim->params();
-    cp.wet_fraction_tolerance = tol;
+    cp.wet_fraction_tolerance = pin.tol;
     sc.sim->set_params(cp);
     for (int k = 0; k < 20; ++k) sc.sim->step();
     const auto state = sc.sim->export_state();
     EXPECT_TRUE(test::rolling_springs_zero(state));
-    EXPECT_EQ(test::pin_hash(state), tol == 0.0 ? 5615575716851011222ull : 5962126411014851550ull) << "tol " << tol;
+    EXPECT_EQ(test::pin_hash(state), pin.hash) << "scheme " << static_cast<int>(pin.scheme) << ", tol " << pin.tol;
   }
 }

@@ -88,15 +88,15 @@ void check_fluxes(int nx, int nz, unsigned seed) {
 // closed face's row the identity; on a no-slip bed without wall shear the ghost -u below (2 mu / dz0),
 // stress free on top; w's top face known. u* += v - u^n on open faces
 void reference_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
-                                  const std::vector<double>& corner_mu, std::vector<double>& us,
-                                  std::vector<double>& ws) {
+                                  const std::vector<double>& corner_mu, const std::vector<double>& u0,
+                                  const std::vector<double>& w0, std::vector<double>& us, std::vector<double>& ws) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
   for (int i = 1; i < nx; ++i) {
     std::vector<double> a(nz), b(nz), c(nz), d(nz);
     for (int k = 0; k < nz; ++k) {
       const int j = i + sx * k;
-      a[k] = c[k] = 0.0, b[k] = 1.0, d[k] = f.face_u[j];
+      a[k] = c[k] = 0.0, b[k] = 1.0, d[k] = u0[j];
       if (!(f.face_x_porosity[j] > 0.0)) continue;
       const double r = dt / (f.face_x_rho[j] * g.dz(k));
       double lo = 0.0, up = 0.0;
@@ -110,7 +110,7 @@ void reference_vertical_diffusion(const Grid2D& g, const MomentumFields& f, cons
     solve_tridiagonal(nz, a.data(), b.data(), c.data(), d.data());
     for (int k = 0; k < nz; ++k) {
       const int j = i + sx * k;
-      if (f.face_x_porosity[j] > 0.0) us[j] += d[k] - f.face_u[j];
+      if (f.face_x_porosity[j] > 0.0) us[j] += d[k] - u0[j];
     }
   }
   if (nz < 2) return;
@@ -119,19 +119,19 @@ void reference_vertical_diffusion(const Grid2D& g, const MomentumFields& f, cons
     std::vector<double> a(m), b(m), c(m), d(m);
     for (int k = 1; k < nz; ++k) {
       const int j = i + nx * k, row = k - 1;
-      a[row] = c[row] = 0.0, b[row] = 1.0, d[row] = f.face_w[j];
+      a[row] = c[row] = 0.0, b[row] = 1.0, d[row] = w0[j];
       if (!(f.face_z_porosity[j] > 0.0)) continue;
       const double r = dt / (f.face_z_rho[j] * (g.z_center(k) - g.z_center(k - 1)));
       const double lo = 2.0 * f.cell_mu[j - nx] / g.dz(k - 1), up = 2.0 * f.cell_mu[j] / g.dz(k);
       b[row] = 1.0 + r * (lo + up);
       if (k > 1 && f.face_z_porosity[j - nx] > 0.0) a[row] = -r * lo;
       if (k < nz - 1 && f.face_z_porosity[j + nx] > 0.0) c[row] = -r * up;
-      if (k == nz - 1) d[row] = f.face_w[j] + r * up * f.face_w[j + nx];
+      if (k == nz - 1) d[row] = w0[j] + r * up * f.face_w[j + nx];
     }
     solve_tridiagonal(m, a.data(), b.data(), c.data(), d.data());
     for (int k = 1; k < nz; ++k) {
       const int j = i + nx * k;
-      if (f.face_z_porosity[j] > 0.0) ws[j] += d[k - 1] - f.face_w[j];
+      if (f.face_z_porosity[j] > 0.0) ws[j] += d[k - 1] - w0[j];
     }
   }
 }
@@ -159,9 +159,13 @@ void check_vertical_diffusion(int nx, int nz, unsigned seed, bool no_slip, bool 
   std::vector<double> us(g.nface_x()), ws(g.nface_z());
   for (auto* v : {&us, &ws}) for (double& x : *v) x = rnd() - 0.5;
   std::vector<double> us_ref = us, ws_ref = ws;
+  // the start of the solve: u^n plus an explicit increment
+  std::vector<double> u0(g.nface_x()), w0(g.nface_z());
+  for (int j = 0; j < g.nface_x(); ++j) u0[j] = u[j] + 0.1 * (rnd() - 0.5);
+  for (int j = 0; j < g.nface_z(); ++j) w0[j] = w[j] + 0.1 * (rnd() - 0.5);
   const double dt = 0.01;
-  implicit_vertical_diffusion(g, f, bc, dt, us, ws, s);
-  reference_vertical_diffusion(g, f, bc, dt, s.corner_mu, us_ref, ws_ref);
+  implicit_vertical_diffusion(g, f, bc, dt, u0.data(), w0.data(), us, ws, s);
+  reference_vertical_diffusion(g, f, bc, dt, s.corner_mu, u0, w0, us_ref, ws_ref);
   for (int j = 0; j < g.nface_x(); ++j) ASSERT_EQ(us[j], us_ref[j]) << nx << "x" << nz << " x-face " << j;
   for (int j = 0; j < g.nface_z(); ++j) ASSERT_EQ(ws[j], ws_ref[j]) << nx << "x" << nz << " z-face " << j;
 }

@@ -13,6 +13,10 @@
 // corner viscosity the arithmetic mean of its cells (optionally the eddy part by harmonic mean). Forward Euler, or (implicit_vertical) the vertical parts
 // d/dz(mu du/dz) and d/dz(2 mu dw/dz) by backward Euler, one tridiagonal solve per column: the
 // eddy viscosity over dz = 5-10 mm would otherwise bind the step (explicit limit ~ dz^2 / (4 nu_t)).
+// The two parts are applied one after the other, v = (I - dt Z)^-1 (I + dt X) u^n (X explicit, Z
+// implicit): each factor is stable on its own. Added side by side, v = (I - dt Z)^-1 u^n + dt X u^n,
+// a mode that Z damps keeps dt X u^n whole, which grows past dt |X| = 1, half the forward-Euler limit
+// the step is bounded by (test_viscous_implicit.cpp).
 //
 // Boundaries (ghost values): walls slip (zero shear) or no-slip (u = 0 at the wall), or the log-law
 // shear of the wall functions when the turbulence model supplies it; the inlet carries no vertical
@@ -65,8 +69,11 @@ struct MomentumTerms {
   bool convection = true;
   bool viscosity = true;
   // vertical diffusion d/dz(mu du/dz) and d/dz(2 mu dw/dz) by backward Euler (one tridiagonal solve per
-  // column for u and for w); x-diffusion and the cross terms stay explicit
+  // column for u and for w) after the explicit x-diffusion and cross terms
   bool implicit_vertical = false;
+  // the former splitting (ViscousScheme::kImplicitVerticalFromStart): the columns solved from u^n, the
+  // explicit increment added beside them
+  bool vertical_from_start = false;
   // the viscous increment in this many substeps of dt / m, each the one-step scheme above (explicit
   // part, then the column solves), convection and gravity over the whole dt at the step's start: each
   // substep needs only dt / m below the explicit viscous limit (viscous_stable_dt); 1: one step
@@ -85,6 +92,7 @@ struct MomentumScratch {
   std::vector<double> cell_flux_u, cell_flux_w;      // x-flux of u, z-flux of w at cell centres
   std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
   std::vector<double> sub_u, sub_w, sub_u_next, sub_w_next;  // velocities of the viscous substeps
+  std::vector<double> stressed_u, stressed_w;  // u^n + dt (explicit viscous term): the vertical solve's start
 };
 
 // writes u* on every x-face and w* on every z-face. Closed faces (n_f = 0) and walls get 0; the
@@ -103,11 +111,14 @@ inline double muscl_value(double far, double up, double down) {
   return up + d * b / (d + b);
 }
 
-// the backward Euler of the vertical diffusion (terms.implicit_vertical): adds v - u^n to u* and w* on
-// open faces, v the column systems' solution with the corner viscosities in s.corner_mu (set by the
-// caller); momentum_explicit's kernel, declared for its face-by-face reference test
+// the backward Euler of the vertical diffusion (terms.implicit_vertical) after the explicit stresses:
+// (I - dt Z) v = v0 column by column, v0 the velocities after the explicit stresses alone (u0, w0:
+// u^n + dt (explicit viscous term) on open faces); adds v - v0 to u* and w* on open faces. The corner
+// viscosities in s.corner_mu are set by the caller; momentum_explicit's kernel, declared for its
+// face-by-face reference test
 void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
-                                 std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s);
+                                 const double* u0, const double* w0, std::vector<double>& u_star,
+                                 std::vector<double>& w_star, MomentumScratch& s);
 
 // largest stable explicit viscous step [s] (Gershgorin bound of the stress operator, face by face);
 // corner_mu: work array (resized on first use). implicit_vertical: the bound of the explicit part

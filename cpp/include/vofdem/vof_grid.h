@@ -89,8 +89,12 @@ enum class TopBoundary { kOpen = 0, kWall = 1 };
 enum class WallCondition { kSlip = 0, kNoSlip = 1 };
 // time stepping of the viscous (molecular + eddy) stresses: forward Euler throughout, or the vertical
 // diffusion by backward Euler (a tridiagonal solve per column for u and w; x-diffusion and cross terms
-// explicit), which lifts the step limit dz^2 / (4 nu_t) of the fine rows
-enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1 };
+// explicit), which lifts the step limit dz^2 / (4 nu_t) of the fine rows. kImplicitVertical solves the
+// columns from the velocities after the explicit stresses (stable up to the step limit);
+// kImplicitVerticalFromStart, the former scheme, from u^n with the explicit increment added beside
+// it: unstable above about 0.7 of the limit for modes the columns damp (momentum.h), kept to
+// reproduce runs made with it
+enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1, kImplicitVerticalFromStart = 2 };
 // viscosity of a cell corner (where the shear stress mu (du/dz + dw/dx) lives) from its four cells:
 // arithmetic mean, or (kHarmonic) the molecular part by arithmetic and the eddy part rho nu_t by
 // harmonic mean (Patankar 1980, sec. 4.2-3: diffusivities in series across an interface), which is
@@ -131,6 +135,7 @@ struct FlowParams {
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
   ViscousScheme viscous_scheme = ViscousScheme::kImplicitVertical;  // kExplicit: the forward-Euler reference
+  bool implicit_vertical() const { return viscous_scheme != ViscousScheme::kExplicit; }
   // the viscous stresses in up to this many substeps of a flow step [-], [1, 64], 8: a step longer than
   // their explicit limit takes ceil(dt / limit) substeps of the viscous part alone (MomentumTerms), so
   // that limit binds the step only at this many times its value; 1: one explicit step
