@@ -185,13 +185,16 @@ def fit_lognormal(q, observed, left=None, max_iter: int = 100, tol: float = 1e-1
 
 
 def _loglik_s(mu: float, s: float, y: np.ndarray, c: np.ndarray, b: np.ndarray) -> float:
-    sig = math.exp(s)
-    z = (y - mu) / sig
-    out = float(np.sum(-s - 0.5 * z * z))
-    if c.size:
-        out += float(np.sum(log_sf((c - mu) / sig)))
-    if b.size:
-        out += float(np.sum(log_sf((mu - b) / sig)))
+    # a trial step of the line search far out (sigma underflowing to 0, z overflowing) gives ln L = -inf,
+    # which the search rejects: not worth a warning
+    with np.errstate(divide="ignore", over="ignore"):
+        sig = math.exp(s)
+        z = (y - mu) / sig
+        out = float(np.sum(-s - 0.5 * z * z))
+        if c.size:
+            out += float(np.sum(log_sf((c - mu) / sig)))
+        if b.size:
+            out += float(np.sum(log_sf((mu - b) / sig)))
     return out
 
 
