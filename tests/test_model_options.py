@@ -114,3 +114,13 @@ def test_bed_drag_runs_and_the_run_records_the_options(tmp_path):
         assert f.attrs["drag_model"] == "bed" and f.attrs["porosity_mapping"] == "bulk"
         stones, _ = build_stones(s)
         assert f.attrs["disc_porosity"] == pytest.approx(disc_porosity(s, stones)[0], rel=1e-12)
+
+
+def test_the_parameter_page_is_vofdem_params():
+    """docs/scenario.md's "Every parameter" is the output of `vofdem params`: a key added to the
+    schema (or a range changed) shows up there or fails here."""
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "scenario.md").read_text()
+    table = describe_parameters().rstrip("\n")
+    assert table in doc, "docs/scenario.md: paste `vofdem params` under 'Every parameter'"
