@@ -65,12 +65,17 @@ def test_fluid_of_the_scene():
     assert p.time_scheme == vofdem.MomentumTimeScheme.ADAMS_BASHFORTH2
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.VERTICAL_LINES
     assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL
+    assert p.viscous_bound == vofdem.ViscousBound.ENERGY
     s.numerics.time_scheme, s.numerics.turbulence_scheme = "euler", "point_implicit"
-    s.numerics.viscous_scheme = "implicit_vertical_from_start"
+    s.numerics.viscous_scheme, s.numerics.viscous_bound = "implicit_vertical_from_start", "row_sum"
     p = build_fluid(s.validate()).params
     assert p.time_scheme == vofdem.MomentumTimeScheme.EULER
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.POINT_IMPLICIT
     assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL_FROM_START
+    assert p.viscous_bound == vofdem.ViscousBound.ROW_SUM
+    s.numerics.viscous_bound = "gershgorin"
+    with pytest.raises(ValueError, match="numerics.viscous_bound"):
+        s.validate()
     assert f.discharge.at(0.0) == pytest.approx(0.010) and f.discharge.at(140.0) == pytest.approx(0.025)
     # water at rest upstream of the crest up to the critical-depth estimate for 10 l/s over 0.5 m
     assert initial_level(s) == pytest.approx(0.25 + 1.5 * (0.02 ** 2 / 9.81) ** (1 / 3))

@@ -180,6 +180,18 @@ def test_viscous_options_select_the_step_limit_and_keep_still_water_still():
         f.fill_water_below(0.12)
         f.set_hydrostatic_pressure()
     assert fi.stable_dt_terms().viscous > 3.0 * fe.stable_dt_terms().viscous
+    # the split scheme's energy bound (the default) is the constant-coefficient dx^2 / (4 nu) here (in 8
+    # substeps). The row sums' bound, cross terms in, is 2 / (nu (8 / dx^2 + 4 / (dx dz))) in water alone
+    # and far shorter on the air faces over the water (the water's corner viscosity over the air's density)
+    assert p.viscous_bound == vofdem.ViscousBound.ENERGY
+    assert fi.stable_dt_terms().viscous == pytest.approx(8 * 0.025 ** 2 / (4 * 1e-3), rel=1e-12)
+    p.viscous_scheme, p.viscous_bound = vofdem.ViscousScheme.IMPLICIT_VERTICAL, vofdem.ViscousBound.ROW_SUM
+    fr = vofdem.VOFGrid(grid, p)
+    fr.fill_water_below(0.2)
+    assert fr.stable_dt_terms().viscous == pytest.approx(8 * 2 / (1e-3 * (8 / 0.025 ** 2 + 4 / (0.025 * 0.005))),
+                                                         rel=1e-12)
+    fr.fill_water_below(0.12)
+    assert fr.stable_dt_terms().viscous < 0.01 * fi.stable_dt_terms().viscous
     fi.advance(0.05)
     assert np.abs(fi.face_w).max() < 1e-6
     bad = vofdem.FlowParams()

@@ -70,6 +70,9 @@ void bind_vof(py::module_& m) {
       .value("EXPLICIT", ViscousScheme::kExplicit)
       .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical)
       .value("IMPLICIT_VERTICAL_FROM_START", ViscousScheme::kImplicitVerticalFromStart);
+  py::enum_<ViscousBound>(m, "ViscousBound")
+      .value("ENERGY", ViscousBound::kEnergy, "the split scheme's energy bound: no cross terms (a proof)")
+      .value("ROW_SUM", ViscousBound::kRowSum, "Gershgorin row sums of the explicit stresses, cross terms in");
   py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
       .value("STRAIN", KEpsilonProduction::kStrain)
       .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
@@ -106,6 +109,8 @@ void bind_vof(py::module_& m) {
       .def_readwrite("walls", &FlowParams::walls)
       .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme)
       .def_readwrite("viscous_substeps", &FlowParams::viscous_substeps)
+      .def_readwrite("viscous_bound", &FlowParams::viscous_bound,
+                     "ViscousBound of the viscous step (IMPLICIT_VERTICAL only; the other schemes: ROW_SUM)")
       .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
       .def_readwrite("time_scheme", &FlowParams::time_scheme, "MomentumTimeScheme of the explicit momentum terms")
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")

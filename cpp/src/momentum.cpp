@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace vofdem {
 
@@ -555,14 +556,15 @@ void solve_tridiagonal(int m, const double* a, double* b, const double* c, doubl
 }
 
 double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical,
-                         int* cell) {
-  // the vertical diffusion's share of the explicit operator (the u-w cross terms stay in the bound:
-  // without them it is the constant-coefficient limit dx^2 / (4 nu), which the former side-by-side
-  // splitting's step exceeded at eddy-viscosity contrasts of 100; the present splitting stayed stable
-  // at it over test_viscous_implicit.cpp's 96 fields, measured, not proven)
-  const double zf = implicit_vertical ? 0.0 : 1.0;
+                         ViscousBound bound, int* cell) {
+  const bool energy = bound == ViscousBound::kEnergy;
+  if (energy && !implicit_vertical)
+    throw std::invalid_argument("viscous_stable_dt: the energy bound holds for the split scheme only (implicit_vertical)");
   // forward Euler is stable while dt <= 2 / lambda_max; Gershgorin: lambda_max <= max row sum of |A|,
-  // whose row of a face is twice its diagonal plus the u-w cross terms
+  // whose row of a face is twice its diagonal plus (kRowSum) the u-w cross terms. kEnergy (momentum.h):
+  // no cross terms, and the x-diffusion of w doubled
+  const double zf = implicit_vertical ? 0.0 : 1.0;
+  const double xf = energy ? 0.0 : 1.0, wf = energy ? 2.0 : 1.0;
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
   // corners first, then the per-cell work values of the corner viscosity, then a row of rates
@@ -586,7 +588,7 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
     const double* n = f.face_x_porosity + sx * k;
     for (int i = 1; i < nx; ++i) {
       const double diag = 2.0 * (mu[i - 1] + mu[i]) / (dx * dx) + zf * (mn[i] + ms[i]) / (dz * dz);
-      const double cross = 2.0 * (mn[i] + ms[i]) / (dx * dz);
+      const double cross = xf * 2.0 * (mn[i] + ms[i]) / (dx * dz);
       const double r = (2.0 * diag + cross) / rho[i];
       rate[i] = n[i] > 0.0 ? r : 0.0;
     }
@@ -601,8 +603,8 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
     const double* rho = f.face_z_rho + nx * k;
     const double* n = f.face_z_porosity + nx * k;
     for (int i = 0; i < nx; ++i) {
-      const double diag = zf * 2.0 * (mb[i] + mt[i]) / (dzc * hz) + (mw[i + 1] + mw[i]) / (dx * dx);
-      const double cross = 2.0 * (mw[i + 1] + mw[i]) / (dx * hz);
+      const double diag = zf * 2.0 * (mb[i] + mt[i]) / (dzc * hz) + wf * (mw[i + 1] + mw[i]) / (dx * dx);
+      const double cross = xf * 2.0 * (mw[i + 1] + mw[i]) / (dx * hz);
       const double r = (2.0 * diag + cross) / rho[i];
       rate[i] = n[i] > 0.0 ? r : 0.0;
     }

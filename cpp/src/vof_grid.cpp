@@ -380,7 +380,7 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
   if (params_.flags & kFlowViscosity) {
     viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                       params_.implicit_vertical(), &s.viscous_cell);
+                                       params_.implicit_vertical(), params_.step_bound(), &s.viscous_cell);
     viscous_limit_step_ = step_count_;
     s.viscous = params_.viscous_substeps * viscous_limit_;
   }
@@ -555,7 +555,7 @@ int VOFGrid::viscous_substeps(double dt) const {
   // the limit stable_dt_terms() found before this step (the phases it saw are this step's), else anew
   if (viscous_limit_step_ != step_count_) {
     viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
-                                       params_.implicit_vertical(), nullptr);
+                                       params_.implicit_vertical(), params_.step_bound(), nullptr);
     viscous_limit_step_ = step_count_;
   }
   if (!(dt > viscous_limit_)) return 1;

@@ -231,6 +231,7 @@ def flow_params(scene: Scene):
     p.viscous_scheme = {"implicit_vertical": _core.ViscousScheme.IMPLICIT_VERTICAL,
                         "implicit_vertical_from_start": _core.ViscousScheme.IMPLICIT_VERTICAL_FROM_START,
                         "explicit": _core.ViscousScheme.EXPLICIT}[n.viscous_scheme]
+    p.viscous_bound = {"energy": _core.ViscousBound.ENERGY, "row_sum": _core.ViscousBound.ROW_SUM}[n.viscous_bound]
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,

@@ -357,6 +357,10 @@ class Numerics(_Section):
                                   "viscous stresses: vertical diffusion by column solves after the explicit "
                                   "rest, the former splitting from the step's start (unstable above about 0.7 "
                                   "of the limit; to reproduce earlier runs), or all explicit (the reference)")
+    viscous_bound: str = _choice("energy", ("energy", "row_sum"),
+                                 "the viscous step's bound for viscous_scheme 'implicit_vertical': the energy "
+                                 "bound (no cross terms, proven) or the former Gershgorin row sums (cross terms "
+                                 "in; a shorter step). The other schemes always take row_sum")
     viscous_substeps: int = _p(8, None, 1, 64, "the explicit viscous stresses in up to this many substeps of a "
                                "fluid step longer than their limit [-]; 8 (1: one step, the limit binds)")
     drag_exchange: str = _choice("implicit", ("implicit", "held"),
