@@ -129,8 +129,9 @@ void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const
 //   symmetric, so its step is similar to a symmetric matrix and stable iff -(R + dt Z) <= R - dt X <=
 //   R + dt Z. The right inequality is K >= 0. The left one needs dt (X - Z) <= 2 R, and corner by corner
 //   2 u_z w_x - u_z^2 <= w_x^2 gives X - Z <= X' = sum 2 mu u_x^2 + 2 mu w_x^2: dt <= 2 / lambda_max(R^-1
-//   X'), a pure x-diffusion (Gershgorin again) with no cross terms and w's coefficient doubled. A proof,
-//   and a step 2.25 times kRowSum's in uniform water on cells of dx / dz = 2.5
+//   X'), a pure x-diffusion (Gershgorin again) with no cross terms and w's coefficient doubled. A proof
+//   (for the stresses; the wall functions' shear is an explicit source outside K), and a step 2.25
+//   times kRowSum's in uniform water on cells of dx / dz = 2.5
 enum class ViscousBound { kRowSum = 0, kEnergy = 1 };
 
 // largest stable viscous step [s] (face by face); corner_mu: work array (resized on first use).
