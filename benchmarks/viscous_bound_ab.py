@@ -30,14 +30,17 @@ from vofdem.scene import load_scene  # noqa: E402
 BOUNDS = ("ROW_SUM", "ENERGY")
 
 
-def run_span(sim, state, bound, end):
-    """Restores `state`, sets the bound and advances to `end`: ms per step of each fluid stage, steps, and
-    the viscous substeps the bound asks for at the end."""
-    fl = sim.fluid
-    sim.set_state(state)
+def set_bound(fl, bound):
     p = fl.params
     p.viscous_bound = getattr(vofdem.ViscousBound, bound)
     fl.params = p
+
+
+def run_span(sim, state, bound, end):
+    """Restores `state`, sets the bound and advances to `end`: ms per step of each fluid stage, and steps."""
+    fl = sim.fluid
+    sim.set_state(state)
+    set_bound(fl, bound)
     fl.profile.reset()
     s0 = sim.step_count
     sim.advance(end)
@@ -63,10 +66,8 @@ def main(argv=None):
     d = fl.stable_dt_terms()
     limits = {}
     for b in BOUNDS:
-        p = fl.params
-        p.viscous_bound = getattr(vofdem.ViscousBound, b)
-        fl.params = p
-        limits[b] = fl.stable_dt_terms().viscous / p.viscous_substeps
+        set_bound(fl, b)
+        limits[b] = fl.stable_dt_terms().viscous / fl.params.viscous_substeps
     dt = min(d.advective, d.turbulence, d.gravity, d.max_dt)
     runs = {b: [] for b in BOUNDS}
     steps = {b: set() for b in BOUNDS}
