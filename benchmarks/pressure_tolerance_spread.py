@@ -51,10 +51,11 @@ def _number_or_choice(text: str):
         return text
 
 
-def _band(values):
+def _band(values, fmt: str = "{:.1f}"):
     """median [16-84 %] of the members' values"""
     v = np.asarray(values, dtype=float)
-    return f"{np.median(v):.1f} [{np.percentile(v, 16):.1f}-{np.percentile(v, 84):.1f}]"
+    lo, mid, hi = (fmt.format(x) for x in (np.percentile(v, 16), np.median(v), np.percentile(v, 84)))
+    return f"{mid} [{lo}-{hi}]"
 
 
 def permutation_p(a, b, n: int = 10000, seed: int = 0) -> float:
@@ -92,6 +93,9 @@ def compare_members(frame, tolerances, key=KEY):
                      " | ".join(f"{int((by[t]['stages'] >= n).sum())} of {len(by[t])}" for t in tolerances) + " | |")
     lines.append("| CPU per member [s] (mean; two members at a time) | " +
                  " | ".join(f"{by[t]['cpu_seconds'].mean():.1f}" for t in tolerances) + " | |")
+    lines.append("| steps per member: mean, median [members' 16-84 %] | " +
+                 " | ".join(f"{by[t]['steps'].astype(float).mean():,.0f}, {_band(by[t]['steps'], '{:,.0f}')}" for t in tolerances) +
+                 f" | {permutation_p(by[t0]['steps'].astype(float), by[t1]['steps'].astype(float)):.2f} |")
     a, b = (by[t].set_index("seed")["removed"].astype(float) for t in (t0, t1))
     seeds = a.index.intersection(b.index)
     paired = np.abs(a[seeds] - b[seeds])

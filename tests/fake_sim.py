@@ -75,6 +75,9 @@ class FakeSimulation:
         self.profile.calls = [c + 1 for c in self.profile.calls]
         self.time = float(t_end)
 
+    @property
+    def step_count(self):
+        return self.profile.calls[0]  # one step per advance, as the profile counts them
 
     def export_state(self):
         st, fl = self.stones, self.fluid

@@ -2,6 +2,7 @@
 processes (the same outcomes as serial runs, bit for bit, with the real solver), resumption, failing
 and killed members, the summary and the CLI (the test double where the solver is not needed)."""
 import json
+import re
 import os
 
 import numpy as np
@@ -109,6 +110,10 @@ def test_serial_ensemble_summary_and_fragility(tmp_path):
     assert np.isnan(df.loc[2, "first_removal_lps"]) and df.loc[2, "removed"] == 0
     assert (df["last_discharge_lps"] == 25.0).all() and (df["first_discharge_lps"] == 10.5).all()
     assert df["stones_hash"].str.len().eq(16).all()
+    # the coupled steps: each step calls the fluid stage once (the member's profile.md; the fake's stage)
+    for seed in range(4):
+        fluid = re.search(r"\| fake_fluid \| [\d.]+ \| [\d.]+ % \| (\d+) \|", (tmp_path / f"seed{seed}" / "profile.md").read_text())
+        assert df.loc[seed, "steps"] == int(fluid.group(1)) > 0
     csv = pd.read_csv(tmp_path / "ensemble.csv")
     assert csv["member"].tolist() == df["member"].tolist()
     md = (tmp_path / "ensemble.md").read_text()

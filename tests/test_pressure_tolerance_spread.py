@@ -1,6 +1,7 @@
 """benchmarks/pressure_tolerance_spread.py, the source of the README's pressure-tolerance row: its
 permutation test by hand, and the script at a tiny size."""
 import importlib.util
+import re
 from pathlib import Path
 
 import pytest
@@ -34,6 +35,8 @@ def test_the_script_at_a_tiny_size(spread, tmp_path):
     assert "**numerics.pressure_tolerance=1e-05**: 1 completed members" in text
     assert "**numerics.pressure_tolerance=0.0001**: 1 completed members" in text
     assert "| stones removed: mean, median [members' 16-84 %] | 0.0, 0.0 [0.0-0.0] | 0.0, 0.0 [0.0-0.0] | 1.00 |" in text
+    assert re.search(r"\| steps per member: mean, median \[members' 16-84 %\] \| ([\d,]+), \1 \[\1-\1\] \| "
+                     r"[\d,]+, [\d,]+ \[[\d,]+-[\d,]+\] \| 1.00 \|", text)
     assert "two packings (seeds i and i + 1) at 1e-05: - (one seed)" in text
     assert "The flow alone (stones held, seed 0, t = 0.5 s)" in text
     assert len(list((tmp_path / "ens" / "tol_spread_maeno2008_quick").glob("*/seed0/outcome.json"))) == 2

@@ -37,7 +37,7 @@ OUTCOME_FILE = "outcome.json"
 OUTCOME_COLUMNS = ["status", "error", "first_removal_lps", "stage1_lps", "stage1_stones", "stage2_lps",
                    "stage2_stones", "stage3_lps", "stage3_stones", "stages", "removed", "stones",
                    "crest_lowering_mm", "first_discharge_lps", "last_discharge_lps", "simulated_seconds",
-                   "wall_seconds", "cpu_seconds", "stones_hash"]
+                   "wall_seconds", "cpu_seconds", "steps", "stones_hash"]
 
 
 def parse_seeds(spec: str) -> List[int]:
@@ -211,7 +211,7 @@ def run_member(base: Scene, member: Member, out_dir, figures: bool = False, anim
         res = run_scene(scene, mdir, progress=False, figures=figures, animation=animation, build=build,
                         log=lambda *a, **k: None)
         row.update(_event_columns(res.analysis, scene))
-        row["stones_hash"] = _stones_hash(res.h5_path)
+        row["steps"], row["stones_hash"] = res.steps, _stones_hash(res.h5_path)
     except Exception as e:  # noqa: BLE001 - a failing member is an outcome; the others go on
         row.update(status="failed", error=f"{type(e).__name__}: {e}")
     # the CPU time of the member's process: the cost of a member on a loaded machine (the solver is single-threaded)
@@ -245,7 +245,7 @@ def outcomes_frame(rows: Sequence[Dict[str, Any]], param_keys: Sequence[str] = (
     df = pd.DataFrame.from_records(recs, columns=["member", "seed", *keys, *OUTCOME_COLUMNS])
     floats = [c for c in OUTCOME_COLUMNS if c.endswith(("_lps", "_mm", "_seconds"))]
     df[floats] = df[floats].astype(float)
-    for c in ("stage1_stones", "stage2_stones", "stage3_stones", "stages", "removed", "stones"):
+    for c in ("stage1_stones", "stage2_stones", "stage3_stones", "stages", "removed", "stones", "steps"):
         df[c] = df[c].astype("Int64")
     df["error"] = df["error"].fillna("").astype(str)
     return df

@@ -55,6 +55,7 @@ class RunResult:
     simulated_seconds: float
     profile_table: str
     files: List[Path] = field(default_factory=list)
+    steps: int = 0  # the coupled steps of the whole run (a resumed run counts the killed run's too)
 
     @property
     def real_time_factor(self) -> float:
@@ -226,7 +227,7 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     loop.close("completed", extra)
     (out / "profile.md").write_text(table, encoding="utf-8")
     result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
-                       [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"])
+                       [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"], int(sim.step_count))
     result.analysis = postprocess(out, scene, figures=scene.output.figures if figures is None else figures,
                                   animation=scene.output.animation if animation is None else animation,
                                   files=result.files)
