@@ -52,8 +52,15 @@ def test_fluid_of_the_scene():
     s.numerics.pressure_solver = "direct"
     f = build_fluid(s.validate())
     g = f.grid
-    assert (g.nx, g.nz) == (147, 45 + 1)  # 3.681 m / 0.025 m; one 0.5 cm row then 1 cm rows to 0.45 m
+    # 3.681 m / 0.025 m; one 0.5 cm row, then 1 cm rows, the last 0.5 cm to 0.45 m joined to the row below
+    assert (g.nx, g.nz) == (147, 1 + 44)
     assert g.z_faces[1] == pytest.approx(0.005) and g.z_faces[2] == pytest.approx(0.015)
+    assert np.diff(g.z_faces)[-1] == pytest.approx(0.015) and g.z_faces[-1] == pytest.approx(0.45)
+    # grid.merge_fraction 0: the remainder is a row of its own
+    thin = build_fluid(s.with_value("grid.merge_fraction", 0.0).validate()).grid
+    assert thin.nz == 1 + 44 + 1 and np.diff(thin.z_faces)[-1] == pytest.approx(0.005)
+    with pytest.raises(ValueError, match=r"grid.merge_fraction = 1.0 is outside the allowed range \[0.0, 1.0\)"):
+        s.with_value("grid.merge_fraction", 1.0).validate()
     p = f.params
     assert (p.cfl, p.k1, p.k2, p.flume_width) == (0.5, 200.0, 2.8, 0.5)
     assert p.outlet == vofdem.OutletBoundary.TAILWATER and p.tailwater_level == 0.1

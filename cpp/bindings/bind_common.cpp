@@ -17,7 +17,7 @@ void bind_common(py::module_& m) {
       .def_static("uniform", &Grid2D::uniform, py::arg("nx"), py::arg("nz"), py::arg("length_x"),
                   py::arg("height_z"), py::arg("x0") = 0.0, py::arg("z0") = 0.0)
       .def_static("graded", &Grid2D::graded, py::arg("nx"), py::arg("length_x"), py::arg("height_z"), py::arg("dz"),
-                  py::arg("dz_bed"), py::arg("z_bed_top"))
+                  py::arg("dz_bed"), py::arg("z_bed_top"), py::arg("merge_fraction") = 0.5)
       .def_property_readonly("nx", &Grid2D::nx)
       .def_property_readonly("nz", &Grid2D::nz)
       .def_property_readonly("ncell", &Grid2D::ncell)

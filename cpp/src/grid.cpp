@@ -34,17 +34,27 @@ Grid2D Grid2D::uniform(int nx, int nz, double length_x, double height_z, double 
   return Grid2D(nx, length_x / nx, std::move(zf), x0);
 }
 
-Grid2D Grid2D::graded(int nx, double length_x, double height_z, double dz, double dz_bed, double z_bed_top) {
+Grid2D Grid2D::graded(int nx, double length_x, double height_z, double dz, double dz_bed, double z_bed_top,
+                      double merge_fraction) {
   require_positive("length_x", length_x);
   require_positive("height_z", height_z);
   require_positive("dz", dz);
   require_positive("dz_bed", dz_bed);
   require_in_closed("z_bed_top", z_bed_top, 0.0, height_z);
+  if (!(merge_fraction >= 0.0 && merge_fraction < 1.0))
+    throw std::invalid_argument("merge_fraction = " + format_value(merge_fraction) +
+                                " is outside the allowed range [0, 1)");
   std::vector<double> zf{0.0};
-  // a face closer than 1e-9 m to the target is the target: guards against round-off rows
+  // rows of `step` up to `top`; a remainder of at most merge_fraction steps joins the row below it: a
+  // sliver row would bind the advective limit of the flow through it (the open top's air). A face
+  // closer than 1e-9 m to the target is the target: guards against round-off rows
   const double eps = 1e-9;
-  while (zf.back() < z_bed_top - eps) zf.push_back(std::min(zf.back() + dz_bed, z_bed_top));
-  while (zf.back() < height_z - eps) zf.push_back(std::min(zf.back() + dz, height_z));
+  const auto fill = [&](double top, double step) {
+    const double last = (1.0 + merge_fraction) * step + eps;
+    while (zf.back() < top - eps) zf.push_back(top - zf.back() <= last ? top : zf.back() + step);
+  };
+  fill(z_bed_top, dz_bed);
+  fill(height_z, dz);
   if (nx < 1) throw std::invalid_argument("nx = " + std::to_string(nx) + " is outside the allowed range [1, inf)");
   return Grid2D(nx, length_x / nx, std::move(zf), 0.0);
 }

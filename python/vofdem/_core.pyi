@@ -13,7 +13,7 @@ class Grid2D:
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
     """
     @staticmethod
-    def graded(nx: typing.SupportsInt | typing.SupportsIndex, length_x: typing.SupportsFloat | typing.SupportsIndex, height_z: typing.SupportsFloat | typing.SupportsIndex, dz: typing.SupportsFloat | typing.SupportsIndex, dz_bed: typing.SupportsFloat | typing.SupportsIndex, z_bed_top: typing.SupportsFloat | typing.SupportsIndex) -> Grid2D:
+    def graded(nx: typing.SupportsInt | typing.SupportsIndex, length_x: typing.SupportsFloat | typing.SupportsIndex, height_z: typing.SupportsFloat | typing.SupportsIndex, dz: typing.SupportsFloat | typing.SupportsIndex, dz_bed: typing.SupportsFloat | typing.SupportsIndex, z_bed_top: typing.SupportsFloat | typing.SupportsIndex, merge_fraction: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> Grid2D:
         ...
     @staticmethod
     def uniform(nx: typing.SupportsInt | typing.SupportsIndex, nz: typing.SupportsInt | typing.SupportsIndex, length_x: typing.SupportsFloat | typing.SupportsIndex, height_z: typing.SupportsFloat | typing.SupportsIndex, x0: typing.SupportsFloat | typing.SupportsIndex = 0.0, z0: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Grid2D:

@@ -261,7 +261,8 @@ def build_grid(scene: Scene):
     g, f = scene.grid, scene.flume
     nx = max(4, int(round(f.length / g.dx)))
     top = g.bed_layer_height if g.bed_layer_height > 0 else 0.0
-    return _core.Grid2D.graded(nx=nx, length_x=f.length, height_z=f.height, dz=g.dz, dz_bed=g.dz_bed, z_bed_top=top)
+    return _core.Grid2D.graded(nx=nx, length_x=f.length, height_z=f.height, dz=g.dz, dz_bed=g.dz_bed, z_bed_top=top,
+                               merge_fraction=g.merge_fraction)
 
 
 def initial_level(scene: Scene) -> float:

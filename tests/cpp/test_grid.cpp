@@ -17,6 +17,38 @@ TEST(Grid2D, GradedMatchesThePapersMesh) {
   EXPECT_NEAR(g.height_z(), 0.30, 1e-15);
 }
 
+TEST(Grid2D, GradedRemainderOfHalfARowJoinsTheRowBelow) {
+  // the scenario's 0.45 m: 0.5 cm bed row, 1 cm rows; the last 0.5 cm joins the row below (1.5 cm)
+  const Grid2D g = Grid2D::graded(4, 1.0, 0.45, 0.01, 0.005, 0.005);
+  EXPECT_EQ(g.nz(), 1 + 44);
+  EXPECT_NEAR(g.dz(0), 0.005, 1e-15);
+  EXPECT_NEAR(g.dz(43), 0.01, 1e-15);
+  EXPECT_NEAR(g.dz(44), 0.015, 1e-12);
+  EXPECT_NEAR(g.height_z(), 0.45, 1e-15);
+  // a remainder of more than half a row keeps its own row: 0.461 m ends in a 0.6 cm row, 0.456 m in 1.1 cm
+  const Grid2D h = Grid2D::graded(4, 1.0, 0.461, 0.01, 0.005, 0.005);
+  EXPECT_EQ(h.nz(), 1 + 45 + 1);
+  EXPECT_NEAR(h.dz(46), 0.006, 1e-12);
+  EXPECT_NEAR(Grid2D::graded(4, 1.0, 0.456, 0.01, 0.005, 0.005).dz(45), 0.011, 1e-12);
+  // the same rule in the bed layer: 1.2 cm of 0.5 cm rows is 0.5 + 0.7; 1.3 cm is 0.5 + 0.5 + 0.3
+  const Grid2D b = Grid2D::graded(4, 1.0, 0.1, 0.01, 0.005, 0.012);
+  EXPECT_NEAR(b.dz(1), 0.007, 1e-12);
+  EXPECT_NEAR(b.z_faces()[2], 0.012, 1e-15);
+  const Grid2D c = Grid2D::graded(4, 1.0, 0.1, 0.01, 0.005, 0.013);
+  EXPECT_NEAR(c.dz(2), 0.003, 1e-12);
+  // a height below one row is one row
+  EXPECT_EQ(Grid2D::graded(4, 1.0, 0.004, 0.01, 0.005, 0.0).nz(), 1);
+  // merge_fraction 0: every remainder is a row (0.45 m ends in a 0.5 cm row); 0.8: 0.4525 m ends in
+  // 1.75 cm (0.5: in 1 cm and 0.75 cm); outside [0, 1) refused
+  const Grid2D k = Grid2D::graded(4, 1.0, 0.45, 0.01, 0.005, 0.005, 0.0);
+  EXPECT_EQ(k.nz(), 1 + 44 + 1);
+  EXPECT_NEAR(k.dz(45), 0.005, 1e-12);
+  EXPECT_NEAR(Grid2D::graded(4, 1.0, 0.4525, 0.01, 0.005, 0.005, 0.8).dz(44), 0.0175, 1e-12);
+  EXPECT_NEAR(Grid2D::graded(4, 1.0, 0.4525, 0.01, 0.005, 0.005).dz(45), 0.0075, 1e-12);
+  EXPECT_THROW(Grid2D::graded(4, 1.0, 0.45, 0.01, 0.005, 0.005, 1.0), std::invalid_argument);
+  EXPECT_THROW(Grid2D::graded(4, 1.0, 0.45, 0.01, 0.005, 0.005, -0.1), std::invalid_argument);
+}
+
 TEST(Grid2D, IndexingAndLocation) {
   const Grid2D g = Grid2D::uniform(4, 3, 2.0, 0.6);
   EXPECT_EQ(g.cell(3, 2), 11);

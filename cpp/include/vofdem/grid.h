@@ -26,8 +26,11 @@ class Grid2D {
 
   // nx x nz uniform cells covering [x0, x0 + length_x] x [z0, z0 + height_z]
   static Grid2D uniform(int nx, int nz, double length_x, double height_z, double x0 = 0.0, double z0 = 0.0);
-  // cells of dz_bed [m] up to z_bed_top [m], then dz [m] up to height_z [m] (the last row may be shorter)
-  static Grid2D graded(int nx, double length_x, double height_z, double dz, double dz_bed, double z_bed_top);
+  // cells of dz_bed [m] up to z_bed_top [m], then dz [m] up to height_z [m]; the last row of each may
+  // differ: a remainder of at most merge_fraction [-] of its row size, in [0, 1), joins the row below
+  // (0.5: rows in (0.5, 1.5] of their size; 0: every remainder is a row of its own)
+  static Grid2D graded(int nx, double length_x, double height_z, double dz, double dz_bed, double z_bed_top,
+                       double merge_fraction = 0.5);
 
   int nx() const { return nx_; }
   int nz() const { return nz_; }
