@@ -10,6 +10,7 @@ import pandas as pd
 import psutil
 import pytest
 from fake_sim import FakeSimulation, short_scene
+from script_loader import load_script
 
 from vofdem.cli import main
 from vofdem.ensemble import parse_seeds, parse_vary, plan_members, run_ensemble
@@ -252,13 +253,7 @@ def test_a_member_of_an_older_version_without_new_default_keys_is_the_same_scene
 def test_the_maeno_fragility_script_at_a_tiny_size(tmp_path):
     """benchmarks/maeno2008_fragility.py, which makes the README's 30-seed figure, on 1 seed of the quick
     variant for 2 s."""
-    import importlib.util
-    from pathlib import Path
-
-    path = Path(__file__).resolve().parents[1] / "benchmarks" / "maeno2008_fragility.py"
-    spec = importlib.util.spec_from_file_location("maeno2008_fragility", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = load_script("benchmarks/maeno2008_fragility.py")
     md = mod.main(["--quick", "--seeds", "0", "--end-time", "2", "--workers", "0", "--out", str(tmp_path / "ens"),
                    "--results", str(tmp_path), "--figures", str(tmp_path)])
     text = md.read_text()
@@ -288,13 +283,7 @@ def test_the_dashboard_link_is_printed_only_where_a_dashboard_is_served(monkeypa
 def test_the_stone_models_script_at_a_tiny_size(tmp_path):
     """benchmarks/stone_models_weir.py (each stone model and coupling over packings) on 1 seed of two
     quick scenes for 2 s, in this process."""
-    import importlib.util
-    from pathlib import Path
-
-    path = Path(__file__).resolve().parents[1] / "benchmarks" / "stone_models_weir.py"
-    spec = importlib.util.spec_from_file_location("stone_models_weir", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = load_script("benchmarks/stone_models_weir.py")
     md = mod.main(["--quick", "--seeds", "0", "--end-time", "2", "--workers", "0", "--scenes", "maeno2008",
                    "maeno2008_rolling_consistent", "--out", str(tmp_path / "ens"), "--results", str(tmp_path),
                    "--figures", str(tmp_path)])

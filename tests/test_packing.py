@@ -1,18 +1,11 @@
 """The porosity demo on the weir packed by the C++ packer (pack_weir; its own tests: test_dem_weir.py)."""
-import importlib.util
-import os
-
 import numpy as np
 import pytest
-
-
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+from script_loader import load_script
 
 
 def test_porosity_demo_writes_its_figure_and_arrays(tmp_path, capsys):
-    spec = importlib.util.spec_from_file_location("porosity_demo", os.path.join(ROOT, "examples", "porosity_demo.py"))
-    demo = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(demo)
+    demo = load_script("examples/porosity_demo.py")
     demo.main(["--out", str(tmp_path), "--m", "4"])
     assert (tmp_path / "porosity_weir.png").stat().st_size > 10_000
     data = np.load(tmp_path / "porosity_weir.npz")

@@ -1,20 +1,14 @@
 """benchmarks/pressure_tolerance_spread.py, the source of the README's pressure-tolerance row: its
 permutation test by hand, and the script at a tiny size."""
-import importlib.util
 import re
-from pathlib import Path
 
 import pytest
-
-PATH = Path(__file__).resolve().parents[1] / "benchmarks" / "pressure_tolerance_spread.py"
+from script_loader import load_script
 
 
 @pytest.fixture(scope="module")
 def spread():
-    spec = importlib.util.spec_from_file_location("pressure_tolerance_spread", PATH)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_script("benchmarks/pressure_tolerance_spread.py")
 
 
 def test_the_permutation_p_value_by_hand(spread):

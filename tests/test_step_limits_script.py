@@ -1,22 +1,12 @@
 """benchmarks/maeno2008_step_limits.py at a tiny size: its windows add up to the run's steps."""
-import importlib.util
 import re
-from pathlib import Path
 
 import pytest
-
-PATH = Path(__file__).resolve().parents[1] / "benchmarks" / "maeno2008_step_limits.py"
-
-
-@pytest.fixture(scope="module")
-def script():
-    spec = importlib.util.spec_from_file_location("maeno2008_step_limits", PATH)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+from script_loader import load_script
 
 
-def test_the_windows_add_up(script, tmp_path):
+def test_the_windows_add_up(tmp_path):
+    script = load_script("benchmarks/maeno2008_step_limits.py")
     out = script.main(["--scene", "maeno2008", "--seed", "1", "--set", "grid.merge_fraction=0", "--end-time", "0.2",
                        "--window", "0.1", "--out", str(tmp_path / "limits.md")])
     text = out.read_text()

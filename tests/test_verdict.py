@@ -2,13 +2,13 @@
 paired bootstrap of a shift against hand values, the study end to end in this process with a test
 double whose stones go at known discharges (its tables against a hand computation; a second call runs
 nothing), the study with the real solver at a tiny size, and the fidelity presets."""
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 from fake_sim import FakeSimulation
+from script_loader import load_script
 
 from vofdem.cli import main as cli_main
 from vofdem.fragility import empirical_quantile
@@ -19,11 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _script():
-    path = ROOT / "benchmarks" / "maeno2008_verdict.py"
-    spec = importlib.util.spec_from_file_location("maeno2008_verdict", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_script("benchmarks/maeno2008_verdict.py")
 
 
 def _frame(seeds, first, last=25.0, stages=None):

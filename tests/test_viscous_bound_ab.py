@@ -1,15 +1,9 @@
 """benchmarks/viscous_bound_ab.py: both bounds from one state, the table of stages written."""
-import importlib.util
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[1]
+from script_loader import load_script
 
 
 def _load():
-    spec = importlib.util.spec_from_file_location("viscous_bound_ab", ROOT / "benchmarks" / "viscous_bound_ab.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_script("benchmarks/viscous_bound_ab.py")
 
 
 def test_both_bounds_run_from_one_state_and_the_table_names_every_stage(tmp_path):
