@@ -2,9 +2,10 @@
 stage by stage: the fluid stage profile per step of each, alternating, from one state of a Maeno scene.
 
 A whole run cannot show it: its steps are chaotic (the step count of the consistent couplings moves
-with every bit of difference in the flow), and a shared machine's speed drifts by 10-20 % over minutes. Here the scene runs to --start, its state is kept, and
-each repetition restores it and advances --span seconds under each bound in turn; the median over the
-repetitions of each stage's time per step is printed and written to
+with every bit of difference in the flow), and a shared machine's speed drifts by 10-20 % over
+minutes. Here the scene runs to --start, its state is kept, and each repetition restores it and
+advances --span seconds under each bound in turn; the median over the repetitions of each stage's
+time per step is printed and written to
 benchmarks/results/viscous_bound_ab.md. Stages whose work is the same under both bounds (all but
 momentum, when the steps are the same) show the machine's drift between the runs.
 
