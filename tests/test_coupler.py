@@ -37,7 +37,7 @@ def test_run_loop_names_and_zero_copy_views():
     assert sim.disc_force_drag.shape == (3, 2) and sim.disc_force_pressure.shape == (3, 2)
     assert sim.stones.disc_pos.shape == (3, 2)
     assert sim.fluid.cell_F.shape == (40, 20)
-    assert list(sim.profile.names) == ["snapshot", "porosity", "fluid_forces", "dem", "fluid", "checks"]
+    assert list(sim.profile.names) == ["snapshot", "porosity", "fluid_forces", "dem", "fluid", "checks", "stable_dt"]
     calls = dict(zip(sim.profile.names, sim.profile.calls))
     # advance() takes the guard's snapshot every few steps only (CouplerParams.max_snapshot_interval)
     assert 1 <= calls.pop("snapshot") < sim.step_count

@@ -57,6 +57,23 @@ def test_still_water_stays_still_and_profile_counts_stages():
     assert f.cell_p[0, 0] == pytest.approx(9.81 * (998.2 * 0.09 + 1.204 * 0.1), rel=1e-12)
 
 
+def test_turbulence_profile_splits_the_turbulence_stage():
+    p = vofdem.FlowParams()
+    p.flags = p.flags | vofdem.FlowEffect.TURBULENCE
+    f = tank(params=p)
+    f.fill_water_below(0.1)
+    f.face_u[:5, 1:-1] = 0.2  # a current along the bed: wall functions and production at work
+    for _ in range(5):
+        f.step(1e-3)
+    tp = f.turbulence_profile
+    assert list(tp.names) == ["k-eps setup", "k-eps wall functions", "k-eps production", "k-eps transport",
+                              "k-eps eddy viscosity", "k-eps checks"]
+    assert list(tp.calls) == [5] * 6
+    # the parts are timed inside the flow's stage
+    turbulence = dict(zip(f.profile.names, f.profile.seconds))["turbulence"]
+    assert 0.0 < sum(tp.seconds) <= turbulence
+
+
 def test_dam_break_front_moves_and_conserves_water():
     f = vflow.dam_break(cells_per_a=6)
     v0 = f.water_volume()

@@ -268,6 +268,10 @@ void bind_vof(py::module_& m) {
                              "the velocity is not divergence-free (the pressure solve's residual), since construction")
       .def_property_readonly("profile", py::overload_cast<>(&VOFGrid::profile),
                              py::return_value_policy::reference_internal)
+      .def_property_readonly("turbulence_profile", [](VOFGrid& f) -> StageProfile& { return f.turbulence().profile(); },
+                             py::return_value_policy::reference_internal,
+                             "the k-epsilon model's own stages (setup, wall functions, production, transport, eddy "
+                             "viscosity, checks): the parts of the 'turbulence' stage")
       .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)
       .def_property_readonly("pressure_fallbacks", &VOFGrid::pressure_fallbacks,
                              "multigrid-CG solves redone by the direct solver (no convergence)")

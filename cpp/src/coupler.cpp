@@ -84,6 +84,7 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
   st_dem_ = profile_.add_stage("dem");
   st_fluid_ = profile_.add_stage("fluid");
   st_checks_ = profile_.add_stage("checks");
+  st_stable_dt_ = profile_.add_stage("stable_dt");
 }
 
 // the stones feel the flow's water and gravity (buoyancy, added mass, weight): one medium, the flow's
@@ -395,6 +396,7 @@ void Coupler::stage_checks() {
 double Coupler::stable_dt() { return stable_dt_limits(nullptr, nullptr); }
 
 double Coupler::stable_dt_limits(const char** term, int* cell) {
+  ScopedStage timer(profile_, st_stable_dt_);
   double dt = params_.max_dt;
   const char* why = "coupler_max_dt";
   int where = -1;

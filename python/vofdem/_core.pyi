@@ -2115,6 +2115,11 @@ class VOFGrid:
     @time.setter
     def time(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @property
+    def turbulence_profile(self) -> StageProfile:
+        """
+        the k-epsilon model's own stages (setup, wall functions, production, transport, eddy viscosity, checks): the parts of the 'turbulence' stage
+        """
 class CouplerEffect(enum.IntFlag):
     """
     Bit flags of the coupling's effects (CouplerParams.flags).

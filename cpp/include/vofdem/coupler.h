@@ -19,7 +19,8 @@
 //   3. "dem"           the stones advance by dt in substeps of their own step (DEMParams::dt, 1e-4 s)
 //   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
 //   5. "checks"        non-finite forces or stone state -> std::runtime_error
-// and before them "snapshot", the copy of the state that a failing stage restores (coupled scenes only).
+// and before them "snapshot", the copy of the state that a failing stage restores (coupled scenes only);
+// "stable_dt" times each call of stable_dt() (every module's limits, before each step of advance()).
 // The pressure-gradient force is held over the DEM substeps of a step (exchange once per fluid step);
 // the drag is linearised in the stone's velocity at the exchange and integrated implicitly by the DEM
 // (drag_exchange.h), or held too (CouplerParams::implicit_drag = false).
@@ -283,7 +284,7 @@ class Coupler {
   std::map<std::string, std::vector<long long>> limit_cells_;
 
   StageProfile profile_;
-  int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_;
+  int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_, st_stable_dt_;
 };
 
 }  // namespace vofdem
