@@ -229,8 +229,15 @@ void KEpsilonModel::apply_wall_functions(const std::vector<double>& face_u, cons
   std::fill(face_x_wall_shear.begin(), face_x_wall_shear.end(), 0.0);
   std::fill(face_z_wall_shear.begin(), face_z_wall_shear.end(), 0.0);
   std::fill(cell_u_tau.begin(), cell_u_tau.end(), 0.0);
-  for (int k = 0; k < grid_.nz(); ++k) {
-    for (int i = 0; i < grid_.nx(); ++i) {
+  // a wall face is a side of the domain or a face of a solid cell: without solid cells only the cells
+  // along the sides are visited (the same values; each cell writes its own faces)
+  const int nx = grid_.nx(), nz = grid_.nz();
+  bool solid = false;
+  for (int c = 0; c < grid_.ncell(); ++c) solid |= cell_porosity[c] <= 0.0;
+  for (int k = 0; k < nz; ++k) {
+    // an inner row without solid cells: its two end cells
+    const int step = solid || k == 0 || k == nz - 1 ? 1 : std::max(nx - 1, 1);
+    for (int i = 0; i < nx; i += step) {
       const int c = grid_.cell(i, k);
       if (cell_role_[c] == kInactive) continue;
       const double n = cell_porosity[c];

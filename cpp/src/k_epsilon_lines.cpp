@@ -85,6 +85,10 @@ double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const
       for (int i = 0; i < nx; ++i) act[i] = n[i] > 0.0 ? 1.0 : 0.0;
     else
       for (int i = 0; i < nx; ++i) act[i] = (n[i] > 0.0) & (cell_F[row + i] >= fmin) ? 1.0 : 0.0;
+    // a row of air or solid cells has rates 0 (no water above the surface): nothing to take
+    double active = 0.0;
+    for (int i = 0; i < nx; ++i) active += act[i];
+    if (active == 0.0) continue;
     row_rates(nx, dx, face_u.data() + sx * k, n, act, half_res_x_[0].data() + row, half_res_x_[1].data() + row,
               row_conductance_.data(), row_conductance_.data() + nx, rate);
     int at;
