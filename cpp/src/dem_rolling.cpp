@@ -66,13 +66,14 @@ void DEMSystem::update_pair_rolling() {
   if (!rolling_stones()) return;
   for (Pair& c : pairs_) {
     const double inv = inv_roll_inertia_[c.i] + inv_roll_inertia_[c.j];
-    c.roll_c = inv > 0.0 ? 2.0 * rolling_radius(disc_radius[c.i], disc_radius[c.j]) / std::sqrt(inv) : 0.0;
+    c.roll_r = rolling_radius(disc_radius[c.i], disc_radius[c.j]);
+    c.roll_c = inv > 0.0 ? 2.0 * c.roll_r / std::sqrt(inv) : 0.0;
   }
 }
 
 DEMSystem::RollingEnergy DEMSystem::rolling_contact(Pair& c, double fn, double dt) {
   const int i = c.i, j = c.j;
-  const double reff = rolling_radius(disc_radius[i], disc_radius[j]);
+  const double reff = c.roll_r;
   const double kr = rolling_stiffness(kt_, reff);
   const double cr = roll_eta_sqrt_kt_ * c.roll_c;
   const double cap = params_.rolling_friction_stone * reff * std::max(fn, 0.0);

@@ -304,6 +304,7 @@ class DEMSystem {
     double sqrt_m;     // sqrt of the pair's reduced mass [kg^0.5], set at each build
     double mr = 0.0;   // rolling spring moment M_r^k on i [N m] (rolling resistance only)
     double roll_c = 0.0;  // 2 R* sqrt(I_r) [kg^0.5 m^2]: C_r = eta_r sqrt(k_t) roll_c (rolling resistance only)
+    double roll_r = 0.0;  // R* = r_i r_j / (r_i + r_j) [m] (rolling resistance only)
     PolygonHistory poly{};  // polygon stones: the springs of the manifold points
   };
   void prepare();
