@@ -410,6 +410,46 @@ TEST(KEpsilon, SolidCellsActAsWalls) {
   EXPECT_NEAR(m.cell_k[above], ut * ut / 0.3, 1e-15);
 }
 
+// without solid cells only the cells along the domain's sides are visited for wall faces: their wall
+// values are the same to the bit as when a solid cell elsewhere has every cell visited
+TEST(KEpsilon, SideWallValuesDoNotDependOnASolidCellElsewhere) {
+  const Grid2D g = Grid2D::uniform(9, 7, 0.9, 0.35);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> vel(-0.5, 0.5);
+  Flow f(g);
+  for (double& u : f.face_u) u = vel(rng);
+  for (double& w : f.face_w) w = vel(rng);
+  Flow with_solid = f;
+  const int solid = g.cell(4, 3);
+  with_solid.porosity[solid] = 0.0;
+  KEpsilonModel a(g, {}, walled_box()), b(g, {}, walled_box());
+  a.initialize(1e-4, 1e-5, kNu);
+  b.initialize(1e-4, 1e-5, kNu);
+  a.step(1e-3, f.face_u, f.face_w, f.porosity, f.F, f.nu);
+  b.step(1e-3, with_solid.face_u, with_solid.face_w, with_solid.porosity, with_solid.F, with_solid.nu);
+  int sides = 0;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) {
+      if (!(i == 0 || k == 0 || i == g.nx() - 1 || k == g.nz() - 1)) continue;
+      const int c = g.cell(i, k);
+      EXPECT_GT(a.cell_u_tau[c], 0.0) << "cell (" << i << ", " << k << ")";
+      EXPECT_EQ(a.cell_u_tau[c], b.cell_u_tau[c]) << "cell (" << i << ", " << k << ")";
+      ++sides;
+    }
+  EXPECT_EQ(sides, 2 * (9 + 7) - 4);
+  for (int k = 0; k < g.nz(); ++k) {
+    EXPECT_EQ(a.face_x_wall_shear[g.face_x(0, k)], b.face_x_wall_shear[g.face_x(0, k)]);
+    EXPECT_EQ(a.face_x_wall_shear[g.face_x(g.nx(), k)], b.face_x_wall_shear[g.face_x(g.nx(), k)]);
+  }
+  for (int i = 0; i < g.nx(); ++i) {
+    EXPECT_EQ(a.face_z_wall_shear[g.face_z(i, 0)], b.face_z_wall_shear[g.face_z(i, 0)]);
+    EXPECT_EQ(a.face_z_wall_shear[g.face_z(i, g.nz())], b.face_z_wall_shear[g.face_z(i, g.nz())]);
+  }
+  // the inner cells beside the solid one are walls there only
+  EXPECT_EQ(a.cell_u_tau[g.cell(4, 4)], 0.0);
+  EXPECT_GT(b.cell_u_tau[g.cell(4, 4)], 0.0);
+}
+
 // a vertical wall: the shear on its x-faces is the z component, against the tangential flow; switching
 // wall functions off clears the wall outputs
 TEST(KEpsilon, EndWallShearOpposesTheFlowAndClearsWhenSwitchedOff) {
