@@ -24,3 +24,14 @@ def test_the_stages_nest(tmp_path):
     assert re.search(r"\| flow \| pressure \| [\d.]+ \| 1\.00 \| [\d.]+ per cell \|", text)
     with pytest.raises(ValueError, match="from"):
         script.main(["--from", "2", "--to", "1"])
+    with pytest.raises(ValueError, match="one value"):
+        script.main(["--set", "flume.height=0.4,0.45"])
+
+
+def test_a_set_value_changes_the_scene(tmp_path):
+    script = load_script("benchmarks/stage_profile.py")
+    out = script.main(["--scene", "maeno2008", "--from", "0", "--to", "0.02", "--set", "flume.height=0.38",
+                       "--out", str(tmp_path / "p.md")])
+    text = out.read_text()
+    assert text.startswith("# Where a step of maeno2008 goes (flume.height=0.38)")
+    assert "147 x 38 cells" in text
