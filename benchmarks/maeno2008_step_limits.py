@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 import numpy as np  # noqa: E402
 
 from vofdem.builder import build_simulation  # noqa: E402
-from vofdem.ensemble import parse_vary  # noqa: E402
+from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 
 
@@ -60,12 +60,7 @@ def main(argv=None):
     scene = load_scene(ROOT / "scenes" / f"{args.scene}.toml")
     if args.seed is not None:
         scene = scene.replace(seed=args.seed)
-    for item in args.set:
-        key, values = parse_vary(item)
-        if len(values) != 1:
-            raise ValueError(f"--set {item!r}: one value, not {len(values)}")
-        scene = scene.with_value(key, values[0])
-    scene.validate()
+    scene = with_settings(scene, args.set)
     sim = build_simulation(scene)
     cpu0 = time.process_time()
     rows = ["| window end [s] | steps | steps bound by | advective limit [s] at (x, z) [m] | "

@@ -24,7 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 import numpy as np  # noqa: E402
 
 from vofdem.builder import build_simulation  # noqa: E402
-from vofdem.ensemble import parse_vary  # noqa: E402
+from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 
 
@@ -59,12 +59,7 @@ def main(argv=None):
     if not 0.0 <= args.t0 < args.t1:
         raise ValueError(f"--from {args.t0} and --to {args.t1}: need 0 <= from < to")
     scene = load_scene(ROOT / "scenes" / f"{args.scene}.toml")
-    for item in args.set:
-        key, values = parse_vary(item)
-        if len(values) != 1:
-            raise ValueError(f"--set {item!r}: one value, not {len(values)}")
-        scene = scene.with_value(key, values[0])
-    scene.validate()
+    scene = with_settings(scene, args.set)
     sim = build_simulation(scene)
     sim.advance(args.t0)
     for _, prof, _, _ in profiles(sim):

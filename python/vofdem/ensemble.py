@@ -86,6 +86,16 @@ def parse_vary(spec: str) -> Tuple[str, List[Any]]:
     return key, vals
 
 
+def with_settings(scene, items):
+    """The scene with each 'KEY=VALUE' of items set (one value each, read as --vary reads them), validated."""
+    for item in items:
+        key, values = parse_vary(item)
+        if len(values) != 1:
+            raise ValueError(f"--set {item!r}: one value, not {len(values)}")
+        scene = scene.with_value(key, values[0])
+    return scene.validate()
+
+
 def _format_value(v) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"
