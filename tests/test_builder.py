@@ -52,13 +52,13 @@ def test_fluid_of_the_scene():
     s.numerics.pressure_solver = "direct"
     f = build_fluid(s.validate())
     g = f.grid
-    # 3.681 m / 0.025 m; one 0.5 cm row, then 1 cm rows, the last 0.5 cm to 0.45 m joined to the row below
-    assert (g.nx, g.nz) == (147, 1 + 44)
+    # 3.681 m / 0.025 m; one 0.5 cm row, then 1 cm rows, the last 0.5 cm to 0.38 m joined to the row below
+    assert (g.nx, g.nz) == (147, 1 + 37)
     assert g.z_faces[1] == pytest.approx(0.005) and g.z_faces[2] == pytest.approx(0.015)
-    assert np.diff(g.z_faces)[-1] == pytest.approx(0.015) and g.z_faces[-1] == pytest.approx(0.45)
+    assert np.diff(g.z_faces)[-1] == pytest.approx(0.015) and g.z_faces[-1] == pytest.approx(0.38)
     # grid.merge_fraction 0: the remainder is a row of its own
     thin = build_fluid(s.with_value("grid.merge_fraction", 0.0).validate()).grid
-    assert thin.nz == 1 + 44 + 1 and np.diff(thin.z_faces)[-1] == pytest.approx(0.005)
+    assert thin.nz == 1 + 37 + 1 and np.diff(thin.z_faces)[-1] == pytest.approx(0.005)
     with pytest.raises(ValueError, match=r"grid.merge_fraction = 1.0 is outside the allowed range \[0.0, 1.0\)"):
         s.with_value("grid.merge_fraction", 1.0).validate()
     p = f.params
@@ -89,3 +89,24 @@ def test_fluid_of_the_scene():
     F = np.asarray(f.cell_F)
     assert F[:, 0].sum() * 0.01 == pytest.approx(initial_level(s), abs=0.01)
     assert F[:, -1].sum() == 0.0
+
+
+def test_the_start_water_rests_in_the_pores_or_is_displaced_over_the_weir():
+    from vofdem.builder import build_fluid, build_simulation, initial_level
+
+    s = Scene.maeno2008().validate()
+    box = build_fluid(s)  # the water filled before the stones: F = 1 up to the level, upstream of the crest
+    g = box.grid
+    top_of_level_row = np.asarray(g.z_faces)[np.searchsorted(g.z_faces, initial_level(s))]  # 0.305 m
+    rest = build_simulation(s).fluid
+    # 'rest' (default): the stones take the place of air-free pore space; every fraction stays the box's
+    assert np.array_equal(np.asarray(rest.cell_F), np.asarray(box.cell_F))
+    assert rest.water_volume() < box.water_volume()  # the stones' volume below the level holds no water
+    displaced = build_simulation(s.with_value("flume.initial_water", "displaced").validate()).fluid
+    # 'displaced': the box's volume kept, the water the stones take piled over the weir up to the top row
+    assert displaced.water_volume() == pytest.approx(box.water_volume(), rel=1e-12)
+    F = np.asarray(displaced.cell_F).reshape(g.nz, g.nx)
+    z_c = 0.5 * (np.asarray(g.z_faces)[1:] + np.asarray(g.z_faces)[:-1])
+    assert F[z_c > top_of_level_row].max() > 0.5 and F[-1].max() > 0.5
+    with pytest.raises(ValueError, match=r"flume.initial_water = 'still' is not one of 'rest', 'displaced'"):
+        s.with_value("flume.initial_water", "still").validate()

@@ -53,6 +53,21 @@ def test_stones_are_held_during_the_spin_up(tmp_path):
     assert np.array_equal(sim.stones.disc_fixed, d.fixed)  # fixed flags restored after the spin-up
 
 
+def test_water_at_the_domain_top_is_reported_once(tmp_path):
+    s = short_scene()
+    # the double's level, 0.25 m + (Q / (1.7 B))^(2/3), passes 0.32 m (the top row's floor) at 15.8 l/s; at 16 l/s
+    # (t = 14 s) it is 0.3208 m: F = (0.3208 - 0.33) / 0.02 + 0.5 = 0.0381
+    s.flume.height = 0.34
+    with pytest.warns(RuntimeWarning, match=r"water reaches the domain's top row at t = 14 s \(F = 0.0381 .* "
+                      r"raise flume.height = 0.34 m") as caught:
+        run_scene(s.validate(), tmp_path, sim=FakeSimulation(s), progress=False, figures=False, animation=False)
+    assert sum("top row" in str(w.message) for w in caught) == 1  # once, though it stays there
+    assert RunData(tmp_path / "run.h5").attrs["water_at_top_s"] == 14.0
+    run_scene(short_scene(), tmp_path / "low", sim=FakeSimulation(short_scene()), progress=False, figures=False,
+              animation=False)  # 0.38 m: the level stays below the top row, no warning (warnings are errors here)
+    assert "water_at_top_s" not in RunData(tmp_path / "low" / "run.h5").attrs
+
+
 def test_solver_failure_keeps_the_output(tmp_path):
     s = short_scene()
     with pytest.raises(SolverError, match=r"solver failed at t = 7.5 s: fake stage 'pressure': no convergence"):

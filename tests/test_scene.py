@@ -90,7 +90,7 @@ def test_units_in_strings_are_converted():
     ("[numerics]\nviscous_substeps = 0", r"numerics.viscous_substeps = 0 is outside the allowed range \[1, 64\]"),
     ("[numerics]\nviscous_substeps = 2.5", r"numerics.viscous_substeps = 2.5 must be a whole number in \[1, 64\]"),
     ("[weir]\ntoe_x = 3.0", r"the weir does not fit the flume: its downstream toe is at x = 4.181 m"),
-    ("[weir]\nheight = 0.5", r"the weir does not fit the flume: weir.height = 0.5 m must be below flume.height = 0.45 m"),
+    ("[weir]\nheight = 0.5", r"the weir does not fit the flume: weir.height = 0.5 m must be below flume.height = 0.38 m"),
     ("[stones]\npositions = [[1.5, 0.1], [0.01, 0.1]]", r"stones.positions\[1\] = \[0.01, 0.1\] \(diameter 0.048 m\) lies outside the domain"),
     ("[stones]\npositions = [[1.5, 0.44]]", r"stones.positions\[0\] .* lies outside the domain"),
     ("[stones]\npositions = [[1.5, 0.1]]\ndiameters = [0.05, 0.05]", r"stones.diameters has 2 entries, stones.positions has 1"),

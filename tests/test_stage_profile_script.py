@@ -30,8 +30,8 @@ def test_the_stages_nest(tmp_path):
 
 def test_a_set_value_changes_the_scene(tmp_path):
     script = load_script("benchmarks/stage_profile.py")
-    out = script.main(["--scene", "maeno2008", "--from", "0", "--to", "0.02", "--set", "flume.height=0.38",
+    out = script.main(["--scene", "maeno2008", "--from", "0", "--to", "0.02", "--set", "flume.height=0.45",
                        "--out", str(tmp_path / "p.md")])
     text = out.read_text()
-    assert text.startswith("# Where a step of maeno2008 goes (flume.height=0.38)")
-    assert "147 x 38 cells" in text
+    assert text.startswith("# Where a step of maeno2008 goes (flume.height=0.45)")
+    assert "147 x 45 cells" in text  # the default 0.38 m gives 147 x 38

@@ -273,8 +273,8 @@ def initial_level(scene: Scene) -> float:
 
 
 def build_fluid(scene: Scene):
-    """VOFGrid of a scene: grid, parameters, inflow hydrograph, water at rest upstream of the crest at
-    `initial_level` (porosity is left to the coupler, which computes it from the stones)."""
+    """VOFGrid of a scene: grid, parameters, inflow hydrograph, water upstream of the crest up to
+    `initial_level` (porosity is left to the coupler, which computes it from the stones: flume.initial_water)."""
     fluid = _core.VOFGrid(build_grid(scene), flow_params(scene))
     t, q = scene.hydrograph.table(scene.duration)
     fluid.discharge = _core.DischargeTable([float(v) for v in t], [float(v) for v in q])
@@ -392,5 +392,7 @@ def build_simulation(scene: Scene, packing: Optional[dict] = None):
     sim = _core.Coupler(fluid, stones, coupler_params(scene, n_s))
     t, q = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table([float(v) for v in t], [float(v) for v in q])
-    sim.update_porosity()
+    # 'rest': the pores below the level hold water; keeping the box's volume instead piles the water the
+    # stones displace over the weir, up to the domain's top (0.385 m in the Maeno scene)
+    sim.update_porosity(keep_water_volume=scene.flume.initial_water == "displaced")
     return sim

@@ -16,6 +16,7 @@ checkpoint after the first and the last snapshot and every ``checkpoint_seconds`
 from __future__ import annotations
 
 import time as _time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import SimpleNamespace
@@ -28,6 +29,9 @@ from .checkpoint import CHECKPOINT_NAME, CHECKPOINT_SECONDS, Checkpoint, load_ch
 from .io import XDMF_SECONDS, OutputError, RunData, RunWriter, cell_velocities, check_writable
 from .polygon_output import stone_diameters, stone_polygons
 from .scene import Scene
+
+
+TOP_ROW_WATER = 0.01  # [-] a water fraction in the domain's top row that counts as water reaching it
 
 
 class SolverError(RuntimeError):
@@ -116,6 +120,7 @@ class _Recorder:
         self.fixed0 = np.zeros(len(self.diameter), bool) if fixed0 is None else np.asarray(fixed0, bool)
         self.removal_t = np.full(len(self.diameter), np.nan)  # first snapshot of each removal (analysis.py)
         self.moved = 0
+        self.top_water_t: Optional[float] = None  # when water first reached the domain's top row [s]
 
     def record(self) -> None:
         sim, fl, st = self.sim, self.sim.fluid, self.sim.stones
@@ -132,12 +137,24 @@ class _Recorder:
         if self.polygons:
             stones["angle"] = np.array(st.disc_angle, float)
         t = float(sim.time)
+        self.check_top_row(F[-1], t)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
         removed = (disp > self.diameter) | ~stones["active"]
         self.moved = int(np.sum(removed))
         self.removal_t[removed & ~self.fixed0 & np.isnan(self.removal_t)] = t
         self.writer.write_snapshot(t, self.scene.hydrograph.discharge(t), water_level(F, self.z_faces, self.gauge_i),
                                    fields if self.writer.write_fields else None, stones)
+
+    def check_top_row(self, top: np.ndarray, t: float) -> None:
+        """Warns once when water reaches the top row: through the open top it would leave the flume."""
+        if self.top_water_t is not None or not top.max() > TOP_ROW_WATER:
+            return
+        self.top_water_t = t
+        i = int(np.argmax(top))
+        x = 0.5 * (self.x_faces[i] + self.x_faces[i + 1])
+        warnings.warn(f"water reaches the domain's top row at t = {t:.4g} s (F = {top[i]:.3g} at x = {x:.4g} m) "
+                      f"and can leave through the open top: raise flume.height = {self.z_faces[-1]:.4g} m",
+                      RuntimeWarning, stacklevel=2)
 
 
 def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: Optional[bool] = None,
@@ -323,8 +340,9 @@ class _Loop:
         return SimpleNamespace(names=names, seconds=seconds, calls=calls)
 
     def close(self, status: str, extra: Optional[dict] = None) -> None:
+        top = {} if self.rec.top_water_t is None else {"water_at_top_s": self.rec.top_water_t}
         self.writer.close(status, profile=self.profile_tuple(),
-                          extra_attrs={**(extra or {}), **_model_attrs(self.sim, self.scene)})
+                          extra_attrs={**(extra or {}), **top, **_model_attrs(self.sim, self.scene)})
 
     def close_quietly(self, status: str) -> None:
         """Closes after a failed write: a second failure (the disk still full) must not hide the first."""

@@ -37,12 +37,16 @@ class Flume(_Section):
     # the core's FlowParams.flume_width is the one source of the default
     width: float = _p(_core.FlowParams().flume_width, "length", 0.0, 10.0,
                       "flume width B dividing the discharge [m]; usual 0.5", "(]")
-    height: float = _p(0.45, "length", 0.05, 10.0, "domain height above the bed [m]", "(]")
+    height: float = _p(0.38, "length", 0.05, 10.0,
+                       "domain height above the bed [m]; usual 0.38 (5.5 cm over the Maeno weir's highest surface)", "(]")
     bed_slope: float = _p(0.0, None, -0.1, 0.1, "bed slope S0 = sin(angle) [-], positive falling downstream")
     outflow: str = _choice("free_overfall", ("free_overfall", "tailwater"),
                            "outflow at x = length: free overfall or a fixed tailwater level")
     tailwater_level: Optional[float] = _p(None, "length", 0.0, 10.0,
                                           "tailwater level above the bed [m] (outflow = 'tailwater')", "(]")
+    initial_water: str = _choice("rest", ("rest", "displaced"),
+                                 "the water at the start: at rest to the weir-formula level in the pores, or "
+                                 "'displaced' (filled before the stones, which push it up over the weir)")
 
     def validate(self, prefix: str = "flume") -> None:
         self._validate_fields(prefix)
@@ -463,8 +467,8 @@ class Scene:
         Not given by the paper, assumed here (each a parameter): flume width 0.50 m; weir height
         0.25 m, crest 0.20 m, upstream slope 27 deg; stone density 2650 kg/m3; diameters spread
         uniformly over 4.8 cm +- 10 % (natural stones; the paper gives the mean only); a free overfall 1.5 m downstream of the weir's toe; 1.0 m
-        of flume upstream of the weir; a spin-up of 20 s at 10 l/s before the ramp; a domain 0.45 m
-        high; the fluid's CFL 0.3.
+        of flume upstream of the weir; a spin-up of 20 s at 10 l/s before the ramp; a domain 0.38 m
+        high (the water's highest surface at 25 l/s is 0.30-0.325 m, docs/scenario.md); the fluid's CFL 0.5.
         """
         weir = Weir()
         flume = Flume(length=round(weir.x_toe_down + 1.5, 6))
