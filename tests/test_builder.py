@@ -99,7 +99,7 @@ def test_the_start_water_rests_in_the_pores_or_is_displaced_over_the_weir():
     g = box.grid
     top_of_level_row = np.asarray(g.z_faces)[np.searchsorted(g.z_faces, initial_level(s))]  # 0.305 m
     rest = build_simulation(s).fluid
-    # 'rest' (default): the stones take the place of air-free pore space; every fraction stays the box's
+    # 'rest' (default): the stones take the place of the water they cover; every fraction stays the box's
     assert np.array_equal(np.asarray(rest.cell_F), np.asarray(box.cell_F))
     assert rest.water_volume() < box.water_volume()  # the stones' volume below the level holds no water
     displaced = build_simulation(s.with_value("flume.initial_water", "displaced").validate()).fluid
