@@ -6,11 +6,11 @@ Advances the scene to --from (seconds simulated; the stones are not held through
 the parts of the flow's `turbulence` stage) and the stones (`sim.stones.profile`): CPU ms per coupled
 step, calls per step, and the cost per unit of work (ns per cell for the flow, ns per stone-substep for
 the stones). One process, one core; comparing two builds means alternating runs of this script.
-Scene values can be set with --set key=value (e.g. flume.height=0.38). Writes
+Scene values can be set with --set key=value (e.g. flume.height=0.45, the former domain). Writes
 benchmarks/results/stage_profile_<scene>[_<set>].md.
 
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/stage_profile.py \
-        --scene maeno2008_consistent [--from 20] [--to 30] [--set flume.height=0.38]
+        --scene maeno2008_consistent [--from 20] [--to 30] [--set flume.height=0.45]
 """
 import argparse
 import os
