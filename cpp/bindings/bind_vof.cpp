@@ -58,6 +58,9 @@ void bind_vof(py::module_& m) {
   py::enum_<InletBoundary>(m, "InletBoundary")
       .value("WALL", InletBoundary::kWall)
       .value("DISCHARGE", InletBoundary::kDischarge, "prescribed discharge Q(t) over the wetted inlet");
+  py::enum_<InletProfile>(m, "InletProfile")
+      .value("EQUIVALENT_DEPTH", InletProfile::kEquivalentDepth, "the rows below the inlet's level h = sum(F dz)")
+      .value("WATER_FRACTION", InletProfile::kWaterFraction, "every row by its water fraction (the former profile)");
   py::enum_<OutletBoundary>(m, "OutletBoundary")
       .value("WALL", OutletBoundary::kWall)
       .value("FREE_OVERFALL", OutletBoundary::kFreeOverfall, "the end face is a brink open to still air (hydrostatic air pressure)")
@@ -103,6 +106,7 @@ void bind_vof(py::module_& m) {
       .def_readwrite("pressure_solver", &FlowParams::pressure_solver)
       .def_readwrite("pressure_tol", &FlowParams::pressure_tol, "relative residual of the pressure solve [-]")
       .def_readwrite("inlet", &FlowParams::inlet)
+      .def_readwrite("inlet_profile", &FlowParams::inlet_profile, "InletProfile of the discharge over the inlet rows")
       .def_readwrite("outlet", &FlowParams::outlet)
       .def_readwrite("tailwater_level", &FlowParams::tailwater_level, "tailwater level [m] for OutletBoundary.TAILWATER")
       .def_readwrite("top", &FlowParams::top)

@@ -49,7 +49,7 @@ DischargeTable DischargeTable::constant(double q) {
 }
 
 void inlet_velocities(double q, const std::vector<double>& dz, const double* F, const double* porosity, int stride,
-                      std::vector<double>& u) {
+                      InletProfile profile, std::vector<double>& u) {
   const size_t nz = dz.size();
   u.assign(nz, 0.0);
   double h = 0.0;
@@ -64,8 +64,17 @@ void inlet_velocities(double q, const std::vector<double>& dz, const double* F, 
       }
     return;
   }
-  for (size_t k = 0; k < nz; ++k)
-    if (porosity[k * stride] > 0.0) u[k] = q * F[k * stride] / h;
+  if (profile == InletProfile::kWaterFraction) {
+    for (size_t k = 0; k < nz; ++k)
+      if (porosity[k * stride] > 0.0) u[k] = q * F[k * stride] / h;
+    return;
+  }
+  double below = 0.0;  // open depth under row k [m]
+  for (size_t k = 0; k < nz && below < h; ++k) {
+    if (!(porosity[k * stride] > 0.0)) continue;
+    u[k] = q * std::min(1.0, (h - below) / dz[k]) / h;
+    below += dz[k];
+  }
 }
 
 }  // namespace vofdem

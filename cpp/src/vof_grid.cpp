@@ -362,7 +362,7 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   if (params_.inlet == InletBoundary::kDischarge) {
     std::vector<double>& u_in = inlet_u_;
     inlet_velocities(discharge_.at(time_) / params_.flume_width, inlet_dz_, cell_F.data(), cell_porosity.data(),
-                     grid_.nx(), u_in);
+                     grid_.nx(), params_.inlet_profile, u_in);
     for (int k = 0; k < grid_.nz(); ++k) {
       const double n = face_x_porosity[grid_.face_x(0, k)];
       if (n > 0.0) rate = std::max(rate, std::abs(u_in[k]) / (n * grid_.dx()));
@@ -485,7 +485,8 @@ void VOFGrid::check_finite(const char* stage, const char* name, const std::vecto
 void VOFGrid::apply_inlet(double t, std::vector<double>& u) {
   if (params_.inlet != InletBoundary::kDischarge) return;
   const double q = discharge_.at(t) / params_.flume_width;
-  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), grid_.nx(), inlet_u_);
+  inlet_velocities(q, inlet_dz_, cell_F.data(), cell_porosity.data(), grid_.nx(), params_.inlet_profile,
+                   inlet_u_);
   for (int k = 0; k < grid_.nz(); ++k) u[grid_.face_x(0, k)] = inlet_u_[k];
 }
 

@@ -237,6 +237,8 @@ def flow_params(scene: Scene):
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
                                 "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
     p.inlet = _core.InletBoundary.DISCHARGE
+    p.inlet_profile = {"equivalent_depth": _core.InletProfile.EQUIVALENT_DEPTH,
+                       "water_fraction": _core.InletProfile.WATER_FRACTION}[n.inlet_profile]
     if f.outflow == "tailwater":
         p.outlet = _core.OutletBoundary.TAILWATER
         p.tailwater_level = f.tailwater_level

@@ -370,6 +370,10 @@ class Numerics(_Section):
                                  "in; a shorter step). The other schemes always take row_sum")
     viscous_substeps: int = _p(8, None, 1, 64, "the explicit viscous stresses in up to this many substeps of a "
                                "fluid step longer than their limit [-]; 8 (1: one step, the limit binds)")
+    inlet_profile: str = _choice("equivalent_depth", ("equivalent_depth", "water_fraction"),
+                                 "the discharge over the inlet rows: those below the inlet's level sum(F dz), or "
+                                 "every row by its water fraction (the former profile, whose traces of water above "
+                                 "the level take inflow and grow)")
     drag_exchange: str = _choice("implicit", ("implicit", "held"),
                                  "stone drag: linearised in the stone's velocity, implicit in the DEM, or held "
                                  "over the step (bounded by its relaxation time)")

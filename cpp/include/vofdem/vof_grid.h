@@ -34,8 +34,8 @@
 // so a nearly closed cell (n = 1e-6) is nearly closed on every face and its pore velocity stays bounded.
 // A boundary face takes the porosity of its cell.
 //
-// Boundaries: left end wall or discharge inlet Q(t) [m^3/s] / flume width B spread over the wetted
-// inlet rows in proportion to their water fraction (water fraction 1 entering, inlet level free);
+// Boundaries: left end wall or discharge inlet Q(t) [m^3/s] / flume width B spread over the inlet
+// rows below its water level (inflow.h; water fraction 1 entering, inlet level free);
 // right end wall, free overfall (the end face is the brink, open to still air outside: the
 // hydrostatic air pressure from p = 0 at the top; the water falls freely out) or a fixed tailwater
 // level (hydrostatic water pressure below it); open faces carry zero-gradient momentum outflow; bed
@@ -130,6 +130,8 @@ struct FlowParams {
   PressureSolverKind pressure_solver = PressureSolverKind::kMultigridCG;  // projection solver (Eigen: reference)
   double pressure_tol = 1e-8;   // relative residual of the iterative pressure solve [-], 1e-8
   InletBoundary inlet = InletBoundary::kWall;          // left end (x = x0)
+  // the discharge's spread over the inlet rows (inflow.h); kWaterFraction: the former profile
+  InletProfile inlet_profile = InletProfile::kEquivalentDepth;
   OutletBoundary outlet = OutletBoundary::kWall;       // right end (x = x0 + length)
   double tailwater_level = 0.0;                        // water level [m] at the right end for kTailwater
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
