@@ -89,9 +89,10 @@ class FakeSimulation:
     def import_state(self, s):
         st, fl = self.stones, self.fluid
         self.time = float(s["time"][0])
-        st.disc_pos[...], st.disc_vel[...] = s["pos"], s["vel"]
+        # a checkpoint holds each array flat
+        st.disc_pos[...], st.disc_vel[...] = (np.reshape(s[k], (-1, 2)) for k in ("pos", "vel"))
         st.disc_active[...], st.disc_fixed[...] = s["active"] != 0, s["fixed"] != 0
-        self.disc_force_drag[...], self.disc_force_pressure[...] = s["drag"], s["pressure"]
+        self.disc_force_drag[...], self.disc_force_pressure[...] = (np.reshape(s[k], (-1, 2)) for k in ("drag", "pressure"))
         fl.cell_F[...], fl.cell_p[...], fl.face_u[...] = s["F"], s["p"], s["u"]
 
 

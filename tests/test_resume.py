@@ -135,3 +135,7 @@ def test_checkpoint_round_trip_is_exact(tmp_path):
     assert (back.snapshots, back.targets, back.hold, back.scene_toml, back.profile, back.wall_seconds) == \
         (3, [0.5, 1.0], True, "name = 'x'\n", {"fluid": (1.5, 7)}, 2.0)
     assert not (tmp_path / "c.h5.tmp").exists()
+    assert back.water_at_top_s is None
+    ck.water_at_top_s = 14.5
+    save_checkpoint(tmp_path / "c.h5", ck)
+    assert load_checkpoint(tmp_path / "c.h5").water_at_top_s == 14.5

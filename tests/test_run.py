@@ -68,6 +68,27 @@ def test_water_at_the_domain_top_is_reported_once(tmp_path):
     assert "water_at_top_s" not in RunData(tmp_path / "low" / "run.h5").attrs
 
 
+def test_a_resumed_run_keeps_when_water_reached_the_top(tmp_path):
+    from vofdem.run import request_stop
+
+    s = short_scene()
+    s.flume.height = 0.34  # the level reaches the top row at t = 14 s (above) and stays there
+
+    class StopsAtSixteen(FakeSimulation):
+        def advance(self, t_end):
+            super().advance(t_end)
+            if t_end == 16.0:
+                request_stop()
+
+    with pytest.warns(RuntimeWarning, match="top row at t = 14 s"), pytest.raises(KeyboardInterrupt):
+        run_scene(s.validate(), tmp_path, sim=StopsAtSixteen(s), progress=False, figures=False, animation=False,
+                  checkpoint_seconds=0.0)
+    # the resumed run warns no second time (warnings are errors here) and records the first time
+    run_scene(s, tmp_path, sim=FakeSimulation(s), progress=False, figures=False, animation=False, resume=True)
+    d = RunData(tmp_path / "run.h5")
+    assert d.attrs["status"] == "completed" and d.attrs["water_at_top_s"] == 14.0
+
+
 def test_solver_failure_keeps_the_output(tmp_path):
     s = short_scene()
     with pytest.raises(SolverError, match=r"solver failed at t = 7.5 s: fake stage 'pressure': no convergence"):

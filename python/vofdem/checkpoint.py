@@ -16,7 +16,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import h5py
 import numpy as np
@@ -33,7 +33,8 @@ CHECKPOINT_SECONDS = 30.0
 class Checkpoint:
     """A run's state after `snapshots` snapshots: the solver's state, the snapshot times of the whole
     run (`targets`, after the first snapshot), whether the stones are held (`hold`), the scene (TOML),
-    the profile so far {stage: (seconds, calls)} and the wall time so far [s]."""
+    the profile so far {stage: (seconds, calls)}, the wall time so far [s] and when water first reached
+    the domain's top row [s] (None: not yet; the resumed run then warns no second time)."""
 
     state: Dict[str, np.ndarray]
     snapshots: int
@@ -42,6 +43,7 @@ class Checkpoint:
     scene_toml: str
     profile: Dict[str, Tuple[float, int]]
     wall_seconds: float
+    water_at_top_s: Optional[float] = None
 
 
 def save_checkpoint(path, ck: Checkpoint) -> None:
@@ -64,10 +66,16 @@ def save_checkpoint(path, ck: Checkpoint) -> None:
             f["profile/calls"] = np.array([ck.profile[n][1] for n in names], np.int64)
             f.attrs.update(snapshots=int(ck.snapshots), hold=bool(ck.hold), scene_toml=ck.scene_toml,
                            wall_seconds=float(ck.wall_seconds))
+            if ck.water_at_top_s is not None:
+                f.attrs["water_at_top_s"] = float(ck.water_at_top_s)
         os.replace(tmp, path)
     except OSError as e:
         tmp.unlink(missing_ok=True)
         raise OutputError(e.errno, f"writing the checkpoint '{path}' failed (the previous one is kept): {e}") from e
+
+
+def _optional_float(v) -> Optional[float]:
+    return None if v is None else float(v)
 
 
 def load_checkpoint(path) -> Checkpoint:
@@ -85,6 +93,7 @@ def load_checkpoint(path) -> Checkpoint:
             profile = {n: (float(s), int(c)) for n, s, c in
                        zip(names, f["profile/seconds"][()], f["profile/calls"][()])}
             return Checkpoint(state, int(f.attrs["snapshots"]), f["targets"][()].tolist(), bool(f.attrs["hold"]),
-                              str(f.attrs["scene_toml"]), profile, float(f.attrs["wall_seconds"]))
+                              str(f.attrs["scene_toml"]), profile, float(f.attrs["wall_seconds"]),
+                              _optional_float(f.attrs.get("water_at_top_s")))
     except (OSError, KeyError) as e:
         raise ValueError(f"checkpoint '{path}' cannot be read: {e}") from e

@@ -284,6 +284,8 @@ class _Loop:
             self.t_start = float(data.times[0])
             self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
         self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
+        if ck is not None:
+            self.rec.top_water_t = ck.water_at_top_s
         if ck is not None and scene.hydrograph.stops_at_first_stage:  # the removals before the kill
             from .analysis import removal_times
 
@@ -320,7 +322,7 @@ class _Loop:
             names, seconds, calls = self.profile_tuple()
             save_checkpoint(self.out / CHECKPOINT_NAME, Checkpoint(
                 dict(self.sim.export_state()), self.writer.count, self.targets, self.hold, self.scene.to_toml(),
-                {n: (s, c) for n, s, c in zip(names, seconds, calls)}, self.wall_seconds()))
+                {n: (s, c) for n, s, c in zip(names, seconds, calls)}, self.wall_seconds(), self.rec.top_water_t))
 
     def wall_seconds(self) -> float:
         return self.base_wall + _time.perf_counter() - self.wall0
