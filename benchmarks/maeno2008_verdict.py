@@ -11,7 +11,8 @@ runs only the members not finished (one directory per ensemble under --out).
   beside it, the shares of members with a removal and failing in 2+ / 3+ separate stages, and the crest
   lowering at the run's end (25 l/s), next to the scene's [reference] data (the experiment's and the
   paper's model's discharges). Then the width sweep: one configuration over flume widths (the
-  ensemble's `vary` of flume.width; the scene's own width is its verdict ensemble).
+  ensemble's `vary` of flume.width; the scene's own width is its verdict ensemble), in a domain raised
+  where a narrower flume's water would reach the top (`sweep_height`).
 * **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
   (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up); per
   setting the shift of each event's median from the reference's, with its paired bootstrap interval,
@@ -35,6 +36,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from vofdem.builder import upstream_level
 from vofdem.cluster import default_workers, ensemble_client
 from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble
 from vofdem.fragility import EVENTS, fig_fragility, figure_legend, fragility_of
@@ -87,6 +89,19 @@ def _parser():
     return p
 
 
+def sweep_height(scene, widths) -> float:
+    """The domain's height [m] for the width sweep: the scene's, raised by as much as the narrowest flume's
+    level at the run's peak discharge (builder.upstream_level) lies above the scene's own (rounded up to
+    the cm), so that every width keeps the scene's headroom over the water. Narrower flumes carry more
+    discharge per metre: in the 0.38 m domain a 0.3 m flume's water reached the top row (Maeno scenes at
+    25 l/s: 0.3449 m at 0.5 m, 0.3837 m at 0.3 m -> 0.42 m)."""
+    t, q = scene.hydrograph.table(scene.duration)
+    peak = float(np.max(np.interp(np.linspace(0.0, scene.duration, 1001), t, q)))
+    own = upstream_level(scene, peak)
+    rise = max([upstream_level(scene.with_value("flume.width", w), peak) - own for w in widths] + [0.0])
+    return scene.flume.height if rise <= 0.0 else math.ceil(round((scene.flume.height + rise) * 100, 6)) / 100
+
+
 def _scene(name: str, quick: bool, end_time):
     scene = load_scene(ROOT / "scenes" / f"{name}.toml")
     if quick:
@@ -123,20 +138,29 @@ def run_study(args, build=None, log=print):
     widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
     widths = widths if "width" in args.parts else []
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
+    height = sweep_height(scenes[width_name], widths)
     res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes,
            "width_scene": width_name, "cost_scene": cost_name,
-           "settings": settings, "base_width": base_width, "out": out, "found": _finished(out)}
+           "settings": settings, "base_width": base_width, "sweep_height": height, "out": out, "found": _finished(out)}
     with _client(0 if args.no_run else args.workers, None if args.no_run else args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
                   progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
         ens = (lambda s, sd, d, vary=None: finished_outcomes(s, sd, d, vary)) if args.no_run else \
             (lambda s, sd, d, vary=None: run_ensemble(s, sd, d, vary=vary, **kw))
         res["verdict"] = {n: ens(s, seeds, out / "verdict" / n) for n, s in scenes.items()}
-        res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, {"flume.width": widths})
+        res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, _width_vary(res, widths))
                         if widths else None)
         ref = scenes[cost_name]
         res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
     return res
+
+
+def _width_vary(res, widths) -> dict:
+    """The width sweep's `vary`: the widths, and the raised domain's height where it is raised."""
+    vary = {"flume.width": widths}
+    if res["sweep_height"] > res["scenes"][res["width_scene"]].flume.height:
+        vary["flume.height"] = [res["sweep_height"]]
+    return vary
 
 
 def _seed_range(seeds) -> str:
@@ -215,6 +239,14 @@ def width_rows(res):
             rows.append({"width_m": w, **event_summary(df, ev), "stages_2plus": fr["stages_2plus"],
                          "crest_lowering_mm_median": spread(df["crest_lowering_mm"].astype(float))[1]})
     return rows
+
+
+def _height_note(res) -> str:
+    own = res["scenes"][res["width_scene"]].flume.height
+    if res["sweep_height"] <= own:
+        return ""
+    return (f"; the narrower flumes in a domain {res['sweep_height']:g} m high (`sweep_height`: raised by the rise of "
+            f"the weir formula's level at the peak discharge), the scene's own width in its {own:g} m")
 
 
 def _width_md(res) -> list:
@@ -447,7 +479,8 @@ def write_results(res, args, wall: float) -> Path:
     for n, s in res["scenes"].items():
         text += _config_md(n, s, res["verdict"][n])
     text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by B; "
-             f"the paper does not give it), seeds {_seed_range(res['width_seeds'])}.", ""] + _width_md(res)
+             f"the paper does not give it), seeds {_seed_range(res['width_seeds'])}" + _height_note(res) + ".", ""]
+    text += _width_md(res)
     ref_scene = res["scenes"][res["cost_scene"]]
     text += ["## Accuracy against cost", "",
              f"Reference: `{res['cost_scene']}` (grid {ref_scene.grid.dx * 100:g} x {ref_scene.grid.dz * 100:g} cm, "

@@ -43,7 +43,7 @@ def test_explicit_stones_and_effect_flags():
 
 
 def test_fluid_of_the_scene():
-    from vofdem.builder import build_fluid, initial_level
+    from vofdem.builder import build_fluid, initial_level, upstream_level
 
     s = Scene.maeno2008()
     s.effects.turbulence = False
@@ -86,6 +86,10 @@ def test_fluid_of_the_scene():
     assert f.discharge.at(0.0) == pytest.approx(0.010) and f.discharge.at(140.0) == pytest.approx(0.025)
     # water at rest upstream of the crest up to the critical-depth estimate for 10 l/s over 0.5 m
     assert initial_level(s) == pytest.approx(0.25 + 1.5 * (0.02 ** 2 / 9.81) ** (1 / 3))
+    # 25 l/s through 0.3 m: q = 0.0833 m^2/s, critical depth 0.0891 m, H = 0.134 m over the 0.25 m weir
+    narrow = Scene.maeno2008()
+    narrow.flume.width = 0.3
+    assert upstream_level(narrow, 0.025) == pytest.approx(0.3837, abs=1e-4)
     F = np.asarray(f.cell_F)
     assert F[:, 0].sum() * 0.01 == pytest.approx(initial_level(s), abs=0.01)
     assert F[:, -1].sum() == 0.0

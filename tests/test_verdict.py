@@ -205,3 +205,12 @@ def test_the_fidelity_option_of_the_command_line(capsys):
     assert 'fidelity = "draft"' in out and "dx = 0.05" in out
     assert cli_main(["check", "maeno2008", "--fidelity", "ultra"]) == 2
     assert "numerics.fidelity = 'ultra' is not one of 'draft', 'standard', 'fine'" in capsys.readouterr().err
+
+
+def test_the_width_sweep_raises_the_domain_where_the_narrower_water_would_reach_the_top():
+    v = _script()
+    s = load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008_rolling_consistent.toml")
+    # 25 l/s: the weir formula's level 0.3449 m through 0.5 m, 0.3604 m through 0.4 m, 0.3837 m through 0.3 m
+    assert v.sweep_height(s, [0.3, 0.4]) == 0.42 and v.sweep_height(s, [0.4]) == 0.40  # 0.38 + 0.0388 / 0.0155
+    assert v.sweep_height(s, []) == v.sweep_height(s, [0.5]) == v.sweep_height(s, [0.6]) == 0.38
+    assert v.sweep_height(s.replace(end_time=10.0), [0.3]) == 0.41  # 10 l/s held: 0.3017 -> 0.3225 m, 0.4008 m
