@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from vofdem.builder import upstream_level
+from vofdem.builder import peak_discharge, upstream_level
 from vofdem.cluster import default_workers, ensemble_client
 from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble
 from vofdem.fragility import EVENTS, fig_fragility, figure_legend, fragility_of
@@ -95,8 +95,7 @@ def sweep_height(scene, widths) -> float:
     the cm), so that every width keeps the scene's headroom over the water. Narrower flumes carry more
     discharge per metre: in the 0.38 m domain a 0.3 m flume's water reached the top row (Maeno scenes at
     25 l/s: 0.3449 m at 0.5 m, 0.3837 m at 0.3 m -> 0.42 m)."""
-    t, q = scene.hydrograph.table(scene.duration)
-    peak = float(np.max(np.interp(np.linspace(0.0, scene.duration, 1001), t, q)))
+    peak = peak_discharge(scene)
     own = upstream_level(scene, peak)
     rise = max([upstream_level(scene.with_value("flume.width", w), peak) - own for w in widths] + [0.0])
     return scene.flume.height if rise <= 0.0 else math.ceil(round((scene.flume.height + rise) * 100, 6)) / 100

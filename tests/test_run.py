@@ -1,4 +1,6 @@
 """The run loop against a pure-Python test double of the coupled simulation (tests/fake_sim.py)."""
+import re
+
 import numpy as np
 import pytest
 from fake_sim import FakeSimulation, short_scene
@@ -58,10 +60,15 @@ def test_water_at_the_domain_top_is_reported_once(tmp_path):
     # the double's level, 0.25 m + (Q / (1.7 B))^(2/3), passes 0.32 m (the top row's floor) at 15.8 l/s; at 16 l/s
     # (t = 14 s) it is 0.3208 m: F = (0.3208 - 0.33) / 0.02 + 0.5 = 0.0381
     s.flume.height = 0.34
-    with pytest.warns(RuntimeWarning, match=r"water reaches the domain's top row at t = 14 s \(F = 0.0381 .* "
-                      r"raise flume.height = 0.34 m") as caught:
+    with pytest.warns(RuntimeWarning) as caught:
         run_scene(s.validate(), tmp_path, sim=FakeSimulation(s), progress=False, figures=False, animation=False)
-    assert sum("top row" in str(w.message) for w in caught) == 1  # once, though it stays there
+    messages = [str(w.message) for w in caught]
+    # before the run, the weir formula's level at 25 l/s (0.3451 m) above the top row's floor (0.32 m)
+    assert sum(m.startswith("at the peak discharge 25 l/s the weir formula puts the water 0.3451 m") for m in messages) == 1
+    reached = [m for m in messages if m.startswith("water reaches")]
+    assert len(reached) == 1  # once, though it stays there
+    assert re.match(r"water reaches the domain's top row at t = 14 s \(F = 0.0381 .* raise flume.height = 0.34 m",
+                    reached[0])
     assert RunData(tmp_path / "run.h5").attrs["water_at_top_s"] == 14.0
     run_scene(short_scene(), tmp_path / "low", sim=FakeSimulation(short_scene()), progress=False, figures=False,
               animation=False)  # 0.38 m: the level stays below the top row, no warning (warnings are errors here)
@@ -80,10 +87,12 @@ def test_a_resumed_run_keeps_when_water_reached_the_top(tmp_path):
             if t_end == 16.0:
                 request_stop()
 
-    with pytest.warns(RuntimeWarning, match="top row at t = 14 s"), pytest.raises(KeyboardInterrupt):
+    with pytest.warns(RuntimeWarning) as caught, pytest.raises(KeyboardInterrupt):
         run_scene(s.validate(), tmp_path, sim=StopsAtSixteen(s), progress=False, figures=False, animation=False,
                   checkpoint_seconds=0.0)
-    # the resumed run warns no second time (warnings are errors here) and records the first time
+    assert any("top row at t = 14 s" in str(w.message) for w in caught)
+    # the resumed run warns no second time, neither before nor during the run (warnings are errors here),
+    # and records the first time
     run_scene(s, tmp_path, sim=FakeSimulation(s), progress=False, figures=False, animation=False, resume=True)
     d = RunData(tmp_path / "run.h5")
     assert d.attrs["status"] == "completed" and d.attrs["water_at_top_s"] == 14.0
@@ -151,3 +160,17 @@ def test_checkpoints_come_after_the_first_and_last_snapshot_and_every_interval(t
     assert saved == list(range(1, n + 1))
     with pytest.raises(ValueError, match=r"checkpoint_seconds = -1.0 is out of range \(allowed: >= 0 s\)"):
         run_scene(s, tmp_path / "c", sim=FakeSimulation(s), progress=False, checkpoint_seconds=-1.0)
+
+
+def test_a_run_whose_peak_water_the_weir_formula_puts_in_the_top_row_is_warned_before_it_starts():
+    from vofdem.builder import build_grid
+    from vofdem.run import check_headroom
+    from vofdem.scene import Scene
+
+    s = Scene.maeno2008()
+    z = np.asarray(build_grid(s).z_faces)  # the top row from 0.365 m to 0.38 m
+    check_headroom(s, z)  # 25 l/s through 0.5 m: 0.25 + 1.5 (0.05^2 / g)^(1/3) = 0.3449 m, no warning
+    s.flume.width = 0.3  # 0.0833 m^2/s: 0.3837 m
+    with pytest.warns(RuntimeWarning, match=r"at the peak discharge 25 l/s the weir formula puts the water 0.3837 m "
+                      r"high \(flume.width = 0.3 m\), above the domain's top row from 0.365 m: raise flume.height = 0.38 m"):
+        check_headroom(s, z)

@@ -275,6 +275,12 @@ def upstream_level(scene: Scene, discharge: float) -> float:
     return scene.weir.height + 1.5 * (q * q / GRAVITY) ** (1.0 / 3.0)
 
 
+def peak_discharge(scene: Scene) -> float:
+    """The largest discharge Q [m^3/s] of the scene's hydrograph over its run."""
+    t, q = scene.hydrograph.table(scene.duration)
+    return float(np.max(np.interp(np.linspace(0.0, scene.duration, 1001), t, q)))
+
+
 def initial_level(scene: Scene) -> float:
     """Water level [m] upstream of the weir at the start discharge (`upstream_level`): only a starting
     guess for the spin-up."""
