@@ -4,6 +4,8 @@
 # coupling options (scenes/maeno2008_consistent.toml), a few minutes each on one core; copies each
 # run's figures and stage table to docs/figures/<scene>/ and writes the paper scene's cost report to
 # benchmarks/results/. The benchmark figures of the README come from the scripts named beside them.
+# It runs the vofdem that python3 imports: in a build in place (VOFDEM_INPLACE) give PYTHONPATH=python,
+# or an older installed vofdem makes the figures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PY:-python3}
