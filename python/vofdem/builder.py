@@ -276,9 +276,11 @@ def upstream_level(scene: Scene, discharge: float) -> float:
 
 
 def peak_discharge(scene: Scene) -> float:
-    """The largest discharge Q [m^3/s] of the scene's hydrograph over its run."""
-    t, q = scene.hydrograph.table(scene.duration)
-    return float(np.max(np.interp(np.linspace(0.0, scene.duration, 1001), t, q)))
+    """The largest discharge Q [m^3/s] of the scene's hydrograph over its run: a piecewise-linear table
+    peaks at one of its times or at the run's end."""
+    t, q = (np.asarray(v, float) for v in scene.hydrograph.table(scene.duration))
+    at = np.append(t[t <= scene.duration], scene.duration)
+    return float(np.max(np.interp(at, t, q)))
 
 
 def initial_level(scene: Scene) -> float:
