@@ -16,7 +16,10 @@ runs only the members not finished (one directory per ensemble under --out).
 * **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
   (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up); per
   setting the shift of each event's median from the reference's, with its paired bootstrap interval,
-  against the CPU time per member; the packings' own spread (the reference's 16-84 % band) beside it.
+  against the CPU time per member (its ratio to the reference's members at the same seeds, run again
+  just before the settings', so that a drift of the machine's speed between the verdict and this part
+  does not enter) and the steps per member (the same on any machine); the packings' own spread (the
+  reference's 16-84 % band) beside it.
 
 Writes benchmarks/results/maeno2008_verdict<suffix>.md (+ _verdict.csv, _width.csv, _cost.csv) and
 docs/figures/maeno2008_verdict<suffix>_cost.png and _fragility.png; suffix '' (full), '_small', '_tiny'.
@@ -150,6 +153,8 @@ def run_study(args, build=None, log=print):
         res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, _width_vary(res, widths))
                         if widths else None)
         ref = scenes[cost_name]
+        # the reference rerun at the knob seeds just before the settings: its CPU time is measured beside theirs
+        res["cost_reference"] = ens(ref, knob_seeds, out / "cost" / "reference") if settings else None
         res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
     return res
 
@@ -157,9 +162,14 @@ def run_study(args, build=None, log=print):
 def _width_vary(res, widths) -> dict:
     """The width sweep's `vary`: the widths, and the raised domain's height where it is raised."""
     vary = {"flume.width": widths}
-    if res["sweep_height"] > res["scenes"][res["width_scene"]].flume.height:
+    if _raised(res):
         vary["flume.height"] = [res["sweep_height"]]
     return vary
+
+
+def _raised(res) -> bool:
+    """Whether the width sweep's narrower flumes run in a domain higher than the scene's own."""
+    return res["sweep_height"] > res["scenes"][res["width_scene"]].flume.height
 
 
 def _seed_range(seeds) -> str:
@@ -241,9 +251,9 @@ def width_rows(res):
 
 
 def _height_note(res) -> str:
-    own = res["scenes"][res["width_scene"]].flume.height
-    if res["sweep_height"] <= own:
+    if not _raised(res):
         return ""
+    own = res["scenes"][res["width_scene"]].flume.height
     return (f"; the narrower flumes in a domain {res['sweep_height']:g} m high (`sweep_height`: raised by the rise of "
             f"the weir formula's level at the peak discharge), the scene's own width in its {own:g} m")
 
@@ -263,26 +273,53 @@ def _width_md(res) -> list:
 def cost_rows(res, n_boot: int):
     """One row per setting and event: the shift of the median, its interval, the CPU per member."""
     ref_df = res["verdict"][res["cost_scene"]]
+    cpu_df = _cpu_reference(res)
     entries = [("reference", "-", "the reference", ref_df)]
     entries += [(st.name, st.knob, st.label, res["cost"][st.name]) for st in res["settings"]]
     rows = []
     for name, knob, label, df in entries:
-        cpu = _median(df, "cpu_seconds")
+        cpu = _median(cpu_df if name == "reference" else df, "cpu_seconds")
         # the ratio is paired: the reference's members at the seeds this setting completed
         done = df.loc[df["status"] == "completed", "seed"] if "seed" in df else []
-        ref_cpu = _median(ref_df[ref_df["seed"].isin(done)], "cpu_seconds") if len(done) else math.nan
+        ref_cpu = _median(cpu_df[cpu_df["seed"].isin(done)], "cpu_seconds") if len(done) else math.nan
+        # steps do not depend on the machine's speed: a cost measure where the CPU times drift
+        steps, ref_steps = _median(df, "steps"), _median(ref_df[ref_df["seed"].isin(done)], "steps")
         for ev in EVENTS:
             sh = median_shift(ref_df, df, ev, n_boot=n_boot)
             s = event_summary(ref_df, ev)
             rows.append({"setting": name, "knob": knob, "label": label, "event": ev,
                          "completed": int((df["status"] == "completed").sum()), "members": len(df),
                          "cpu_s_per_member": cpu, "wall_s_per_member": _median(df, "wall_seconds"),
-                         "cost_ratio": cpu / ref_cpu if ref_cpu > 0 else math.nan, "median_lps": sh.setting,
+                         "cost_ratio": cpu / ref_cpu if ref_cpu > 0 else math.nan, "steps_per_member": steps,
+                         "steps_ratio": steps / ref_steps if ref_steps > 0 else math.nan, "median_lps": sh.setting,
                          "reference_median_lps": sh.reference, "shift_lps": sh.shift, "shift_lo_lps": sh.lo,
                          "shift_hi_lps": sh.hi, "boot_left_out": sh.left_out, "seeds": sh.seeds,
                          "spread_lo_lps": _minus(s["km_q16_lps"], s["km_median_lps"]),
                          "spread_hi_lps": _minus(s["km_q84_lps"], s["km_median_lps"])})
     return rows
+
+
+def _cpu_reference(res):
+    """The reference's members whose CPU time the settings are measured against: its rerun at the knob
+    seeds when it ran (the same machine state as the settings'), else its verdict members."""
+    rerun = res.get("cost_reference")
+    if rerun is not None and (rerun["status"] == "completed").any():
+        return rerun
+    return res["verdict"][res["cost_scene"]]
+
+
+def _rerun_md(res) -> list:
+    """Whether the reference's rerun removed the same stones as its verdict members of the same seeds."""
+    rerun = res.get("cost_reference")
+    if rerun is None or not (rerun["status"] == "completed").any():
+        return ["The CPU ratios are against the reference's verdict members (no rerun at the knob seeds).", ""]
+    ref = res["verdict"][res["cost_scene"]].set_index("seed")
+    done = rerun[rerun["status"] == "completed"]
+    same = sum(int(s in ref.index and ref.at[s, "stones_hash"] == h) for s, h in zip(done["seed"], done["stones_hash"]))
+    return [f"The CPU ratios are against the reference rerun at the knob seeds just before the settings "
+            f"(`cost/reference`; CPU {_median(done, 'cpu_seconds'):.1f} s per member, its verdict members of the same "
+            f"seeds {_median(ref[ref.index.isin(done['seed'])].reset_index(), 'cpu_seconds'):.1f} s). The rerun "
+            f"removed the same stones as the verdict's members in {same} of {len(done)} seeds.", ""]
 
 
 def _shown(path: Path) -> str:
@@ -319,14 +356,15 @@ def _ref_cell(r) -> str:
 
 
 def _cost_md(rows) -> list:
-    lines = ["| setting | members | CPU s per member (x reference) | " + " | ".join(
-        f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|" + "---|" * len(EVENTS)]
+    lines = ["| setting | members | CPU s per member (x reference) | steps per member (x reference) | " + " | ".join(
+        f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|---|" + "---|" * len(EVENTS)]
     for name in dict.fromkeys(r["setting"] for r in rows):
         rs = [r for r in rows if r["setting"] == name]
         r0 = rs[0]
         cell = _ref_cell if name == "reference" else _shift_cell
         lines.append(f"| {name if name == 'reference' else r0['knob'] + ': ' + r0['label']} | {r0['completed']} of "
                      f"{r0['members']} | {_q(r0['cpu_s_per_member'], '{:.1f}')} (x{_q(r0['cost_ratio'], '{:.2f}')}) | "
+                     f"{_q(r0['steps_per_member'], '{:.0f}')} (x{_q(r0['steps_ratio'], '{:.2f}')}) | "
                      + " | ".join(cell(r) for r in rs) + " |")
     ref = [r for r in rows if r["setting"] == "reference"]
     nr = "not reached"
@@ -449,7 +487,8 @@ def write_results(res, args, wall: float) -> Path:
     fig_cost(crows, cost_png)
     by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
     fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
-    frames = [*res["verdict"].values(), *res["cost"].values()] + ([] if res["width"] is None else [res["width"]])
+    frames = [*res["verdict"].values(), *res["cost"].values()] + [
+        df for df in (res["width"], res.get("cost_reference")) if df is not None]
     n_members = sum(len(df) for df in frames)
     cpu = sum(float(df.loc[df["status"] == "completed", "cpu_seconds"].astype(float).sum()) for df in frames)
     ran = _finished(res["out"]) - res["found"]
@@ -489,7 +528,7 @@ def write_results(res, args, wall: float) -> Path:
              f"One knob at a time over the same seeds ({_seed_range(res['knob_seeds'])}): the shift of each event's "
              "Kaplan-Meier median from the "
              "reference's [l/s], with its paired bootstrap 16-84 % interval over the seeds, and the median CPU time "
-             "per member (its ratio to the reference's median over the same seeds, measured in the same run).", ""] + _cost_md(crows)
+             "per member (its ratio to the reference's median over the same seeds).", ""] + _rerun_md(res) + _cost_md(crows)
     text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "
              "vofdem/fidelity.py) that the reference or a setting of this study ran, with their measured cost and "
              "shift from the reference:", ""] + _presets_md(res, crows)

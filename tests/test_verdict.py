@@ -2,6 +2,7 @@
 paired bootstrap of a shift against hand values, the study end to end in this process with a test
 double whose stones go at known discharges (its tables against a hand computation; a second call runs
 nothing), the study with the real solver at a tiny size, and the fidelity presets."""
+import json
 from pathlib import Path
 
 import numpy as np
@@ -75,8 +76,9 @@ def test_the_paired_bootstrap_of_a_shift_against_its_exact_distribution():
 
 def test_the_cost_ratio_is_paired_with_the_references_members_at_the_same_seeds():
     mod = _script()
-    ref = _frame([0, 1, 2, 3, 4], [12.0] * 5).assign(cpu_seconds=[10.0, 20.0, 30.0, 40.0, 50.0], wall_seconds=1.0)
-    fast = _frame([0, 1], [12.0, 12.0]).assign(cpu_seconds=[5.0, 7.0], wall_seconds=1.0)
+    ref = _frame([0, 1, 2, 3, 4], [12.0] * 5).assign(cpu_seconds=[10.0, 20.0, 30.0, 40.0, 50.0], wall_seconds=1.0,
+                                                     steps=[100, 200, 300, 400, 500])
+    fast = _frame([0, 1], [12.0, 12.0]).assign(cpu_seconds=[5.0, 7.0], wall_seconds=1.0, steps=[300, 500])
     res = {"verdict": {"s": ref}, "cost_scene": "s", "cost": {"cfl=0.25": fast},
            "settings": knob_settings(load_scene(ROOT / "scenes" / "maeno2008_rolling.toml"), "tiny", ["cfl"])}
     rows = {r["setting"]: r for r in mod.cost_rows(res, n_boot=0) if r["event"] == "first_removal"}
@@ -84,9 +86,11 @@ def test_the_cost_ratio_is_paired_with_the_references_members_at_the_same_seeds(
     assert rows["reference"]["cpu_s_per_member"] == 30.0 and rows["reference"]["cost_ratio"] == 1.0
     assert rows["cfl=0.25"]["cpu_s_per_member"] == 6.0
     assert rows["cfl=0.25"]["cost_ratio"] == pytest.approx(0.4, abs=1e-12)
+    # the steps likewise: 400 against 150
+    assert rows["reference"]["steps_per_member"] == 300.0 and rows["cfl=0.25"]["steps_ratio"] == pytest.approx(400 / 150)
     # a setting none of whose members finished is said to be not run, not to have a median not reached
     res["cost"]["cfl=0.25"] = fast.iloc[0:0]
-    assert "| cfl: 0.25 | 0 of 0 | - (x-) | not run | not run | not run | not run |" in mod._cost_md(mod.cost_rows(res, 0))
+    assert "| cfl: 0.25 | 0 of 0 | - (x-) | - (x-) | not run | not run | not run | not run |" in mod._cost_md(mod.cost_rows(res, 0))
 
 
 def test_knob_settings_are_scene_keys_relative_to_the_reference():
@@ -151,7 +155,7 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     mod.run_study(mod._parser().parse_args(args), build=_build, log=logs.append)
     assert [m for m in logs if "ensemble of" in m] == [
         f"vofdem: ensemble of 3 members (3 already finished in {tmp_path / 'ens' / d})"
-        for d in ("verdict/maeno2008_rolling", "cost/cfl=0.25", "cost/porosity=lookup")]
+        for d in ("verdict/maeno2008_rolling", "cost/reference", "cost/cfl=0.25", "cost/porosity=lookup")]
     # --no-run: a member cut short is a row 'not run', its setting paired on the seeds both finished
     (tmp_path / "ens" / "cost" / "cfl=0.25" / "seed1" / "outcome.json").unlink()
     text = mod.main(args + ["--no-run"], build=_build, log=lambda *a: None).read_text()
@@ -159,6 +163,18 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     assert not (tmp_path / "ens" / "cost" / "cfl=0.25" / "seed1" / "outcome.json").exists()
     cost = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_cost.csv").set_index(["setting", "event"])
     assert cost.loc[("cfl=0.25", "first_removal"), "seeds"] == 2
+    # the CPU ratios are against the reference's rerun at the knob seeds, not its verdict members; the
+    # steps (the same on any machine) against its verdict members
+    assert "removed the same stones as the verdict's members in 3 of 3 seeds" in text
+    for d, cpu in (("reference", 2.0), ("porosity=lookup", 3.0)):
+        for f in (tmp_path / "ens" / "cost" / d).glob("seed*/outcome.json"):
+            row = json.loads(f.read_text())
+            f.write_text(json.dumps({**row, "cpu_seconds": cpu, "steps": row["steps"] * (2 if "lookup" in d else 1)}))
+    mod.main(args + ["--no-run"], build=_build, log=lambda *a: None)
+    cost = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_cost.csv").set_index(["setting", "event"])
+    assert cost.loc[("porosity=lookup", "first_removal"), "cost_ratio"] == pytest.approx(1.5, abs=1e-12)
+    assert cost.loc[("reference", "first_removal"), "cpu_s_per_member"] == pytest.approx(2.0, abs=1e-12)
+    assert cost.loc[("porosity=lookup", "first_removal"), "steps_ratio"] == 2.0
 
 
 def test_the_study_with_the_solver_at_a_tiny_size(tmp_path):
