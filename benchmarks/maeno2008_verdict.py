@@ -399,22 +399,27 @@ def _presets_md(res, rows) -> list:
 def fig_cost(rows, path: Path) -> None:
     """Shift of each event's median against the CPU time per member, one point per setting, the
     packings' spread (the reference's 16-84 % band about its median) as a grey band."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(9.0, 6.4), layout="constrained")
+    FigureCanvasAgg(fig)  # a renderer to measure the labels with
     axes = fig.subplots(2, 2, sharex=True).ravel()
     knobs = list(dict.fromkeys(r["knob"] for r in rows))
+    labels = {}
     for ax, ev in zip(axes, EVENTS):
         rs = [r for r in rows if r["event"] == ev]
         shown = [r for r in rs if r["shift_lps"] is not None and math.isfinite(r["cpu_s_per_member"])]
-        for r, level in zip(*_label_levels(shown)):
+        labels[ax] = []
+        for r in shown:
             c = f"C{knobs.index(r['knob']) % 10}"
             lo, hi = r["shift_lo_lps"], r["shift_hi_lps"]
             err = None if math.isnan(lo) else [[r["shift_lps"] - lo], [hi - r["shift_lps"]]]
             ax.errorbar([r["cpu_s_per_member"]], [r["shift_lps"]], yerr=err, fmt="o", color=c, capsize=3,
                         label="reference" if r["setting"] == "reference" else r["knob"])
-            ax.annotate(r["setting"], (r["cpu_s_per_member"], r["shift_lps"]), textcoords="offset points",
-                        xytext=(4, 12 - 8 * level), fontsize=7)
+            labels[ax].append(ax.annotate(r["setting"], (r["cpu_s_per_member"], r["shift_lps"]),
+                                          textcoords="offset points", xytext=(4, 4), fontsize=7,
+                                          arrowprops=dict(arrowstyle="-", color="0.6", lw=0.5, shrinkA=0, shrinkB=3)))
         ax.axhline(0.0, color="0.5", lw=0.8)
         _spread_band(ax, next(r for r in rs if r["setting"] == "reference"))
         _not_reached(ax, rs, shown)
@@ -428,6 +433,9 @@ def fig_cost(rows, path: Path) -> None:
     for ax in axes[::2]:
         ax.set_ylabel("shift of the median [l/s]")
     figure_legend(fig, axes, 4)
+    fig.canvas.draw()  # the layout first: the labels are separated where they will be drawn
+    for texts in labels.values():
+        separate_labels(fig, texts)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=90)
 
@@ -448,16 +456,24 @@ def _not_reached(ax, rows, shown) -> None:
         ax.text(0.02, 0.02, "; ".join(text), transform=ax.transAxes, fontsize=7, va="bottom")
 
 
-def _label_levels(shown, ratio: float = 1.35):
-    """The points by cost and the line of each one's label: the settings within `ratio` in CPU time of
-    the first of their cluster take a line each, one under the other."""
-    pts = sorted(shown, key=lambda r: r["cpu_s_per_member"])
-    levels, start = [], None
-    for r in pts:
-        cpu = r["cpu_s_per_member"]
-        levels.append(0 if start is None or cpu > start * ratio else levels[-1] + 1)
-        start = cpu if levels[-1] == 0 else start
-    return pts, levels
+def separate_labels(fig, texts, step_pt: float = 9.0, tries: int = 12, pad_px: float = 4.0) -> None:
+    """Moves labels (annotations placed in offset points) apart, from the cheapest point on: each takes
+    the first offset of 0, -1, +1, -2, ... steps of `step_pt` points at which it comes no nearer than
+    `pad_px` pixels to a label placed before it (its own place when none is free within `tries` steps)."""
+    from matplotlib.text import Text
+
+    renderer = fig.canvas.get_renderer()
+    box = lambda t: Text.get_window_extent(t, renderer).padded(pad_px)  # noqa: E731 (the text's, not its line's)
+    placed = []
+    for t in sorted(texts, key=lambda t: t.xy[0]):
+        x0, y0 = t.xyann
+        for k in range(2 * tries + 1):
+            t.xyann = (x0, y0 + step_pt * ((k + 1) // 2) * (-1 if k % 2 else 1))
+            if not any(box(t).overlaps(p) for p in placed):
+                break
+        else:
+            t.xyann = (x0, y0)
+        placed.append(box(t))
 
 
 def _spread_band(ax, ref) -> None:

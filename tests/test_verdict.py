@@ -33,13 +33,28 @@ def _frame(seeds, first, last=25.0, stages=None):
                          "first_discharge_lps": [10.06] * n})
 
 
-def test_the_cost_figure_puts_the_labels_of_neighbours_in_cost_one_under_the_other():
-    rows = [{"setting": n, "cpu_s_per_member": c} for n, c in
-            [("b", 12.0), ("a", 10.0), ("e", 31.0), ("c", 13.0), ("d", 30.0), ("f", 45.0)]]
-    pts, levels = _script()._label_levels(rows)
-    # 10 starts a cluster, 12 and 13 lie within 1.35x of it; 30 starts the next, 31 joins it, 45 does not
-    assert [r["setting"] for r in pts] == ["a", "b", "c", "d", "e", "f"]
-    assert levels == [0, 1, 2, 0, 1, 0]
+def test_the_cost_figure_separates_the_labels_of_neighbours_in_cost():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(4.0, 3.0))
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    ax.set_xscale("log")
+    pts = [(47.4, 0.06), (50.3, 0.0), (60.3, 0.0), (60.4, -0.06), (65.3, 0.0), (68.4, 0.06), (111.0, 0.12)]
+    for x, y in pts:
+        ax.plot([x], [y], "o")
+    texts = [ax.annotate(f"setting number {i}", p, textcoords="offset points", xytext=(4, 4), fontsize=7)
+             for i, p in enumerate(pts)]
+    fig.canvas.draw()
+    boxes = lambda: [t.get_window_extent(fig.canvas.get_renderer()) for t in texts]  # noqa: E731
+    overlapping = lambda bb: sum(a.overlaps(b) for i, a in enumerate(bb) for b in bb[i + 1:])  # noqa: E731
+    assert overlapping(boxes()) > 0  # as placed, the labels of points this close overlap
+    _script().separate_labels(fig, texts)
+    assert overlapping(boxes()) == 0
+    # the cheapest keeps its place; each moved one is a whole number of steps away from it
+    assert texts[0].xyann == (4, 4)
+    assert all((t.xyann[1] - 4) % 9 == 0 for t in texts)
 
 
 def test_kaplan_meier_quantiles_with_censoring_by_hand():
