@@ -299,19 +299,23 @@ def cost_rows(res, n_boot: int):
     return rows
 
 
+def _rerun(res):
+    """The reference's rerun at the knob seeds when any of its members completed, else None."""
+    rerun = res.get("cost_reference")
+    return rerun if rerun is not None and (rerun["status"] == "completed").any() else None
+
+
 def _cpu_reference(res):
     """The reference's members whose CPU time the settings are measured against: its rerun at the knob
     seeds when it ran (the same machine state as the settings'), else its verdict members."""
-    rerun = res.get("cost_reference")
-    if rerun is not None and (rerun["status"] == "completed").any():
-        return rerun
-    return res["verdict"][res["cost_scene"]]
+    rerun = _rerun(res)
+    return res["verdict"][res["cost_scene"]] if rerun is None else rerun
 
 
 def _rerun_md(res) -> list:
     """Whether the reference's rerun removed the same stones as its verdict members of the same seeds."""
-    rerun = res.get("cost_reference")
-    if rerun is None or not (rerun["status"] == "completed").any():
+    rerun = _rerun(res)
+    if rerun is None:
         return ["The CPU ratios are against the reference's verdict members (no rerun at the knob seeds).", ""]
     ref = res["verdict"][res["cost_scene"]].set_index("seed")
     done = rerun[rerun["status"] == "completed"]
