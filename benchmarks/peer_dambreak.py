@@ -15,6 +15,11 @@ children) are recorded; the codes alternate (every code once per round, --repeat
 figure is the median over the rounds. The solver's own time (peers: the solver process; vofdem: the
 stepping) is listed too.
 
+Python's bytecode is cached for every code's process, as Python does by default: a machine that sets
+PYTHONDONTWRITEBYTECODE (this project's sandbox does) would otherwise compile vofdem's modules and the
+peers' Python drivers at every start. The caches go to the run's temporary directory
+(PYTHONPYCACHEPREFIX), written by an untimed first run of each code at the smallest size.
+
 Writes benchmarks/results/peer_dambreak.md and benchmarks/results/peer_dambreak.png.
 
     PYTHONPATH=python python3 benchmarks/peer_dambreak.py --sizes 16 32 [--repeats 3]
@@ -75,11 +80,18 @@ def timed_process(cmd, env):
     return res, wall, cpu
 
 
+def process_env(work, **extra):
+    """The environment of every code's process: the caller's, with Python's bytecode cached under work."""
+    env = dict(os.environ, PYTHONPYCACHEPREFIX=os.path.join(work, "pycache"), **extra)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
 def run_peer(peer, n, work, cfl):
     out = os.path.join(work, "%s_n%d.csv" % (peer, n))
     cmd = ["bash", os.path.join(PEERS, "dambreak", WRAPPERS[peer]), str(n), "--out", out,
            "--work", os.path.join(work, "cases"), "--cfl", str(cfl)]
-    res, total, cpu = timed_process(cmd, dict(os.environ, PEERS_NO_RECORD="1"))
+    res, total, cpu = timed_process(cmd, process_env(work, PEERS_NO_RECORD="1"))
     line = [l for l in res.stdout.splitlines() if l.startswith("RESULT")][-1]
     wall = float(re.search(r"wall_solver_s=([0-9.]+)", line).group(1))
     steps = int(re.search(r"steps=([0-9]+)", line).group(1))
@@ -91,7 +103,7 @@ def run_vofdem(n, cfl, work, tol):
     """vofdem's whole process: this script with --vofdem-run (start-up, import, run, CSV)."""
     out = os.path.join(work, "vofdem_n%d_cfl%g.csv" % (n, cfl))
     cmd = [sys.executable, os.path.abspath(__file__), "--vofdem-run", str(n), str(cfl), out, str(tol)]
-    res, total, cpu = timed_process(cmd, dict(os.environ, OMP_NUM_THREADS="1"))
+    res, total, cpu = timed_process(cmd, process_env(work, OMP_NUM_THREADS="1"))
     line = [l for l in res.stdout.splitlines() if l.startswith("RESULT")][-1]
     wall = float(re.search(r"wall_solver_s=([0-9.]+)", line).group(1))
     steps = int(re.search(r"steps=([0-9]+)", line).group(1))
@@ -138,6 +150,10 @@ def main():
 
     runs = []
     with tempfile.TemporaryDirectory(prefix="vofdem_peers_") as work:
+        # untimed: writes the bytecode caches of each code's Python modules
+        for p in args.peers:
+            run_peer(p, min(args.sizes), work, args.cfl)
+        run_vofdem(min(args.sizes), args.cfl, work, args.pressure_tolerance)
         for n in args.sizes:
             jobs = [("peer", p) for p in args.peers] + [("vofdem", c) for c in [args.cfl] + list(args.extra_cfl)]
             results = {j: [] for j in jobs}
@@ -167,7 +183,7 @@ def main():
         "(1000/1 kg/m^3), t_end = 0.2 s, CFL %.1f in every code unless stated; peers via their drivers in "
         "peers/dambreak (PEERS_NO_RECORD=1). Front: 0.5 crossing of the water fraction on the bottom row "
         "(the peers' definition); vofdem's pressure tolerance %g (relative). Times: the whole process of each code, start to exit (wall, and the CPU "
-        "time of its process tree), median of %d alternating rounds; `solver s` is the solver alone "
+        "time of its process tree), median of %d alternating rounds after an untimed one (Python's bytecode cached); `solver s` is the solver alone "
         "(peers: the solver process; vofdem: the stepping); us/cell-step from the process CPU time. Load "
         "average at the start / end: %.1f / %.1f (2 cores, shared)." % (args.cfl, args.pressure_tolerance, args.repeats,
                                                                LOAD0, os.getloadavg()[0]),
