@@ -16,7 +16,7 @@ figure is the median over the rounds. The solver's own time (peers: the solver p
 stepping) is listed too.
 
 Python's bytecode is cached for every code's process, as Python does by default: a machine that sets
-PYTHONDONTWRITEBYTECODE (this project's sandbox does) would otherwise compile vofdem's modules and the
+PYTHONDONTWRITEBYTECODE (the machines this project runs its benchmarks on do) would otherwise compile vofdem's modules and the
 peers' Python drivers at every start. The caches go to the run's temporary directory
 (PYTHONPYCACHEPREFIX), written by an untimed first run of each code at the smallest size.
 
