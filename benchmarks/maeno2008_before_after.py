@@ -19,12 +19,16 @@ bulk porosity mapping) it runs the scenario twice, one after the other in this p
   CFL 0.5, pressure tolerance 1e-5, up to 8 viscous substeps, the column solves after the explicit
   stresses, the energy bound of their step, the sliver joined to the row below it, the domain 0.38 m
   high, the start water at rest in the pores, the inlet's discharge over the rows below its level).
+- candidate (with --candidate KEY=VALUE ...): the scene with those settings, e.g. the viscous stresses'
+  rows implicit and the k-epsilon model's step limit off:
+  --candidate numerics.viscous_scheme=implicit numerics.turbulence_step_limit=false
 
 Writes benchmarks/results/maeno2008_before_after.md: wall and CPU time (time.process_time: the machine
 is shared, CPU time is the steadier figure), steps, which limit bound the steps, the per-stage
 profile, and the stage table of each run.
 
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/maeno2008_before_after.py [--end-time T]
+        [--variants after candidate --candidate KEY=VALUE ... --out FILE]
 """
 import argparse
 import dataclasses
@@ -50,8 +54,23 @@ BEFORE_GRID = dict(merge_fraction=0.0)
 BEFORE_FLUME = dict(height=0.45, initial_water="displaced")
 
 
-def variant(scene, which):
+def setting_value(text: str):
+    """a --candidate value as a scene file writes it: true / false, a number, or a choice"""
+    if text in ("true", "false"):
+        return text == "true"
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def variant(scene, which, candidate=()):
     if which == "after":
+        return scene
+    if which == "candidate":
+        for setting in candidate:
+            key, _, value = setting.partition("=")
+            scene = scene.with_value(key, setting_value(value))
         return scene
     return scene.replace(numerics=dataclasses.replace(scene.numerics, **BEFORE),
                          grid=dataclasses.replace(scene.grid, **BEFORE_GRID),
@@ -85,26 +104,46 @@ def where_text(sim, top: int = 3) -> str:
     return "; ".join(parts)
 
 
+def variants_text(variants, candidate) -> str:
+    """what each variant run is"""
+    parts = []
+    if "before" in variants:
+        parts.append("before = " + ", ".join([f"{k} = {v}" for k, v in BEFORE.items()] +
+                                             [f"grid.{k} = {v}" for k, v in BEFORE_GRID.items()] +
+                                             [f"flume.{k} = {v}" for k, v in BEFORE_FLUME.items()]) +
+                     " (the former numerics through the scene's parameters)")
+    if "after" in variants:
+        parts.append("after = the scene files as they are")
+    if "candidate" in variants:
+        parts.append(f"candidate = the scene files with {', '.join(candidate)}")
+    return "; ".join(parts) + "."
+
+
 def limits_text(limits, steps):
     items = sorted(limits.items(), key=lambda kv: -kv[1])
     return ", ".join(f"{k} {v} ({100.0 * v / steps:.0f} %)" for k, v in items)
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     ap.add_argument("--scenes", nargs="+", default=["maeno2008", "maeno2008_consistent"])
     ap.add_argument("--out", type=Path, default=ROOT / "benchmarks" / "results" / "maeno2008_before_after.md")
-    args = ap.parse_args()
+    ap.add_argument("--variants", nargs="+", choices=("before", "after", "candidate"), default=["before", "after"])
+    ap.add_argument("--candidate", nargs="+", default=[], metavar="KEY=VALUE",
+                    help="the candidate variant's settings (scene keys)")
+    args = ap.parse_args(argv)
+    if ("candidate" in args.variants) != bool(args.candidate):
+        ap.error("--candidate KEY=VALUE ... goes with --variants ... candidate, and only with it")
     rows, details = [], []
     for name in args.scenes:
         scene = load_scene(ROOT / "scenes" / f"{name}.toml")
         if args.end_time is not None:
             scene = scene.replace(end_time=args.end_time)
-        for which in ("before", "after"):
+        for which in args.variants:
             print(f"{name} {which} ...", flush=True)
             with tempfile.TemporaryDirectory() as tmp:
-                r = run_one(variant(scene, which), tmp)
+                r = run_one(variant(scene, which, args.candidate), tmp)
             print(f"  {r['steps']} steps, CPU {r['cpu']:.1f} s, wall {r['wall']:.1f} s", flush=True)
             rows.append(f"| {name} | {which} | {r['steps']} | {r['cpu']:.1f} | {r['cpu'] / r['simulated']:.3f} | "
                         f"{r['wall']:.1f} | {r['wall'] / r['simulated']:.3f} | {1e3 * r['cpu'] / r['steps']:.3f} | "
@@ -117,14 +156,13 @@ def main():
             f"{platform.processor() or platform.machine()}, Python {platform.python_version()}, one process, "
             "one core (OMP_NUM_THREADS=1), runs one after the other; the machine is shared (load average at the "
             "start / end of each run in the last column). Real-time factor = time / simulated time.", "",
-            "before = " + ", ".join([f"{k} = {v}" for k, v in BEFORE.items()] + [f"grid.{k} = {v}" for k, v in BEFORE_GRID.items()]
-                                   + [f"flume.{k} = {v}" for k, v in BEFORE_FLUME.items()]) + " (the former numerics through the "
-            "scene's parameters); after = the scene files as they are.", "",
+            variants_text(args.variants, args.candidate), "",
             "| scene | numerics | steps | CPU s | CPU / simulated | wall s | wall / simulated | CPU ms per step | load |",
             "|---|---|---|---|---|---|---|---|---|", *rows, "", "## Each run", "", *details]
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text("\n".join(text), encoding="utf-8")
     print("\n".join(text))
+    return args.out
 
 
 if __name__ == "__main__":

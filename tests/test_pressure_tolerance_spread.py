@@ -61,3 +61,21 @@ def test_a_choice_key_at_a_tiny_size(spread, tmp_path):
     assert ("| measure | viscous_scheme implicit_vertical_from_start | viscous_scheme implicit_vertical | "
             "means' difference: p |") in text
     assert "| stones removed: mean, median [members' 16-84 %] | 0.0, 0.0 [0.0-0.0] | 0.0, 0.0 [0.0-0.0] | 1.00 |" in text
+
+
+def test_a_switch_over_a_base_setting_at_a_tiny_size(spread, tmp_path):
+    # a switch given as a scene file writes it, every member with the --base setting (read in the
+    # members' scene files)
+    md = spread.main(["--key", "numerics.turbulence_step_limit", "--values", "true", "false",
+                      "--base", "numerics.viscous_scheme=implicit", "--quick", "--seeds", "0", "--end-time", "1",
+                      "--spin-up", "0.5", "--workers", "0", "--scenes", "maeno2008", "--out", str(tmp_path / "ens"),
+                      "--results", str(tmp_path / "spread.md")])
+    text = md.read_text()
+    assert text.startswith("# `numerics.turbulence_step_limit` true against false")
+    assert "**numerics.turbulence_step_limit=false**: 1 completed members" in text
+    assert "Every member with numerics.viscous_scheme=implicit." in text
+    scenes = sorted((tmp_path / "ens").glob("*/*/seed0/scene.toml"))
+    assert len(scenes) == 2
+    for s in scenes:
+        assert 'viscous_scheme = "implicit"' in s.read_text()
+    assert "turbulence_step_limit = false" in scenes[0].read_text()

@@ -72,7 +72,8 @@ void bind_vof(py::module_& m) {
   py::enum_<ViscousScheme>(m, "ViscousScheme")
       .value("EXPLICIT", ViscousScheme::kExplicit)
       .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical)
-      .value("IMPLICIT_VERTICAL_FROM_START", ViscousScheme::kImplicitVerticalFromStart);
+      .value("IMPLICIT_VERTICAL_FROM_START", ViscousScheme::kImplicitVerticalFromStart)
+      .value("IMPLICIT", ViscousScheme::kImplicit, "rows and columns implicit, the cross terms explicit: no step bound");
   py::enum_<ViscousBound>(m, "ViscousBound")
       .value("ENERGY", ViscousBound::kEnergy, "the split scheme's energy bound: no cross terms (a proof)")
       .value("ROW_SUM", ViscousBound::kRowSum, "Gershgorin row sums of the explicit stresses, cross terms in");
@@ -128,6 +129,8 @@ void bind_vof(py::module_& m) {
                  "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]");
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
                  "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES");
+  def_part_field(fp, "turbulence_limit_step", k_eps, &KEpsilonParams::limit_step,
+                 "VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False)");
   def_part_field(fp, "turbulence_bed_roughness", k_eps, &KEpsilonParams::bed_roughness,
                  "equivalent sand roughness k_s of the bed [m]");
   def_part_field(fp, "turbulence_wall_roughness", k_eps, &KEpsilonParams::wall_roughness,

@@ -53,6 +53,9 @@ void check_k_epsilon_params(const KEpsilonParams& p) {
   if (scheme < 0 || scheme > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(scheme) +
                                 " is outside the allowed values {0 (kPointImplicit), 1 (kVerticalLines)}");
+  if (!p.limit_step && p.time_scheme != KEpsilonTimeScheme::kVerticalLines)
+    throw std::invalid_argument("limit_step = false needs time_scheme kVerticalLines: the point-implicit "
+                                "scheme's step is bounded by all four faces");
 }
 
 double wall_shear_velocity(double u_t, double y, double nu, double ks, double kappa, double log_law_e) {
@@ -541,6 +544,10 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
   // the column solves take the vertical faces (and the boundary inflow) implicitly
   const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines;
+  if (lines && !params_.limit_step) {  // no bound (KEpsilonParams::limit_step), nothing computed
+    if (cell) *cell = -1;
+    return std::numeric_limits<double>::infinity();
+  }
   const int nfaces = lines ? 2 : 4;
   half_cell_resistances(cell_porosity, cell_F, cell_nu, lines);
   double rate_max = 0.0;

@@ -1,5 +1,7 @@
 #include "vofdem/momentum.h"
 
+#include "momentum_implicit.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -155,38 +157,21 @@ void explicit_part_for_u(const Grid2D& g, const MomentumFields& f, const Momentu
   }
 }
 
-// one row of the vertical diffusion's systems (the open neighbours not yet checked): r = dt / (rho h),
-// lo = c_lo mu_lo / h_lo, up = c_up mu_up / h_up; diagonal 1 + r (lo + up) on an open face (1 on a
-// closed one), below -r lo, above -r up, right-hand side v. The arrays never overlap (restrict: GCC
-// vectorises no loop that needs this many overlap checks)
-struct DiffusionRowScales {
-  double dt, h, lo_c, lo_h, up_c, up_h;
-};
-void diffusion_row(int i0, int i1, const DiffusionRowScales& q, const double* __restrict rho,
-                   const double* __restrict mu_lo, const double* __restrict mu_up, const double* __restrict n,
-                   const double* __restrict v, double* __restrict a, double* __restrict b, double* __restrict c,
-                   double* __restrict d) {
-  const double dt = q.dt, h = q.h, lo_c = q.lo_c, lo_h = q.lo_h, up_c = q.up_c, up_h = q.up_h;
-  for (int i = i0; i < i1; ++i) {
-    const double r = dt / (rho[i] * h);
-    const double lo = lo_c * mu_lo[i] / lo_h, up = up_c * mu_up[i] / up_h;
-    b[i] = n[i] > 0.0 ? 1.0 + r * (lo + up) : 1.0;
-    a[i] = -r * lo;
-    c[i] = -r * up;
-    d[i] = v[i];
-  }
-}
-
-// a row's sub- and superdiagonal kept where the face and its neighbour below / above are open, else 0
-// (a closed face's row is the identity, a closed neighbour a known zero). A loop of its own: with the
-// assembly's select on the face alone in the same loop, GCC 12 finds control flow and vectorises neither
-void keep_open_neighbours(int i0, int i1, bool has_lo, bool has_up, const double* n, const double* n_lo,
-                          const double* n_up, double* a, double* c) {
-  for (int i = i0; i < i1; ++i) {
-    const bool open = n[i] > 0.0;
-    const double below = a[i], above = c[i];
-    a[i] = open & has_lo & (n_lo[i] > 0.0) ? below : 0.0;
-    c[i] = open & has_up & (n_up[i] > 0.0) ? above : 0.0;
+// the corner stress of the w-equation without its horizontal part mu dw/dx, which the row solve takes
+// implicitly (interior corners, and the end corners' ghost -w)
+void explicit_part_for_w(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  const double inv_dx = 1.0 / g.dx();
+  s.corner_tau_w = s.corner_tau;
+  std::vector<double>& t = s.corner_tau_w;
+  const bool left = left_w_ghost(f, bc), right = right_w_ghost(f, bc);
+  for (int kk = 1; kk < nz; ++kk) {
+    const double* w = f.face_w + nx * kk;
+    const double* cm = s.corner_mu.data() + sx * kk;
+    double* row = t.data() + sx * kk;
+    for (int ii = 1; ii < nx; ++ii) row[ii] -= cm[ii] * (w[ii] - w[ii - 1]) * inv_dx;
+    if (left) row[0] -= cm[0] * 2.0 * w[0] * inv_dx;
+    if (right) row[nx] += cm[nx] * 2.0 * w[nx - 1] * inv_dx;
   }
 }
 
@@ -322,14 +307,19 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
   if (t.viscosity) corner_shear(g, f, bc, s);
   // the columns start from the velocities after the explicit stresses (the former scheme: from u^n)
   const bool stressed = implicit && !t.vertical_from_start;
+  // the rows too: only the cross terms explicit (implicit_row_diffusion)
+  const bool rows = stressed && t.implicit_horizontal;
   if (implicit) explicit_part_for_u(g, f, bc, s);
+  if (rows) explicit_part_for_w(g, f, bc, s);
   if (stressed) {
     // every face the column solves read is written below (a closed face: u^n)
     s.stressed_u.resize(g.nface_x());
     s.stressed_w.resize(g.nface_z());
   }
   const double* tau_u = implicit ? s.corner_tau_u.data() : s.corner_tau.data();
+  const double* tau_w = rows ? s.corner_tau_w.data() : s.corner_tau.data();
   const double* mu = f.cell_mu;
+  const double xx = rows ? 0.0 : 1.0;  // the normal stress 2 mu du/dx explicit (else in the row solve)
   // x-faces
   for (int k = 0; k < nz; ++k) {
     const double dz = g.dz(k), inv_dz = 1.0 / dz;
@@ -344,8 +334,8 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
         rhs -= (s.cell_flux_u[c] - s.cell_flux_u[c - 1]) * inv_dx +
                (s.corner_flux_u[i + sx * (k + 1)] - s.corner_flux_u[i + sx * k]) * inv_dz;
       if (t.viscosity) {
-        const double txx_e = 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
-        const double txx_w = 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
+        const double txx_e = xx * 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
+        const double txx_w = xx * 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
         const double visc =
             ((txx_e - txx_w) * inv_dx + (tau_u[i + sx * (k + 1)] - tau_u[i + sx * k]) * inv_dz) / f.face_x_rho[j];
         rhs += visc;
@@ -385,7 +375,7 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
         const double tzz_n = implicit ? 0.0 : 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
         const double tzz_s = implicit ? 0.0 : 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
         const double visc =
-            ((s.corner_tau[i + 1 + sx * k] - s.corner_tau[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
+            ((tau_w[i + 1 + sx * k] - tau_w[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
             f.face_z_rho[j];
         rhs += visc;
         if (stressed) s.stressed_w[j] = f.face_w[j] + dt * visc;
@@ -406,9 +396,12 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
       w_star[j] = f.face_w[j] + dt * rhs;
     }
   }
-  if (implicit)
+  if (rows) {
+    implicit_rows_and_columns(g, f, bc, dt, u_star, w_star, s);
+  } else if (implicit) {
     implicit_vertical_diffusion(g, f, bc, dt, stressed ? s.stressed_u.data() : f.face_u,
                                 stressed ? s.stressed_w.data() : f.face_w, u_star, w_star, s);
+  }
 }
 
 // the viscous increment of m substeps of dt / m added to u*, w* (open faces only: the boundary and
@@ -438,83 +431,6 @@ void add_viscous_substeps(const Grid2D& g, const MomentumFields& f, const Moment
 
 }  // namespace
 
-// backward Euler of the vertical diffusion, column by column, after the explicit stresses:
-// (I - dt/rho d/dz mu d/dz) v = u0, u* += v - u0, u0 = u^n + dt (explicit viscous term). Diffusing u0
-// rather than u* keeps the gravity increment (balanced by the pressure only afterwards) out of the
-// viscous stress, so still water stays still. Closed faces stay 0 and act as u = 0 neighbours, as in
-// the explicit stencil
-void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
-                                 const double* u0, const double* w0, std::vector<double>& u_star,
-                                 std::vector<double>& w_star, MomentumScratch& s) {
-  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
-  // the systems of all columns, row-major (row k of column i at i + sx k), solved together row by row:
-  // the same operations per column as solve_tridiagonal, in an order the compiler can vectorise
-  const std::size_t size = static_cast<std::size_t>(sx) * (nz + 1);
-  s.tri_a.resize(size), s.tri_b.resize(size), s.tri_c.resize(size), s.tri_d.resize(size);
-  double *a = s.tri_a.data(), *b = s.tri_b.data(), *c = s.tri_c.data(), *d = s.tri_d.data();
-  const bool bed_no_slip = bc.no_slip && !f.face_z_wall_shear;
-  // u on the interior x-faces i = 1..nx-1: rows k = 0..nz-1, stress-free top, no-slip bed (ghost -u) or wall shear.
-  // A closed face's row is the identity (it stays 0); a closed neighbour is a known zero, its coefficient
-  // drops out. Each face's values computed, then selected (no branch; the same values)
-  for (int k = 0; k < nz; ++k) {
-    const double dz_lo = k > 0 ? g.z_center(k) - g.z_center(k - 1) : 0.0;
-    const double dz_up = k < nz - 1 ? g.z_center(k + 1) - g.z_center(k) : 0.0;
-    const double dzk = g.dz(k);
-    const bool has_lo = k > 0, has_up = k < nz - 1;
-    // lo = c mu / h below and above (the same operations as mu / h, 2 mu / dz0 on a no-slip bed, or 0)
-    const double lo_c = has_lo ? 1.0 : (bed_no_slip ? 2.0 : 0.0), lo_h = has_lo ? dz_lo : g.dz(0);
-    const double up_c = has_up ? 1.0 : 0.0, up_h = has_up ? dz_up : 1.0;
-    const double* n = f.face_x_porosity + sx * k;
-    const double* n_lo = has_lo ? n - sx : n;  // unused on the bed row
-    const double* n_up = has_up ? n + sx : n;  // unused on the top row
-    const double* mu_lo = s.corner_mu.data() + sx * k;
-    const double* mu_up = s.corner_mu.data() + sx * (has_up ? k + 1 : k);
-    const double* rho = f.face_x_rho + sx * k;
-    const double* u = u0 + sx * k;
-    const std::size_t row = static_cast<std::size_t>(sx) * k;
-    diffusion_row(1, nx, {dt, dzk, lo_c, lo_h, up_c, up_h}, rho, mu_lo, mu_up, n, u, a + row, b + row, c + row, d + row);
-    keep_open_neighbours(1, nx, has_lo, has_up, n, n_lo, n_up, a + row, c + row);
-  }
-  solve_tridiagonal_rows(nz, 1, nx, sx, a, b, c, d);
-  for (int k = 0; k < nz; ++k)
-    for (int i = 1; i < nx; ++i) {
-      const int j = i + sx * k;
-      const double old = u_star[j], diffused = old + (d[j] - u0[j]);
-      u_star[j] = f.face_x_porosity[j] > 0.0 ? diffused : old;
-    }
-  // w on the interior z-faces k = 1..nz-1 (system row k - 1); bed w = 0 and the top face's w^n are known
-  if (nz < 2) return;
-  const int m = nz - 1;
-  for (int k = 1; k < nz; ++k) {
-    const double dzc = g.z_center(k) - g.z_center(k - 1);
-    const double dz_lo = g.dz(k - 1), dz_up = g.dz(k);
-    const bool has_lo = k > 1, top = k == nz - 1;
-    const double* n = f.face_z_porosity + nx * k;
-    const double* n_lo = n - nx;
-    const double* n_up = top ? n : n + nx;  // unused on the top row
-    const double* mu_lo = f.cell_mu + nx * (k - 1);
-    const double* mu_up = f.cell_mu + nx * k;
-    const double* rho = f.face_z_rho + nx * k;
-    const double* w = w0 + nx * k;
-    const double* w_top = f.face_w + nx * (k + 1);  // the top face's w^n, known (0 under a lid)
-    const std::size_t row = static_cast<std::size_t>(sx) * (k - 1);
-    diffusion_row(0, nx, {dt, dzc, 2.0, dz_lo, 2.0, dz_up}, rho, mu_lo, mu_up, n, w, a + row, b + row, c + row,
-                  d + row);
-    // an open top row: the top face's w^n is known, w + r up w_top (c = -r up, not yet dropped)
-    if (top)
-      for (int i = 0; i < nx; ++i) d[row + i] = n[i] > 0.0 ? w[i] - c[row + i] * w_top[i] : w[i];
-    keep_open_neighbours(0, nx, has_lo, !top, n, n_lo, n_up, a + row, c + row);
-  }
-  solve_tridiagonal_rows(m, 0, nx, sx, a, b, c, d);
-  for (int k = 1; k < nz; ++k)
-    for (int i = 0; i < nx; ++i)
-    {
-      const int j = i + nx * k;
-      const double old = w_star[j], diffused = old + (d[i + sx * (k - 1)] - w0[j]);
-      w_star[j] = f.face_z_porosity[j] > 0.0 ? diffused : old;
-    }
-}
-
 void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumTerms& t, const MomentumBoundary& bc,
                        double dt, std::vector<double>& u_star, std::vector<double>& w_star, MomentumScratch& s) {
   if (!t.viscosity || t.viscous_substeps <= 1) {
@@ -525,34 +441,6 @@ void momentum_explicit(const Grid2D& g, const MomentumFields& f, const MomentumT
   cg.viscosity = false;
   momentum_once(g, f, cg, bc, dt, u_star, w_star, s);
   add_viscous_substeps(g, f, t, bc, dt, u_star, w_star, s);
-}
-
-void solve_tridiagonal_rows(int m, int i0, int i1, int stride, const double* a, double* b, const double* c,
-                            double* d) {
-  for (int k = 1; k < m; ++k) {
-    const int r = stride * k, p = r - stride;
-    for (int i = i0; i < i1; ++i) {
-      const double q = a[r + i] / b[p + i];
-      b[r + i] -= q * c[p + i];
-      d[r + i] -= q * d[p + i];
-    }
-  }
-  const int last = stride * (m - 1);
-  for (int i = i0; i < i1; ++i) d[last + i] /= b[last + i];
-  for (int k = m - 2; k >= 0; --k) {
-    const int r = stride * k, n = r + stride;
-    for (int i = i0; i < i1; ++i) d[r + i] = (d[r + i] - c[r + i] * d[n + i]) / b[r + i];
-  }
-}
-
-void solve_tridiagonal(int m, const double* a, double* b, const double* c, double* d) {
-  for (int k = 1; k < m; ++k) {
-    const double q = a[k] / b[k - 1];
-    b[k] -= q * c[k - 1];
-    d[k] -= q * d[k - 1];
-  }
-  d[m - 1] /= b[m - 1];
-  for (int k = m - 2; k >= 0; --k) d[k] = (d[k] - c[k] * d[k + 1]) / b[k];
 }
 
 double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<double>& cm, bool implicit_vertical,

@@ -47,6 +47,10 @@ void FlowParams::validate() const {
   if (static_cast<int>(time_scheme) < 0 || static_cast<int>(time_scheme) > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(static_cast<int>(time_scheme)) +
                                 " is outside the allowed values {0 (kEuler), 1 (kAdamsBashforth2)}");
+  if (static_cast<int>(viscous_scheme) < 0 || static_cast<int>(viscous_scheme) > 3)
+    throw std::invalid_argument("viscous_scheme = " + std::to_string(static_cast<int>(viscous_scheme)) +
+                                " is outside the allowed values {0 (kExplicit), 1 (kImplicitVertical), "
+                                "2 (kImplicitVerticalFromStart), 3 (kImplicit)}");
   // checked with the model off too: set_params rebuilds the model, which would refuse them half-way
   try {
     check_k_epsilon_params(turbulence);
@@ -378,7 +382,10 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
   s.viscous = kInf;
   // the viscosities of the current phases (stable_dt may be called between steps): once for both terms
   if (params_.flags & (kFlowViscosity | kFlowTurbulence)) update_phase_properties();
-  if (params_.flags & kFlowViscosity) {
+  if ((params_.flags & kFlowViscosity) && params_.viscous_scheme == ViscousScheme::kImplicit) {
+    viscous_limit_ = kInf;  // no stress is explicit but the cross terms: no bound (vof_grid.h)
+    viscous_limit_step_ = step_count_;
+  } else if (params_.flags & kFlowViscosity) {
     viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
                                        params_.implicit_vertical(), params_.step_bound(), &s.viscous_cell);
     viscous_limit_step_ = step_count_;
@@ -554,6 +561,7 @@ double VOFGrid::dilatation(double dt) const {
 
 int VOFGrid::viscous_substeps(double dt) const {
   // the limit stable_dt_terms() found before this step (the phases it saw are this step's), else anew
+  if (params_.viscous_scheme == ViscousScheme::kImplicit) return 1;
   if (viscous_limit_step_ != step_count_) {
     viscous_limit_ = viscous_stable_dt(grid_, momentum_fields(), dt_scratch_,
                                        params_.implicit_vertical(), params_.step_bound(), nullptr);
@@ -570,6 +578,7 @@ void VOFGrid::stage_momentum(double dt) {
   terms.viscosity = params_.flags & kFlowViscosity;
   terms.implicit_vertical = params_.implicit_vertical();
   terms.vertical_from_start = params_.viscous_scheme == ViscousScheme::kImplicitVerticalFromStart;
+  terms.implicit_horizontal = params_.viscous_scheme == ViscousScheme::kImplicit;
   if (params_.flags & kFlowGravity) terms.gravity_x = params_.medium.gravity[0], terms.gravity_z = params_.medium.gravity[1];
   if (terms.viscosity && params_.viscous_substeps > 1) terms.viscous_substeps = viscous_substeps(dt);
   const bool ab2 = params_.time_scheme == MomentumTimeScheme::kAdamsBashforth2 && prev_dt_ > 0.0;

@@ -1389,8 +1389,11 @@ class ViscousScheme:
       IMPLICIT_VERTICAL
     
       IMPLICIT_VERTICAL_FROM_START
+    
+      IMPLICIT : rows and columns implicit, the cross terms explicit: no step bound
     """
     EXPLICIT: typing.ClassVar[ViscousScheme]
+    IMPLICIT: typing.ClassVar[ViscousScheme]
     IMPLICIT_VERTICAL: typing.ClassVar[ViscousScheme]
     IMPLICIT_VERTICAL_FROM_START: typing.ClassVar[ViscousScheme]
     __members__: typing.ClassVar[dict[str, ViscousScheme]]
@@ -1851,6 +1854,14 @@ class FlowParams:
         """
     @turbulence_inflow_length_scale.setter
     def turbulence_inflow_length_scale(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def turbulence_limit_step(self) -> bool:
+        """
+        VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False)
+        """
+    @turbulence_limit_step.setter
+    def turbulence_limit_step(self, arg1: bool) -> None:
         ...
     @property
     def turbulence_production(self) -> KEpsilonProduction:

@@ -230,12 +230,14 @@ def flow_params(scene: Scene):
     p.viscous_substeps = n.viscous_substeps
     p.viscous_scheme = {"implicit_vertical": _core.ViscousScheme.IMPLICIT_VERTICAL,
                         "implicit_vertical_from_start": _core.ViscousScheme.IMPLICIT_VERTICAL_FROM_START,
-                        "explicit": _core.ViscousScheme.EXPLICIT}[n.viscous_scheme]
+                        "explicit": _core.ViscousScheme.EXPLICIT,
+                        "implicit": _core.ViscousScheme.IMPLICIT}[n.viscous_scheme]
     p.viscous_bound = {"energy": _core.ViscousBound.ENERGY, "row_sum": _core.ViscousBound.ROW_SUM}[n.viscous_bound]
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
                                 "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
+    p.turbulence_limit_step = n.turbulence_step_limit
     p.inlet = _core.InletBoundary.DISCHARGE
     p.inlet_profile = {"equivalent_depth": _core.InletProfile.EQUIVALENT_DEPTH,
                        "water_fraction": _core.InletProfile.WATER_FRACTION}[n.inlet_profile]

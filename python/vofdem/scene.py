@@ -359,11 +359,15 @@ class Numerics(_Section):
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
                                      "faces) or point-implicit (bounded by all faces)")
+    turbulence_step_limit: bool = _flag(True, "k-epsilon vertical_lines: the horizontal faces' explicit limit "
+                                        "bounds the fluid step (true), or not (false: above it those faces are "
+                                        "lagged-implicit, k and eps stay positive, first order in time there)")
     viscous_scheme: str = _choice("implicit_vertical", ("implicit_vertical", "implicit_vertical_from_start",
-                                                        "explicit"),
+                                                        "explicit", "implicit"),
                                   "viscous stresses: vertical diffusion by column solves after the explicit "
                                   "rest, the former splitting from the step's start (unstable above about 0.7 "
-                                  "of the limit; to reproduce earlier runs), or all explicit (the reference)")
+                                  "of the limit; to reproduce earlier runs), all explicit (the reference), or "
+                                  "rows and columns implicit with the cross terms explicit (no step bound)")
     viscous_bound: str = _choice("energy", ("energy", "row_sum"),
                                  "the viscous step's bound for viscous_scheme 'implicit_vertical': the energy "
                                  "bound (no cross terms, proven) or the former Gershgorin row sums (cross terms "

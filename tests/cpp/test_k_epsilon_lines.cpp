@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -162,6 +164,28 @@ TEST(KEpsilonLines, StableDtIgnoresTheVerticalFaces) {
   q.time_scheme = KEpsilonTimeScheme::kPointImplicit;
   KEpsilonModel point(g, q, b);
   EXPECT_NEAR(point.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu), 0.5 * 0.05 / 2.0, 1e-15);
+}
+
+TEST(KEpsilonLines, StepLimitCanBeSwitchedOffForTheLinesOnly) {
+  // limit_step = false: no bound (the horizontal flow of the test above binds 0.025 s with it); the
+  // point-implicit scheme refuses it by name (its step is bounded by all four faces)
+  const Grid2D g = Grid2D::uniform(5, 4, 0.5, 0.2);
+  KEpsilonParams p = lines();
+  p.limit_step = false;
+  KEpsilonBoundaries b;
+  KEpsilonModel m(g, p, b);
+  Flow f(g);
+  for (double& u : f.face_u) u = 2.0;
+  int cell = -2;
+  EXPECT_TRUE(std::isinf(m.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu, &cell)));
+  EXPECT_EQ(cell, -1);
+  p.time_scheme = KEpsilonTimeScheme::kPointImplicit;
+  try {
+    vofdem::check_k_epsilon_params(p);
+    FAIL() << "limit_step = false accepted with the point-implicit scheme";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("limit_step"), std::string::npos) << e.what();
+  }
 }
 
 // the horizontal limit (vectorised row by row) against the obvious cell-by-cell sum of the two

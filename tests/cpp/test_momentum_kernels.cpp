@@ -1,6 +1,7 @@
 // The momentum kernels' vectorised loops (momentum.cpp: pore velocities, the MUSCL convective fluxes
 // with their inner values computed apart from the lines' ends, the implicit vertical diffusion's column
-// systems assembled row by row) against a reference written face by
+// systems assembled row by row, the horizontal diffusion's row systems solved together) against a
+// reference written face by
 // face, as plainly as the scheme reads: the same bits on random fields with closed faces and flows of
 // both signs, on grids small enough that every end case and every inner range (empty too) occurs.
 #include <gtest/gtest.h>
@@ -136,38 +137,125 @@ void reference_vertical_diffusion(const Grid2D& g, const MomentumFields& f, cons
   }
 }
 
+// random fields of the diffusion kernels' tests: velocities, porosities (a fifth closed), viscosities
+// (molecular and eddy, contrasts of 1e4), densities (water and air), corner viscosities, u* and w*,
+// and the solves' start u0, w0 (u^n plus an explicit increment); wall shears zero
+struct DiffusionCase {
+  std::vector<double> u, w, nxp, nzp, mu, rx, rz, shear_x, shear_z, us, ws, u0, w0;
+  MomentumScratch s;
+  DiffusionCase(const Grid2D& g, Random& rnd)
+      : u(g.nface_x()), w(g.nface_z()), nxp(g.nface_x()), nzp(g.nface_z()), mu(g.ncell()), rx(g.nface_x()),
+        rz(g.nface_z()), shear_x(g.nface_x(), 0.0), shear_z(g.nface_z(), 0.0), us(g.nface_x()), ws(g.nface_z()),
+        u0(g.nface_x()), w0(g.nface_z()) {
+    for (auto* v : {&u, &w}) for (double& x : *v) x = rnd() - 0.5;
+    for (auto* v : {&nxp, &nzp}) for (double& x : *v) x = rnd() < 0.2 ? 0.0 : 0.2 + 0.8 * rnd();
+    for (double& x : mu) x = rnd() < 0.3 ? 1e-3 : 10.0 * rnd();
+    for (auto* v : {&rx, &rz}) for (double& x : *v) x = rnd() < 0.3 ? 1.2 : 1000.0;
+    s.corner_mu.resize(static_cast<std::size_t>(g.nx() + 1) * (g.nz() + 1));
+    for (double& x : s.corner_mu) x = 5.0 * rnd();
+    for (auto* v : {&us, &ws}) for (double& x : *v) x = rnd() - 0.5;
+    for (int j = 0; j < g.nface_x(); ++j) u0[j] = u[j] + 0.1 * (rnd() - 0.5);
+    for (int j = 0; j < g.nface_z(); ++j) w0[j] = w[j] + 0.1 * (rnd() - 0.5);
+  }
+  MomentumFields fields() const {
+    return {u.data(), w.data(), nxp.data(), nzp.data(), mu.data(), rx.data(), rz.data()};
+  }
+};
+
 void check_vertical_diffusion(int nx, int nz, unsigned seed, bool no_slip, bool wall_shear) {
   // graded rows (a fine bed row), so that every spacing enters
   std::vector<double> zf{0.0, 0.005};
   for (int k = 1; k < nz; ++k) zf.push_back(zf.back() + 0.01 + 0.002 * k);
   const Grid2D g(nx, 0.025, zf);
-  const int sx = nx + 1;
   Random rnd{seed};
-  std::vector<double> u(g.nface_x()), w(g.nface_z()), nxp(g.nface_x()), nzp(g.nface_z()), mu(g.ncell());
-  std::vector<double> rx(g.nface_x()), rz(g.nface_z()), shear(g.nface_z(), 0.0);
-  for (auto* v : {&u, &w}) for (double& x : *v) x = rnd() - 0.5;
-  for (auto* v : {&nxp, &nzp}) for (double& x : *v) x = rnd() < 0.2 ? 0.0 : 0.2 + 0.8 * rnd();
-  for (double& x : mu) x = rnd() < 0.3 ? 1e-3 : 10.0 * rnd();  // molecular and eddy, contrasts of 1e4
-  for (auto* v : {&rx, &rz}) for (double& x : *v) x = rnd() < 0.3 ? 1.2 : 1000.0;
-  MomentumFields f{u.data(), w.data(), nxp.data(), nzp.data(), mu.data(), rx.data(), rz.data()};
-  if (wall_shear) f.face_z_wall_shear = shear.data();
+  DiffusionCase q(g, rnd);
+  MomentumFields f = q.fields();
+  if (wall_shear) f.face_z_wall_shear = q.shear_z.data();
   MomentumBoundary bc;
   bc.no_slip = no_slip;
-  MomentumScratch s;
-  s.corner_mu.resize(static_cast<std::size_t>(sx) * (nz + 1));
-  for (double& x : s.corner_mu) x = 5.0 * rnd();
-  std::vector<double> us(g.nface_x()), ws(g.nface_z());
-  for (auto* v : {&us, &ws}) for (double& x : *v) x = rnd() - 0.5;
-  std::vector<double> us_ref = us, ws_ref = ws;
-  // the start of the solve: u^n plus an explicit increment
-  std::vector<double> u0(g.nface_x()), w0(g.nface_z());
-  for (int j = 0; j < g.nface_x(); ++j) u0[j] = u[j] + 0.1 * (rnd() - 0.5);
-  for (int j = 0; j < g.nface_z(); ++j) w0[j] = w[j] + 0.1 * (rnd() - 0.5);
+  std::vector<double> us_ref = q.us, ws_ref = q.ws;
   const double dt = 0.01;
-  implicit_vertical_diffusion(g, f, bc, dt, u0.data(), w0.data(), us, ws, s);
-  reference_vertical_diffusion(g, f, bc, dt, s.corner_mu, u0, w0, us_ref, ws_ref);
-  for (int j = 0; j < g.nface_x(); ++j) ASSERT_EQ(us[j], us_ref[j]) << nx << "x" << nz << " x-face " << j;
-  for (int j = 0; j < g.nface_z(); ++j) ASSERT_EQ(ws[j], ws_ref[j]) << nx << "x" << nz << " z-face " << j;
+  implicit_vertical_diffusion(g, f, bc, dt, q.u0.data(), q.w0.data(), q.us, q.ws, q.s);
+  reference_vertical_diffusion(g, f, bc, dt, q.s.corner_mu, q.u0, q.w0, us_ref, ws_ref);
+  for (int j = 0; j < g.nface_x(); ++j) ASSERT_EQ(q.us[j], us_ref[j]) << nx << "x" << nz << " x-face " << j;
+  for (int j = 0; j < g.nface_z(); ++j) ASSERT_EQ(q.ws[j], ws_ref[j]) << nx << "x" << nz << " z-face " << j;
+}
+
+// the implicit horizontal diffusion row by row, as the scheme reads: (I - dt/rho d/dx 2 mu d/dx) y = u0 on
+// the interior x-faces of each row, the end faces' u^n known; (I - dt/rho d/dx mu d/dx) y = w0 on the
+// z-faces of each interior row, an end corner's ghost -w (inlet or no-slip wall, no wall-function shear
+// there) doubling its conductance and adding none to a neighbour, a stress-free end none. Closed faces
+// as in the columns. u* += y - u0, w* += y - w0 on open faces
+void reference_row_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
+                             const std::vector<double>& corner_mu, const std::vector<double>& u0,
+                             const std::vector<double>& w0, std::vector<double>& us, std::vector<double>& ws) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  const double inv_dx = 1.0 / g.dx();
+  for (int k = 0; k < nz && nx > 1; ++k) {
+    const int m = nx - 1;
+    std::vector<double> a(m), b(m), c(m), d(m);
+    for (int i = 1; i < nx; ++i) {
+      const int j = i + sx * k, row = i - 1;
+      a[row] = c[row] = 0.0, b[row] = 1.0, d[row] = u0[j];
+      if (!(f.face_x_porosity[j] > 0.0)) continue;
+      const double r = dt * inv_dx / f.face_x_rho[j];
+      const double lo = r * 2.0 * f.cell_mu[i - 1 + nx * k] * inv_dx, up = r * 2.0 * f.cell_mu[i + nx * k] * inv_dx;
+      b[row] = 1.0 + lo + up;
+      if (f.face_x_porosity[j - 1] > 0.0) {
+        if (i > 1) a[row] = -lo;
+        else d[row] += lo * f.face_u[j - 1];
+      }
+      if (f.face_x_porosity[j + 1] > 0.0) {
+        if (i < nx - 1) c[row] = -up;
+        else d[row] += up * f.face_u[j + 1];
+      }
+    }
+    solve_tridiagonal(m, a.data(), b.data(), c.data(), d.data());
+    for (int i = 1; i < nx; ++i) {
+      const int j = i + sx * k;
+      if (f.face_x_porosity[j] > 0.0) us[j] += d[i - 1] - u0[j];
+    }
+  }
+  const bool left = (bc.left_inlet || bc.no_slip) && !(f.face_x_wall_shear && !bc.left_inlet);
+  const bool right = !bc.right_open && bc.no_slip && !f.face_x_wall_shear;
+  for (int k = 1; k < nz; ++k) {
+    std::vector<double> a(nx), b(nx), c(nx), d(nx);
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      a[i] = c[i] = 0.0, b[i] = 1.0, d[i] = w0[j];
+      if (!(f.face_z_porosity[j] > 0.0)) continue;
+      const double r = dt * inv_dx / f.face_z_rho[j];
+      const double cl = i > 0 ? 1.0 : (left ? 2.0 : 0.0), cu = i < nx - 1 ? 1.0 : (right ? 2.0 : 0.0);
+      const double lo = r * cl * corner_mu[i + sx * k] * inv_dx, up = r * cu * corner_mu[i + 1 + sx * k] * inv_dx;
+      b[i] = 1.0 + lo + up;
+      if (i > 0 && f.face_z_porosity[j - 1] > 0.0) a[i] = -lo;
+      if (i < nx - 1 && f.face_z_porosity[j + 1] > 0.0) c[i] = -up;
+    }
+    solve_tridiagonal(nx, a.data(), b.data(), c.data(), d.data());
+    for (int i = 0; i < nx; ++i) {
+      const int j = i + nx * k;
+      if (f.face_z_porosity[j] > 0.0) ws[j] += d[i] - w0[j];
+    }
+  }
+}
+
+enum RowEnds { kSlipWalls, kNoSlipWalls, kInletAndOpenEnd, kWallFunctions };
+
+void check_row_diffusion(int nx, int nz, unsigned seed, RowEnds ends) {
+  const Grid2D g = Grid2D::uniform(nx, nz, 0.025 * nx, 0.01 * nz);
+  Random rnd{seed};
+  DiffusionCase q(g, rnd);
+  MomentumFields f = q.fields();
+  MomentumBoundary bc;
+  bc.no_slip = ends != kSlipWalls;
+  bc.left_inlet = bc.right_open = ends == kInletAndOpenEnd;
+  if (ends == kWallFunctions) f.face_x_wall_shear = q.shear_x.data(), f.face_z_wall_shear = q.shear_z.data();
+  std::vector<double> us_ref = q.us, ws_ref = q.ws;
+  const double dt = 0.01;
+  implicit_row_diffusion(g, f, bc, dt, q.u0.data(), q.w0.data(), q.us, q.ws, q.s);
+  reference_row_diffusion(g, f, bc, dt, q.s.corner_mu, q.u0, q.w0, us_ref, ws_ref);
+  for (int j = 0; j < g.nface_x(); ++j) ASSERT_EQ(q.us[j], us_ref[j]) << nx << "x" << nz << " x-face " << j;
+  for (int j = 0; j < g.nface_z(); ++j) ASSERT_EQ(q.ws[j], ws_ref[j]) << nx << "x" << nz << " z-face " << j;
 }
 
 }  // namespace
@@ -184,4 +272,12 @@ TEST(MomentumKernels, ImplicitVerticalDiffusionMatchesTheColumnByColumnReference
     for (int nz : {1, 2, 3, 6})
       for (bool no_slip : {false, true})
         for (bool wall_shear : {false, true}) check_vertical_diffusion(nx, nz, seed++, no_slip, wall_shear);
+}
+
+TEST(MomentumKernels, ImplicitRowDiffusionMatchesTheRowByRowReferenceBitForBit) {
+  unsigned seed = 1;
+  for (int nx : {1, 2, 3, 7})
+    for (int nz : {1, 2, 3, 6})
+      for (RowEnds ends : {kSlipWalls, kNoSlipWalls, kInletAndOpenEnd, kWallFunctions})
+        check_row_diffusion(nx, nz, seed++, ends);
 }

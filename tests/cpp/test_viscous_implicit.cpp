@@ -181,8 +181,11 @@ TEST(ImplicitViscosity, StepLimitOfTheImplicitSchemeLeavesOutTheVerticalDiffusio
 // the whole viscous step (x-diffusion and cross terms explicit, vertical diffusion backward Euler) as
 // a matrix, column by column from unit velocities, in a closed box (no-slip walls, slip lid): its
 // spectral radius at dt_factor times the step limit (written to *limit)
+// (kImplicit: the rows implicit too, dt_factor times kImplicitVertical's limit; slip walls unless
+// no_slip; energy_norm receives the step's norm in the kinetic energy, ||R^1/2 M R^-1/2||_2)
 double whole_step_radius(const Column& c, const std::vector<double>& eddy, double dt_factor, double* limit,
-                         int substeps, ViscousScheme scheme, ViscousBound bound) {
+                         int substeps, ViscousScheme scheme, ViscousBound bound, bool no_slip = true,
+                         double* energy_norm = nullptr) {
   const Grid2D& g = c.g;
   MomentumFields f = c.fields();
   f.cell_mu_eddy = eddy.data();  // the flow's default: the eddy part of a corner by harmonic mean
@@ -201,10 +204,11 @@ double whole_step_radius(const Column& c, const std::vector<double>& eddy, doubl
   t.convection = false;
   t.implicit_vertical = true;
   t.vertical_from_start = scheme == ViscousScheme::kImplicitVerticalFromStart;
+  t.implicit_horizontal = scheme == ViscousScheme::kImplicit;
   t.viscous_substeps = substeps;
   MomentumBoundary bc;
   bc.top_open = false;
-  bc.no_slip = true;
+  bc.no_slip = no_slip;
   Column unit = c;
   std::vector<double> us, ws;
   MomentumScratch s;
@@ -218,6 +222,17 @@ double whole_step_radius(const Column& c, const std::vector<double>& eddy, doubl
     momentum_explicit(g, fu, t, bc, dt, us, ws, s);
     for (std::size_t r = 0; r < xs.size(); ++r) m(r, col) = us[xs[r]];
     for (std::size_t r = 0; r < zs.size(); ++r) m(xs.size() + r, col) = ws[zs[r]];
+  }
+  if (energy_norm) {
+    // sqrt of each face's mass rho dV (dV per unit width: dx times the face's vertical extent)
+    Eigen::VectorXd root(n);
+    for (std::size_t r = 0; r < xs.size(); ++r) root(r) = std::sqrt(c.rx[xs[r]] * g.dx() * g.dz(xs[r] / (g.nx() + 1)));
+    for (std::size_t r = 0; r < zs.size(); ++r) {
+      const int k = zs[r] / g.nx();
+      root(xs.size() + r) = std::sqrt(c.rz[zs[r]] * g.dx() * (g.z_center(k) - g.z_center(k - 1)));
+    }
+    const Eigen::MatrixXd e = root.asDiagonal() * m * root.cwiseInverse().asDiagonal();
+    *energy_norm = Eigen::JacobiSVD<Eigen::MatrixXd>(e).singularValues()(0);
   }
   return m.eigenvalues().cwiseAbs().maxCoeff();
 }
@@ -584,4 +599,130 @@ TEST(ViscousLimit, RowWiseKernelsMatchTheFaceByFaceReferenceBitForBit) {
         for (int ii = 0; ii <= g.nx(); ++ii)
           ASSERT_EQ(cm[ii + (g.nx() + 1) * kk], reference_corner(g, f.cell_mu, f.cell_mu_eddy, ii, kk)) << ii << " " << kk;
     }
+}
+
+// the rows implicit too (ViscousScheme::kImplicit): only the cross terms explicit
+
+TEST(ImplicitRows, OneStepIsBackwardEulerOfTheHorizontalModeOfU) {
+  // u = sin(pi x / L) on the x-faces between two walls (u = 0 there), uniform in z, w = 0: an eigenvector
+  // of d/dx(2 nu d/dx) with lambda = 2 nu (4 / dx^2) sin^2(pi dx / (2 L)), and no cross term, no vertical
+  // diffusion; the whole step at 100 x the split scheme's limit divides it by 1 + dt lambda
+  const Grid2D g = Grid2D::uniform(20, 4, 0.2, 0.1);
+  const double nu = 2e-3, dx = 0.01, l = 0.2;
+  const double lambda = 2.0 * nu * 4.0 / (dx * dx) * std::pow(std::sin(kPi * dx / (2.0 * l)), 2);
+  Column c(g, nu * 1000.0);
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) c.u[g.face_x(i, k)] = std::sin(kPi * i * dx / l);
+  MomentumTerms t;
+  t.convection = false;
+  t.implicit_vertical = true;
+  t.implicit_horizontal = true;
+  MomentumBoundary bc;
+  bc.top_open = false;
+  std::vector<double> us, ws, cm;
+  MomentumScratch s;
+  const double dt = 100.0 * viscous_stable_dt(g, c.fields(), cm, true, ViscousBound::kEnergy);
+  momentum_explicit(g, c.fields(), t, bc, dt, us, ws, s);
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 1; i < g.nx(); ++i) {
+      const int j = g.face_x(i, k);
+      EXPECT_NEAR(us[j], c.u[j] / (1.0 + dt * lambda), 1e-12) << i << " " << k;
+    }
+  for (double w : ws) EXPECT_NEAR(w, 0.0, 1e-15);  // the new u's round-off in the cross term
+}
+
+// one row solve of w (implicit_row_diffusion) with uniform corner viscosity mu [Pa s]: returns w*
+std::vector<double> row_solve_w(const Column& c, const MomentumBoundary& bc, double mu, double dt) {
+  MomentumScratch s;
+  s.corner_mu.assign(static_cast<std::size_t>(c.g.nx() + 1) * (c.g.nz() + 1), mu);
+  std::vector<double> us(c.u), ws(c.w);
+  implicit_row_diffusion(c.g, c.fields(), bc, dt, c.u.data(), c.w.data(), us, ws, s);
+  return ws;
+}
+
+TEST(ImplicitRows, RowSolveOfWIsBackwardEulerWithStressFreeOrGhostEnds) {
+  // slip ends (no stress): w = cos(pi x / L) at the cell centres is an eigenvector of d/dx(nu d/dx) with
+  // lambda = nu (4 / dx^2) sin^2(pi dx / (2 L)); no-slip ends on a row of one cell: the two ghosts -w make
+  // the rate 4 nu / dx^2, the explicit scheme's too (checked at a small step)
+  const double nu = 2e-3, dx = 0.01, l = 0.2;
+  const Grid2D g = Grid2D::uniform(20, 4, 0.2, 0.1);
+  Column c(g, nu * 1000.0);
+  for (int k = 1; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) c.w[g.face_z(i, k)] = std::cos(kPi * (i + 0.5) * dx / l);
+  MomentumBoundary bc;
+  bc.top_open = false;
+  const double lambda = nu * 4.0 / (dx * dx) * std::pow(std::sin(kPi * dx / (2.0 * l)), 2), dt = 30.0 / lambda;
+  const std::vector<double> ws = row_solve_w(c, bc, nu * 1000.0, dt);
+  for (int k = 1; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) {
+      const int j = g.face_z(i, k);
+      EXPECT_NEAR(ws[j], c.w[j] / (1.0 + dt * lambda), 1e-12) << i << " " << k;
+    }
+  const Grid2D one = Grid2D::uniform(1, 4, 0.01, 0.04);
+  Column d(one, nu * 1000.0);
+  for (int k = 1; k < one.nz(); ++k) d.w[one.face_z(0, k)] = 1.0;  // bed and lid 0
+  bc.no_slip = true;
+  const double rate = 4.0 * nu / (dx * dx), big = 30.0 / rate, small = 1e-4 / rate;
+  EXPECT_NEAR(row_solve_w(d, bc, nu * 1000.0, big)[one.face_z(0, 2)], 1.0 / (1.0 + big * rate), 1e-12);
+  MomentumTerms t;
+  t.convection = false;
+  std::vector<double> us, we;
+  MomentumScratch s;
+  momentum_explicit(one, d.fields(), t, bc, small, us, we, s);
+  EXPECT_NEAR((we[one.face_z(0, 2)] - 1.0) / small, -rate, 1e-9 * rate);
+}
+
+TEST(ImplicitRows, WholeStepStableFarAboveTheSplitSchemesLimit) {
+  // the 96 fields of the split scheme's test (four grids, eddy-viscosity contrasts 1-1000, with and
+  // without an air layer, three seeds), no-slip and slip walls, at 1, 3, 100 and 1e4 times the split
+  // scheme's energy limit: the step's spectral radius stays <= 1 (measured: 0.999644, set by the slowest
+  // mode; 0.2785 at 1e4). Its norm in the kinetic energy, ||R^1/2 M R^-1/2||_2, stays <= 1 up to 3 x
+  // (0.9989), and then grows with the step (1.63 at 10 x, 5.90 at 100 x, 50.8 at 1e4 x): one step can
+  // turn a w-mode into a larger u-mode, the cross term being explicit in u, which later steps damp.
+  // The split scheme's own norm at its limit is 1.94. The split scheme at 100 x grows (first field)
+  const Grid2D grids[] = {Grid2D::graded(6, 0.15, 0.06, 0.01, 0.005, 0.02), Grid2D::uniform(8, 10, 0.2, 0.1),
+                          Grid2D::uniform(8, 8, 0.08, 0.08), Grid2D::uniform(6, 12, 0.15, 0.06)};
+  for (double factor : {1.0, 3.0, 100.0, 1e4}) {
+    double worst_radius = 0.0, worst_norm = 0.0;
+    for (bool no_slip : {true, false})
+      for (const Grid2D& g : grids)
+        for (double contrast : {1.0001, 10.0, 100.0, 1000.0})
+          for (bool air : {false, true})
+            for (unsigned seed = 1; seed <= 3; ++seed) {
+              Column c(g, 1e-3);
+              const std::vector<double> eddy = set_viscosity(c, contrast, air, 7919u * seed);
+              double limit = 0.0, norm = 0.0;
+              const double r = whole_step_radius(c, eddy, factor, &limit, 1, ViscousScheme::kImplicit,
+                                                 ViscousBound::kEnergy, no_slip, &norm);
+              worst_radius = std::max(worst_radius, r), worst_norm = std::max(worst_norm, norm);
+              EXPECT_LE(r, 1.0 + 1e-9) << factor << " " << g.nx() << "x" << g.nz() << " contrast " << contrast;
+              if (factor <= 3.0) {
+                EXPECT_LE(norm, 1.0 + 1e-9) << factor << " " << g.nx() << "x" << g.nz();
+              }
+            }
+    std::printf("[ info     ] rows implicit at %g x the split limit, 192 fields: largest spectral radius %.6f, "
+                "energy norm %.4f\n", factor, worst_radius, worst_norm);
+  }
+  Column c(grids[0], 1e-3);
+  const std::vector<double> eddy = set_viscosity(c, 100.0, true, 7919u);
+  double limit = 0.0;
+  EXPECT_GT(whole_step_radius(c, eddy, 100.0, &limit, 1, ViscousScheme::kImplicitVertical, ViscousBound::kEnergy), 1.0);
+}
+
+TEST(ImplicitRows, FlowHasNoViscousStepLimitAndRefusesUnknownSchemes) {
+  const Grid2D g = Grid2D::uniform(10, 20, 0.25, 0.1);
+  FlowParams p;
+  p.flags = kFlowViscosity | kFlowGravity;
+  p.walls = WallCondition::kNoSlip;
+  p.medium.nu_water = 1e-3;
+  p.viscous_scheme = ViscousScheme::kImplicit;
+  VOFGrid f(g, p);
+  EXPECT_TRUE(std::isinf(f.stable_dt_terms().viscous));
+  p.viscous_scheme = static_cast<ViscousScheme>(4);
+  try {
+    p.validate();
+    FAIL() << "viscous_scheme 4 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("viscous_scheme = 4"), std::string::npos) << e.what();
+  }
 }

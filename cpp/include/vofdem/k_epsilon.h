@@ -127,6 +127,10 @@ struct KEpsilonParams {
   int sweeps = 1;                   // [-] Jacobi sweeps after the predictor, in [0, 1000], usual 0-4
   double cfl = 0.5;                 // [-] safety factor of stable_dt(), in (0, 1], usual 0.5
   KEpsilonTimeScheme time_scheme = KEpsilonTimeScheme::kPointImplicit;  // kVerticalLines: columns implicit
+  // kVerticalLines: stable_dt() returns the horizontal faces' explicit limit (true) or none (false:
+  // above that limit a cell's horizontal faces are lagged-implicit, k and eps stay positive and bounded
+  // for any step, first order in time there); kPointImplicit always limits the step
+  bool limit_step = true;
   unsigned flags = kKEpsAll;        // effect flags (KEpsilonFlag)
   KEpsilonProduction production = KEpsilonProduction::kStrain;  // kKatoLaunder: Kato & Launder (1993)
   double production_limit = 0.0;  // [-] P <= production_limit * eps, 0 = off; Menter (1994): 10

@@ -16,7 +16,9 @@
 // The two parts are applied one after the other, v = (I - dt Z)^-1 (I + dt X) u^n (X explicit, Z
 // implicit): each factor is stable on its own. Added side by side, v = (I - dt Z)^-1 u^n + dt X u^n,
 // a mode that Z damps keeps dt X u^n whole, which grows past dt |X| = 1, half the forward-Euler limit
-// the step is bounded by (test_viscous_implicit.cpp).
+// the step is bounded by (test_viscous_implicit.cpp). With implicit_horizontal the horizontal parts
+// d/dx(2 mu du/dx) and d/dx(mu dw/dx) go by row solves too, and only the cross terms stay explicit
+// (MomentumTerms; cpp/src/momentum_implicit.cpp).
 //
 // Boundaries (ghost values): walls slip (zero shear) or no-slip (u = 0 at the wall), or the log-law
 // shear of the wall functions when the turbulence model supplies it; the inlet carries no vertical
@@ -74,6 +76,13 @@ struct MomentumTerms {
   // the former splitting (ViscousScheme::kImplicitVerticalFromStart): the columns solved from u^n, the
   // explicit increment added beside them
   bool vertical_from_start = false;
+  // with implicit_vertical (not vertical_from_start): the horizontal diffusions d/dx(2 mu du/dx) and
+  // d/dx(mu dw/dx) by backward Euler too, one tridiagonal solve per row before the column solves
+  // (implicit_row_diffusion), so that only the cross terms stay explicit: d/dz(mu dw/dx) in u's
+  // equation from w^n, then d/dx(mu du/dz) in w's from the new u (block Gauss-Seidel). With all four
+  // diffusions implicit no stress bounds the step; the step's matrix stays stable to 1e4 times the
+  // split scheme's limit (test_viscous_implicit.cpp)
+  bool implicit_horizontal = false;
   // the viscous increment in this many substeps of dt / m, each the one-step scheme above (explicit
   // part, then the column solves), convection and gravity over the whole dt at the step's start: each
   // substep needs only dt / m below the explicit viscous limit (viscous_stable_dt); 1: one step
@@ -93,6 +102,8 @@ struct MomentumScratch {
   std::vector<double> corner_flux_u, corner_flux_w;  // z-flux of u, x-flux of w at corners
   std::vector<double> sub_u, sub_w, sub_u_next, sub_w_next;  // velocities of the viscous substeps
   std::vector<double> stressed_u, stressed_w;  // u^n + dt (explicit viscous term): the vertical solve's start
+  std::vector<double> corner_tau_w;            // corner stress the w-equation takes explicitly (rows implicit)
+  std::vector<double> rowed_u, rowed_w;        // the velocities after the row solves: the columns' start
 };
 
 // writes u* on every x-face and w* on every z-face. Closed faces (n_f = 0) and walls get 0; the
@@ -119,6 +130,17 @@ inline double muscl_value(double far, double up, double down) {
 void implicit_vertical_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
                                  const double* u0, const double* w0, std::vector<double>& u_star,
                                  std::vector<double>& w_star, MomentumScratch& s);
+
+// the backward Euler of the horizontal diffusion (terms.implicit_horizontal) after the explicit cross
+// terms: (I - dt H) y = v0 row by row, H u = (1/rho) d/dx(2 mu du/dx) on x-faces and H w = (1/rho)
+// d/dx(mu dw/dx) on z-faces (corner viscosities in s.corner_mu, set by the caller). The end faces of a
+// u-row keep their u^n (wall 0, inflow, open end) as known values; a w-row's ends carry the corner
+// shear's ghost -w where corner_shear has it (inlet, no-slip wall) and no stress elsewhere. Writes y
+// to s.rowed_u, s.rowed_w (closed faces: v0) and adds y - v0 to u* and w* on open faces. Declared for
+// its face-by-face reference test
+void implicit_row_diffusion(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, double dt,
+                            const double* u0, const double* w0, std::vector<double>& u_star,
+                            std::vector<double>& w_star, MomentumScratch& s);
 
 // the bound of the viscous step (viscous_stable_dt). With mass R (rho times the face's volume) and the
 // stress operator's energy K = sum 2 mu u_x^2 + 2 mu w_z^2 + mu (u_z + w_x)^2 (symmetric, K >= 0),

@@ -93,8 +93,10 @@ enum class WallCondition { kSlip = 0, kNoSlip = 1 };
 // columns from the velocities after the explicit stresses (stable up to the step limit);
 // kImplicitVerticalFromStart, the former scheme, from u^n with the explicit increment added beside
 // it: unstable above about 0.7 of the limit for modes the columns damp (momentum.h), kept to
-// reproduce runs made with it
-enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1, kImplicitVerticalFromStart = 2 };
+// reproduce runs made with it. kImplicit also solves the horizontal diffusions by rows before the
+// columns (MomentumTerms::implicit_horizontal): only the cross terms stay explicit, and the viscous
+// stresses bound no step (checked on the whole step's matrix to 1e4 times kImplicitVertical's limit)
+enum class ViscousScheme { kExplicit = 0, kImplicitVertical = 1, kImplicitVerticalFromStart = 2, kImplicit = 3 };
 // viscosity of a cell corner (where the shear stress mu (du/dz + dw/dx) lives) from its four cells:
 // arithmetic mean, or (kHarmonic) the molecular part by arithmetic and the eddy part rho nu_t by
 // harmonic mean (Patankar 1980, sec. 4.2-3: diffusivities in series across an interface), which is
@@ -163,7 +165,7 @@ struct FlowStableDt {
   double advective = 0;   // cfl * min over faces of h / |u / n| (pore velocity)
   double viscous = 0;     // viscous_substeps x the Gershgorin bound of the explicit stresses,
                           // ~ 1 / (4 nu_max (1/dx^2 + 1/dz^2)); with kImplicitVertical of the x-diffusion
-                          // and cross terms only
+                          // and cross terms only; with kImplicit none (infinity)
   double gravity = 0;     // cfl * sqrt(2 h_min / |g|): a cell crossed by a fall from rest
   double turbulence = 0;  // from the k-epsilon model when on
   double max_dt = 0;      // FlowParams::max_dt
