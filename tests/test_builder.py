@@ -80,6 +80,13 @@ def test_fluid_of_the_scene():
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.POINT_IMPLICIT
     assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL_FROM_START
     assert p.viscous_bound == vofdem.ViscousBound.ROW_SUM
+    # the k-epsilon step limit: on at a safety factor of 0.5 unless the scene says otherwise
+    assert (p.turbulence_limit_step, p.turbulence_cfl) == (True, 0.5)
+    s.numerics.turbulence_scheme, s.numerics.viscous_scheme = "vertical_lines", "implicit"
+    s.numerics.turbulence_step_limit, s.numerics.turbulence_cfl = False, 1.0
+    p = build_fluid(s.validate()).params
+    assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT
+    assert (p.turbulence_limit_step, p.turbulence_cfl) == (False, 1.0)
     s.numerics.viscous_bound = "gershgorin"
     with pytest.raises(ValueError, match="numerics.viscous_bound"):
         s.validate()

@@ -129,6 +129,8 @@ void bind_vof(py::module_& m) {
                  "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]");
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
                  "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES");
+  def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,
+                 "safety factor of the k-epsilon step limit [-], (0, 1], 0.5");
   def_part_field(fp, "turbulence_limit_step", k_eps, &KEpsilonParams::limit_step,
                  "VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False)");
   def_part_field(fp, "turbulence_bed_roughness", k_eps, &KEpsilonParams::bed_roughness,

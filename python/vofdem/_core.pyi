@@ -1840,6 +1840,14 @@ class FlowParams:
     def turbulence_bed_roughness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def turbulence_cfl(self) -> float:
+        """
+        safety factor of the k-epsilon step limit [-], (0, 1], 0.5
+        """
+    @turbulence_cfl.setter
+    def turbulence_cfl(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def turbulence_inflow_intensity(self) -> float:
         """
         inflow turbulence intensity [-], 0.05

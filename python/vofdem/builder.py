@@ -238,6 +238,7 @@ def flow_params(scene: Scene):
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
                                 "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
     p.turbulence_limit_step = n.turbulence_step_limit
+    p.turbulence_cfl = n.turbulence_cfl
     p.inlet = _core.InletBoundary.DISCHARGE
     p.inlet_profile = {"equivalent_depth": _core.InletProfile.EQUIVALENT_DEPTH,
                        "water_fraction": _core.InletProfile.WATER_FRACTION}[n.inlet_profile]

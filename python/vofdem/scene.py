@@ -359,9 +359,11 @@ class Numerics(_Section):
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
                                      "faces) or point-implicit (bounded by all faces)")
+    turbulence_cfl: float = _p(0.5, None, 0.0, 1.0, "k-epsilon: the safety factor of its step limit [-]; 0.5 (1: "
+                               "the explicit faces' positivity limit itself)", "(]")
     turbulence_step_limit: bool = _flag(True, "k-epsilon vertical_lines: the horizontal faces' explicit limit "
-                                        "bounds the fluid step (true), or not (false: above it those faces are "
-                                        "lagged-implicit, k and eps stay positive, first order in time there)")
+                                        "bounds the fluid step (true), or not (false: k and eps stay positive, but "
+                                        "in the weir nu_t runs to its cap and the upstream level rises)")
     viscous_scheme: str = _choice("implicit_vertical", ("implicit_vertical", "implicit_vertical_from_start",
                                                         "explicit", "implicit"),
                                   "viscous stresses: vertical diffusion by column solves after the explicit "

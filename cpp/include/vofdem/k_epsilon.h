@@ -129,7 +129,8 @@ struct KEpsilonParams {
   KEpsilonTimeScheme time_scheme = KEpsilonTimeScheme::kPointImplicit;  // kVerticalLines: columns implicit
   // kVerticalLines: stable_dt() returns the horizontal faces' explicit limit (true) or none (false:
   // above that limit a cell's horizontal faces are lagged-implicit, k and eps stay positive and bounded
-  // for any step, first order in time there); kPointImplicit always limits the step
+  // for any step, first order in time there); kPointImplicit always limits the step. False is not
+  // accurate in the weir: nu_t runs to its cap and the upstream level rises (docs/k_epsilon.md)
   bool limit_step = true;
   unsigned flags = kKEpsAll;        // effect flags (KEpsilonFlag)
   KEpsilonProduction production = KEpsilonProduction::kStrain;  // kKatoLaunder: Kato & Launder (1993)
