@@ -79,6 +79,9 @@ class FakeSimulation:
     def step_count(self):
         return self.profile.calls[0]  # one step per advance, as the profile counts them
 
+    def step_limits(self):
+        return {"fake_limit": self.step_count}  # every step bound by one made-up limit
+
     def export_state(self):
         st, fl = self.stones, self.fluid
         return {"time": np.array([self.time]), "pos": st.disc_pos.copy(), "vel": st.disc_vel.copy(),

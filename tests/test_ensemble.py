@@ -115,6 +115,8 @@ def test_serial_ensemble_summary_and_fragility(tmp_path):
     for seed in range(4):
         fluid = re.search(r"\| fake_fluid \| [\d.]+ \| [\d.]+ % \| (\d+) \|", (tmp_path / f"seed{seed}" / "profile.md").read_text())
         assert df.loc[seed, "steps"] == int(fluid.group(1)) > 0
+        outcome = json.loads((tmp_path / f"seed{seed}" / "outcome.json").read_text())
+        assert outcome["step_limits"] == {"fake_limit": int(fluid.group(1))}
     csv = pd.read_csv(tmp_path / "ensemble.csv")
     assert csv["member"].tolist() == df["member"].tolist()
     md = (tmp_path / "ensemble.md").read_text()

@@ -132,7 +132,8 @@ void bind_vof(py::module_& m) {
   def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,
                  "safety factor of the k-epsilon step limit [-], (0, 1], 0.5");
   def_part_field(fp, "turbulence_limit_step", k_eps, &KEpsilonParams::limit_step,
-                 "VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False)");
+                 "VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False: not "
+                 "accurate in the weir, docs/k_epsilon.md)");
   def_part_field(fp, "turbulence_bed_roughness", k_eps, &KEpsilonParams::bed_roughness,
                  "equivalent sand roughness k_s of the bed [m]");
   def_part_field(fp, "turbulence_wall_roughness", k_eps, &KEpsilonParams::wall_roughness,

@@ -222,6 +222,7 @@ def run_member(base: Scene, member: Member, out_dir, figures: bool = False, anim
                         log=lambda *a, **k: None)
         row.update(_event_columns(res.analysis, scene))
         row["steps"], row["stones_hash"] = res.steps, _stones_hash(res.h5_path)
+        row["step_limits"] = res.step_limits  # in the JSON only: which limit bound the member's steps
     except Exception as e:  # noqa: BLE001 - a failing member is an outcome; the others go on
         row.update(status="failed", error=f"{type(e).__name__}: {e}")
     # the CPU time of the member's process: the cost of a member on a loaded machine (the solver is single-threaded)

@@ -20,7 +20,7 @@ import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import SimpleNamespace
-from typing import Callable, List, Optional
+from typing import Callable, Dict, List, Optional
 
 import numpy as np
 
@@ -60,6 +60,8 @@ class RunResult:
     profile_table: str
     files: List[Path] = field(default_factory=list)
     steps: int = 0  # the coupled steps of the whole run (a resumed run counts the killed run's too)
+    # the steps each limit bound (Coupler.step_limits: this process's steps, a resumed run's from its resume)
+    step_limits: Dict[str, int] = field(default_factory=dict)
 
     @property
     def real_time_factor(self) -> float:
@@ -261,7 +263,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     loop.close("completed", extra)
     (out / "profile.md").write_text(table, encoding="utf-8")
     result = RunResult(out, writer.path, writer.xmf_path, None, wall, simulated, table,
-                       [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"], int(sim.step_count))
+                       [writer.path, writer.xmf_path, out / "profile.md", out / "scene.toml"], int(sim.step_count),
+                       {k: int(v) for k, v in dict(sim.step_limits()).items()})
     result.analysis = postprocess(out, scene, figures=scene.output.figures if figures is None else figures,
                                   animation=scene.output.animation if animation is None else animation,
                                   files=result.files)
