@@ -1866,7 +1866,7 @@ class FlowParams:
     @property
     def turbulence_limit_step(self) -> bool:
         """
-        VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False)
+        VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False: not accurate in the weir, docs/k_epsilon.md)
         """
     @turbulence_limit_step.setter
     def turbulence_limit_step(self, arg1: bool) -> None:
