@@ -25,25 +25,13 @@ ROOT = Path(__file__).resolve().parents[1]
 import numpy as np  # noqa: E402
 
 from vofdem.builder import build_simulation  # noqa: E402
+from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
-
-
-def setting_value(text: str):
-    """a value as a scene file writes it: true / false, a number, or a choice"""
-    if text in ("true", "false"):
-        return text == "true"
-    try:
-        return float(text)
-    except ValueError:
-        return text
 
 
 def run_variant(scene, settings, times, x):
     """The rows of one variant: (t, steps, nu_t mean, p99, max, depth at x, step limits)."""
-    for setting in settings:
-        key, _, value = setting.partition("=")
-        scene = scene.with_value(key, setting_value(value))
-    sim = build_simulation(scene)
+    sim = build_simulation(with_settings(scene, settings))
     sim.stones.disc_fixed[:] = True
     fl, g = sim.fluid, sim.fluid.grid
     dz = np.diff(np.asarray(g.z_faces))

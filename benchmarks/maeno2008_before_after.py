@@ -44,6 +44,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 ROOT = Path(__file__).resolve().parents[1]
 
 from vofdem.builder import build_simulation  # noqa: E402
+from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.run import run_scene  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 
@@ -54,24 +55,11 @@ BEFORE_GRID = dict(merge_fraction=0.0)
 BEFORE_FLUME = dict(height=0.45, initial_water="displaced")
 
 
-def setting_value(text: str):
-    """a --candidate value as a scene file writes it: true / false, a number, or a choice"""
-    if text in ("true", "false"):
-        return text == "true"
-    try:
-        return float(text)
-    except ValueError:
-        return text
-
-
 def variant(scene, which, candidate=()):
     if which == "after":
         return scene
     if which == "candidate":
-        for setting in candidate:
-            key, _, value = setting.partition("=")
-            scene = scene.with_value(key, setting_value(value))
-        return scene
+        return with_settings(scene, candidate)
     return scene.replace(numerics=dataclasses.replace(scene.numerics, **BEFORE),
                          grid=dataclasses.replace(scene.grid, **BEFORE_GRID),
                          flume=dataclasses.replace(scene.flume, **BEFORE_FLUME))

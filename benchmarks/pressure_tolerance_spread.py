@@ -31,7 +31,7 @@ import numpy as np
 
 from vofdem.builder import build_simulation
 from vofdem.cluster import default_workers
-from vofdem.ensemble import parse_seeds, run_ensemble
+from vofdem.ensemble import parse_seeds, run_ensemble, with_settings
 from vofdem.fragility import combination_of, fragility_by_combination, fragility_markdown
 from vofdem.scene import load_scene
 
@@ -181,9 +181,7 @@ def main(argv=None):
         scene = scene.quick() if args.quick else scene
         if args.end_time is not None:
             scene = scene.replace(end_time=args.end_time)
-        for setting in args.base:
-            key, _, value = setting.partition("=")
-            scene = scene.with_value(key, _number_or_choice(value))
+        scene = with_settings(scene, args.base)
         frame = run_ensemble(scene, seeds, args.out / f"{prefix}_{scene.name}", vary={args.key: list(args.tolerances)},
                              workers=workers, progress=False)
         parts += [f"## {scene.name}", "", compare_members(frame, args.tolerances, args.key), "",
