@@ -54,6 +54,7 @@ FLOW_BAD = {
     "tailwater_level": [math.inf, NAN], "flags": [1 << 8], "viscous_substeps": [0, 65],
     "turbulence_production_limit": [-1.0, NAN], "turbulence_bed_roughness": [-1e-3, NAN],
     "turbulence_wall_roughness": [-1e-3, NAN], "turbulence_inflow_intensity": [-0.1, NAN],
+    "turbulence_cfl": [0.0, 1.5, NAN],
     "turbulence_inflow_length_scale": [0.0, NAN],
 }
 DEM_BAD = {
