@@ -239,6 +239,9 @@ def flow_params(scene: Scene):
                                 "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
     p.turbulence_limit_step = n.turbulence_step_limit
     p.turbulence_cfl = n.turbulence_cfl
+    p.turbulence_production = {"strain": _core.KEpsilonProduction.STRAIN,
+                               "kato_launder": _core.KEpsilonProduction.KATO_LAUNDER}[n.turbulence_production]
+    p.turbulence_production_limit = n.turbulence_production_limit
     p.inlet = _core.InletBoundary.DISCHARGE
     p.inlet_profile = {"equivalent_depth": _core.InletProfile.EQUIVALENT_DEPTH,
                        "water_fraction": _core.InletProfile.WATER_FRACTION}[n.inlet_profile]
