@@ -365,8 +365,7 @@ class Numerics(_Section):
                                          "k-epsilon production of k: the standard P = nu_t S^2 (the paper's) or "
                                          "Kato-Launder's P = nu_t S Omega (none where the strain is irrotational)")
     turbulence_production_limit: float = _p(0.0, None, 0.0, 1e3, "k-epsilon: P <= this x eps, 0 = off [-]; Menter "
-                                            "(1994): 10. Without it, on the fine grid, nu_t runs to its cap where "
-                                            "the overflow strikes the bed (docs/k_epsilon.md)")
+                                            "(1994): 10")
     turbulence_step_limit: bool = _flag(True, "k-epsilon vertical_lines: the horizontal faces' explicit limit "
                                         "bounds the fluid step (true), or not (false: k and eps stay positive, but "
                                         "in the weir nu_t runs to its cap and the upstream level rises)")
