@@ -90,9 +90,12 @@ def test_fluid_of_the_scene():
     # the production of k: the standard term, unlimited, unless the scene says otherwise
     assert (s.numerics.turbulence_production, s.numerics.turbulence_production_limit) == ("strain", 0.0)
     assert (p.turbulence_production, p.turbulence_production_limit) == (vofdem.KEpsilonProduction.STRAIN, 0.0)
+    assert p.turbulence_pore_strain == vofdem.KEpsilonPoreStrain.NEIGHBOURS
     s.numerics.turbulence_production, s.numerics.turbulence_production_limit = "kato_launder", 10.0
+    s.numerics.turbulence_pore_strain = "local"
     p = build_fluid(s.validate()).params
     assert (p.turbulence_production, p.turbulence_production_limit) == (vofdem.KEpsilonProduction.KATO_LAUNDER, 10.0)
+    assert p.turbulence_pore_strain == vofdem.KEpsilonPoreStrain.LOCAL
     s.numerics.viscous_bound = "gershgorin"
     with pytest.raises(ValueError, match="numerics.viscous_bound"):
         s.validate()

@@ -77,6 +77,9 @@ void bind_vof(py::module_& m) {
   py::enum_<ViscousBound>(m, "ViscousBound")
       .value("ENERGY", ViscousBound::kEnergy, "the split scheme's energy bound: no cross terms (a proof)")
       .value("ROW_SUM", ViscousBound::kRowSum, "Gershgorin row sums of the explicit stresses, cross terms in");
+  py::enum_<KEpsilonPoreStrain>(m, "KEpsilonPoreStrain")
+      .value("NEIGHBOURS", KEpsilonPoreStrain::kNeighbours)
+      .value("LOCAL", KEpsilonPoreStrain::kLocal);
   py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
       .value("STRAIN", KEpsilonProduction::kStrain)
       .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
@@ -127,6 +130,8 @@ void bind_vof(py::module_& m) {
                  "production of k: STRAIN (nu_t S^2) or KATO_LAUNDER (nu_t S Omega)");
   def_part_field(fp, "turbulence_production_limit", k_eps, &KEpsilonParams::production_limit,
                  "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]");
+  def_part_field(fp, "turbulence_pore_strain", k_eps, &KEpsilonParams::pore_strain,
+                 "k-epsilon strain's cross derivatives: NEIGHBOURS' pore velocities or LOCAL (over this cell's n)");
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
                  "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES");
   def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,

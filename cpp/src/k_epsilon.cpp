@@ -282,11 +282,15 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
                                        const std::vector<double>& cell_porosity) {
   const int nx = grid_.nx(), nz = grid_.nz();
   const double dx = grid_.dx();
-  auto uc = [&](int i, int k) {
-    return 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / cell_porosity[grid_.cell(i, k)];
+  const bool local = params_.pore_strain == KEpsilonPoreStrain::kLocal;
+  // a neighbour's centred velocity over its own porosity (kNeighbours) or over this cell's n (kLocal)
+  auto uc = [&](int i, int k, double n) {
+    return 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) /
+           (local ? n : cell_porosity[grid_.cell(i, k)]);
   };
-  auto wc = [&](int i, int k) {
-    return 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / cell_porosity[grid_.cell(i, k)];
+  auto wc = [&](int i, int k, double n) {
+    return 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) /
+           (local ? n : cell_porosity[grid_.cell(i, k)]);
   };
   auto usable = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_role_[grid_.cell(i, k)]; };
   for (int k = 0; k < nz; ++k) {
@@ -305,11 +309,11 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
       double dudz = 0.0, dwdx = 0.0;
       if (s || nn) {
         const int ka = nn ? k + 1 : k, kb = s ? k - 1 : k;
-        dudz = (uc(i, ka) - uc(i, kb)) / (grid_.z_center(ka) - grid_.z_center(kb));
+        dudz = (uc(i, ka, n) - uc(i, kb, n)) / (grid_.z_center(ka) - grid_.z_center(kb));
       }
       if (w || e) {
         const int ia = e ? i + 1 : i, ib = w ? i - 1 : i;
-        dwdx = (wc(ia, k) - wc(ib, k)) / (dx * (ia - ib));
+        dwdx = (wc(ia, k, n) - wc(ib, k, n)) / (dx * (ia - ib));
       }
       const double shear = dudz + dwdx;
       const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;

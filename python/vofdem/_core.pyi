@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -1476,6 +1476,51 @@ class ViscousBound:
     @property
     def value(self) -> int:
         ...
+class KEpsilonPoreStrain:
+    """
+    Members:
+    
+      NEIGHBOURS
+    
+      LOCAL
+    """
+    LOCAL: typing.ClassVar[KEpsilonPoreStrain]
+    NEIGHBOURS: typing.ClassVar[KEpsilonPoreStrain]
+    __members__: typing.ClassVar[dict[str, KEpsilonPoreStrain]]
+    @typing.overload
+    def __eq__(self, other: KEpsilonPoreStrain) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: KEpsilonPoreStrain) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class KEpsilonProduction:
     """
     Members:
@@ -1870,6 +1915,14 @@ class FlowParams:
         """
     @turbulence_limit_step.setter
     def turbulence_limit_step(self, arg1: bool) -> None:
+        ...
+    @property
+    def turbulence_pore_strain(self) -> KEpsilonPoreStrain:
+        """
+        k-epsilon strain's cross derivatives: NEIGHBOURS' pore velocities or LOCAL (over this cell's n)
+        """
+    @turbulence_pore_strain.setter
+    def turbulence_pore_strain(self, arg1: KEpsilonPoreStrain) -> None:
         ...
     @property
     def turbulence_production(self) -> KEpsilonProduction:

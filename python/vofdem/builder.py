@@ -242,6 +242,8 @@ def flow_params(scene: Scene):
     p.turbulence_production = {"strain": _core.KEpsilonProduction.STRAIN,
                                "kato_launder": _core.KEpsilonProduction.KATO_LAUNDER}[n.turbulence_production]
     p.turbulence_production_limit = n.turbulence_production_limit
+    p.turbulence_pore_strain = {"neighbours": _core.KEpsilonPoreStrain.NEIGHBOURS,
+                                "local": _core.KEpsilonPoreStrain.LOCAL}[n.turbulence_pore_strain]
     p.inlet = _core.InletBoundary.DISCHARGE
     p.inlet_profile = {"equivalent_depth": _core.InletProfile.EQUIVALENT_DEPTH,
                        "water_fraction": _core.InletProfile.WATER_FRACTION}[n.inlet_profile]

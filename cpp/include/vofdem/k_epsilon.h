@@ -10,6 +10,8 @@
 // overproduction of k where the strain is irrotational (stagnation point of a plunging jet):
 //   Kato-Launder:  P = nu_t S Omega,  Omega = |dU/dz - dW/dx|   (Kato & Launder 1993)
 //   limiter:       P <= production_limit * eps                  (Menter 1994: 10)
+// and, in porous cells, the cross derivatives of the pore velocity from each neighbour's own pore velocity
+// (default) or from the superficial velocities over the cell's own porosity (KEpsilonParams::pore_strain)
 //
 // n is the cell porosity [-], u = (u, w) the superficial (mesh-averaged) velocity [m/s] of the flow
 // solver's faces and U = u / n the pore velocity [m/s] whose strain rate S [1/s] produces k. The
@@ -98,6 +100,16 @@ enum class KEpsilonTimeScheme {
   kVerticalLines = 1,
 };
 
+// which velocity's cross derivatives dU/dz, dW/dx enter the strain S of the production
+enum class KEpsilonPoreStrain {
+  // each neighbour's own pore velocity u / n_neighbour: across a jump of porosity (a cell inside a stone
+  // next to open water) the difference is the jump of 1/n, not a shear of the flow
+  kNeighbours = 0,
+  // the neighbours' superficial velocities over this cell's porosity, (u_a - u_b) / (n dz), as the
+  // normal derivatives dU/dx = du/(n dx) already are: no strain from the porosity's jumps
+  kLocal = 1,
+};
+
 // production term of k (and through C1 P of eps)
 enum class KEpsilonProduction {
   kStrain = 0,       // P = nu_t S^2 (standard)
@@ -135,6 +147,7 @@ struct KEpsilonParams {
   unsigned flags = kKEpsAll;        // effect flags (KEpsilonFlag)
   KEpsilonProduction production = KEpsilonProduction::kStrain;  // kKatoLaunder: Kato & Launder (1993)
   double production_limit = 0.0;  // [-] P <= production_limit * eps, 0 = off; Menter (1994): 10
+  KEpsilonPoreStrain pore_strain = KEpsilonPoreStrain::kNeighbours;  // kLocal: no strain from porosity jumps
 };
 
 // refuses constants outside their physical ranges with std::invalid_argument naming them
