@@ -106,7 +106,8 @@ enum class KEpsilonPoreStrain {
   // next to open water) the difference is the jump of 1/n, not a shear of the flow
   kNeighbours = 0,
   // the neighbours' superficial velocities over this cell's porosity, (u_a - u_b) / (n dz), as the
-  // normal derivatives dU/dx = du/(n dx) already are: no strain from the porosity's jumps
+  // normal derivatives dU/dx = du/(n dx) already are: no strain from the porosity's jumps, but a small n
+  // of its own amplifies the shear next to a stone (runs away in 4 of 16 Maeno packings: docs/k_epsilon.md)
   kLocal = 1,
 };
 
