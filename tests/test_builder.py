@@ -96,6 +96,13 @@ def test_fluid_of_the_scene():
     p = build_fluid(s.validate()).params
     assert (p.turbulence_production, p.turbulence_production_limit) == (vofdem.KEpsilonProduction.KATO_LAUNDER, 10.0)
     assert p.turbulence_pore_strain == vofdem.KEpsilonPoreStrain.LOCAL
+    # the filtered pore strain's box: the stones' median diameter unless the scene gives it
+    s.numerics.turbulence_pore_strain = "filtered"
+    p = build_fluid(s.validate()).params
+    assert p.turbulence_pore_strain == vofdem.KEpsilonPoreStrain.FILTERED
+    assert p.turbulence_pore_filter_length == pytest.approx(s.stones.diameter)
+    s.numerics.turbulence_pore_filter = 0.1
+    assert build_fluid(s.validate()).params.turbulence_pore_filter_length == 0.1
     s.numerics.viscous_bound = "gershgorin"
     with pytest.raises(ValueError, match="numerics.viscous_bound"):
         s.validate()

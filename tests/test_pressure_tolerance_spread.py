@@ -79,3 +79,15 @@ def test_a_switch_over_a_base_setting_at_a_tiny_size(spread, tmp_path):
     for s in scenes:
         assert 'viscous_scheme = "implicit"' in s.read_text()
     assert "turbulence_step_limit = false" in scenes[0].read_text()
+
+
+def test_the_flow_alone_across_two_grids(spread):
+    # a key that changes the grid (the fidelity preset): the second value's depths are read at the first
+    # value's columns, so the difference is over the paper grid's columns
+    from vofdem.scene import load_scene
+    from script_loader import ROOT
+    scene = load_scene(ROOT / "scenes" / "maeno2008_rolling_consistent.toml")
+    text = spread.flow_alone(scene, ["standard", "fine"], 0.1, "numerics.fidelity")
+    most, mean = map(float, re.search(r"differs by at most ([\d.]+) mm over the flume between the values \(mean "
+                                      r"([\d.]+) mm\)", text).groups())
+    assert 0.0 < mean < most

@@ -79,7 +79,8 @@ void bind_vof(py::module_& m) {
       .value("ROW_SUM", ViscousBound::kRowSum, "Gershgorin row sums of the explicit stresses, cross terms in");
   py::enum_<KEpsilonPoreStrain>(m, "KEpsilonPoreStrain")
       .value("NEIGHBOURS", KEpsilonPoreStrain::kNeighbours)
-      .value("LOCAL", KEpsilonPoreStrain::kLocal);
+      .value("LOCAL", KEpsilonPoreStrain::kLocal)
+      .value("FILTERED", KEpsilonPoreStrain::kFiltered);
   py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
       .value("STRAIN", KEpsilonProduction::kStrain)
       .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
@@ -131,7 +132,10 @@ void bind_vof(py::module_& m) {
   def_part_field(fp, "turbulence_production_limit", k_eps, &KEpsilonParams::production_limit,
                  "P_k <= limit * eps (Menter 1994: 10), 0 = off [-]");
   def_part_field(fp, "turbulence_pore_strain", k_eps, &KEpsilonParams::pore_strain,
-                 "k-epsilon strain's cross derivatives: NEIGHBOURS' pore velocities or LOCAL (over this cell's n)");
+                 "k-epsilon strain's cross derivatives: NEIGHBOURS' pore velocities, superficial over this cell's n "
+                 "(LOCAL), or FILTERED (pore velocities over a box-filtered n)");
+  def_part_field(fp, "turbulence_pore_filter_length", k_eps, &KEpsilonParams::pore_filter_length,
+                 "side of the FILTERED pore strain's averaging box [m]");
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
                  "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES");
   def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,

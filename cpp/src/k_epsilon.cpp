@@ -49,6 +49,14 @@ void check_k_epsilon_params(const KEpsilonParams& p) {
     throw std::invalid_argument("sweeps = " + std::to_string(p.sweeps) + " is outside the allowed range [0, 1000]");
   require_in_open_closed("cfl", p.cfl, 0.0, 1.0);
   require_non_negative("production_limit", p.production_limit);
+  const int form = static_cast<int>(p.pore_strain);
+  if (form < 0 || form > 2)
+    throw std::invalid_argument("pore_strain = " + std::to_string(form) +
+                                " is outside the allowed values {0 (kNeighbours), 1 (kLocal), 2 (kFiltered)}");
+  require_non_negative("pore_filter_length", p.pore_filter_length);
+  if (p.pore_strain == KEpsilonPoreStrain::kFiltered && !(p.pore_filter_length > 0.0))
+    throw std::invalid_argument("pore_filter_length = " + format_value(p.pore_filter_length) +
+                                " is outside the allowed range (0, inf) with pore_strain kFiltered");
   const int scheme = static_cast<int>(p.time_scheme);
   if (scheme < 0 || scheme > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(scheme) +
@@ -82,6 +90,47 @@ double wall_shear_velocity(double u_t, double y, double nu, double ks, double ka
   }
   // composite law U+ = min(y+, log law): the larger shear velocity of the two branches
   return std::max(u, u_lin);
+}
+
+namespace {
+// length [m] of the overlap of [a0, a1] and [b0, b1]
+double overlap(double a0, double a1, double b0, double b1) {
+  return std::max(0.0, std::min(a1, b1) - std::max(a0, b0));
+}
+}  // namespace
+
+void filter_porosity(const Grid2D& g, const std::vector<double>& n, double length, std::vector<double>& out) {
+  const int nx = g.nx(), nz = g.nz();
+  const double dx = g.dx(), half = 0.5 * length;
+  // separable: along x the sums of n and of the weights (cell width inside the box, solid cells 0), then
+  // along z the same with the cell heights inside the box
+  std::vector<double> sum_n(n.size(), 0.0), sum_w(n.size(), 0.0);
+  const int hx = static_cast<int>(std::ceil(half / dx + 0.5));
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i)
+      for (int o = std::max(-hx, -i); o <= std::min(hx, nx - 1 - i); ++o) {
+        const double nn = n[g.cell(i + o, k)];
+        const double w = nn > 0.0 ? overlap((o - 0.5) * dx, (o + 0.5) * dx, -half, half) : 0.0;
+        sum_n[g.cell(i, k)] += w * nn;
+        sum_w[g.cell(i, k)] += w;
+      }
+  out.assign(n.size(), 0.0);
+  for (int k = 0; k < nz; ++k) {
+    const double z0 = g.z_center(k) - half, z1 = g.z_center(k) + half;
+    int lo = k, hi = k;
+    while (lo > 0 && g.z_face(lo) > z0) --lo;
+    while (hi < nz - 1 && g.z_face(hi + 1) < z1) ++hi;
+    for (int i = 0; i < nx; ++i) {
+      if (!(n[g.cell(i, k)] > 0.0)) continue;
+      double num = 0.0, den = 0.0;
+      for (int kk = lo; kk <= hi; ++kk) {
+        const double w = overlap(g.z_face(kk), g.z_face(kk + 1), z0, z1);
+        num += w * sum_n[g.cell(i, kk)];
+        den += w * sum_w[g.cell(i, kk)];
+      }
+      out[g.cell(i, k)] = num / den;
+    }
+  }
 }
 
 // one face of a cell: coefficients a [1/s] per unit volume of advection-in plus diffusion for k
@@ -283,14 +332,16 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
   const int nx = grid_.nx(), nz = grid_.nz();
   const double dx = grid_.dx();
   const bool local = params_.pore_strain == KEpsilonPoreStrain::kLocal;
+  // kFiltered: the neighbours' form over the porosity filtered on pore_filter_length
+  const bool filtered = params_.pore_strain == KEpsilonPoreStrain::kFiltered;
+  if (filtered) filter_porosity(grid_, cell_porosity, params_.pore_filter_length, pore_n_);
+  const std::vector<double>& pn = filtered ? pore_n_ : cell_porosity;
   // a neighbour's centred velocity over its own porosity (kNeighbours) or over this cell's n (kLocal)
   auto uc = [&](int i, int k, double n) {
-    return 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) /
-           (local ? n : cell_porosity[grid_.cell(i, k)]);
+    return 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / (local ? n : pn[grid_.cell(i, k)]);
   };
   auto wc = [&](int i, int k, double n) {
-    return 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) /
-           (local ? n : cell_porosity[grid_.cell(i, k)]);
+    return 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / (local ? n : pn[grid_.cell(i, k)]);
   };
   auto usable = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_role_[grid_.cell(i, k)]; };
   for (int k = 0; k < nz; ++k) {
@@ -300,7 +351,7 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
         cell_prod_[c] = 0.0;
         continue;
       }
-      const double n = cell_porosity[c];
+      const double n = pn[c];
       const double dudx = (face_u[grid_.face_x(i + 1, k)] - face_u[grid_.face_x(i, k)]) / (n * dx);
       const double dwdz = (face_w[grid_.face_z(i, k + 1)] - face_w[grid_.face_z(i, k)]) / (n * grid_.dz(k));
       // cross derivatives from the centred pore velocities of neighbours holding water (one-sided at

@@ -1483,7 +1483,10 @@ class KEpsilonPoreStrain:
       NEIGHBOURS
     
       LOCAL
+    
+      FILTERED
     """
+    FILTERED: typing.ClassVar[KEpsilonPoreStrain]
     LOCAL: typing.ClassVar[KEpsilonPoreStrain]
     NEIGHBOURS: typing.ClassVar[KEpsilonPoreStrain]
     __members__: typing.ClassVar[dict[str, KEpsilonPoreStrain]]
@@ -1917,9 +1920,17 @@ class FlowParams:
     def turbulence_limit_step(self, arg1: bool) -> None:
         ...
     @property
+    def turbulence_pore_filter_length(self) -> float:
+        """
+        side of the FILTERED pore strain's averaging box [m]
+        """
+    @turbulence_pore_filter_length.setter
+    def turbulence_pore_filter_length(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def turbulence_pore_strain(self) -> KEpsilonPoreStrain:
         """
-        k-epsilon strain's cross derivatives: NEIGHBOURS' pore velocities or LOCAL (over this cell's n)
+        k-epsilon strain's cross derivatives: NEIGHBOURS' pore velocities, superficial over this cell's n (LOCAL), or FILTERED (pore velocities over a box-filtered n)
         """
     @turbulence_pore_strain.setter
     def turbulence_pore_strain(self, arg1: KEpsilonPoreStrain) -> None:

@@ -243,7 +243,10 @@ def flow_params(scene: Scene):
                                "kato_launder": _core.KEpsilonProduction.KATO_LAUNDER}[n.turbulence_production]
     p.turbulence_production_limit = n.turbulence_production_limit
     p.turbulence_pore_strain = {"neighbours": _core.KEpsilonPoreStrain.NEIGHBOURS,
-                                "local": _core.KEpsilonPoreStrain.LOCAL}[n.turbulence_pore_strain]
+                                "local": _core.KEpsilonPoreStrain.LOCAL,
+                                "filtered": _core.KEpsilonPoreStrain.FILTERED}[n.turbulence_pore_strain]
+    if n.turbulence_pore_strain == "filtered":
+        p.turbulence_pore_filter_length = n.turbulence_pore_filter or stone_diameter(scene)
     p.inlet = _core.InletBoundary.DISCHARGE
     p.inlet_profile = {"equivalent_depth": _core.InletProfile.EQUIVALENT_DEPTH,
                        "water_fraction": _core.InletProfile.WATER_FRACTION}[n.inlet_profile]
@@ -297,14 +300,19 @@ def initial_level(scene: Scene) -> float:
     return upstream_level(scene, scene.hydrograph.discharge(0.0))
 
 
+def stone_diameter(scene: Scene) -> float:
+    """The stones' median diameter [m]: the grading's d50, else the stones' diameter."""
+    g = scene.stones.grading()
+    return g.d(0.5) if g is not None and not scene.stones.positions else scene.stones.diameter
+
+
 def build_fluid(scene: Scene):
     """VOFGrid of a scene: grid, parameters, inflow hydrograph, water upstream of the crest up to
     `initial_level` (porosity is left to the coupler, which computes it from the stones: flume.initial_water)."""
     fluid = _core.VOFGrid(build_grid(scene), flow_params(scene))
     t, q = scene.hydrograph.table(scene.duration)
     fluid.discharge = _core.DischargeTable([float(v) for v in t], [float(v) for v in q])
-    g = scene.stones.grading()
-    fluid.cell_stone_diameter[...] = g.d(0.5) if g is not None and not scene.stones.positions else scene.stones.diameter
+    fluid.cell_stone_diameter[...] = stone_diameter(scene)
     fluid.fill_water_box(0.0, scene.weir.x_crest_down, 0.0, initial_level(scene))
     fluid.set_hydrostatic_pressure()
     return fluid

@@ -364,10 +364,14 @@ class Numerics(_Section):
     turbulence_production: str = _choice("strain", ("strain", "kato_launder"),
                                          "k-epsilon production of k: the standard P = nu_t S^2 (the paper's) or "
                                          "Kato-Launder's P = nu_t S Omega (none where the strain is irrotational)")
-    turbulence_pore_strain: str = _choice("neighbours", ("neighbours", "local"),
+    turbulence_pore_strain: str = _choice("neighbours", ("neighbours", "local", "filtered"),
                                           "k-epsilon strain in porous cells: cross derivatives from each "
-                                          "neighbour's own pore velocity (across the porosity's jumps) or from the "
-                                          "superficial velocities over the cell's own porosity")
+                                          "neighbour's own pore velocity (across the porosity's jumps), from the "
+                                          "superficial velocities over the cell's own porosity, or from the pore "
+                                          "velocities over the porosity averaged over a box of side "
+                                          "turbulence_pore_filter")
+    turbulence_pore_filter: float = _p(0.0, "length", 0.0, 1.0, "k-epsilon, turbulence_pore_strain = 'filtered': "
+                                       "the averaging box's side [m]; 0 = the stones' median diameter", "[]")
     turbulence_production_limit: float = _p(0.0, None, 0.0, 1e3, "k-epsilon: P <= this x eps, 0 = off [-]; Menter "
                                             "(1994): 10")
     turbulence_step_limit: bool = _flag(True, "k-epsilon vertical_lines: the horizontal faces' explicit limit "

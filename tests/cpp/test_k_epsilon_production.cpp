@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "vofdem/grid.h"
@@ -104,69 +105,80 @@ TEST(KEpsilonProduction, LimiterCapsProductionAtTenDissipations) {
 }
 
 // the production (computed row by row, vectorised) against the obvious cell-by-cell form: a random flow
-// over solid, air, wall and solved cells, both production terms, with and without the limiter, one to
-// nine columns; the same values to the bit
+// over solid, air, wall and solved cells, both production terms, with and without the limiter, the
+// three pore strains, one to nine columns; the same values to the bit
 TEST(KEpsilonProduction, MatchesTheCellByCellReferenceBitForBit) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int nx : {1, 2, 3, 9})
     for (auto kind : {KEpsilonProduction::kStrain, KEpsilonProduction::kKatoLaunder})
-      for (double limit : {0.0, 10.0}) {
-        const Grid2D g = Grid2D::graded(nx, 0.04 * nx, 0.08, 0.02, 0.01, 0.02);
-        KEpsilonParams p;
-        p.production = kind;
-        p.production_limit = limit;
-        KEpsilonModel m(g, p, closed_box());
-        m.initialize(1e-3, 1e-4, kNu);
-        std::vector<double> u(g.nface_x()), w(g.nface_z()), n(g.ncell()), F(g.ncell()), nu(g.ncell(), kNu);
-        for (double& v : u) v = unit(rng) - 0.5;
-        for (double& v : w) v = unit(rng) - 0.5;
-        for (int c = 0; c < g.ncell(); ++c) {
-          n[c] = unit(rng) < 0.15 ? 0.0 : 0.3 + 0.7 * unit(rng);
-          F[c] = unit(rng) < 0.2 ? 0.0 : 1.0;
-        }
-        // the second step: the cells' roles are those of the first (no cell has just filled)
-        m.step(1e-3, u, w, n, F, nu);
-        const std::vector<double> nut = m.cell_nut, eps = m.cell_eps;
-        m.step(1e-3, u, w, n, F, nu);
-        std::vector<double> role;
-        m.cell_roles(role);
-        const int nz = g.nz();
-        auto usable = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && role[g.cell(i, k)] != 0.0; };
-        auto uc = [&](int i, int k) { return 0.5 * (u[g.face_x(i, k)] + u[g.face_x(i + 1, k)]) / n[g.cell(i, k)]; };
-        auto wc = [&](int i, int k) { return 0.5 * (w[g.face_z(i, k)] + w[g.face_z(i, k + 1)]) / n[g.cell(i, k)]; };
-        int solved = 0;
-        for (int k = 0; k < nz; ++k)
-          for (int i = 0; i < nx; ++i) {
-            const int c = g.cell(i, k);
-            double prod = 0.0;
-            if (role[c] == 1.0) {
-              ++solved;
-              const double dudx = (u[g.face_x(i + 1, k)] - u[g.face_x(i, k)]) / (n[c] * g.dx());
-              const double dwdz = (w[g.face_z(i, k + 1)] - w[g.face_z(i, k)]) / (n[c] * g.dz(k));
-              const bool s = usable(i, k - 1), up = usable(i, k + 1), we = usable(i - 1, k), ea = usable(i + 1, k);
-              double dudz = 0.0, dwdx = 0.0;
-              if (s || up) {
-                const int ka = up ? k + 1 : k, kb = s ? k - 1 : k;
-                dudz = (uc(i, ka) - uc(i, kb)) / (g.z_center(ka) - g.z_center(kb));
-              }
-              if (we || ea) {
-                const int ia = ea ? i + 1 : i, ib = we ? i - 1 : i;
-                dwdx = (wc(ia, k) - wc(ib, k)) / (g.dx() * (ia - ib));
-              }
-              const double shear = dudz + dwdx;
-              const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
-              prod = kind == KEpsilonProduction::kKatoLaunder ? nut[c] * std::sqrt(s2) * std::abs(dudz - dwdx)
-                                                              : nut[c] * s2;
-              if (limit > 0.0) prod = std::min(prod, limit * eps[c]);
-            }
-            EXPECT_EQ(m.cell_production()[c], prod) << "nx " << nx << " cell " << c;
+      for (double limit : {0.0, 10.0})
+        for (auto form : {KEpsilonPoreStrain::kNeighbours, KEpsilonPoreStrain::kLocal, KEpsilonPoreStrain::kFiltered}) {
+          const Grid2D g = Grid2D::graded(nx, 0.04 * nx, 0.08, 0.02, 0.01, 0.02);
+          KEpsilonParams p;
+          p.production = kind;
+          p.production_limit = limit;
+          p.pore_strain = form;
+          p.pore_filter_length = 0.05;
+          KEpsilonModel m(g, p, closed_box());
+          m.initialize(1e-3, 1e-4, kNu);
+          std::vector<double> u(g.nface_x()), w(g.nface_z()), n(g.ncell()), F(g.ncell()), nu(g.ncell(), kNu);
+          for (double& v : u) v = unit(rng) - 0.5;
+          for (double& v : w) v = unit(rng) - 0.5;
+          for (int c = 0; c < g.ncell(); ++c) {
+            n[c] = unit(rng) < 0.15 ? 0.0 : 0.3 + 0.7 * unit(rng);
+            F[c] = unit(rng) < 0.2 ? 0.0 : 1.0;
           }
-        // narrower flumes: every water cell is a wall cell
-        if (nx >= 3) {
-          EXPECT_GT(solved, 0) << "nx " << nx;
+          // the second step: the cells' roles are those of the first (no cell has just filled)
+          m.step(1e-3, u, w, n, F, nu);
+          const std::vector<double> nut = m.cell_nut, eps = m.cell_eps;
+          m.step(1e-3, u, w, n, F, nu);
+          std::vector<double> role;
+          m.cell_roles(role);
+          const int nz = g.nz();
+          auto usable = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && role[g.cell(i, k)] != 0.0; };
+          auto uc = [&](int i, int k) { return 0.5 * (u[g.face_x(i, k)] + u[g.face_x(i + 1, k)]); };
+          auto wc = [&](int i, int k) { return 0.5 * (w[g.face_z(i, k)] + w[g.face_z(i, k + 1)]); };
+          // kFiltered: kNeighbours over the filtered porosity (filter_porosity: checked by hand below)
+          std::vector<double> nf = n;
+          if (form == KEpsilonPoreStrain::kFiltered) filter_porosity(g, n, p.pore_filter_length, nf);
+          // (V_a - V_b) / len for neighbours a, b of cell c (a or b may be c itself)
+          auto cross = [&](double va, double vb, int a, int b, int c, double len) {
+            if (form == KEpsilonPoreStrain::kLocal) return (va / n[c] - vb / n[c]) / len;
+            return (va / nf[a] - vb / nf[b]) / len;
+          };
+          int solved = 0;
+          for (int k = 0; k < nz; ++k)
+            for (int i = 0; i < nx; ++i) {
+              const int c = g.cell(i, k);
+              double prod = 0.0;
+              if (role[c] == 1.0) {
+                ++solved;
+                const double dudx = (u[g.face_x(i + 1, k)] - u[g.face_x(i, k)]) / (nf[c] * g.dx());
+                const double dwdz = (w[g.face_z(i, k + 1)] - w[g.face_z(i, k)]) / (nf[c] * g.dz(k));
+                const bool s = usable(i, k - 1), up = usable(i, k + 1), we = usable(i - 1, k), ea = usable(i + 1, k);
+                double dudz = 0.0, dwdx = 0.0;
+                if (s || up) {
+                  const int ka = up ? k + 1 : k, kb = s ? k - 1 : k;
+                  dudz = cross(uc(i, ka), uc(i, kb), g.cell(i, ka), g.cell(i, kb), c, g.z_center(ka) - g.z_center(kb));
+                }
+                if (we || ea) {
+                  const int ia = ea ? i + 1 : i, ib = we ? i - 1 : i;
+                  dwdx = cross(wc(ia, k), wc(ib, k), g.cell(ia, k), g.cell(ib, k), c, g.dx() * (ia - ib));
+                }
+                const double shear = dudz + dwdx;
+                const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
+                prod = kind == KEpsilonProduction::kKatoLaunder ? nut[c] * std::sqrt(s2) * std::abs(dudz - dwdx)
+                                                                : nut[c] * s2;
+                if (limit > 0.0) prod = std::min(prod, limit * eps[c]);
+              }
+              EXPECT_EQ(m.cell_production()[c], prod) << "nx " << nx << " cell " << c << " form " << int(form);
+            }
+          // narrower flumes: every water cell is a wall cell
+          if (nx >= 3) {
+            EXPECT_GT(solved, 0) << "nx " << nx;
+          }
         }
-      }
 }
 
 namespace {
@@ -200,11 +212,120 @@ TEST(KEpsilonProduction, LocalPoreStrainTakesNoShearFromThePorositysJumps) {
   EXPECT_EQ(k_local, k_off);
 }
 
-TEST(KEpsilonProduction, LocalPoreStrainIsTheSameInClearWater) {
-  // n = 1 everywhere: both forms divide by 1, the same bits
+TEST(KEpsilonProduction, PoreStrainsAreTheSameInClearWater) {
+  // n = 1 everywhere: all forms divide by 1 (the filtered porosity of 1s is 1), the same bits
   const Grid2D g = Grid2D::uniform(8, 8, 0.2, 0.2);
   const Strain s = simple_shear(g, 5.0);
-  KEpsilonParams neighbours, local;
+  KEpsilonParams neighbours, local, filtered;
   local.pore_strain = KEpsilonPoreStrain::kLocal;
-  EXPECT_EQ(step_k(g, local, s.u, s.w, 1e-3, 20), step_k(g, neighbours, s.u, s.w, 1e-3, 20));
+  filtered.pore_strain = KEpsilonPoreStrain::kFiltered;
+  filtered.pore_filter_length = 0.07;
+  const double k_nb = step_k(g, neighbours, s.u, s.w, 1e-3, 20);
+  EXPECT_EQ(step_k(g, local, s.u, s.w, 1e-3, 20), k_nb);
+  EXPECT_EQ(step_k(g, filtered, s.u, s.w, 1e-3, 20), k_nb);
+}
+
+TEST(KEpsilonProduction, PoreStrainsOfACellInsideAStoneByHand) {
+  // superficial simple shear u = G z through clear water (cells of 2.5 cm) with one cell of n = 1/4:
+  // its dU/dz from the neighbours' pore velocities is G, over its own n G / (1/4); filtered over a
+  // 7.5 cm box, the neighbours above and below see n_f = (8 + 1/4) / 9 (the 3 x 3 cells around them hold
+  // the stone's cell), so G / n_f. dU/dx = dW/dz = dW/dx = 0, so P = nu_t (dU/dz)^2
+  const Grid2D g = Grid2D::uniform(8, 8, 0.2, 0.2);
+  const double gr = 5.0;
+  const Strain s = simple_shear(g, gr);
+  std::vector<double> n(g.ncell(), 1.0), F(g.ncell(), 1.0), nu(g.ncell(), kNu);
+  const int c = g.cell(4, 4);
+  n[c] = 0.25;
+  const std::pair<KEpsilonPoreStrain, double> cases[] = {{KEpsilonPoreStrain::kNeighbours, gr},
+                                                         {KEpsilonPoreStrain::kLocal, 4.0 * gr},
+                                                         {KEpsilonPoreStrain::kFiltered, gr * 9.0 / 8.25}};
+  for (const auto& [form, dudz] : cases) {
+    KEpsilonParams p;
+    p.pore_strain = form;
+    p.pore_filter_length = 0.075;
+    KEpsilonModel m(g, p, closed_box());
+    m.initialize(1e-3, 1e-4, kNu);
+    const double nut = m.cell_nut[c];
+    m.step(1e-3, s.u, s.w, n, F, nu);
+    EXPECT_NEAR(m.cell_production()[c], nut * dudz * dudz, 1e-12 * nut * dudz * dudz) << int(form);
+  }
+}
+
+namespace {
+
+// the largest production after one step of a uniform superficial flow u0 over a porosity step (n = 1/4
+// in the lower half of the column, 1 above) on nz x nz cells of a 0.2 m box
+double largest_production_over_a_porosity_step(const KEpsilonParams& p, int nz) {
+  const Grid2D g = Grid2D::uniform(nz, nz, 0.2, 0.2);
+  std::vector<double> n(g.ncell()), F(g.ncell(), 1.0), nu(g.ncell(), kNu);
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nz; ++i) n[g.cell(i, k)] = k < nz / 2 ? 0.25 : 1.0;
+  std::vector<double> u(g.nface_x(), 0.5), w(g.nface_z(), 0.0);
+  KEpsilonModel m(g, p, closed_box());
+  m.initialize(1e-3, 1e-4, kNu);
+  m.step(1e-4, u, w, n, F, nu);
+  return *std::max_element(m.cell_production().begin(), m.cell_production().end());
+}
+
+}  // namespace
+
+TEST(KEpsilonProduction, FilteredPoreStrainIsBoundedWhereTheNeighboursGrowsWithTheGrid) {
+  // the neighbours' pore velocities read the porosity's jump as a shear u0 (1/n_a - 1/n_b) / (2 dz): its
+  // production grows as 1/dz^2. Filtered on L = 5 cm, the step is the ramp n_f = 1/4 .. 1 over L on every
+  // grid (the box filter of a step at a face is exact at the centres), whose pore shear u0 d(1/n_f)/dz is
+  // at most u0 (3/4) / L / (1/4)^2 = 120 1/s: P <= nu_t 120^2 on every grid, rising towards it as the
+  // grid resolves the ramp (slowly: 1 / n_f is steep where n_f = 1/4)
+  KEpsilonParams neighbours, filtered;
+  filtered.pore_strain = KEpsilonPoreStrain::kFiltered;
+  filtered.pore_filter_length = 0.05;
+  const double nut = 0.09 * 1e-3 * 1e-3 / 1e-4, bound = nut * 120.0 * 120.0;
+  double previous = 0.0;
+  for (int nz : {8, 16, 32, 64, 128}) {
+    const double f = largest_production_over_a_porosity_step(filtered, nz);
+    EXPECT_LE(f, bound * (1.0 + 1e-12)) << nz;
+    EXPECT_GT(f, previous) << nz;
+    previous = f;
+  }
+  const double nb32 = largest_production_over_a_porosity_step(neighbours, 32);
+  const double nb128 = largest_production_over_a_porosity_step(neighbours, 128);
+  EXPECT_NEAR(nb128 / nb32, 16.0, 1e-9);
+  EXPECT_NEAR(nb128, nut * std::pow(0.5 * 3.0 / (2.0 * 0.2 / 128), 2), 1e-12 * nb128);
+}
+
+TEST(KEpsilonProduction, FilteredPorosityByHand) {
+  // 5 x 1 cells of 1 cm, n = 1, 1, 0.4, 1, 0 (solid): a 2 cm box around cell 1 covers half of cell 0,
+  // cell 1 and half of cell 2: (0.5 + 1 + 0.5 x 0.4) / 2 = 0.85; around cell 3, half of cell 2 and cell 3
+  // (cell 4 is solid, left out): (0.5 x 0.4 + 1) / 1.5 = 0.8; cell 0 has no neighbour west: (1 + 0.5) /
+  // 1.5 = 1; the solid cell stays 0. A box narrower than a cell gives each cell its own n.
+  const Grid2D g = Grid2D::uniform(5, 1, 0.05, 0.01);
+  const std::vector<double> n = {1.0, 1.0, 0.4, 1.0, 0.0};
+  std::vector<double> f;
+  filter_porosity(g, n, 0.02, f);
+  EXPECT_NEAR(f[0], 1.0, 1e-14);
+  EXPECT_NEAR(f[1], 0.85, 1e-14);
+  EXPECT_NEAR(f[2], (0.5 + 0.4 + 0.5) / 2.0, 1e-14);
+  EXPECT_NEAR(f[3], 0.8, 1e-14);
+  EXPECT_EQ(f[4], 0.0);
+  filter_porosity(g, n, 0.005, f);
+  for (int c = 0; c < 5; ++c) EXPECT_NEAR(f[c], n[c], 1e-14);
+}
+
+TEST(KEpsilonProduction, FilteredPorosityOverAGradedColumnByHand) {
+  // one column, rows 1, 1, 2, 4 cm high, n = 0.5, 1, 0.25, 1: a 3 cm box around row 2 (centre 3 cm,
+  // 1.5 to 4.5 cm) covers 0.5 cm of row 1, the 2 cm of row 2 and 0.5 cm of row 3
+  const Grid2D g(1, 0.01, {0.0, 0.01, 0.02, 0.04, 0.08});
+  const std::vector<double> n = {0.5, 1.0, 0.25, 1.0};
+  std::vector<double> f;
+  filter_porosity(g, n, 0.03, f);
+  EXPECT_NEAR(f[g.cell(0, 2)], (0.5 * 1.0 + 2.0 * 0.25 + 0.5 * 1.0) / 3.0, 1e-14);
+}
+
+TEST(KEpsilonProduction, FilteredPoreStrainNeedsItsLength) {
+  KEpsilonParams p;
+  p.pore_strain = KEpsilonPoreStrain::kFiltered;
+  EXPECT_THROW(check_k_epsilon_params(p), std::invalid_argument);
+  p.pore_filter_length = 0.048;
+  EXPECT_NO_THROW(check_k_epsilon_params(p));
+  p.pore_strain = static_cast<KEpsilonPoreStrain>(7);
+  EXPECT_THROW(check_k_epsilon_params(p), std::invalid_argument);
 }

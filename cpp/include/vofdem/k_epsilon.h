@@ -11,7 +11,8 @@
 //   Kato-Launder:  P = nu_t S Omega,  Omega = |dU/dz - dW/dx|   (Kato & Launder 1993)
 //   limiter:       P <= production_limit * eps                  (Menter 1994: 10)
 // and, in porous cells, the cross derivatives of the pore velocity from each neighbour's own pore velocity
-// (default) or from the superficial velocities over the cell's own porosity (KEpsilonParams::pore_strain)
+// (default), from the superficial velocities over the cell's own porosity, or from the pore velocities
+// over a porosity filtered on a physical length (KEpsilonParams::pore_strain)
 //
 // n is the cell porosity [-], u = (u, w) the superficial (mesh-averaged) velocity [m/s] of the flow
 // solver's faces and U = u / n the pore velocity [m/s] whose strain rate S [1/s] produces k. The
@@ -109,6 +110,11 @@ enum class KEpsilonPoreStrain {
   // normal derivatives dU/dx = du/(n dx) already are: no strain from the porosity's jumps, but a small n
   // of its own amplifies the shear next to a stone (runs away in 4 of 16 Maeno packings: docs/k_epsilon.md)
   kLocal = 1,
+  // each neighbour's pore velocity u / n_f over n_f, the porosity averaged over a box of side
+  // pore_filter_length around the cell (the averaging volume of the volume-averaged equations, e.g. one
+  // stone diameter; solid cells n = 0 left out): a jump of porosity within the box is no strain, and the
+  // strain does not grow as the grid resolves the stones (docs/k_epsilon.md)
+  kFiltered = 2,
 };
 
 // production term of k (and through C1 P of eps)
@@ -148,8 +154,14 @@ struct KEpsilonParams {
   unsigned flags = kKEpsAll;        // effect flags (KEpsilonFlag)
   KEpsilonProduction production = KEpsilonProduction::kStrain;  // kKatoLaunder: Kato & Launder (1993)
   double production_limit = 0.0;  // [-] P <= production_limit * eps, 0 = off; Menter (1994): 10
-  KEpsilonPoreStrain pore_strain = KEpsilonPoreStrain::kNeighbours;  // kLocal: no strain from porosity jumps
+  KEpsilonPoreStrain pore_strain = KEpsilonPoreStrain::kNeighbours;  // kLocal, kFiltered: see there
+  double pore_filter_length = 0.0;  // [m] side of kFiltered's averaging box (> 0 with kFiltered), e.g. d_50
 };
+
+// n_f: the porosity cell_porosity averaged over a box of side length [m] centred on each cell, each cell
+// weighted by its area inside the box; cells of n = 0 (solid) are left out, and a solid cell's n_f is 0
+void filter_porosity(const Grid2D& grid, const std::vector<double>& cell_porosity, double length,
+                     std::vector<double>& out);
 
 // refuses constants outside their physical ranges with std::invalid_argument naming them
 void check_k_epsilon_params(const KEpsilonParams& params);
@@ -280,6 +292,7 @@ class KEpsilonModel {
   // work arrays, allocated at construction
   std::vector<std::uint8_t> cell_role_, cell_role_prev_;
   std::vector<double> cell_prod_;             // P [m^2/s^3]
+  std::vector<double> pore_n_;                // kFiltered: the filtered porosity n_f [-]
   std::vector<double> k_old_, eps_old_, nut_old_;  // state before the step (restored on failure)
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
