@@ -99,12 +99,15 @@ double overlap(double a0, double a1, double b0, double b1) {
 }
 }  // namespace
 
-void filter_porosity(const Grid2D& g, const std::vector<double>& n, double length, std::vector<double>& out) {
+void filter_porosity(const Grid2D& g, const std::vector<double>& n, double length, std::vector<double>& out,
+                     std::vector<double>& work) {
   const int nx = g.nx(), nz = g.nz();
   const double dx = g.dx(), half = 0.5 * length;
   // separable: along x the sums of n and of the weights (cell width inside the box, solid cells 0), then
   // along z the same with the cell heights inside the box
-  std::vector<double> sum_n(n.size(), 0.0), sum_w(n.size(), 0.0);
+  work.assign(2 * n.size(), 0.0);
+  double* sum_n = work.data();
+  double* sum_w = work.data() + n.size();
   const int hx = static_cast<int>(std::ceil(half / dx + 0.5));
   for (int k = 0; k < nz; ++k)
     for (int i = 0; i < nx; ++i)
@@ -334,7 +337,7 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
   const bool local = params_.pore_strain == KEpsilonPoreStrain::kLocal;
   // kFiltered: the neighbours' form over the porosity filtered on pore_filter_length
   const bool filtered = params_.pore_strain == KEpsilonPoreStrain::kFiltered;
-  if (filtered) filter_porosity(grid_, cell_porosity, params_.pore_filter_length, pore_n_);
+  if (filtered) filter_porosity(grid_, cell_porosity, params_.pore_filter_length, pore_n_, pore_work_);
   const std::vector<double>& pn = filtered ? pore_n_ : cell_porosity;
   // a neighbour's centred velocity over its own porosity (kNeighbours) or over this cell's n (kLocal)
   auto uc = [&](int i, int k, double n) {

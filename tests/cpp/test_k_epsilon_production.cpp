@@ -140,8 +140,8 @@ TEST(KEpsilonProduction, MatchesTheCellByCellReferenceBitForBit) {
           auto uc = [&](int i, int k) { return 0.5 * (u[g.face_x(i, k)] + u[g.face_x(i + 1, k)]); };
           auto wc = [&](int i, int k) { return 0.5 * (w[g.face_z(i, k)] + w[g.face_z(i, k + 1)]); };
           // kFiltered: kNeighbours over the filtered porosity (filter_porosity: checked by hand below)
-          std::vector<double> nf = n;
-          if (form == KEpsilonPoreStrain::kFiltered) filter_porosity(g, n, p.pore_filter_length, nf);
+          std::vector<double> nf = n, work;
+          if (form == KEpsilonPoreStrain::kFiltered) filter_porosity(g, n, p.pore_filter_length, nf, work);
           // (V_a - V_b) / len for neighbours a, b of cell c (a or b may be c itself)
           auto cross = [&](double va, double vb, int a, int b, int c, double len) {
             if (form == KEpsilonPoreStrain::kLocal) return (va / n[c] - vb / n[c]) / len;
@@ -299,14 +299,14 @@ TEST(KEpsilonProduction, FilteredPorosityByHand) {
   // 1.5 = 1; the solid cell stays 0. A box narrower than a cell gives each cell its own n.
   const Grid2D g = Grid2D::uniform(5, 1, 0.05, 0.01);
   const std::vector<double> n = {1.0, 1.0, 0.4, 1.0, 0.0};
-  std::vector<double> f;
-  filter_porosity(g, n, 0.02, f);
+  std::vector<double> f, work;
+  filter_porosity(g, n, 0.02, f, work);
   EXPECT_NEAR(f[0], 1.0, 1e-14);
   EXPECT_NEAR(f[1], 0.85, 1e-14);
   EXPECT_NEAR(f[2], (0.5 + 0.4 + 0.5) / 2.0, 1e-14);
   EXPECT_NEAR(f[3], 0.8, 1e-14);
   EXPECT_EQ(f[4], 0.0);
-  filter_porosity(g, n, 0.005, f);
+  filter_porosity(g, n, 0.005, f, work);
   for (int c = 0; c < 5; ++c) EXPECT_NEAR(f[c], n[c], 1e-14);
 }
 
@@ -315,8 +315,8 @@ TEST(KEpsilonProduction, FilteredPorosityOverAGradedColumnByHand) {
   // 1.5 to 4.5 cm) covers 0.5 cm of row 1, the 2 cm of row 2 and 0.5 cm of row 3
   const Grid2D g(1, 0.01, {0.0, 0.01, 0.02, 0.04, 0.08});
   const std::vector<double> n = {0.5, 1.0, 0.25, 1.0};
-  std::vector<double> f;
-  filter_porosity(g, n, 0.03, f);
+  std::vector<double> f, work;
+  filter_porosity(g, n, 0.03, f, work);
   EXPECT_NEAR(f[g.cell(0, 2)], (0.5 * 1.0 + 2.0 * 0.25 + 0.5 * 1.0) / 3.0, 1e-14);
 }
 

@@ -159,9 +159,10 @@ struct KEpsilonParams {
 };
 
 // n_f: the porosity cell_porosity averaged over a box of side length [m] centred on each cell, each cell
-// weighted by its area inside the box; cells of n = 0 (solid) are left out, and a solid cell's n_f is 0
+// weighted by its area inside the box; cells of n = 0 (solid) are left out, and a solid cell's n_f is 0.
+// work: the row sums (resized to 2 ncell; kept by a caller that filters every step)
 void filter_porosity(const Grid2D& grid, const std::vector<double>& cell_porosity, double length,
-                     std::vector<double>& out);
+                     std::vector<double>& out, std::vector<double>& work);
 
 // refuses constants outside their physical ranges with std::invalid_argument naming them
 void check_k_epsilon_params(const KEpsilonParams& params);
@@ -292,7 +293,7 @@ class KEpsilonModel {
   // work arrays, allocated at construction
   std::vector<std::uint8_t> cell_role_, cell_role_prev_;
   std::vector<double> cell_prod_;             // P [m^2/s^3]
-  std::vector<double> pore_n_;                // kFiltered: the filtered porosity n_f [-]
+  std::vector<double> pore_n_, pore_work_;    // kFiltered: the filtered porosity n_f [-], its row sums
   std::vector<double> k_old_, eps_old_, nut_old_;  // state before the step (restored on failure)
   std::vector<double> wall_k_, wall_eps_;     // wall-function values of wall cells
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
