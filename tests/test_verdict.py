@@ -165,6 +165,14 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     assert "| standard | not in this study's settings |" in text
     assert (tmp_path / "maeno2008_verdict_tiny_cost.png").stat().st_size > 0
     assert (tmp_path / "maeno2008_verdict_tiny_fragility.png").stat().st_size > 0
+    # the cost figure drawn again from its CSV: the reference a star of its own, not a text among the knobs'
+    fig = mod.fig_cost(mod.cost_rows_from_csv(tmp_path / "maeno2008_verdict_tiny_cost.csv"), tmp_path / "again.png")
+    assert [line.get_marker() for line in fig.axes[0].get_lines() if line.get_label() == "reference"] == ["*"]
+    names = {t.get_text() for ax in fig.axes for t in ax.texts}
+    assert "reference" not in names and {"cfl=0.25", "porosity=lookup"} <= names
+    png = mod.main(["--tiny", "--redraw-cost", "--results", str(tmp_path), "--figures", str(tmp_path / "fig")],
+                   log=lambda *a: None)
+    assert png == tmp_path / "fig" / "maeno2008_verdict_tiny_cost.png" and png.stat().st_size > 0
     # resumable: a second call finds every member finished and runs none
     logs = []
     mod.run_study(mod._parser().parse_args(args), build=_build, log=logs.append)
