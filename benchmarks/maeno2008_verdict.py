@@ -124,11 +124,15 @@ def _client(workers, scheduler):
         yield c
 
 
+def _size(args) -> str:
+    return "tiny" if args.tiny else "small" if args.small else "full"
+
+
 def run_study(args, build=None, log=print):
     """Runs (or resumes) every ensemble of the study; returns the outcome tables:
     {'verdict': {scene name: frame}, 'width': frame or None, 'cost': {setting name: frame}}, with
     the scenes, the width scene's name and the settings."""
-    size = "tiny" if args.tiny else "small" if args.small else "full"
+    size = _size(args)
     d = SIZES[size]
     end_time = args.end_time if args.end_time is not None else d["end_time"]
     seeds = parse_seeds(args.seeds or d["seeds"])
@@ -403,9 +407,10 @@ def _presets_md(res, rows) -> list:
     return lines + [""]
 
 
-def fig_cost(rows, path: Path) -> None:
+def fig_cost(rows, path: Path):
     """Shift of each event's median against the CPU time per member, one point per setting, the
-    packings' spread (the reference's 16-84 % band about its median) as a grey band."""
+    packings' spread (the reference's 16-84 % band about its median) as a grey band; saved to path and
+    returned."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -584,7 +589,7 @@ def write_results(res, args, wall: float) -> Path:
 def main(argv=None, build=None, log=print) -> Path:
     args = _parser().parse_args(argv)
     if args.redraw_cost:
-        sfx = SUFFIX["small" if args.small else "tiny" if args.tiny else "full"]
+        sfx = SUFFIX[_size(args)]
         png = args.figures / f"maeno2008_verdict{sfx}_cost.png"
         fig_cost(cost_rows_from_csv(args.results / f"maeno2008_verdict{sfx}_cost.csv"), png)
         log(f"wrote {png}")
