@@ -30,8 +30,6 @@ from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 
-G = 9.81
-RHO_WATER = 1000.0
 MOBILE = 0.3  # a mobility counted as high in the table (about half the friction between stones)
 
 
@@ -52,7 +50,8 @@ def loads(scene, settings, times):
     mobile = np.asarray(st.disc_fixed) == 0
     st.disc_fixed[:] = True
     d = 2.0 * np.asarray(st.disc_radius)[mobile]
-    weight = (np.asarray(st.disc_density)[mobile] - RHO_WATER) * G * math.pi * d ** 3 / 6.0
+    water = sim.fluid.params
+    weight = (np.asarray(st.disc_density)[mobile] - water.rho_water) * abs(water.gravity_z) * math.pi * d ** 3 / 6.0
     out = []
     for t in times:
         sim.advance(t)
@@ -60,12 +59,6 @@ def loads(scene, settings, times):
         out.append((t, int(sim.step_count), np.asarray(st.disc_pos)[mobile, 0].copy(), (drag + pressure) / weight,
                     (drag, pressure)))
     return out
-
-
-def discharge_lps(scene, t):
-    h = scene.hydrograph
-    ramp = min(max(t - h.spin_up_duration, 0.0) / h.ramp_duration, 1.0)
-    return h.discharge_start_lps + ramp * (h.discharge_end_lps - h.discharge_start_lps)
 
 
 def compare(scene, a, b, names):
@@ -79,7 +72,7 @@ def compare(scene, a, b, names):
         if not sel.any():
             continue
         ratio = mb[sel] / np.where(np.abs(ma[sel]) > 1e-12, ma[sel], np.nan)
-        rows.append(f"| {t:g} | {discharge_lps(scene, t):.2f} | {region} | {int(sel.sum())} | {ma[sel].mean():+.3f} | "
+        rows.append(f"| {t:g} | {scene.hydrograph.discharge_lps_at(t):.2f} | {region} | {int(sel.sum())} | {ma[sel].mean():+.3f} | "
                     f"{mb[sel].mean():+.3f} | {np.nanmean(ratio):.2f} / {np.nanmedian(ratio):.2f} | "
                     f"{int((ma[sel] > MOBILE).sum())} / {int((mb[sel] > MOBILE).sum())} | "
                     f"{ma[sel].max():.3f} / {mb[sel].max():.3f} | {fa[0][sel].sum():+.3f} / {fb[0][sel].sum():+.3f} | "
