@@ -10,7 +10,8 @@ mass of spheres): the mobility F_x / W', which a stone resting on others must ke
 friction, 0.577, not to slide. The packing does not depend on the grid, so the same stone is compared
 between the values. Per region of the weir (upstream slope, crest, downstream slope, by the stone's x):
 the mean mobility at each value, the mean and the median per-stone ratio of the second value's to the
-first's, and the stones above 0.3 at each value, and the summed drag and pressure-gradient forces. Writes benchmarks/results/stone_loads_grid.md.
+first's, the stones above 0.3 at each value, and the summed drag and pressure-gradient forces. Writes
+benchmarks/results/stone_loads_grid.md.
 
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 benchmarks/stone_loads_grid.py --seeds 0 1 --times 20 50 80
 """
@@ -26,20 +27,12 @@ ROOT = Path(__file__).resolve().parents[1]
 
 import numpy as np  # noqa: E402
 
+from vofdem.analysis import classify_regions  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 
 MOBILE = 0.3  # a mobility counted as high in the table (about half the friction between stones)
-
-
-def regions(scene):
-    """The weir's regions by x [m]: (name, x0, x1) from its trapezoid (toe, slopes, crest)."""
-    w = scene.weir
-    up = w.toe_x + w.height / math.tan(math.radians(w.upstream_slope_deg))
-    down = up + w.crest_length
-    end = down + w.height / math.tan(math.radians(w.downstream_slope_deg))
-    return [("upstream slope", -math.inf, up), ("crest", up, down), ("downstream slope", down, end + 1.0)]
 
 
 def loads(scene, settings, times):
@@ -67,8 +60,9 @@ def compare(scene, a, b, names):
     if not np.allclose(xa, xb, atol=1e-9):
         raise ValueError("the two values placed the stones differently: the loads are not comparable stone by stone")
     rows = []
-    for region, x0, x1 in regions(scene):
-        sel = (xa >= x0) & (xa < x1)
+    where = classify_regions(xa, scene.weir, 0.0)  # the stage tables' regions, without a shoulder
+    for region in ("upstream slope", "crest", "downstream slope"):
+        sel = where == region
         if not sel.any():
             continue
         ratio = mb[sel] / np.where(np.abs(ma[sel]) > 1e-12, ma[sel], np.nan)

@@ -1,6 +1,5 @@
 """benchmarks/stone_loads_grid.py, the source of the README's loads on the held stones on two grids: its
-regions and per-stone comparison by hand, and the script at a tiny size."""
-import math
+per-stone comparison by hand, and the script at a tiny size."""
 
 import numpy as np
 import pytest
@@ -17,15 +16,6 @@ def loads():
 @pytest.fixture(scope="module")
 def maeno():
     return load_scene("scenes/maeno2008_rolling_consistent.toml")
-
-
-def test_the_weirs_regions_by_hand(loads, maeno):
-    # toe at 1.0 m, 0.25 m high, 27 degree slopes: each slope 0.25 / tan(27 deg) = 0.4906 m long
-    run = 0.25 / math.tan(math.radians(27.0))
-    (n0, _, up), (n1, c0, c1), (n2, d0, d1) = loads.regions(maeno)
-    assert (n0, n1, n2) == ("upstream slope", "crest", "downstream slope")
-    assert up == pytest.approx(1.0 + run) and (c0, c1) == pytest.approx((1.0 + run, 1.2 + run))
-    assert d0 == pytest.approx(1.2 + run) and d1 == pytest.approx(1.2 + 2 * run + 1.0)
 
 
 def test_the_comparison_by_hand(loads, maeno):
