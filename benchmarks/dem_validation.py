@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Accuracy of vofdem.DEMSystem on the analytic contact cases, written to
-benchmarks/results/dem_validation.md (the same cases as tests/cpp/test_dem_contact.cpp, with the
+benchmarks/results/dem_validation.md (the same cases as tests/cpp/stones/test_dem_contact.cpp, with the
 measured errors printed instead of checked).
 
 usage: PYTHONPATH=python python3 benchmarks/dem_validation.py
@@ -78,7 +78,7 @@ def rolling_box(frac, mu_r=0.3):
 
 
 def rolling_rows():
-    """Rolling resistance (tests/cpp/test_rolling_resistance.cpp): a disc on an incline holds while
+    """Rolling resistance (tests/cpp/stones/test_rolling_resistance.cpp): a disc on an incline holds while
     tan(theta) <= mu_r and rolls at g (sin - mu_r cos) / (1 + f) above; the energy balance."""
     g, mu, mu_r = 9.81, 0.577, 0.2
     rows = []

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "vofdem/dem_system.h"
+#include "vofdem/stones/dem_system.h"
 
 namespace {
 vofdem::DEMSystem settling(int n) {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "vofdem/grid.h"
-#include "vofdem/k_epsilon.h"
+#include "vofdem/common/grid.h"
+#include "vofdem/flow/k_epsilon.h"
 
 namespace {
 

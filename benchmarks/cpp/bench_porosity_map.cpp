@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "vofdem/porosity_map.h"
+#include "vofdem/coupling/porosity_map.h"
 
 namespace {
 

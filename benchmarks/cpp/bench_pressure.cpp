@@ -11,8 +11,8 @@
 #include <ctime>
 #include <vector>
 
-#include "vofdem/grid.h"
-#include "vofdem/pressure_solver.h"
+#include "vofdem/common/grid.h"
+#include "vofdem/flow/pressure_solver.h"
 
 using namespace vofdem;
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "vofdem/coupler.h"
+#include "vofdem/coupling/coupler.h"
 
 namespace {
 struct Scene {

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <vector>
 
-#include "vofdem/grid.h"
-#include "vofdem/vof_advection.h"
+#include "vofdem/common/grid.h"
+#include "vofdem/flow/vof_advection.h"
 
 namespace {
 

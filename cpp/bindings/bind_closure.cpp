@@ -1,8 +1,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include "vofdem/drag.h"
-#include "vofdem/porous_resistance.h"
+#include "vofdem/coupling/drag.h"
+#include "vofdem/flow/porous_resistance.h"
 
 namespace py = pybind11;
 

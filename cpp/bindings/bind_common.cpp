@@ -2,9 +2,9 @@
 #include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
-#include "vofdem/grid.h"
-#include "vofdem/medium.h"
-#include "vofdem/profile.h"
+#include "vofdem/common/grid.h"
+#include "vofdem/common/medium.h"
+#include "vofdem/common/profile.h"
 
 namespace py = pybind11;
 

@@ -10,7 +10,7 @@
 #include "flags.h"
 #include "state.h"
 #include "views.h"
-#include "vofdem/coupler.h"
+#include "vofdem/coupling/coupler.h"
 
 namespace py = pybind11;
 

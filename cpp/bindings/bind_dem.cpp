@@ -12,9 +12,9 @@
 #include "flags.h"
 #include "state.h"
 #include "views.h"
-#include "vofdem/dem_contact.h"
-#include "vofdem/dem_system.h"
-#include "vofdem/weir_packing.h"
+#include "vofdem/stones/dem_contact.h"
+#include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/weir_packing.h"
 
 namespace py = pybind11;
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "views.h"
-#include "vofdem/porosity_map.h"
+#include "vofdem/coupling/porosity_map.h"
 
 namespace py = pybind11;
 

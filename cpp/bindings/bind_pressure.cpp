@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "views.h"
-#include "vofdem/pressure_solver.h"
+#include "vofdem/flow/pressure_solver.h"
 
 namespace py = pybind11;
 

@@ -9,7 +9,7 @@
 #include "fields.h"
 #include "state.h"
 #include "views.h"
-#include "vofdem/vof_grid.h"
+#include "vofdem/flow/vof_grid.h"
 
 namespace py = pybind11;
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "views.h"
-#include "vofdem/vof_advection.h"
+#include "vofdem/flow/vof_advection.h"
 
 namespace py = pybind11;
 

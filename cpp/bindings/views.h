@@ -10,7 +10,7 @@
 // earlier views: DEMSystem.resize, DEMSystem.set_polygons (the poly_* arrays), DEMSystem.import_state
 // or set_state of another stone or vertex count, VofBoundaryInflow.resize and the assignment of a
 // whole side of it (the views of that side). tests/test_views.py holds every view of VOFGrid,
-// DEMSystem and Coupler across those calls; tests/cpp/test_buffer_stability.cpp checks the same
+// DEMSystem and Coupler across those calls; tests/cpp/common/test_buffer_stability.cpp checks the same
 // buffers under the sanitizers.
 #pragma once
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "vofdem/coupler.h"
+#include "vofdem/coupling/coupler.h"
 
 int main() {
   using namespace vofdem;

@@ -1,0 +1,71 @@
+// Packing generator of a trapezoidal rubble mound weir (Maeno & Tomita 2008, sec. 2.3: "the lowest
+// particles are fixed to the bottom and other particles were packed using free packing method due to
+// gravity").
+//
+// The weir occupies, above the bed z_bed, the trapezoid of height H, crest length L_c and slopes
+// a_up, a_down starting at x_toe:  z - z_bed <= min(H, (x - x_toe) tan a_up, (x_end - x) tan a_down),
+// x_end = x_toe + H / tan a_up + L_c + H / tan a_down.
+// Steps: (1) a bottom row of touching stones, fixed to the bed, along the trapezoid's base; (2) free
+// stones on a loose lattice filling the trapezoid extended upwards, inside temporary walls along the
+// two slopes, dropped under gravity with the DEM until at rest; (3) stones reaching above the crest
+// removed; (4) the slope walls removed and the mound settled until every stone moves slower than
+// rest_speed. Diameters are d_mean (1 + d_spread (2u - 1)), u uniform in [0, 1) from std::mt19937_64
+// with our own conversion (so a seed gives the same weir with any standard library).
+//
+// Polygon stones (shape = kPolygon): the same steps with convex polygons of nominal diameter d (the
+// equal-area disc's, polygon.h), their shapes and orientations from a second generator seeded from
+// `seed` (the diameters follow the same draws as for discs). The bottom row lies on its longest edges,
+// touching; the free stones take random orientations; the lattice pitch and the free-site tests use the
+// bounding radii, so no two polygons are placed overlapping.
+#pragma once
+
+#include <cstdint>
+
+#include "vofdem/stones/dem_system.h"
+
+namespace vofdem {
+
+struct WeirSpec {
+  double height = 0.25;         // H [m], crest above the bed
+  double crest = 0.20;          // L_c [m], crest length
+  double slope_up_deg = 27.0;   // upstream slope [deg]
+  double slope_down_deg = 27.0; // downstream slope [deg] (paper: 27)
+  double x_toe = 1.0;           // upstream toe [m] along the flume
+  double z_bed = 0.0;           // bed height [m]
+  double d_mean = 0.048;        // mean stone diameter [m] (paper: 4.8 cm)
+  double d_spread = 0.1;        // half-width of the uniform diameter distribution, relative [-]
+  double density = 2650.0;      // stone density [kg/m^3]
+  std::uint64_t seed = 0;       // random seed of the diameters and lattice jitter
+  double settle_time_max = 6.0; // simulated time allowed for each settling phase [s]
+  double rest_speed = 1e-3;     // packing is at rest when every stone is slower [m/s]
+  StoneShape shape = StoneShape::kDisc;  // discs (default) or convex polygons
+  PolygonSpec polygon;          // how polygon stones are drawn (shape = kPolygon)
+
+  double x_end() const;                 // downstream toe [m]
+  double top(double x) const;           // trapezoid's height above the bed at x [m] (0 outside)
+  double area() const;                  // trapezoid area [m^2]
+};
+
+struct WeirPackingReport {
+  int n_stones = 0;            // stones in the weir (fixed included)
+  int n_fixed = 0;             // fixed bottom stones
+  double porosity = 0.0;       // 2D porosity of the trapezoid: 1 - (disc area inside) / area [-]
+  double max_speed = 0.0;      // largest stone speed at the end [m/s]
+  double settle_time = 0.0;    // simulated time used by the settling phases [s]
+  double outline_error = 0.0;  // weir_outline_error() of the result [m]
+  double wall_seconds = 0.0;   // wall-clock time of the generation [s]
+};
+
+// packs the weir with the contact law of `params` (its walls are kept if any, else the bed z = z_bed
+// is added); returns the DEM system, at rest, and fills `report`
+DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report);
+
+// largest deviation [m] of the packing from the trapezoid: the larger of (a) how far any stone reaches
+// outside the trapezoid and (b) how far any point of the trapezoid's slopes and crest lies from the
+// nearest stone (discs or polygons)
+double weir_outline_error(const DEMSystem& system, const WeirSpec& spec);
+
+// 2D porosity of the trapezoid filled by the stones (discs or polygons), sampled on a grid of spacing h [m]
+double weir_porosity(const DEMSystem& system, const WeirSpec& spec, double h = 0.002);
+
+}  // namespace vofdem

@@ -1,0 +1,608 @@
+#include "vofdem/coupling/coupler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "vofdem/coupling/bed_drag.h"
+#include "vofdem/common/check.h"
+#include "vofdem/coupling/drag.h"
+#include "vofdem/coupling/drag_exchange.h"
+#include "vofdem/coupling/fluid_forces.h"
+#include "vofdem/common/advance.h"
+#include "vofdem/stones/wet_fraction.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+void CouplerParams::validate() const {
+  if (flags >= (1u << 10))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 1023]");
+  if (flags & (1u << 5))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + ": bit 5 (the former relative-velocity "
+                                "coupling) is retired: the effect is the flow's own flag, FlowEffect.RELATIVE_VELOCITY "
+                                "(kFlowRelativeVelocity)");
+  require_in_closed("n_exp", n_exp, 0.0, 1.0);
+  if (lookup_m < 2 || lookup_m > 64)
+    throw std::invalid_argument("lookup_m = " + std::to_string(lookup_m) + " is outside the allowed range [2, 64]");
+  require_positive("lookup_dr", lookup_dr);
+  require_positive("max_dt", max_dt);
+  require_in_open_closed("stone_cfl", stone_cfl, 0.0, 1.0);
+  require_positive("drag_relaxation", drag_relaxation);
+  require_positive("min_dt", min_dt);
+  require_in_closed("wet_fraction_tolerance", wet_fraction_tolerance, 0.0, 0.5);
+  if (max_snapshot_interval < 1 || max_snapshot_interval > 4096)
+    throw std::invalid_argument("max_snapshot_interval = " + std::to_string(max_snapshot_interval) +
+                                " is outside the allowed range [1, 4096]");
+  const int model = static_cast<int>(stone_drag);
+  if (model < 0 || model > 1)
+    throw std::invalid_argument("stone_drag = " + std::to_string(model) +
+                                " is outside the allowed values {0 (kSphere), 1 (kBed)}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// construction
+
+Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
+    : fluid_(fluid), stones_(stones), params_(params) {
+  n_ = stones_ ? stones_->n() : 0;
+  check_params(params_);
+  share_medium();
+  disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  disc_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
+  disc_drag_slope_.assign(static_cast<std::size_t>(n_), 0.0);
+  disc_x_.assign(static_cast<std::size_t>(n_), 0.0);
+  disc_z_.assign(static_cast<std::size_t>(n_), 0.0);
+  if (fluid_) {
+    const Grid2D& g = fluid_->grid();
+    const std::size_t nc = static_cast<std::size_t>(g.ncell());
+    cell_base_porosity = fluid_->cell_porosity;
+    cell_base_diameter = fluid_->cell_stone_diameter;
+    n_old_.assign(nc, 0.0);
+    cell_U_.assign(nc, 0.0);
+    cell_W_.assign(nc, 0.0);
+    cell_dpdx_.assign(nc, 0.0);
+    cell_dpdz_.assign(nc, 0.0);
+    cell_solid_sum_.assign(nc, 0.0);
+    cell_solid_u_.assign(nc, 0.0);
+    cell_solid_w_.assign(nc, 0.0);
+    cell_diam_sum_.assign(nc, 0.0);
+    redistribution_ = std::make_unique<WaterRedistribution>(g);
+    make_mapper();
+  }
+  time_ = fluid_ ? fluid_->time() : (stones_ ? stones_->time() : 0.0);
+  st_snapshot_ = profile_.add_stage("snapshot");
+  st_porosity_ = profile_.add_stage("porosity");
+  st_forces_ = profile_.add_stage("fluid_forces");
+  st_dem_ = profile_.add_stage("dem");
+  st_fluid_ = profile_.add_stage("fluid");
+  st_checks_ = profile_.add_stage("checks");
+  st_stable_dt_ = profile_.add_stage("stable_dt");
+}
+
+// the stones feel the flow's water and gravity (buoyancy, added mass, weight): one medium, the flow's
+void Coupler::share_medium() {
+  if (!fluid_ || !stones_ || n_ == 0) return;
+  const Medium& m = fluid_->params().medium;
+  const DEMParams& d = stones_->params();
+  if (d.submerged && d.medium == m) return;
+  DEMParams p = d;
+  p.medium = m;
+  p.submerged = true;
+  stones_->set_params(p);
+}
+
+void Coupler::make_mapper() {
+  mapper_.reset();
+  if (!fluid_ || n_ == 0) return;
+  double rmin = INFINITY, rmax = 0.0;
+  for (int j = 0; j < n_; ++j) {
+    const double r = stones_->disc_radius[j];
+    if (r > 0.0) rmin = std::min(rmin, r), rmax = std::max(rmax, r);
+  }
+  if (!(rmax > 0.0)) return;
+  PorosityParams p;
+  p.method = (params_.flags & kCoupleLookupPorosity) ? PorosityMethod::kLookup : PorosityMethod::kExact;
+  p.m = params_.lookup_m;
+  p.n_exp = params_.n_exp;
+  p.r_min = rmin;
+  p.r_max = rmax;
+  p.dr = params_.lookup_dr;
+  p.max_discs = n_;
+  mapper_ = std::make_unique<PorosityMapper>(fluid_->grid(), p);
+  csr_current_ = false;
+}
+
+// the parameters' limits that depend on the scene (checked before anything changes)
+void Coupler::check_params(const CouplerParams& p) const {
+  p.validate();
+  if (fluid_ && polygons() && (p.flags & kCoupleLookupPorosity))
+    throw std::invalid_argument("CouplerParams.flags = " + std::to_string(p.flags) +
+                                ": the lookup porosity (kCoupleLookupPorosity, the paper's table of disc areas) is "
+                                "for disc stones; polygon stones need the exact mapping (clear the flag)");
+}
+
+void Coupler::set_params(const CouplerParams& params) {
+  check_params(params);
+  const bool remap = (params.flags ^ params_.flags) & kCoupleLookupPorosity || params.n_exp != params_.n_exp ||
+                     params.lookup_m != params_.lookup_m || params.lookup_dr != params_.lookup_dr;
+  params_ = params;
+  if (fluid_ && remap) make_mapper();
+  mapped_ = false;
+}
+
+void Coupler::set_inflow_table(const std::vector<double>& times, const std::vector<double>& discharge) {
+  if (!fluid_) throw std::invalid_argument("set_inflow_table: this scene has no fluid (fluid = null)");
+  DischargeTable t;
+  t.times = times;
+  t.discharge = discharge;
+  fluid_->set_discharge(t);
+}
+
+double Coupler::water_volume() const { return fluid_ ? fluid_->water_volume() : 0.0; }
+
+// ---------------------------------------------------------------------------------------------
+// stages
+
+void Coupler::map_stones() {
+  for (int j = 0; j < n_; ++j) {
+    disc_x_[j] = stones_->disc_pos[2 * j];
+    disc_z_[j] = stones_->disc_pos[2 * j + 1];
+  }
+  if (polygons())
+    mapper_->map_polygons(n_, disc_x_.data(), disc_z_.data(), stones_->disc_angle.data(), stones_->poly_vertex.data(),
+                          stones_->poly_offset.data(), stones_->disc_active.data());
+  else
+    mapper_->map(n_, disc_x_.data(), disc_z_.data(), stones_->disc_radius.data(), stones_->disc_active.data());
+  csr_current_ = true;
+}
+
+void Coupler::update_porosity(bool keep_water_volume) {
+  if (!fluid_ || !mapper_) return;
+  stage_porosity(keep_water_volume);
+}
+
+void Coupler::stage_porosity(bool keep_water_volume) {
+  ScopedStage timer(profile_, st_porosity_);
+  map_stones();
+  const Grid2D& g = fluid_->grid();
+  const int nc = g.ncell();
+  std::fill(cell_solid_sum_.begin(), cell_solid_sum_.end(), 0.0);
+  std::fill(cell_diam_sum_.begin(), cell_diam_sum_.end(), 0.0);
+  std::fill(cell_solid_u_.begin(), cell_solid_u_.end(), 0.0);
+  std::fill(cell_solid_w_.begin(), cell_solid_w_.end(), 0.0);
+  const std::vector<int>& off = mapper_->disc_cell_offsets();
+  const std::vector<int>& idx = mapper_->disc_cell_index();
+  const std::vector<double>& area = mapper_->disc_cell_area();
+  const bool poly = polygons();
+  for (int j = 0; j < n_; ++j) {
+    const double d = poly ? stones_->nominal_diameter(j) : 2.0 * stones_->disc_radius[j];
+    const double u = stones_->disc_vel[2 * j], w = stones_->disc_vel[2 * j + 1];
+    for (int p = off[j]; p < off[j + 1]; ++p) {
+      const int c = idx[p];
+      cell_solid_sum_[c] += area[p];
+      cell_diam_sum_[c] += area[p] * d;
+      cell_solid_u_[c] += area[p] * u;
+      cell_solid_w_[c] += area[p] * w;
+    }
+  }
+  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins. Written
+  // into the flow's own array (its numpy views stay live), the old values kept in n_old_
+  const std::vector<double>& nm = mapper_->cell_porosity();
+  std::vector<double>& n_new = fluid_->cell_porosity;
+  for (int c = 0; c < nc; ++c) {
+    n_old_[c] = n_new[c];
+    if (nm[c] < cell_base_porosity[c]) {
+      n_new[c] = nm[c];
+      fluid_->cell_stone_diameter[c] = cell_diam_sum_[c] / cell_solid_sum_[c];
+    } else {
+      n_new[c] = cell_base_porosity[c];
+      fluid_->cell_stone_diameter[c] = cell_base_diameter[c];
+    }
+  }
+  // water volume per cell kept (a single-phase flow has no free surface to take displaced water)
+  // the first mapping sets the scene up (nothing flows); later changes drive the flow if asked
+  const bool displace = keep_water_volume && mapped_ && (params_.flags & kCoupleDisplaceFlow);
+  if (keep_water_volume && !displace && (fluid_->params().flags & kFlowFreeSurface)) {
+    const int bad = redistribution_->apply(n_old_, n_new, fluid_->cell_F);
+    redistributed_ += redistribution_->moved_volume();
+    if (bad >= 0) {
+      std::copy(n_old_.begin(), n_old_.end(), n_new.begin());  // as it was, also without a snapshot
+      fail("porosity", "no room for the water displaced from cell (i=" + std::to_string(bad % g.nx()) +
+                           ", k=" + std::to_string(bad / g.nx()) + "): the domain is full");
+    }
+  }
+  fluid_->update_face_porosity(displace);
+  if (fluid_->params().flags & kFlowRelativeVelocity) solid_velocity_at_faces();
+  mapped_ = true;
+}
+
+// area-weighted velocity of the stones in the two cells of each face [m/s]
+void Coupler::solid_velocity_at_faces() {
+  const Grid2D& g = fluid_->grid();
+  // a boundary face has its one cell on both sides: counted once
+  auto mean = [&](const FaceCells& c, const std::vector<double>& v) {
+    const double s = cell_solid_sum_[c.a] + (c.a != c.b ? cell_solid_sum_[c.b] : 0.0);
+    const double m = v[c.a] + (c.a != c.b ? v[c.b] : 0.0);
+    return s > 0.0 ? m / s : 0.0;
+  };
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i <= g.nx(); ++i) fluid_->face_x_solid_u[g.face_x(i, k)] = mean(g.face_x_cells(i, k), cell_solid_u_);
+  for (int k = 0; k <= g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) fluid_->face_z_solid_w[g.face_z(i, k)] = mean(g.face_z_cells(i, k), cell_solid_w_);
+}
+
+void Coupler::update_fluid_forces() {
+  if (!fluid_ || !mapper_) return;
+  csr_current_ = false;
+  stage_fluid_forces();
+}
+
+// names the first of a stone's cells whose flow is not finite (the cause of a non-finite force), or ""
+std::string Coupler::non_finite_cell(int count, const int* cells) const {
+  const int nx = fluid_->grid().nx();
+  for (int m = 0; m < count; ++m) {
+    const int c = cells[m];
+    const double v[] = {fluid_->cell_F[c], cell_U_[c], cell_W_[c], cell_dpdx_[c], cell_dpdz_[c]};
+    const char* names[] = {"water fraction", "pore velocity U", "pore velocity W", "dp/dx", "dp/dz"};
+    for (int q = 0; q < 5; ++q)
+      if (!std::isfinite(v[q]))
+        return "; the flow is not finite in its cell (i=" + std::to_string(c % nx) + ", k=" + std::to_string(c / nx) +
+               "): " + names[q] + " = " + format_value(v[q]);
+  }
+  return "";
+}
+
+void Coupler::stage_fluid_forces() {
+  ScopedStage timer(profile_, st_forces_);
+  // one-way coupling: the stones' cell lists without touching the flow's porosity
+  if (!csr_current_) map_stones();
+  const unsigned fl = params_.flags;
+  const FlowParams& fp = fluid_->params();
+  const std::vector<int>& off = mapper_->disc_cell_offsets();
+  const std::vector<int>& idx = mapper_->disc_cell_index();
+  // the flow is sampled in the stones' cells only (the other entries are not read)
+  const int ncs = off[n_];
+  fluid_->pore_velocity_at_cells(ncs, idx.data(), cell_U_, cell_W_);
+  // without the pressure-gradient effect the sample's gradient is unused: zeros
+  if (fl & kCouplePressureGradient) fluid_->pressure_gradient_at_cells(ncs, idx.data(), cell_dpdx_, cell_dpdz_);
+  else std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
+  const std::vector<double>& area = mapper_->disc_cell_area();
+  const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
+  const bool bed = params_.stone_drag == StoneDragModel::kBed;
+  BedDragParams bp;
+  if (bed) {
+    // the flow's own closure law, terms and relative velocity: the reaction of what it removes
+    bp.rho_w = rho, bp.nu_w = nu, bp.k1 = fp.k1, bp.k2 = fp.k2;
+    bp.linear = fp.flags & kFlowPorousDarcy;
+    bp.quadratic = fp.flags & kFlowPorousForchheimer;
+    bp.relative = fp.flags & kFlowRelativeVelocity;
+  }
+  for (int j = 0; j < n_; ++j) {
+    double* fd = &disc_force_drag[2 * j];
+    double* fs = &disc_force_pressure[2 * j];
+    fd[0] = fd[1] = fs[0] = fs[1] = 0.0;
+    disc_vrel_[j] = 0.0;
+    disc_drag_slope_[j] = 0.0;
+    if (!stones_->disc_active[j]) continue;
+    const StoneFlowSample s = sample_flow_at_stone(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j],
+                                                   fluid_->cell_F.data(), cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
+                                                   cell_dpdz_.data(), rho, fp.medium.gravity[0], fp.medium.gravity[1]);
+    const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
+    disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
+    if ((fl & kCoupleDrag) && !bed && polygons()) {
+      // the 3D stone's projected area across the relative velocity
+      const double a = stones_->projected_area(j, s.u - up, s.w_vel - wp), d = stones_->nominal_diameter(j);
+      const DragForce f = stone_drag_area(s, up, wp, d, a, rho, nu, params_.drag_law);
+      fd[0] = f.fx, fd[1] = f.fz;
+      if (params_.implicit_drag) disc_drag_slope_[j] = stone_drag_slope_area(s, up, wp, d, a, rho, nu, params_.drag_law);
+    } else if ((fl & kCoupleDrag) && !bed) {
+      const double d = 2.0 * stones_->disc_radius[j];
+      const DragForce f = stone_drag(s, up, wp, d, rho, nu, params_.drag_law);
+      fd[0] = f.fx, fd[1] = f.fz;
+      if (params_.implicit_drag) disc_drag_slope_[j] = sphere_drag_slope(s, up, wp, d, rho, nu, params_.drag_law);
+    } else if (fl & kCoupleDrag) {
+      const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
+                                   fluid_->cell_porosity.data(), fluid_->cell_stone_diameter.data(), cell_U_.data(),
+                                   cell_W_.data(), up, wp, stones_->volume(j), bp, &disc_drag_slope_[j]);
+      fd[0] = f.fx, fd[1] = f.fz;
+    }
+    if (fl & kCouplePressureGradient) {
+      const auto f = stone_pressure_force(s, stones_->volume(j));
+      fs[0] = f[0], fs[1] = f[1];
+    }
+    if (fl & kCoupleForces) {
+      forces_applied_ = true;
+      // the drag linearised in the stone's velocity (implicit in the DEM), or held over the step
+      const LinearDrag ld = params_.implicit_drag ? linearise_drag({fd[0], fd[1]}, disc_drag_slope_[j], up, wp)
+                                                  : LinearDrag();
+      const bool held = ld.coef == 0.0;
+      stones_->disc_force_ext[2 * j] = (held ? fd[0] : 0.0) + fs[0];
+      stones_->disc_force_ext[2 * j + 1] = (held ? fd[1] : 0.0) + fs[1];
+      stones_->disc_drag_coef[j] = ld.coef;
+      stones_->disc_drag_vel[2 * j] = ld.vel_x;
+      stones_->disc_drag_vel[2 * j + 1] = ld.vel_z;
+    }
+    if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1] + s.wet))
+      fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
+                               ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
+                               format_value(fs[1]) + " N; wet fraction " + format_value(s.wet) + ") at x = " +
+                               format_value(stones_->disc_pos[2 * j]) + " m, z = " +
+                               format_value(stones_->disc_pos[2 * j + 1]) + " m" +
+                               non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
+    if (fl & kCoupleWetFraction) {
+      // w now, and the level that gives it, so that w follows the stone over the DEM's substeps
+      const double w = snapped_wet_fraction(std::clamp(s.wet, 0.0, 1.0), params_.wet_fraction_tolerance);
+      stones_->set_wet_fraction(j, w);
+      stones_->disc_water_level[j] =
+          water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);
+    }
+  }
+}
+
+void Coupler::clear_fluid_forces() {
+  std::fill(disc_force_drag.begin(), disc_force_drag.end(), 0.0);
+  std::fill(disc_force_pressure.begin(), disc_force_pressure.end(), 0.0);
+  std::fill(stones_->disc_force_ext.begin(), stones_->disc_force_ext.end(), 0.0);
+  std::fill(stones_->disc_drag_coef.begin(), stones_->disc_drag_coef.end(), 0.0);
+  std::fill(stones_->disc_drag_vel.begin(), stones_->disc_drag_vel.end(), 0.0);
+  forces_applied_ = false;
+}
+
+void Coupler::stage_dem(double dt) {
+  ScopedStage timer(profile_, st_dem_);
+  try {
+    stones_->advance(dt);
+  } catch (const std::runtime_error& e) {
+    fail("dem", e.what());
+  }
+}
+
+void Coupler::stage_fluid(double dt) {
+  ScopedStage timer(profile_, st_fluid_);
+  try {
+    // the guard's snapshot holds the whole start: the flow need not copy its own
+    if (snapshot_valid_) fluid_->step_guarded(dt);
+    else fluid_->step(dt);
+  } catch (const CflBreach& e) {
+    fail("fluid", e.what(), e.courant());
+  } catch (const std::runtime_error& e) {
+    fail("fluid", e.what());
+  }
+}
+
+void Coupler::stage_checks() {
+  ScopedStage timer(profile_, st_checks_);
+  for (int j = 0; j < n_; ++j) {
+    if (!stones_->disc_active[j]) continue;
+    const double* x = &stones_->disc_pos[2 * j];
+    const double* v = &stones_->disc_vel[2 * j];
+    if (!std::isfinite(x[0] + x[1] + v[0] + v[1]))
+      fail("checks", "non-finite state of stone " + std::to_string(j) + " (x = " + format_value(x[0]) + ", " +
+                         format_value(x[1]) + " m; v = " + format_value(v[0]) + ", " + format_value(v[1]) + " m/s)");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// stepping
+
+double Coupler::stable_dt() { return stable_dt_limits(nullptr, nullptr); }
+
+double Coupler::stable_dt_limits(const char** term, int* cell) {
+  ScopedStage timer(profile_, st_stable_dt_);
+  double dt = params_.max_dt;
+  const char* why = "coupler_max_dt";
+  int where = -1;
+  const unsigned fl = params_.flags;
+  if (fluid_ && (fl & kCoupleFluid)) {
+    const FlowStableDt s = fluid_->stable_dt_terms();
+    if (s.min() < dt) dt = s.min(), why = s.binding(&where);
+  }
+  if (fluid_ && has_stones() && (fl & kCoupleDEM)) {
+    const Grid2D& g = fluid_->grid();
+    const double inv_hx = 1.0 / g.dx(), inv_hz = 1.0 / g.min_dz();
+    const DEMParams& dp = stones_->params();
+    const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
+    const double rho = fluid_->params().medium.rho_water, nu = fluid_->params().medium.nu_water;
+    // a drag held over the step (explicit exchange) relaxes the stone in (M + M') / slope: a step stays
+    // below drag_relaxation of that (the slope of eq. 18', drag.h); the implicit exchange needs no such
+    // bound (drag_exchange.h)
+    auto relaxation_dt = [&](int j) {
+      const double w = stones_->disc_wet[j];
+      const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * stones_->volume(j) * w : 0.0);
+      if (params_.stone_drag == StoneDragModel::kBed) {
+        // bed drag: its slope in the stone's velocity from the last exchange
+        const double slope = disc_drag_slope_[j];
+        return slope > 0.0 ? params_.drag_relaxation * mass / slope : kInf;
+      }
+      if (!(w > 0.0)) return kInf;
+      if (polygons()) {
+        // polygons: the mean projected area and the nominal diameter
+        const double slope = drag_slope(disc_vrel_[j], stones_->nominal_diameter(j),
+                                        w * 0.5 * rho * stones_->projected_area(j), nu, DragLaw::kPaper);
+        return params_.drag_relaxation * mass / slope;
+      }
+      const double r = stones_->disc_radius[j];
+      const double slope = drag_slope(disc_vrel_[j], 2.0 * r, w * 0.5 * rho * kPi * r * r, nu, DragLaw::kPaper);
+      return params_.drag_relaxation * (mass / slope);
+    };
+    for (int j = 0; j < n_; ++j) {
+      if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
+      // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
+      const double rate =
+          std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
+      if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
+      if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
+      const double relax = relaxation_dt(j);
+      if (relax < dt) dt = relax, why = "drag_relaxation", where = stone_cell(j);
+    }
+  }
+  if (term) *term = why;
+  if (cell) *cell = where;
+  return dt;
+}
+
+int Coupler::stone_cell(int j) const {
+  const Grid2D& g = fluid_->grid();
+  const int i = g.locate_x(stones_->disc_pos[2 * j]), k = g.locate_z(stones_->disc_pos[2 * j + 1]);
+  return i >= 0 && k >= 0 ? g.cell(i, k) : -1;
+}
+
+void Coupler::count_limit(const char* term, int cell) {
+  ++limit_steps_[term];
+  if (!fluid_ || cell < 0) return;
+  std::vector<long long>& c = limit_cells_[term];
+  c.resize(static_cast<std::size_t>(fluid_->grid().ncell()), 0);
+  ++c[static_cast<std::size_t>(cell)];
+}
+
+void Coupler::clear_step_limits() {
+  limit_steps_.clear();
+  limit_cells_.clear();
+}
+
+void Coupler::step() { step(stable_dt()); }
+
+void Coupler::save() {
+  if (!(fluid_ && has_stones())) {  // one module: it restores itself
+    snapshot_valid_ = false;
+    return;
+  }
+  const double last_dt = fluid_->last_dt();
+  if (sparse_snapshots_ && snapshot_valid_ && static_cast<int>(replay_.size()) < snapshot_interval_) {
+    replay_.push_back({std::numeric_limits<double>::quiet_NaN(), last_dt});
+    return;
+  }
+  // a whole interval without a failure (not the first snapshot): the next one may be twice as long
+  if (sparse_snapshots_ && snapshot_valid_)
+    snapshot_interval_ = std::min(2 * snapshot_interval_, params_.max_snapshot_interval);
+  ScopedStage timer(profile_, st_snapshot_);
+  export_state(snapshot_, false);
+  snapshot_valid_ = true;
+  replay_.assign(1, {std::numeric_limits<double>::quiet_NaN(), last_dt});
+}
+
+void Coupler::restore() {
+  if (!snapshot_valid_) return;
+  import_state(snapshot_, false);
+  if (replay_.size() > 1) {
+    replay();
+    // the retries of this step start from here: a snapshot of its start, the interval back to 1
+    ScopedStage timer(profile_, st_snapshot_);
+    export_state(snapshot_, false);
+    snapshot_interval_ = 1;
+  }
+  replay_.clear();
+}
+
+// the steps since the snapshot (all but the failing one) as they were taken: the flow's last_dt set
+// between them as the advance loop set it, and the stable step measured before each (it prepares
+// what the step reads, e.g. the phases' viscosities)
+void Coupler::replay() {
+  replaying_ = true;
+  try {
+    for (std::size_t s = 0; s + 1 < replay_.size(); ++s) {
+      fluid_->set_last_dt(replay_[s].fluid_last_dt);
+      stable_dt_limits(nullptr, nullptr);
+      run_stages(replay_[s].dt);
+      ++replayed_steps_;
+    }
+  } catch (...) {
+    replaying_ = false;
+    throw;
+  }
+  replaying_ = false;
+  fluid_->set_last_dt(replay_.back().fluid_last_dt);
+}
+
+void Coupler::fail(const std::string& stage, const std::string& what, double courant) {
+  const double t = time_;
+  // the steps replayed were taken before without a failure: this one is a bug, not a retry
+  if (replaying_)
+    throw std::logic_error("Coupler: replaying the steps since the guard's snapshot failed at t = " +
+                           format_value(t) + " s in stage '" + stage + "': " + what);
+  restore();
+  if (time_ != t)
+    throw std::logic_error("Coupler: the guard restored t = " + format_value(time_) + " s for a step that started at " +
+                           format_value(t) + " s");
+  std::ostringstream os;
+  os << "Coupler stage '" << stage << "' at t = " << format_value(t) << " s (step " << steps_ << "): " << what
+     << "; coupled state restored to t = " << format_value(time_) << " s";
+  if (courant > 0.0) throw CflBreach(os.str(), courant);
+  throw std::runtime_error(os.str());
+}
+
+void Coupler::step(double dt) {
+  require_positive("dt", dt);
+  if (stones_ && stones_->n() != n_)
+    throw std::invalid_argument("stones.n = " + std::to_string(stones_->n()) + " changed since the coupler was built (" +
+                                std::to_string(n_) + "): build a new Coupler after a resize");
+  save();
+  run_stages(dt);
+  if (snapshot_valid_) replay_.back().dt = dt;
+}
+
+void Coupler::run_stages(double dt) {
+  share_medium();
+  const unsigned fl = params_.flags;
+  const bool stones_move = has_stones() && (fl & kCoupleDEM);
+  csr_current_ = false;
+  // the force stage skipped: the stones must not keep the last fluid force it wrote
+  if (forces_applied_ && !(fl & kCoupleForces) && stones_) clear_fluid_forces();
+  if (fluid_ && mapper_ && (fl & kCouplePorosity) && (stones_move || !mapped_)) stage_porosity();
+  if (fluid_ && mapper_ && (fl & (kCoupleForces | kCoupleWetFraction)) && stones_move) stage_fluid_forces();
+  if (stones_move) stage_dem(dt);
+  if (fluid_ && (fl & kCoupleFluid)) stage_fluid(dt);
+  if (has_stones() && (fl & kCoupleChecks)) stage_checks();
+  csr_current_ = false;
+  time_ += dt;
+  ++steps_;
+}
+
+long long Coupler::advance(double t_end, const std::function<void(double)>& progress) {
+  const char* term = nullptr;
+  int cell = -1;
+  auto limits = [&] {
+    const double dt = stable_dt_limits(&term, &cell);
+    return AdvanceLimits{dt, params_.min_dt, fluid_ ? fluid_->params().cfl : 1.0};
+  };
+  auto collapse = [this](double dt) {
+    snapshot_valid_ = false;
+    fail("step", "time step collapsed to " + format_value(dt) + " s (below min_dt = " + format_value(params_.min_dt) +
+                     " s)");
+  };
+  auto stepped = [&](const AdvanceStep& a) {
+    const bool retried = a.retries > 0;
+    if (retried) count_limit("cfl_retry", -1);
+    else count_limit(a.dt < a.stable ? "t_end" : term, cell);
+    // a step cut to reach t_end is no stability decision: the flow's growth limit goes on from the stable step
+    if (fluid_ && (params_.flags & kCoupleFluid) && a.dt < a.stable && !retried) fluid_->set_last_dt(a.stable);
+    if (progress) progress(time_);
+  };
+  // a progress callback may write the flow's fields between the steps: then every limit is measured afresh
+  // and the snapshot is taken every step (a replay would not see what it wrote)
+  const StepEndCourantReuse reuse(fluid_ && !progress ? fluid_ : nullptr);
+  const SparseSnapshots sparse(*this, !progress);
+  return advance_until(
+      t_end, [this] { return time_; }, limits, collapse, [this](double h) { step(h); }, [](double) {}, stepped);
+}
+
+// the state may be written between two calls of advance(): the first snapshot of a call is taken afresh
+Coupler::SparseSnapshots::SparseSnapshots(Coupler& c, bool on) : c_(c) {
+  c_.snapshot_valid_ = false;
+  c_.sparse_snapshots_ = on;
+}
+
+Coupler::SparseSnapshots::~SparseSnapshots() {
+  c_.snapshot_valid_ = false;
+  c_.sparse_snapshots_ = false;
+}
+
+}  // namespace vofdem

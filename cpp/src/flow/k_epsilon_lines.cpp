@@ -1,0 +1,176 @@
+// k-epsilon transport by vertical lines (KEpsilonTimeScheme::kVerticalLines, k_epsilon.h): each
+// column's backward-Euler system of (K) and (E) solved exactly, the horizontal faces explicit.
+//
+//   (n/dt + n D + sum_z a + sum_in a) x_c - a_s x_s - a_n x_n
+//       = n x_old/dt + n S + sum_in a x_in + sum_x a (x_nb_old - x_c_old)      (dt sum_x a <= n)
+//
+// a: the face coefficients of face_coefficients() (upwind inflow + diffusion) [1/s]; z: the vertical
+// faces to solved neighbours, whose values are the unknowns of the column; in: boundary inflow faces
+// and faces to cells of fixed value (wall cells), taken implicitly with their known value; x: the
+// horizontal faces to neighbours, explicit with the values of the step's start. In a cell above the
+// horizontal limit (dt sum_x a > n) those faces are lagged-implicit instead: a x_nb_old on the right,
+// a on the diagonal. The matrix is an M-matrix (diagonally dominant, positive diagonal, non-positive
+// off-diagonals) and the right-hand side is non-negative in both cases, so k and eps stay positive
+// for any dt; the vertical diffusion of the eddy viscosity over the thin rows, which bounds the
+// point-implicit scheme's step, bounds nothing here. A uniform decaying field and a steady state are
+// kept exactly (below the horizontal limit). Thomas algorithm on all columns together
+// (solve_tridiagonal_rows, momentum.h), O(ncell).
+#include <algorithm>
+
+#include "vofdem/flow/k_epsilon.h"
+#include "vofdem/flow/momentum.h"
+
+namespace vofdem {
+
+namespace {
+
+// stable_dt()'s rates [1/s] of one row (u: its x-faces, the other arrays its cells; g_k, g_eps: nx - 1
+// work values): the sums of face_coefficients() in the same operations and order (the same bits),
+// inactive neighbours' faces and inactive cells 0. A face's diffusion conductance first (the same from
+// both sides, as a sum commutes), then the sums by selects without a branch (both loops vectorised);
+// the end cells have no neighbour beyond the flume's ends
+template <bool kAdv, bool kDif>
+void lines_row_rates(int nx, double dx, const double* u, const double* n, const double* act, const double* res_k,
+                     const double* res_eps, double* g_k, double* g_eps, double* rate) {
+  if (kDif)
+    for (int i = 0; i + 1 < nx; ++i) {
+      g_k[i] = 1.0 / (dx * (res_k[i] + res_k[i + 1]));
+      g_eps[i] = 1.0 / (dx * (res_eps[i] + res_eps[i + 1]));
+    }
+  // the coefficient of a face with inflow vin and conductance g, open or not
+  auto coef = [&](double vin, double g, bool open) {
+    const double a_adv = kAdv ? std::max(vin, 0.0) / dx : 0.0;
+    const double a = kDif ? a_adv + g : a_adv;
+    return open ? a : 0.0;
+  };
+  auto at = [&](int i, double gw_k, double gw_eps, double ge_k, double ge_eps, bool w_open, bool e_open) {
+    double sk = 0.0, se = 0.0;
+    sk += coef(u[i], gw_k, w_open), se += coef(u[i], gw_eps, w_open);
+    sk += coef(-u[i + 1], ge_k, e_open), se += coef(-u[i + 1], ge_eps, e_open);
+    const double r = std::max(sk, se) / n[i];
+    return act[i] != 0.0 ? r : 0.0;
+  };
+  if (nx == 1) {
+    rate[0] = at(0, 0.0, 0.0, 0.0, 0.0, false, false);
+    return;
+  }
+  const int e = nx - 1;
+  rate[0] = at(0, 0.0, 0.0, g_k[0], g_eps[0], false, act[1] != 0.0);
+  for (int i = 1; i < e; ++i)
+    rate[i] = at(i, g_k[i - 1], g_eps[i - 1], g_k[i], g_eps[i], act[i - 1] != 0.0, act[i + 1] != 0.0);
+  rate[e] = at(e, g_k[e - 1], g_eps[e - 1], 0.0, 0.0, act[e - 1] != 0.0, false);
+}
+
+}  // namespace
+
+// row by row (vectorised), the rows' largest taken in order: the first cell at the largest rate
+double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const std::vector<double>& cell_porosity,
+                                        const std::vector<double>& cell_F, int& cell) const {
+  const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
+  const bool adv = (params_.flags & kKEpsAdvection) != 0u, dif = (params_.flags & kKEpsDiffusion) != 0u;
+  auto row_rates = adv ? (dif ? lines_row_rates<true, true> : lines_row_rates<true, false>)
+                       : (dif ? lines_row_rates<false, true> : lines_row_rates<false, false>);
+  const double dx = grid_.dx(), fmin = params_.water_fraction_min;
+  row_rate_.resize(static_cast<std::size_t>(nx));
+  row_active_.resize(static_cast<std::size_t>(nx));
+  row_conductance_.resize(2 * static_cast<std::size_t>(nx));
+  double* rate = row_rate_.data();
+  double* act = row_active_.data();
+  double worst = 0.0;
+  cell = -1;
+  for (int k = 0; k < nz; ++k) {
+    const int row = nx * k;
+    const double* n = cell_porosity.data() + row;
+    if (cell_F.empty())
+      for (int i = 0; i < nx; ++i) act[i] = n[i] > 0.0 ? 1.0 : 0.0;
+    else
+      for (int i = 0; i < nx; ++i) act[i] = (n[i] > 0.0) & (cell_F[row + i] >= fmin) ? 1.0 : 0.0;
+    // a row of air or solid cells has rates 0 (no water above the surface): nothing to take
+    double active = 0.0;
+    for (int i = 0; i < nx; ++i) active += act[i];
+    if (active == 0.0) continue;
+    row_rates(nx, dx, face_u.data() + sx * k, n, act, half_res_x_[0].data() + row, half_res_x_[1].data() + row,
+              row_conductance_.data(), row_conductance_.data() + nx, rate);
+    int at;
+    if (take_row_maximum(rate, nx, worst, at)) cell = row + at;
+  }
+  return worst;
+}
+
+void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& face_u,
+                                          const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
+                                          const std::vector<double>& cell_F, const std::vector<double>& cell_nu) {
+  const KEpsilonParams& p = params_;
+  const bool prod_on = (p.flags & kKEpsProduction) != 0u;
+  const int nx = grid_.nx(), nz = grid_.nz(), ncell = grid_.ncell();
+  std::vector<double>* target[2] = {&cell_k, &cell_eps};
+  const double floor[2] = {p.k_min, p.eps_min};
+  for (int e = 0; e < 2; ++e)
+    for (std::vector<double>& t : tri_[e]) t.resize(static_cast<std::size_t>(ncell));
+  // values at the step's start: air/solid cells at the floor, wall cells at the wall-law values, solved
+  // cells at their old value (or a freshly wetted cell's start)
+  for (int c = 0; c < ncell; ++c) {
+    const std::uint8_t role = cell_role_[c];
+    scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
+    scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
+  }
+  const std::vector<double>* start[2] = {&scratch_, &scratch_eps_};
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
+  FaceCoef fc[4];
+  for (int k = 0; k < nz; ++k) {
+    for (int i = 0; i < nx; ++i) {
+      const int c = grid_.cell(i, k);
+      for (int e = 0; e < 2; ++e) {
+        std::vector<double>* row = tri_[e];
+        row[0][c] = row[2][c] = 0.0;
+        row[1][c] = 1.0;
+        row[3][c] = (*start[e])[c];  // a known value unless solved
+      }
+      if (cell_role_[c] != kSolved) continue;
+      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+      const double n = cell_porosity[c];
+      const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
+      const double prod = prod_on ? cell_prod_[c] : 0.0;
+      const double source[2] = {prod, p.c1 * rate * prod};
+      const double sink[2] = {rate, p.c2 * rate};
+      for (int e = 0; e < 2; ++e) {
+        const std::vector<double>& x0 = *start[e];
+        std::vector<double>* row = tri_[e];
+        double diag = n / dt + n * sink[e];
+        double rhs = n * x0[c] / dt + n * source[e];
+        // horizontal faces: explicit below their own limit, lagged-implicit above
+        double ax = 0.0;
+        for (int f = 0; f < 2; ++f)
+          if (fc[f].nb >= 0) ax += fc[f].a[e];
+        const bool explicit_x = dt * ax <= n;
+        for (int f = 0; f < 4; ++f) {
+          const double a = fc[f].a[e];
+          if (a == 0.0) continue;
+          const int nb = fc[f].nb;
+          if (nb < 0) {  // boundary inflow
+            diag += a;
+            rhs += a * (e == 0 ? inflow_k(fc[f].inflow_u) : inflow_eps(fc[f].inflow_u));
+          } else if (f < 2) {
+            if (explicit_x) rhs += a * (x0[nb] - x0[c]);
+            else diag += a, rhs += a * x0[nb];
+          } else if (cell_role_[nb] != kSolved) {  // a wall cell: known value
+            diag += a, rhs += a * x0[nb];
+          } else {
+            diag += a;
+            row[f == 2 ? 0 : 2][c] = -a;
+          }
+        }
+        row[1][c] = diag;
+        row[3][c] = rhs;
+      }
+    }
+  }
+  for (int e = 0; e < 2; ++e) {
+    std::vector<double>* row = tri_[e];
+    solve_tridiagonal_rows(nz, 0, nx, nx, row[0].data(), row[1].data(), row[2].data(), row[3].data());
+    std::vector<double>& dst = *target[e];
+    for (int c = 0; c < ncell; ++c) dst[c] = std::max(row[3][c], floor[e]);
+  }
+}
+
+}  // namespace vofdem

@@ -1,0 +1,169 @@
+// Neighbour search of DEMSystem: a Verlet list with a skin, built in O(N) from a cell grid.
+//
+// Pairs (i < j) whose gap is below the skin are listed in (i, j) order; the list is rebuilt when a
+// stone has moved more than half the skin since the last build, so no contact can be missed. Each
+// pair carries its tangential and rolling springs (the contact history); a rebuild carries them over by a
+// merge of the two sorted lists, so the order of every force sum is fixed and runs are reproducible.
+#include <algorithm>
+#include <cmath>
+
+#include "vofdem/stones/dem_system.h"
+
+namespace vofdem {
+
+bool DEMSystem::neighbours_stale() const {
+  if (build_pos_.size() != disc_pos.size()) return true;
+  const double lim2 = 0.25 * skin_ * skin_;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    const double dx = disc_pos[2 * i] - build_pos_[2 * i];
+    const double dz = disc_pos[2 * i + 1] - build_pos_[2 * i + 1];
+    if (dx * dx + dz * dz > lim2) return true;
+  }
+  return false;
+}
+
+// stones within the skin of each wall; the others cannot touch it before the next build
+void DEMSystem::build_wall_candidates() {
+  const std::size_t nw = params_.walls.size();
+  wall_cand_.clear();
+  wall_cand_start_.assign(nw + 1, 0);
+  for (std::size_t w = 0; w < nw; ++w) {
+    const DEMWall& wall = params_.walls[w];
+    const auto [wx, wz] = wall_unit_normal(wall);
+    for (int i = 0; i < n_; ++i) {
+      if (!disc_active[i] || disc_fixed[i]) continue;
+      const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
+      if (s < disc_radius[i] + skin_) {
+        wall_cand_.push_back(i);
+      } else {
+        wall_xi_[static_cast<std::size_t>(i) * nw + w] = wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
+        if (!poly_wall_hist_.empty()) poly_wall_hist_[static_cast<std::size_t>(i) * nw + w] = PolygonHistory{};
+      }
+    }
+    wall_cand_start_[w + 1] = static_cast<int>(wall_cand_.size());
+  }
+}
+
+void DEMSystem::build_neighbours() {
+  ++nbuilds_;
+  rebuild_ = false;
+  build_pos_ = disc_pos;
+  build_wall_candidates();
+  new_pairs_.clear();
+  double rmax = 0.0, xmin = INFINITY, xmax = -INFINITY, zmin = INFINITY, zmax = -INFINITY;
+  int nact = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    ++nact;
+    rmax = std::max(rmax, disc_radius[i]);
+    xmin = std::min(xmin, disc_pos[2 * i]);
+    xmax = std::max(xmax, disc_pos[2 * i]);
+    zmin = std::min(zmin, disc_pos[2 * i + 1]);
+    zmax = std::max(zmax, disc_pos[2 * i + 1]);
+  }
+  if (nact < 2) {
+    pairs_.swap(new_pairs_);
+    pairs_.clear();
+    return;
+  }
+  // cells no smaller than the largest cut-off; at most ~4 cells per stone even if stones spread far
+  double h = 2.0 * rmax + skin_;
+  const double max_cells = 4.0 * nact + 16.0;
+  while (std::floor((xmax - xmin) / h + 1.0) * std::floor((zmax - zmin) / h + 1.0) > max_cells) h *= 1.5;
+  const int ncx = static_cast<int>((xmax - xmin) / h) + 1;
+  const int ncz = static_cast<int>((zmax - zmin) / h) + 1;
+  // counting sort of the stones by cell: each cell's stones contiguous and in ascending index order
+  const std::size_t ncell = static_cast<std::size_t>(ncx) * ncz;
+  cell_start_.assign(ncell + 1, 0);
+  cell_next_.assign(static_cast<std::size_t>(n_), -1);  // here: the cell of each active stone
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    const int cx = std::min(ncx - 1, static_cast<int>((disc_pos[2 * i] - xmin) / h));
+    const int cz = std::min(ncz - 1, static_cast<int>((disc_pos[2 * i + 1] - zmin) / h));
+    cell_next_[i] = cx + ncx * cz;
+    ++cell_start_[static_cast<std::size_t>(cell_next_[i]) + 1];
+  }
+  for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
+  sorted_.resize(static_cast<std::size_t>(nact));
+  {
+    std::vector<int>& fill = cell_fill_;
+    fill.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (int i = 0; i < n_; ++i) {
+      if (!disc_active[i]) continue;
+      sorted_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_next_[i])]++)] = {
+          disc_pos[2 * i], disc_pos[2 * i + 1], disc_radius[i], i, disc_fixed[i] != 0};
+    }
+  }
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    const int cx = cell_next_[i] % ncx, cz = cell_next_[i] / ncx;
+    const std::size_t first = new_pairs_.size();
+    const double xi = disc_pos[2 * i], zi = disc_pos[2 * i + 1], ri = disc_radius[i] + skin_;
+    const bool fi = disc_fixed[i] != 0;
+    const int kx0 = std::max(0, cx - 1), kx1 = std::min(ncx - 1, cx + 1);
+    for (int kz = std::max(0, cz - 1); kz <= std::min(ncz - 1, cz + 1); ++kz) {
+      // the three cells of a row are one contiguous range
+      const int b0 = cell_start_[static_cast<std::size_t>(kx0 + ncx * kz)];
+      const int b1 = cell_start_[static_cast<std::size_t>(kx1 + ncx * kz) + 1];
+      for (int k = b0; k < b1; ++k) {
+        const SortedStone& o = sorted_[static_cast<std::size_t>(k)];
+        if (o.index <= i || (fi && o.fixed)) continue;
+        const double dx = o.x - xi, dz = o.z - zi;
+        const double cut = ri + o.r;
+        if (dx * dx + dz * dz < cut * cut)
+          new_pairs_.push_back({i, o.index, 0.0, std::sqrt(1.0 / (contact_inv_mass_[i] + contact_inv_mass_[o.index]))});
+      }
+    }
+    std::sort(new_pairs_.begin() + static_cast<std::ptrdiff_t>(first), new_pairs_.end(),
+              [](const Pair& a, const Pair& b) { return a.j < b.j; });
+  }
+  // carry the tangential and rolling springs over (both lists sorted by (i, j))
+  std::size_t k = 0;
+  for (Pair& p : new_pairs_) {
+    while (k < pairs_.size() && (pairs_[k].i < p.i || (pairs_[k].i == p.i && pairs_[k].j < p.j))) ++k;
+    if (k < pairs_.size() && pairs_[k].i == p.i && pairs_[k].j == p.j) {
+      p.xi = pairs_[k].xi;
+      p.mr = pairs_[k].mr;
+      p.poly = pairs_[k].poly;
+    }
+  }
+  pairs_.swap(new_pairs_);
+  update_pair_rolling();
+}
+
+std::vector<std::array<int, 2>> DEMSystem::neighbour_pairs() const {
+  std::vector<std::array<int, 2>> out;
+  out.reserve(pairs_.size());
+  for (const Pair& p : pairs_) out.push_back({p.i, p.j});
+  return out;
+}
+
+std::vector<std::array<int, 2>> DEMSystem::overlapping_pairs_reference() const {
+  std::vector<std::array<int, 2>> out;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    for (int j = i + 1; j < n_; ++j) {
+      if (!disc_active[j] || (disc_fixed[i] && disc_fixed[j])) continue;
+      const double dx = disc_pos[2 * j] - disc_pos[2 * i], dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
+      const double rs = disc_radius[i] + disc_radius[j];
+      if (dx * dx + dz * dz < rs * rs) out.push_back({i, j});
+    }
+  }
+  return out;
+}
+
+std::vector<std::array<int, 2>> DEMSystem::overlapping_pairs() {
+  prepare();
+  build_neighbours();
+  std::vector<std::array<int, 2>> out;
+  for (const Pair& p : pairs_) {
+    const int i = p.i, j = p.j;
+    const double dx = disc_pos[2 * j] - disc_pos[2 * i], dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
+    const double rs = disc_radius[i] + disc_radius[j];
+    if (dx * dx + dz * dz < rs * rs) out.push_back({i, j});
+  }
+  return out;
+}
+
+}  // namespace vofdem

@@ -1,0 +1,213 @@
+// State of DEMSystem: every piece of it as one typed value (DEMState), so that a run restarted from
+// export_state() continues bit-for-bit (stone arrays, accelerations of the velocity Verlet scheme,
+// contact histories, sleep timers, counters, time, energy accumulators). The guard of advance() and
+// the coupler's snapshot copy it into a reused DEMState (array copies, no allocation once sized); the
+// checkpoint maps it to named flat arrays of doubles. On import from such a map the rolling springs
+// (contact_mr, wall_mr), the linear drag and the water levels are optional: a checkpoint written before
+// they existed restarts with what it had.
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "common/state_fields.h"
+#include "vofdem/common/check.h"
+#include "vofdem/stones/dem_system.h"
+
+namespace vofdem {
+
+namespace {
+using state::entry;
+using state::from_double;
+using state::StateMap;
+using state::to_double;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// the per-stone arrays (values per stone; optional: what a checkpoint written before it existed holds)
+template <class T>
+using DiscField = state::Field<DEMState, DEMSystem, T>;
+const DiscField<double> kDiscReals[] = {
+    {"disc_pos", &DEMState::disc_pos, &DEMSystem::disc_pos, 0, 2, false, 0.0},
+    {"disc_vel", &DEMState::disc_vel, &DEMSystem::disc_vel, 0, 2, false, 0.0},
+    {"disc_angle", &DEMState::disc_angle, &DEMSystem::disc_angle, 0, 1, false, 0.0},
+    {"disc_omega", &DEMState::disc_omega, &DEMSystem::disc_omega, 0, 1, false, 0.0},
+    {"disc_radius", &DEMState::disc_radius, &DEMSystem::disc_radius, 0, 1, false, 0.0},
+    {"disc_density", &DEMState::disc_density, &DEMSystem::disc_density, 0, 1, false, 0.0},
+    {"disc_force_ext", &DEMState::disc_force_ext, &DEMSystem::disc_force_ext, 0, 2, false, 0.0},
+    // older states hold no linear drag
+    {"disc_drag_coef", &DEMState::disc_drag_coef, &DEMSystem::disc_drag_coef, 0, 1, true, 0.0},
+    {"disc_drag_vel", &DEMState::disc_drag_vel, &DEMSystem::disc_drag_vel, 0, 2, true, 0.0},
+    {"disc_wet", &DEMState::disc_wet, &DEMSystem::disc_wet, 0, 1, false, 0.0},
+    // older states hold no water levels: the wet fractions are then held as set
+    {"disc_water_level", &DEMState::disc_water_level, &DEMSystem::disc_water_level, 0, 1, true, kNaN},
+    {"disc_force", &DEMState::disc_force, &DEMSystem::disc_force, 0, 2, false, 0.0},
+    {"disc_torque", &DEMState::disc_torque, &DEMSystem::disc_torque, 0, 1, false, 0.0},
+    {"disc_acc", &DEMState::disc_acc, &DEMSystem::disc_acc, 0, 2, false, 0.0},
+    {"disc_alpha", &DEMState::disc_alpha, &DEMSystem::disc_alpha, 0, 1, false, 0.0},
+    {"disc_sleep_timer", &DEMState::disc_sleep_timer, &DEMSystem::disc_sleep_timer, 0, 1, false, 0.0},
+};
+const DiscField<std::uint8_t> kDiscFlags[] = {
+    {"disc_fixed", &DEMState::disc_fixed, &DEMSystem::disc_fixed, 0, 1, false, 0.0},
+    {"disc_active", &DEMState::disc_active, &DEMSystem::disc_active, 0, 1, false, 0.0},
+    {"disc_asleep", &DEMState::disc_asleep, &DEMSystem::disc_asleep, 0, 1, false, 0.0},
+};
+
+// op(field) for every per-stone array, of either element type
+template <class Op>
+void each_disc_field(Op&& op) {
+  for (const auto& f : kDiscReals) op(f);
+  for (const auto& f : kDiscFlags) op(f);
+}
+}  // namespace
+
+void DEMSystem::export_state(DEMState& s) const {
+  each_disc_field([&](const auto& f) { s.*f.state = this->*f.live; });
+  // only the histories that are not zero: the rest is rebuilt by the neighbour search
+  s.contact_i.clear(), s.contact_j.clear(), s.contact_xi.clear(), s.contact_mr.clear();
+  for (const Pair& p : pairs_) {
+    if (p.xi == 0.0 && p.mr == 0.0) continue;
+    s.contact_i.push_back(p.i);
+    s.contact_j.push_back(p.j);
+    s.contact_xi.push_back(p.xi);
+    s.contact_mr.push_back(p.mr);
+  }
+  s.wall_xi = wall_xi_;
+  s.wall_mr = wall_mr_;
+  s.time = time_;
+  s.steps = steps_;
+  s.removed = removed_;
+  s.dissipated = dissipated_;
+  s.work_external = work_external_;
+  s.elastic = elastic_;
+  s.ncontact = ncontact_;
+  s.nwall_contact = nwall_contact_;
+  s.forces_valid = forces_valid_;
+  export_polygons(s);
+}
+
+void DEMSystem::check_state(const DEMState& s) const {
+  const std::size_t n = s.disc_radius.size(), nw = n * params_.walls.size();
+  each_disc_field([&](const auto& f) { require_size(f.key, s.*f.state, f.per * n); });
+  const std::size_t nc = s.contact_i.size();
+  require_size("contact_j", s.contact_j, nc);
+  require_size("contact_xi", s.contact_xi, nc);
+  require_size("contact_mr", s.contact_mr, nc);
+  for (std::size_t k = 0; k < nc; ++k) {
+    const int i = s.contact_i[k], j = s.contact_j[k];
+    if (!(i >= 0 && i < j && j < static_cast<int>(n)))
+      throw std::invalid_argument("import_state: contact pair (" + std::to_string(i) + ", " + std::to_string(j) +
+                                  ") is outside 0 <= i < j < n");
+    if (k > 0 && !(s.contact_i[k - 1] < i || (s.contact_i[k - 1] == i && s.contact_j[k - 1] < j)))
+      throw std::invalid_argument("import_state: contact pairs are not sorted by (i, j)");
+  }
+  require_size("wall_xi", s.wall_xi, nw);
+  require_size("wall_mr", s.wall_mr, nw);
+  if (!s.poly_offset.empty()) check_polygon_state(s);
+}
+
+void DEMSystem::import_state(const DEMState& s) {
+  check_state(s);
+  const std::size_t n = s.disc_radius.size();
+  if (n != static_cast<std::size_t>(n_)) resize(static_cast<int>(n));
+  each_disc_field([&](const auto& f) { state::copy_into(this->*f.live, s.*f.state); });
+  pairs_.clear();
+  for (std::size_t k = 0; k < s.contact_i.size(); ++k)
+    pairs_.push_back({s.contact_i[k], s.contact_j[k], s.contact_xi[k], 0.0, s.contact_mr[k]});  // masses: next build
+  state::copy_into(wall_xi_, s.wall_xi);
+  state::copy_into(wall_mr_, s.wall_mr);
+  import_polygons(s);  // the shape: polygons if the state has them, else discs
+  time_ = s.time;
+  steps_ = s.steps;
+  removed_ = s.removed;
+  dissipated_ = s.dissipated;
+  work_external_ = s.work_external;
+  elastic_ = s.elastic;
+  ncontact_ = s.ncontact;
+  nwall_contact_ = s.nwall_contact;
+  forces_valid_ = s.forces_valid;
+  rebuild_ = true;
+  prepared_ = false;
+}
+
+// ---- the checkpoint: named flat arrays of doubles
+
+std::map<std::string, std::vector<double>> dem_state_to_map(DEMState t) {
+  StateMap s;
+  for (const auto& f : kDiscReals) s[f.key] = std::move(t.*f.state);
+  for (const auto& f : kDiscFlags) s[f.key] = to_double(t.*f.state);
+  s["contact_i"] = to_double(t.contact_i);
+  s["contact_j"] = to_double(t.contact_j);
+  s["contact_xi"] = std::move(t.contact_xi);
+  s["contact_mr"] = std::move(t.contact_mr);
+  s["wall_xi"] = std::move(t.wall_xi);
+  s["wall_mr"] = std::move(t.wall_mr);
+  s["scalars"] = {t.time,
+                  static_cast<double>(t.steps),
+                  static_cast<double>(t.removed),
+                  t.dissipated,
+                  t.work_external,
+                  t.elastic,
+                  static_cast<double>(t.ncontact),
+                  static_cast<double>(t.nwall_contact),
+                  t.forces_valid ? 1.0 : 0.0};
+  if (!t.poly_offset.empty()) {
+    s["poly_vertex"] = std::move(t.poly_vertex);
+    s["poly_offset"] = to_double(t.poly_offset);
+    s["poly_contact_i"] = to_double(t.poly_contact_i);
+    s["poly_contact_j"] = to_double(t.poly_contact_j);
+    s["poly_contact_id"] = to_double(t.poly_contact_id);
+    s["poly_contact_xi"] = std::move(t.poly_contact_xi);
+    s["poly_wall_id"] = to_double(t.poly_wall_id);
+    s["poly_wall_xi"] = std::move(t.poly_wall_xi);
+  }
+  return s;
+}
+
+DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& s, std::size_t nwalls) {
+  DEMState t;
+  const std::size_t n = entry(s, "disc_radius", state::kAnySize).size();
+  for (const auto& f : kDiscReals)
+    t.*f.state = f.optional && !s.count(f.key) ? std::vector<double>(f.per * n, f.missing) : entry(s, f.key, f.per * n);
+  for (const auto& f : kDiscFlags) from_double(t.*f.state, entry(s, f.key, f.per * n));
+  const auto& ci = entry(s, "contact_i", state::kAnySize);
+  from_double(t.contact_i, ci);
+  from_double(t.contact_j, entry(s, "contact_j", ci.size()));
+  t.contact_xi = entry(s, "contact_xi", ci.size());
+  t.contact_mr = s.count("contact_mr") ? entry(s, "contact_mr", ci.size()) : std::vector<double>(ci.size(), 0.0);
+  const std::size_t nw = n * nwalls;
+  t.wall_xi = entry(s, "wall_xi", nw);
+  t.wall_mr = s.count("wall_mr") ? entry(s, "wall_mr", nw) : std::vector<double>(nw, 0.0);
+  if (s.count("poly_vertex")) {
+    t.poly_vertex = s.at("poly_vertex");
+    from_double(t.poly_offset, entry(s, "poly_offset", n + 1));
+    const auto& pi = entry(s, "poly_contact_i", state::kAnySize);
+    from_double(t.poly_contact_i, pi);
+    from_double(t.poly_contact_j, entry(s, "poly_contact_j", pi.size()));
+    from_double(t.poly_contact_id, entry(s, "poly_contact_id", 2 * pi.size()));
+    t.poly_contact_xi = entry(s, "poly_contact_xi", 2 * pi.size());
+    from_double(t.poly_wall_id, entry(s, "poly_wall_id", 2 * nw));
+    t.poly_wall_xi = entry(s, "poly_wall_xi", 2 * nw);
+  }
+  const auto& sc = entry(s, "scalars", 9);
+  t.time = sc[0];
+  t.steps = static_cast<long long>(sc[1]);
+  t.removed = static_cast<int>(sc[2]);
+  t.dissipated = sc[3];
+  t.work_external = sc[4];
+  t.elastic = sc[5];
+  t.ncontact = static_cast<int>(sc[6]);
+  t.nwall_contact = static_cast<int>(sc[7]);
+  t.forces_valid = sc[8] != 0.0;
+  return t;
+}
+
+std::map<std::string, std::vector<double>> DEMSystem::export_state() const {
+  DEMState t;
+  export_state(t);
+  return dem_state_to_map(std::move(t));
+}
+
+void DEMSystem::import_state(const std::map<std::string, std::vector<double>>& s) {
+  import_state(dem_state_from_map(s, params_.walls.size()));
+}
+
+}  // namespace vofdem

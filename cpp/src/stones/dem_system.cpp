@@ -1,0 +1,749 @@
+// DEM of the stones, eqs. (8)-(10) of Maeno & Tomita (2008): see dem_system.h.
+#include "vofdem/stones/dem_system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "vofdem/common/check.h"
+#include "vofdem/stones/dem_contact.h"
+#include "vofdem/stones/wet_fraction.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+const char* kStageNames[kDEMStageCount] = {"integrate", "removal", "neighbours", "body_forces",
+                                            "contacts",  "walls",   "sleep",      "checks"};
+
+// sphere of the disc's diameter: volume [m^3]
+inline double sphere_volume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }
+
+[[noreturn]] void fail(const std::string& stage, int stone, double t, const std::string& what) {
+  throw std::runtime_error("DEM stage '" + stage + "': " + what + " of stone " + std::to_string(stone) +
+                           " at t = " + format_value(t) + " s (state restored to the start of the call)");
+}
+}  // namespace
+
+void DEMParams::add_flume(double x_min, double x_max, double z_bed, double mu) {
+  require_finite("x_min", x_min);
+  require_finite("z_bed", z_bed);
+  if (!(x_max > x_min)) require_in_open_closed("x_max", x_max, x_min, INFINITY);
+  require_non_negative("mu", mu);
+  walls.push_back({{x_min, z_bed}, {0.0, 1.0}, mu});
+  walls.push_back({{x_min, z_bed}, {1.0, 0.0}, mu});
+  walls.push_back({{x_max, z_bed}, {-1.0, 0.0}, mu});
+}
+
+DEMSystem::DEMSystem(const DEMParams& params, int n) : params_(params) {
+  for (int s = 0; s < kDEMStageCount; ++s) profile_.add_stage(kStageNames[s]);
+  check_params();
+  resize(n);
+}
+
+DEMSystem::DEMSystem(const DEMParams& params, const std::vector<double>& pos, const std::vector<double>& radius,
+                     const std::vector<double>& density, const std::vector<std::uint8_t>& fixed)
+    : DEMSystem(params, static_cast<int>(radius.size())) {
+  if (pos.size() != 2 * radius.size())
+    require_in_closed("pos size", static_cast<double>(pos.size()), 2.0 * radius.size(), 2.0 * radius.size());
+  if (density.size() != radius.size() && density.size() != 1)
+    require_in_closed("density size", static_cast<double>(density.size()), 1.0, 1.0 * radius.size());
+  if (!fixed.empty() && fixed.size() != radius.size())
+    require_in_closed("fixed size", static_cast<double>(fixed.size()), 0.0, 1.0 * radius.size());
+  disc_pos = pos;
+  disc_radius = radius;
+  for (int i = 0; i < n_; ++i) disc_density[i] = density.size() == 1 ? density[0] : density[i];
+  if (!fixed.empty()) disc_fixed = fixed;
+  check_stones();
+}
+
+void DEMSystem::resize(int n) {
+  if (n < 0) require_non_negative("n", n);
+  n_ = n;
+  const std::size_t un = static_cast<std::size_t>(n);
+  const double wet = params_.submerged ? 1.0 : 0.0;
+  disc_pos.assign(2 * un, 0.0);
+  disc_vel.assign(2 * un, 0.0);
+  disc_angle.assign(un, 0.0);
+  disc_omega.assign(un, 0.0);
+  disc_radius.assign(un, 0.0);
+  disc_density.assign(un, 2650.0);
+  disc_fixed.assign(un, 0);
+  disc_active.assign(un, 1);
+  disc_force_ext.assign(2 * un, 0.0);
+  disc_drag_coef.assign(un, 0.0);
+  disc_drag_vel.assign(2 * un, 0.0);
+  disc_wet.assign(un, wet);
+  disc_water_level.assign(un, std::numeric_limits<double>::quiet_NaN());
+  disc_force.assign(2 * un, 0.0);
+  disc_torque.assign(un, 0.0);
+  disc_acc.assign(2 * un, 0.0);
+  disc_alpha.assign(un, 0.0);
+  disc_asleep.assign(un, 0);
+  disc_sleep_timer.assign(un, 0.0);
+  // back to discs: a polygon system is made again with set_polygons()
+  shape_ = StoneShape::kDisc;
+  poly_vertex.clear();
+  poly_offset.clear();
+  poly_wall_hist_.clear();
+  pairs_.clear();
+  wall_xi_.assign(un * params_.walls.size(), 0.0);
+  wall_mr_.assign(un * params_.walls.size(), 0.0);
+  rebuild_ = true;
+  prepared_ = false;
+  forces_valid_ = false;
+}
+
+void DEMSystem::set_params(const DEMParams& p) {
+  // checked before anything changes: a refused set leaves the system as it was
+  p.validate();
+  check_rolling_shape(shape_, p);
+  const std::size_t old_walls = params_.walls.size();
+  params_ = p;
+  forces_valid_ = false;
+  if (params_.walls.size() != old_walls) {
+    wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
+    wall_mr_.assign(wall_xi_.size(), 0.0);
+    if (shape_ == StoneShape::kPolygon)
+      poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
+  }
+  rebuild_ = true;
+  prepared_ = false;
+}
+
+void DEMParams::validate() const {
+  medium.validate();
+  require_non_negative("added_mass_coefficient", added_mass_coefficient);
+  require_positive("dt", dt);
+  require_non_negative("stiffness_normal", stiffness_normal);
+  require_in_closed("contact_steps", contact_steps, 5.0, 1e6);
+  require_non_negative("stiffness_ratio", stiffness_ratio);
+  require_in_closed("restitution", restitution, 0.0, 1.0);
+  require_non_negative("tangential_damping_factor", tangential_damping_factor);
+  require_non_negative("friction_stone", friction_stone);
+  require_in_open_closed("inertia_factor", inertia_factor, 0.0, 1.0);
+  require_non_negative("rolling_friction_stone", rolling_friction_stone);
+  require_non_negative("rolling_friction_wall", rolling_friction_wall);
+  require_in_closed("rolling_damping", rolling_damping, 0.0, 1.0);
+  require_non_negative("neighbour_skin", neighbour_skin);
+  require_non_negative("sleep_velocity", sleep_velocity);
+  require_non_negative("sleep_time", sleep_time);
+  require_non_negative("wake_acceleration", wake_acceleration);
+  for (int c = 0; c < 2; ++c) {
+    // -inf is a side without removal; NaN and +inf bound nothing
+    if (!(domain_min[c] < INFINITY)) require_finite(c == 0 ? "domain_min[0]" : "domain_min[1]", domain_min[c]);
+    if (!(domain_max[c] > domain_min[c]))
+      require_in_open_closed(c == 0 ? "domain_max[0]" : "domain_max[1]", domain_max[c], domain_min[c], INFINITY);
+  }
+  for (const DEMWall& w : walls) {
+    require_finite("wall point", w.point[0]);
+    require_finite("wall point", w.point[1]);
+    require_positive("wall normal length", std::hypot(w.normal[0], w.normal[1]));
+    require_non_negative("wall friction", w.friction);
+  }
+  if (flags >= (1u << 10))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 1023]");
+}
+
+void DEMSystem::check_params() const {
+  params_.validate();
+  check_rolling_shape(shape_, params_);
+}
+
+void DEMSystem::check_stones() const {
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i]) continue;
+    require_positive("disc_radius", disc_radius[i]);
+    require_positive("disc_density", disc_density[i]);
+    require_in_closed("disc_wet", disc_wet[i], 0.0, 1.0);
+    require_finite("disc_pos", disc_pos[2 * i]);
+    require_finite("disc_pos", disc_pos[2 * i + 1]);
+    require_finite("disc_force_ext", disc_force_ext[2 * i]);
+    require_finite("disc_force_ext", disc_force_ext[2 * i + 1]);
+    require_non_negative("disc_drag_coef", disc_drag_coef[i]);
+    require_finite("disc_drag_coef", disc_drag_coef[i]);
+    require_finite("disc_drag_vel", disc_drag_vel[2 * i]);
+    require_finite("disc_drag_vel", disc_drag_vel[2 * i + 1]);
+  }
+}
+
+double DEMSystem::mass(int i) const {
+  if (shape_ == StoneShape::kPolygon) return disc_density[i] * polygon_stone_volume(poly_area_[i]);
+  return disc_density[i] * sphere_volume(disc_radius[i]);
+}
+double DEMSystem::volume(int i) const {
+  if (shape_ == StoneShape::kPolygon) return polygon_stone_volume(poly_area_[i]);
+  return sphere_volume(disc_radius[i]);
+}
+double DEMSystem::projected_area(int i) const {
+  if (shape_ == StoneShape::kPolygon) {
+    const int o = poly_offset[i];
+    const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], poly_offset[i + 1] - o);
+    return 0.25 * polygon_nominal_diameter(poly_area_[i]) * q.perimeter;
+  }
+  return kPi * disc_radius[i] * disc_radius[i];
+}
+
+// derived masses (eqs. 8-9): M + M', buoyant weight, inertia; fixed or inactive stones get 1/M = 0
+void DEMSystem::update_properties() {
+  const std::size_t un = static_cast<std::size_t>(n_);
+  mass_eff_.resize(un);
+  inv_mass_.resize(un);
+  inv_inertia_.resize(un);
+  weight_.resize(un);
+  for (int i = 0; i < n_; ++i) update_stone_properties(i);
+}
+
+// effective mass, weight and inverse inertia of stone i from its size, density and wet fraction
+void DEMSystem::update_stone_properties(int i) {
+  const double m = update_stone_masses(i);
+  const DEMParams& p = params_;
+  const bool mobile = disc_active[i] && !disc_fixed[i];
+  const double inertia = shape_ == StoneShape::kPolygon ? 2.0 * p.inertia_factor * m * poly_jratio_[i]
+                                                        : p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+  inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
+}
+
+// the parts that follow the wet fraction (eqs. 8-9): M + M', buoyant weight, 1/(M + M'); returns the
+// dry mass M [kg] (of the matching 3D stone for a polygon)
+double DEMSystem::update_stone_masses(int i) {
+  const DEMParams& p = params_;
+  const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
+  const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
+  const double v = volume(i);
+  const double m = disc_density[i] * v;
+  const double wv = v * disc_wet[i];
+  mass_eff_[i] = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
+  weight_[i] = m - (buoy ? p.water_density() * wv : 0.0);
+  const bool mobile = disc_active[i] && !disc_fixed[i];
+  inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
+  return m;
+}
+
+void DEMSystem::set_wet_fraction(int i, double w) {
+  if (i < 0 || i >= n_) require_in_closed("i", i, 0, n_ - 1);
+  require_in_closed("disc_wet", w, 0.0, 1.0);
+  change_wet_fraction(i, w);
+}
+
+// set_wet_fraction without its checks (w in [0, 1] from disc_wet_fraction)
+void DEMSystem::change_wet_fraction(int i, double w) {
+  const double w_old = disc_wet[i];
+  if (w == w_old) return;
+  const DEMParams& p = params_;
+  const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
+  if (added && w > w_old && disc_active[i] && !disc_fixed[i]) {
+    // the water taken on starts at rest: (M + M') v kept, the kinetic energy that costs dissipated
+    const double v_i = volume(i), m = disc_density[i] * v_i;
+    const double c = p.water_density() * p.added_mass_coefficient * v_i;
+    const double m_old = m + c * w_old, r = m_old / (m + c * w);
+    double* v = &disc_vel[2 * i];
+    dissipated_ += 0.5 * m_old * (1.0 - r) * (v[0] * v[0] + v[1] * v[1]);
+    v[0] *= r;
+    v[1] *= r;
+  }
+  disc_wet[i] = w;
+  // masses derived already (within a step): refreshed now; else the next step derives them
+  if (mass_eff_.size() == static_cast<std::size_t>(n_)) update_stone_masses(i);
+}
+
+// the wet fraction of a stone given a water level follows its height (wet_fraction.h); within a step
+// the drag's kick scale follows its new mass, so that the next half kicks integrate the linear drag
+// exactly with the added mass the stone now has (set_wet_fraction has kept its momentum)
+void DEMSystem::follow_water_level(int i) {
+  const double w = disc_wet_fraction((disc_water_level[i] - disc_pos[2 * i + 1]) / disc_radius[i]);
+  if (w == disc_wet[i]) return;
+  change_wet_fraction(i, w);
+  if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);
+}
+
+// reduced mass of two mean mobile stones [kg], for the automatic stiffness
+double DEMSystem::reduced_stiffness_mass() const {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i] || disc_fixed[i]) continue;
+    sum += mass(i);
+    ++count;
+  }
+  if (count == 0) {
+    for (int i = 0; i < n_; ++i) sum += mass(i), ++count;
+  }
+  return count > 0 ? 0.5 * sum / count : 0.0;
+}
+
+void DEMSystem::prepare() {
+  check_params();  // C++ callers may have built the system from unchecked parameters
+  // polygon vertices may have been edited through the views: their sections are derived again
+  if (shape_ == StoneShape::kPolygon && cached_poly_vertex_ != poly_vertex) update_polygon_properties();
+  // and poses: no world geometry of a still stone is kept from before (dem_polygon.cpp)
+  poly_eval_ += 1;
+  check_stones();
+  const DEMParams& p = params_;
+  if (p.stiffness_normal > 0.0) {
+    kn_ = p.stiffness_normal;
+  } else {
+    const double w = kPi / (p.contact_steps * p.dt);
+    kn_ = reduced_stiffness_mass() * w * w;
+  }
+  kt_ = p.stiffness_ratio * kn_;
+  zeta_ = damping_ratio_from_restitution(p.restitution);
+  double rmax = 0.0;
+  for (int i = 0; i < n_; ++i)
+    if (disc_active[i]) rmax = std::max(rmax, disc_radius[i]);
+  const double skin = p.neighbour_skin > 0.0 ? p.neighbour_skin : 0.2 * rmax;
+  if (skin != skin_) rebuild_ = true;
+  skin_ = skin;
+  if (wall_xi_.size() != static_cast<std::size_t>(n_) * p.walls.size())
+    wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
+  if (wall_mr_.size() != wall_xi_.size()) wall_mr_.assign(wall_xi_.size(), 0.0);
+  if (shape_ == StoneShape::kPolygon && poly_wall_hist_.size() != static_cast<std::size_t>(n_) * p.walls.size())
+    poly_wall_hist_.assign(static_cast<std::size_t>(n_) * p.walls.size(), PolygonHistory{});
+  if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
+  update_properties();
+  update_rolling_inertia();
+  // radii, activity or fixing may have been changed through the views: the list is rebuilt; else only
+  // the pairs' reduced masses are refreshed (wet fractions may have changed)
+  if (cached_radius_ != disc_radius || cached_active_ != disc_active || cached_fixed_ != disc_fixed) {
+    cached_radius_ = disc_radius;
+    cached_active_ = disc_active;
+    cached_fixed_ = disc_fixed;
+    rebuild_ = true;
+  }
+  // the contacts' dashpots use the masses of the step's start: a wet fraction that follows a water
+  // level changes them within the step, and a neighbour build then must not depend on when it happens
+  contact_inv_mass_ = inv_mass_;
+  if (!rebuild_) {
+    for (Pair& c : pairs_) c.sqrt_m = std::sqrt(1.0 / (contact_inv_mass_[c.i] + contact_inv_mass_[c.j]));
+    update_pair_rolling();
+  }
+  prepared_ = true;
+}
+
+double DEMSystem::stable_dt() {
+  prepare();
+  if (shape_ == StoneShape::kPolygon) return polygon_stable_dt();
+  double m_min = INFINITY;
+  for (int i = 0; i < n_; ++i)
+    if (disc_active[i] && !disc_fixed[i]) m_min = std::min(m_min, mass(i));
+  if (!std::isfinite(m_min) || kn_ <= 0.0) return INFINITY;
+  // two of the lightest stones: normal mode and the tangential mode that includes their spin
+  const double w2_n = 2.0 * kn_ / m_min;
+  const double rot = (params_.flags & kDEMRotation) ? 1.0 / params_.inertia_factor : 0.0;
+  const double w2_t = 2.0 * kt_ * (1.0 + rot) / m_min + rolling_spin_stiffness(m_min);
+  const double w = std::sqrt(std::max(w2_n, w2_t));
+  // explicit dashpots: a mode of frequency a w and damping ratio a zeta (dashpots proportional to the
+  // springs) is stable for dt <= 2 / (a w (a zeta + sqrt(1 + a^2 zeta^2))); a stone packed among
+  // kPackedContacts neighbours has modes up to a = sqrt(kPackedContacts) times the pair's. Measured on
+  // six packed weirs (critical damping): the energy grew at 0.7-0.8 of the undamped bound alone, never
+  // at 0.65; this bound is 0.61 of it there, and the undamped one where the damping is weak
+  const double zeta = (params_.flags & kDEMDamping) ? zeta_ : 0.0;
+  const double a = std::sqrt(kPackedContacts), az = a * zeta;
+  const double damped = 2.0 / (a * w * (az + std::sqrt(1.0 + az * az)));
+  return std::min(kPi / (10.0 * w), damped);
+}
+
+void DEMSystem::step(double dt) { advance_checked(dt, 1); }
+
+void DEMSystem::advance(double duration) {
+  require_positive("duration", duration);
+  const long long nsub = std::max(1LL, static_cast<long long>(std::ceil(duration / params_.dt - 1e-9)));
+  advance_checked(duration / static_cast<double>(nsub), nsub);
+}
+
+void DEMSystem::advance_checked(double dt, long long nsub) {
+  require_positive("dt", dt);
+  const double limit = stable_dt();  // also prepares
+  if (dt > limit)
+    throw std::invalid_argument("dt = " + format_value(dt) +
+                                " s exceeds the DEM contact's stable step: allowed range (0, " +
+                                format_value(limit) + "] (stable_dt(); lower dt or stiffness_normal)");
+  export_state(backup_);
+  update_kick_scale(dt);
+  try {
+    StageLaps laps(profile_);
+    for (long long s = 0; s < nsub; ++s) substep(dt, laps);
+  } catch (const std::runtime_error&) {
+    import_state(backup_);
+    throw;
+  }
+}
+
+// phi(x) = (1 - e^-x) / x of each stone's linear drag over a half kick of the substep dt (1 without drag)
+void DEMSystem::update_kick_scale(double dt) {
+  kick_dt_ = dt;
+  kick_scale_.resize(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) kick_scale_[i] = drag_kick_scale(i, dt);
+}
+
+// phi(h c / (M + M')) of stone i for a half kick h = dt / 2, with its present mass
+double DEMSystem::drag_kick_scale(int i, double dt) const {
+  if (!(params_.flags & kDEMExternalForce)) return 1.0;
+  const double x = 0.5 * dt * disc_drag_coef[i] * inv_mass_[i];
+  if (x > 1e-8) return -std::expm1(-x) / x;
+  return x > 0.0 ? 1.0 - 0.5 * x : 1.0;
+}
+
+// body, contact and wall forces at the current positions (dt: step of the history springs); each
+// stage's time is the lap that ends it
+void DEMSystem::evaluate_forces(double dt, bool body, StageLaps& laps) {
+  if (body) {
+    body_forces(dt);
+    laps.lap(kStageBodyForces);
+  }
+  const bool poly = shape_ == StoneShape::kPolygon;
+  if (poly) polygon_contact_forces(dt);
+  else contact_forces(dt);
+  laps.lap(kStageContacts);
+  if (!params_.walls.empty()) {
+    if (poly) polygon_wall_forces(dt);
+    else wall_forces(dt);
+    laps.lap(kStageWalls);
+  }
+}
+
+// one velocity-Verlet step: kick-drift, forces at the new positions, kick (the time since the last
+// lap of the previous substep counts to this one's integration)
+void DEMSystem::substep(double dt, StageLaps& laps) {
+  const unsigned f = params_.flags;
+  if (!forces_valid_) {
+    // a fresh start: the first kick needs the accelerations of the initial state
+    if (rebuild_ || neighbours_stale()) {
+      build_neighbours();
+      laps.lap(kStageNeighbours);
+    }
+    evaluate_forces(0.0, true, laps);
+    for (int i = 0; i < n_; ++i) {
+      disc_acc[2 * i] = disc_force[2 * i] * inv_mass_[i];
+      disc_acc[2 * i + 1] = disc_force[2 * i + 1] * inv_mass_[i];
+      disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
+    }
+    forces_valid_ = true;
+  }
+  // one pass: kick, drift, body forces, escape and neighbour-list checks
+  const FirstHalf pass = integrate_first_half(dt);
+  laps.lap(kStageIntegrate);
+  if (pass.escaped) {
+    remove_escaped();
+    laps.lap(kStageRemoval);
+  }
+  if (rebuild_ || pass.stale) {
+    build_neighbours();
+    laps.lap(kStageNeighbours);
+  }
+  evaluate_forces(dt, false, laps);
+  time_ += dt;
+  ++steps_;
+  integrate_second_half(dt);
+  laps.lap(kStageChecks);
+  if (f & kDEMSleeping) {
+    sleep_update(dt);
+    laps.lap(kStageSleep);
+  }
+}
+
+// kick-drift of the awake stones; body forces (gravity minus buoyancy, eq. 9, and the external force)
+// of every mobile stone, with the escape and neighbour-list checks folded into the same pass
+DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
+  const DEMParams& p = params_;
+  const double h = 0.5 * dt;
+  const bool grav = p.flags & kDEMGravity;
+  const bool ext = p.flags & kDEMExternalForce;
+  const bool removal = p.flags & kDEMRemoval;
+  const double gx = p.medium.gravity[0], gz = p.medium.gravity[1];
+  const double lim2 = 0.25 * skin_ * skin_;
+  FirstHalf out;
+  out.stale = build_pos_.size() != disc_pos.size();
+  double work = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    double* f = &disc_force[2 * i];
+    f[0] = f[1] = 0.0;
+    disc_torque[i] = 0.0;
+    if (inv_mass_[i] == 0.0) continue;
+    double* v = &disc_vel[2 * i];
+    double* x = &disc_pos[2 * i];
+    if (!disc_asleep[i]) {
+      const double* a = &disc_acc[2 * i];
+      const double s = kick_scale_[i];
+      v[0] += h * a[0] * s;
+      v[1] += h * a[1] * s;
+      x[0] += dt * v[0];
+      x[1] += dt * v[1];
+      disc_omega[i] += h * disc_alpha[i];
+      disc_angle[i] += dt * disc_omega[i];
+      if (!std::isnan(disc_water_level[i])) follow_water_level(i);
+    }
+    if (removal) {
+      out.escaped |= x[0] < p.domain_min[0] || x[0] > p.domain_max[0] || x[1] < p.domain_min[1] ||
+                     x[1] > p.domain_max[1];
+    }
+    if (!out.stale) {
+      const double dx = x[0] - build_pos_[2 * i], dz = x[1] - build_pos_[2 * i + 1];
+      out.stale = dx * dx + dz * dz > lim2;
+    }
+    if (grav) {
+      f[0] += weight_[i] * gx;
+      f[1] += weight_[i] * gz;
+    }
+    if (ext) {
+      const double* fe = &disc_force_ext[2 * i];
+      double fx = fe[0], fz = fe[1];
+      const double c = disc_drag_coef[i];
+      if (c > 0.0) fx += c * (disc_drag_vel[2 * i] - v[0]), fz += c * (disc_drag_vel[2 * i + 1] - v[1]);
+      f[0] += fx;
+      f[1] += fz;
+      work += fx * v[0] + fz * v[1];
+    }
+  }
+  work_external_ += work * dt;
+  return out;
+}
+
+// second kick from the new accelerations; a non-finite value aborts the call
+void DEMSystem::integrate_second_half(double dt) {
+  const double h = 0.5 * dt;
+  const bool ext = params_.flags & kDEMExternalForce;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    double* a = &disc_acc[2 * i];
+    a[0] = disc_force[2 * i] * inv_mass_[i];
+    a[1] = disc_force[2 * i + 1] * inv_mass_[i];
+    disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
+    if (disc_asleep[i]) continue;
+    double* v = &disc_vel[2 * i];
+    const double s = kick_scale_[i];
+    const double vx = v[0], vz = v[1];
+    v[0] += h * a[0] * s;
+    v[1] += h * a[1] * s;
+    disc_omega[i] += h * disc_alpha[i];
+    // the linear drag of the force evaluation is that of the half-step velocity: brought to the new one
+    const double c = disc_drag_coef[i];
+    if (c > 0.0 && ext) {
+      const double dvx = v[0] - vx, dvz = v[1] - vz;
+      disc_force[2 * i] -= c * dvx, disc_force[2 * i + 1] -= c * dvz;
+      a[0] -= c * inv_mass_[i] * dvx, a[1] -= c * inv_mass_[i] * dvz;
+    }
+    if (!std::isfinite(v[0] + v[1] + disc_omega[i] + disc_pos[2 * i] + disc_pos[2 * i + 1]))
+      fail("integrate", i, time_, "non-finite position or velocity");
+  }
+}
+
+void DEMSystem::remove_escaped() {
+  const DEMParams& p = params_;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    const double x = disc_pos[2 * i], z = disc_pos[2 * i + 1];
+    if (x >= p.domain_min[0] && x <= p.domain_max[0] && z >= p.domain_min[1] && z <= p.domain_max[1]) continue;
+    // kept in the arrays (indices stay stable), no longer simulated
+    disc_active[i] = 0;
+    inv_mass_[i] = 0.0;
+    inv_inertia_[i] = 0.0;
+    disc_vel[2 * i] = disc_vel[2 * i + 1] = 0.0;
+    disc_omega[i] = 0.0;
+    disc_acc[2 * i] = disc_acc[2 * i + 1] = 0.0;
+    disc_alpha[i] = 0.0;
+    disc_force[2 * i] = disc_force[2 * i + 1] = 0.0;
+    for (std::size_t w = 0; w < p.walls.size(); ++w) {
+      wall_xi_[i * p.walls.size() + w] = 0.0;
+      wall_mr_[i * p.walls.size() + w] = 0.0;
+    }
+    if (shape_ == StoneShape::kPolygon)
+      for (std::size_t w = 0; w < p.walls.size(); ++w) poly_wall_hist_[i * p.walls.size() + w] = PolygonHistory{};
+    ++removed_;
+    rebuild_ = true;
+  }
+}
+
+void DEMSystem::body_forces(double dt) {
+  const DEMParams& p = params_;
+  const bool grav = p.flags & kDEMGravity;
+  const bool ext = p.flags & kDEMExternalForce;
+  for (int i = 0; i < n_; ++i) {
+    double* f = &disc_force[2 * i];
+    f[0] = f[1] = 0.0;
+    disc_torque[i] = 0.0;
+    if (inv_mass_[i] == 0.0) continue;
+    if (grav) {
+      f[0] += weight_[i] * p.medium.gravity[0];
+      f[1] += weight_[i] * p.medium.gravity[1];
+    }
+    if (ext) {
+      const double* fe = &disc_force_ext[2 * i];
+      const double* v = &disc_vel[2 * i];
+      const double c = disc_drag_coef[i];
+      const double fx = fe[0] + c * (disc_drag_vel[2 * i] - v[0]), fz = fe[1] + c * (disc_drag_vel[2 * i + 1] - v[1]);
+      f[0] += fx;
+      f[1] += fz;
+      work_external_ += (fx * v[0] + fz * v[1]) * dt;
+    }
+  }
+}
+
+void DEMSystem::contact_forces(double dt) {
+  const DEMParams& p = params_;
+  const auto [friction, damp, kt] = contact_law();
+  const double ct_factor = p.tangential_damping_factor;
+  const bool rolling = rolling_stones();
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (Pair& c : pairs_) {
+    const int i = c.i, j = c.j;
+    const double dx = disc_pos[2 * j] - disc_pos[2 * i];
+    const double dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
+    const double ri = disc_radius[i], rj = disc_radius[j];
+    const double rs = ri + rj;
+    const double d2 = dx * dx + dz * dz;
+    if (d2 >= rs * rs) {
+      c.xi = 0.0;
+      c.mr = 0.0;
+      continue;
+    }
+    ++ncontact;
+    const double d = std::sqrt(d2);
+    const double inv_d = d > 0.0 ? 1.0 / d : 0.0;
+    const double nx = d > 0.0 ? dx * inv_d : 1.0, nz = dz * inv_d;
+    const double vrx = disc_vel[2 * i] - disc_vel[2 * j];
+    const double vrz = disc_vel[2 * i + 1] - disc_vel[2 * j + 1];
+    const double vn = vrx * nx + vrz * nz;
+    const double vt = -vrx * nz + vrz * nx + disc_omega[i] * ri + disc_omega[j] * rj;
+    const double cn = damp * c.sqrt_m;
+    const ContactForce f = friction ? linear_contact(rs - d, vn, vt, c.xi, dt, kn_, kt, cn, ct_factor * cn,
+                                                     p.friction_stone, true)
+                                    : linear_contact(rs - d, vn, 0.0, c.xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+    // force on i: -f_n n + f_s t, with t = (-n_z, n_x)
+    const double fx = -f.fn * nx - f.ft * nz;
+    const double fz = -f.fn * nz + f.ft * nx;
+    disc_force[2 * i] += fx;
+    disc_force[2 * i + 1] += fz;
+    disc_force[2 * j] -= fx;
+    disc_force[2 * j + 1] -= fz;
+    disc_torque[i] += ri * f.ft;
+    disc_torque[j] += rj * f.ft;
+    elastic += f.energy_spring;
+    dissipated += f.power_damp * dt + f.energy_slip;
+    if (rolling) {
+      const RollingEnergy e = rolling_contact(c, f.fn, dt);
+      elastic += e.elastic;
+      dissipated += e.dissipated;
+    }
+  }
+  elastic_ = elastic;
+  dissipated_ += dissipated;
+  ncontact_ = ncontact;
+}
+
+void DEMSystem::wall_forces(double dt) {
+  const DEMParams& p = params_;
+  const auto [friction, damp, kt] = contact_law();
+  const bool rolling = rolling_walls();
+  const std::size_t nw = p.walls.size();
+  double elastic = 0.0, dissipated = 0.0;
+  int ncontact = 0;
+  for (std::size_t w = 0; w < nw; ++w) {
+    const DEMWall& wall = p.walls[w];
+    const auto [wx, wz] = wall_unit_normal(wall);
+    // contact normal from the stone into the wall
+    const double nx = -wx, nz = -wz;
+    for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
+      const int i = wall_cand_[c];
+      if (inv_mass_[i] == 0.0) continue;
+      double& xi = wall_xi_[static_cast<std::size_t>(i) * nw + w];
+      const double r = disc_radius[i];
+      const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
+      if (s >= r) {
+        xi = 0.0;
+        wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
+        continue;
+      }
+      ++ncontact;
+      const double vx = disc_vel[2 * i], vz = disc_vel[2 * i + 1];
+      const double vn = vx * nx + vz * nz;
+      const double vt = -vx * nz + vz * nx + disc_omega[i] * r;
+      const double cn = damp * std::sqrt(mass_eff_[i]);
+      const ContactForce f = friction ? linear_contact(r - s, vn, vt, xi, dt, kn_, kt,
+                                                       cn, p.tangential_damping_factor * cn, wall.friction, true)
+                                      : linear_contact(r - s, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
+      disc_force[2 * i] += -f.fn * nx - f.ft * nz;
+      disc_force[2 * i + 1] += -f.fn * nz + f.ft * nx;
+      disc_torque[i] += r * f.ft;
+      elastic += f.energy_spring;
+      dissipated += f.power_damp * dt + f.energy_slip;
+      if (rolling) {
+        const RollingEnergy e = rolling_wall(i, wall_mr_[static_cast<std::size_t>(i) * nw + w], f.fn, dt);
+        elastic += e.elastic;
+        dissipated += e.dissipated;
+      }
+    }
+  }
+  elastic_ += elastic;
+  dissipated_ += dissipated;
+  nwall_contact_ = ncontact;
+}
+
+// Box2D-like sleeping: slow for sleep_time -> frozen; woken when its net force would accelerate it
+void DEMSystem::sleep_update(double dt) {
+  const DEMParams& p = params_;
+  const double v2 = p.sleep_velocity * p.sleep_velocity;
+  const double a2 = p.wake_acceleration * p.wake_acceleration;
+  for (int i = 0; i < n_; ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    const double* a = &disc_acc[2 * i];
+    const double r = disc_radius[i];
+    if (disc_asleep[i]) {
+      const double ar = disc_alpha[i] * r;
+      if (a[0] * a[0] + a[1] * a[1] + ar * ar > a2) {
+        disc_asleep[i] = 0;
+        disc_sleep_timer[i] = 0.0;
+      }
+      continue;
+    }
+    double* v = &disc_vel[2 * i];
+    const double wr = disc_omega[i] * r;
+    if (v[0] * v[0] + v[1] * v[1] < v2 && wr * wr < v2) {
+      disc_sleep_timer[i] += dt;
+      if (disc_sleep_timer[i] >= p.sleep_time) {
+        dissipated_ += 0.5 * mass_eff_[i] * (v[0] * v[0] + v[1] * v[1]) +
+                       (inv_inertia_[i] > 0.0 ? 0.5 * disc_omega[i] * disc_omega[i] / inv_inertia_[i] : 0.0);
+        disc_asleep[i] = 1;
+        v[0] = v[1] = 0.0;
+        disc_omega[i] = 0.0;
+      }
+    } else {
+      disc_sleep_timer[i] = 0.0;
+    }
+  }
+}
+
+double DEMSystem::inertia(int i) const { return inertia_of(i, mass(i)); }
+
+double DEMSystem::inertia_of(int i, double m) const {
+  if (shape_ == StoneShape::kPolygon) return 2.0 * params_.inertia_factor * m * poly_jratio_[i];
+  return params_.inertia_factor * m * disc_radius[i] * disc_radius[i];
+}
+
+DEMEnergy DEMSystem::energy() const {
+  const DEMParams& p = params_;
+  DEMEnergy e;
+  const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
+  const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
+  const bool grav = p.flags & kDEMGravity;
+  for (int i = 0; i < n_; ++i) {
+    if (!disc_active[i] || disc_fixed[i]) continue;
+    const double v = volume(i);
+    const double m = disc_density[i] * v;
+    const double wv = v * disc_wet[i];
+    const double me = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
+    const double mw = m - (buoy ? p.water_density() * wv : 0.0);
+    const double inertia = inertia_of(i, m);
+    const double* u = &disc_vel[2 * i];
+    e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * disc_omega[i] * disc_omega[i];
+    if (grav) e.potential -= mw * (p.medium.gravity[0] * disc_pos[2 * i] + p.medium.gravity[1] * disc_pos[2 * i + 1]);
+  }
+  e.elastic = elastic_;
+  e.dissipated = dissipated_;
+  e.work_external = work_external_;
+  return e;
+}
+
+}  // namespace vofdem

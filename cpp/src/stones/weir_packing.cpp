@@ -1,0 +1,486 @@
+// Packing generator of a trapezoidal rubble mound weir: see weir_packing.h.
+#include "vofdem/stones/weir_packing.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <cstdio>
+#include <cstdlib>
+
+#include "vofdem/common/check.h"
+#include "vofdem/stones/polygon_contact.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// uniform in [0, 1) from the top 53 bits, independent of the standard library's distributions
+double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+
+double draw_diameter(std::mt19937_64& g, const WeirSpec& s) {
+  return s.d_mean * (1.0 + s.d_spread * (2.0 * uniform01(g) - 1.0));
+}
+
+void check_spec(const WeirSpec& s) {
+  require_positive("height", s.height);
+  require_non_negative("crest", s.crest);
+  require_in_open_closed("slope_up_deg", s.slope_up_deg, 0.0, 90.0);
+  require_in_open_closed("slope_down_deg", s.slope_down_deg, 0.0, 90.0);
+  require_finite("x_toe", s.x_toe);
+  require_finite("z_bed", s.z_bed);
+  require_positive("d_mean", s.d_mean);
+  require_in_closed("d_spread", s.d_spread, 0.0, 0.5);
+  require_positive("density", s.density);
+  require_positive("settle_time_max", s.settle_time_max);
+  require_positive("rest_speed", s.rest_speed);
+  if (s.shape == StoneShape::kPolygon) s.polygon.validate();
+  if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
+}
+
+double max_speed(const DEMSystem& sys) {
+  double v2 = 0.0;
+  for (int i = 0; i < sys.n(); ++i) {
+    if (!sys.disc_active[i] || sys.disc_fixed[i]) continue;
+    const double vx = sys.disc_vel[2 * i], vz = sys.disc_vel[2 * i + 1];
+    const double wr = sys.disc_omega[i] * sys.disc_radius[i];
+    v2 = std::max(v2, std::max(vx * vx + vz * vz, wr * wr));
+  }
+  return std::sqrt(v2);
+}
+
+// runs until every stone has been slower than rest_speed for `hold` seconds, or time runs out
+double settle(DEMSystem& sys, const WeirSpec& s, double hold) {
+  const double chunk = 0.01;
+  double t = 0.0, quiet = 0.0;
+  while (t < s.settle_time_max) {
+    sys.advance(chunk);
+    t += chunk;
+    quiet = max_speed(sys) < s.rest_speed ? quiet + chunk : 0.0;
+    if (quiet >= hold - 1e-12) break;
+  }
+  return t;
+}
+
+// the stones being packed: centres, (bounding) radii, fixed flags, and for polygons their orientations
+// and body-frame vertices; make() builds the DEM system of them
+struct Shape {
+  double radius = 0.0;          // disc radius, or the polygon's bounding radius [m]
+  double angle = 0.0;           // polygon orientation [rad]
+  std::vector<double> vertex{};  // polygon body-frame vertices (empty for a disc)
+};
+
+// random polygon shapes from their own generator (the diameters keep the disc draws)
+struct Shapes {
+  std::mt19937_64 rng;
+  PolygonSpec spec;
+  explicit Shapes(const WeirSpec& s) : rng(s.seed ^ 0x9e3779b97f4a7c15ull), spec(s.polygon) {}
+  // a polygon of nominal diameter d at a random orientation
+  Shape draw(double d) {
+    Shape out;
+    out.vertex = random_convex_polygon(rng, spec, d);
+    out.angle = 2.0 * kPi * uniform01(rng);
+    out.radius = polygon_properties(out.vertex.data(), static_cast<int>(out.vertex.size() / 2)).bounding_radius;
+    return out;
+  }
+};
+
+struct Pile {
+  const WeirSpec& spec;
+  bool poly;
+  std::vector<double> pos, radius, angle;
+  std::vector<std::uint8_t> fixed;
+  std::vector<std::vector<double>> vertex;
+  Pile(const WeirSpec& s, bool polygons) : spec(s), poly(polygons) {}
+  Pile& operator=(const Pile& o) {
+    poly = o.poly, pos = o.pos, radius = o.radius, angle = o.angle, fixed = o.fixed, vertex = o.vertex;
+    return *this;
+  }
+  void add(double x, double z, double r, std::uint8_t f, const Shape& shape = Shape{}) {
+    pos.push_back(x);
+    pos.push_back(z);
+    radius.push_back(r);
+    fixed.push_back(f);
+    if (poly) angle.push_back(shape.angle), vertex.push_back(shape.vertex);
+  }
+  // stone i of the system sys, whose shapes are those of `from`
+  void copy_stone(const DEMSystem& sys, const Pile& from, int i) {
+    pos.push_back(sys.disc_pos[2 * i]);
+    pos.push_back(sys.disc_pos[2 * i + 1]);
+    radius.push_back(sys.disc_radius[i]);
+    fixed.push_back(sys.disc_fixed[i]);
+    if (poly) angle.push_back(sys.disc_angle[i]), vertex.push_back(from.vertex[static_cast<std::size_t>(i)]);
+  }
+  // polygons: stone `shape` at (x, z) keeps more than `margin` [m] from every stone (separating axes)
+  bool polygon_fits(double x, double z, const Shape& shape, double margin) const {
+    const int n = static_cast<int>(shape.vertex.size() / 2);
+    double wc[2 * kPolygonMaxVertices], uc[2 * kPolygonMaxVertices], wi[2 * kPolygonMaxVertices],
+        ui[2 * kPolygonMaxVertices];
+    polygon_to_world(shape.vertex.data(), n, x, z, shape.angle, wc);
+    polygon_edge_normals(wc, n, uc);
+    for (std::size_t i = 0; i < radius.size(); ++i) {
+      if (std::hypot(x - pos[2 * i], z - pos[2 * i + 1]) > radius[i] + shape.radius + margin) continue;
+      const int m = static_cast<int>(vertex[i].size() / 2);
+      polygon_to_world(vertex[i].data(), m, pos[2 * i], pos[2 * i + 1], angle[i], wi);
+      polygon_edge_normals(wi, m, ui);
+      if (polygon_separation(wc, uc, n, wi, ui, m) <= margin) return false;
+    }
+    return true;
+  }
+  // positions (and orientations) of the settled system
+  void take(const DEMSystem& sys) {
+    pos = sys.disc_pos;
+    if (poly) angle = sys.disc_angle;
+  }
+  DEMSystem make(const DEMParams& p) const {
+    DEMSystem sys(p, pos, radius, {spec.density}, fixed);
+    if (poly) {
+      std::vector<double> v;
+      std::vector<int> off = {0};
+      for (const auto& w : vertex) {
+        v.insert(v.end(), w.begin(), w.end());
+        off.push_back(off.back() + static_cast<int>(w.size() / 2));
+      }
+      sys.disc_angle = angle;
+      sys.set_polygons(v, off);
+    }
+    return sys;
+  }
+};
+
+// the fixed bottom row of polygons: each lying on its longest edge, touching its neighbour
+void bottom_row_polygons(const WeirSpec& spec, std::mt19937_64& rng, Shapes& shapes, Pile& pile) {
+  double x_left = spec.x_toe;
+  const double x_end = spec.x_end();
+  for (;;) {
+    Shape s = shapes.draw(draw_diameter(rng, spec));
+    const int n = static_cast<int>(s.vertex.size() / 2);
+    s.angle = polygon_rest_angle(s.vertex.data(), n);
+    std::vector<double> w(s.vertex.size());
+    polygon_to_world(s.vertex.data(), n, 0.0, 0.0, s.angle, w.data());
+    double xmin = INFINITY, xmax = -INFINITY, zmin = INFINITY;
+    for (int k = 0; k < n; ++k)
+      xmin = std::min(xmin, w[2 * k]), xmax = std::max(xmax, w[2 * k]), zmin = std::min(zmin, w[2 * k + 1]);
+    const double xc = x_left - xmin;
+    if (xc + xmax > x_end + 1e-12) break;
+    pile.add(xc, spec.z_bed - zmin, s.radius, 1, s);
+    x_left = xc + xmax;
+  }
+}
+
+// adds stones at the free sites of a loose triangular lattice filling the trapezoid (centres up to the
+// crest, within `off` [m] outside the slopes); returns how many. Polygons: the pitch of their largest
+// bounding diameter (sqrt(aspect) (1 + jitter / 2) of the nominal one) and their bounding radii
+int pour_round(const WeirSpec& spec, double off, std::mt19937_64& rng, Shapes& shapes, Pile& pile) {
+  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
+  const double kappa = pile.poly ? std::sqrt(spec.polygon.aspect_ratio) * (1.0 + 0.5 * spec.polygon.radial_jitter) : 1.0;
+  const double d_max = spec.d_mean * (1.0 + spec.d_spread) * kappa;
+  const double pitch = 1.04 * d_max;
+  const double row = pitch * std::sqrt(3.0) / 2.0;
+  const double z_fill = spec.z_bed + spec.height;
+  int added = 0, k = 0;
+  for (double z = spec.z_bed + 1.6 * d_max; z <= z_fill; z += row, ++k) {
+    const double hz = z - spec.z_bed;
+    const double xa = spec.x_toe + hz / std::tan(au) + (0.5 * pitch - off) / std::sin(au);
+    const double xb = spec.x_end() - hz / std::tan(ad) - (0.5 * pitch - off) / std::sin(ad);
+    for (double xc = xa + (k % 2) * 0.5 * pitch; xc <= xb; xc += pitch) {
+      const double dc = draw_diameter(rng, spec);
+      const double xj = xc + 0.02 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean;
+      const Shape shape = pile.poly ? shapes.draw(dc) : Shape{0.5 * dc};
+      const double rc = shape.radius;
+      bool free_site = true;
+      if (pile.poly) free_site = pile.polygon_fits(xj, z, shape, 0.02 * spec.d_mean);
+      for (std::size_t i = 0; i < pile.radius.size() && free_site && !pile.poly; ++i) {
+        const double gap = std::hypot(xj - pile.pos[2 * i], z - pile.pos[2 * i + 1]) - pile.radius[i] - rc;
+        free_site = gap > 0.02 * spec.d_mean;
+      }
+      if (!free_site) continue;
+      pile.add(xj, z, rc, 0, shape);
+      ++added;
+    }
+  }
+  return added;
+}
+
+// distance from (x, z) to the segment a-b [m]
+double segment_distance(double x, double z, double ax, double az, double bx, double bz) {
+  const double ex = bx - ax, ez = bz - az;
+  const double len2 = ex * ex + ez * ez;
+  double t = len2 > 0.0 ? ((x - ax) * ex + (z - az) * ez) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(x - ax - t * ex, z - az - t * ez);
+}
+
+double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz);
+
+struct Trapezoid {
+  double px[4], pz[4];  // corners counter-clockwise: toe, upstream crest, downstream crest, downstream toe
+  explicit Trapezoid(const WeirSpec& s) {
+    const double x1 = s.x_toe + s.height / std::tan(s.slope_up_deg * kPi / 180.0);
+    const double x2 = x1 + s.crest;
+    const double zt = s.z_bed + s.height;
+    const double xs[4] = {s.x_toe, s.x_end(), x2, x1};
+    const double zs[4] = {s.z_bed, s.z_bed, zt, zt};
+    for (int k = 0; k < 4; ++k) px[k] = xs[k], pz[k] = zs[k];
+  }
+  bool inside(double x, double z) const {
+    for (int k = 0; k < 4; ++k) {
+      const int l = (k + 1) % 4;
+      const double cross = (px[l] - px[k]) * (z - pz[k]) - (pz[l] - pz[k]) * (x - px[k]);
+      if (cross < 0.0) return false;
+    }
+    return true;
+  }
+  // signed distance (< 0 inside)
+  double distance(double x, double z) const {
+    double d = INFINITY;
+    for (int k = 0; k < 4; ++k) {
+      const int l = (k + 1) % 4;
+      d = std::min(d, segment_distance(x, z, px[k], pz[k], px[l], pz[l]));
+    }
+    return inside(x, z) ? -d : d;
+  }
+};
+}  // namespace
+
+double WeirSpec::x_end() const {
+  return x_toe + height / std::tan(slope_up_deg * kPi / 180.0) + crest +
+         height / std::tan(slope_down_deg * kPi / 180.0);
+}
+
+double WeirSpec::top(double x) const {
+  const double up = (x - x_toe) * std::tan(slope_up_deg * kPi / 180.0);
+  const double down = (x_end() - x) * std::tan(slope_down_deg * kPi / 180.0);
+  return std::max(0.0, std::min(height, std::min(up, down)));
+}
+
+double WeirSpec::area() const { return 0.5 * height * (crest + (x_end() - x_toe)); }
+
+DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report) {
+  check_spec(spec);
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::mt19937_64 rng(spec.seed);
+  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
+  const double x_end = spec.x_end();
+  const bool poly = spec.shape == StoneShape::kPolygon;
+  Shapes shapes(spec);
+  Pile pile(spec, poly);
+
+  // (1) the fixed bottom row: touching stones on the bed along the base
+  if (poly) {
+    bottom_row_polygons(spec, rng, shapes, pile);
+  } else {
+    double r = 0.5 * draw_diameter(rng, spec);
+    double x = spec.x_toe + r;
+    while (x + r <= x_end + 1e-12) {
+      pile.add(x, spec.z_bed + r, r, 1);
+      const double r_next = 0.5 * draw_diameter(rng, spec);
+      x += r + r_next;
+      r = r_next;
+    }
+  }
+  const int n_fixed = static_cast<int>(pile.radius.size());
+
+  // (2) free stones poured in rounds: the free sites of a loose triangular lattice filling the
+  // trapezoid are occupied, the stones settle inside temporary slope walls, and the gaps left at the
+  // top by the compaction are filled again in the next round
+  DEMParams p = params;
+  if (p.walls.empty()) p.walls.push_back({{spec.x_toe, spec.z_bed}, {0.0, 1.0}, 0.176});
+  const std::vector<DEMWall> final_walls = p.walls;
+  p.flags &= ~static_cast<unsigned>(kDEMSleeping | kDEMExternalForce);
+  // slope walls half a mean diameter outside the slopes: stone centres end near the slope lines
+  const double off = 0.5 * spec.d_mean;
+  p.walls.push_back({{spec.x_toe - off / std::sin(au), spec.z_bed}, {std::sin(au), -std::cos(au)},
+                     p.walls.front().friction});
+  p.walls.push_back({{x_end + off / std::sin(ad), spec.z_bed}, {-std::sin(ad), -std::cos(ad)},
+                     p.walls.front().friction});
+  double t_total = 0.0;
+  DEMSystem box(p, 0);
+  for (int round = 0; round < 6; ++round) {
+    if (pour_round(spec, off, rng, shapes, pile) == 0 && round > 0) break;
+    box = pile.make(p);
+    t_total += settle(box, spec, 0.2);
+    pile.take(box);
+  }
+
+  // (3) keep the stones whose centres lie below the crest
+  const double z_crest = spec.z_bed + spec.height;
+  Pile kept(spec, poly);
+  for (int i = 0; i < box.n(); ++i) {
+    if (!box.disc_active[i]) continue;
+    if (!box.disc_fixed[i] && box.disc_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
+    kept.copy_stone(box, pile, i);
+  }
+  pile = kept;
+
+  // (4) slope walls removed: the mound settles on its own
+  DEMParams q = params;
+  q.walls = final_walls;
+  DEMSystem weir = pile.make(q);
+  t_total += settle(weir, spec, 0.5);
+  // (5) hollows left where stones rolled off the crest corners are topped up, without the walls
+  for (int round = 0; round < 3; ++round) {
+    pile.take(weir);
+    if (pour_round(spec, off, rng, shapes, pile) == 0) break;
+    weir = pile.make(q);
+    t_total += settle(weir, spec, 0.5);
+  }
+  // (6) stones laid by hand into the largest remaining hollows of the slopes and crest
+  for (int k = 0; k < 12; ++k) {
+    double px = 0.0, pz = 0.0;
+    if (largest_gap(weir, spec, px, pz) < 0.5 * spec.d_mean) break;
+    const double dc = draw_diameter(rng, spec);
+    Shape shape = poly ? shapes.draw(dc) : Shape{0.5 * dc};
+    const double rc = shape.radius;
+    pile.take(weir);
+    // lowest free spot above the hollow's point (a polygon is tried in six orientations at each height)
+    bool placed = false;
+    for (double lift = 0.0; lift <= 2.0 * rc && !placed; lift += 0.05 * rc) {
+      bool free_site = true;
+      if (poly) {
+        free_site = false;
+        for (int turn = 0; turn < 6 && !free_site; ++turn, shape.angle += kPi / 3.0)
+          free_site = pile.polygon_fits(px, pz + lift, shape, 1e-4);
+      }
+      for (std::size_t i = 0; i < pile.radius.size() && free_site && !poly; ++i)
+        free_site = std::hypot(px - pile.pos[2 * i], pz + lift - pile.pos[2 * i + 1]) > pile.radius[i] + rc + 1e-4;
+      if (!free_site) continue;
+      pile.add(px, pz + lift, rc, 0, shape);
+      placed = true;
+    }
+    if (!placed) break;
+    weir = pile.make(q);
+    t_total += settle(weir, spec, 0.3);
+  }
+
+  // (7) polygons: stones that rolled off a toe onto the bed beyond it (centre more than half a diameter
+  // outside the trapezoid) are not part of the weir
+  if (poly) {
+    const Trapezoid trap(spec);
+    Pile kept_on(spec, poly);
+    for (int i = 0; i < weir.n(); ++i)
+      if (weir.disc_fixed[i] || trap.distance(weir.disc_pos[2 * i], weir.disc_pos[2 * i + 1]) < 0.5 * spec.d_mean)
+        kept_on.copy_stone(weir, pile, i);
+    if (kept_on.radius.size() < static_cast<std::size_t>(weir.n())) {
+      pile = kept_on;
+      weir = pile.make(q);
+      t_total += settle(weir, spec, 0.3);
+    }
+  }
+
+  report.n_stones = weir.n();
+  report.n_fixed = n_fixed;
+  report.max_speed = max_speed(weir);
+  report.settle_time = t_total;
+  report.porosity = weir_porosity(weir, spec);
+  report.outline_error = weir_outline_error(weir, spec);
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return weir;
+}
+
+namespace {
+// the point of the slopes and crest farthest from every disc; returns that distance [m]
+// the stones' shapes for the outline and porosity samples: discs, or polygons in the world frame
+struct StoneGeometry {
+  const DEMSystem& sys;
+  bool poly;
+  std::vector<double> world;
+  explicit StoneGeometry(const DEMSystem& s) : sys(s), poly(s.shape() == StoneShape::kPolygon) {
+    if (!poly) return;
+    world.assign(s.poly_vertex.size(), 0.0);
+    for (int i = 0; i < s.n(); ++i) {
+      const int o = s.poly_offset[i];
+      polygon_to_world(&s.poly_vertex[2 * o], s.poly_offset[i + 1] - o, s.disc_pos[2 * i], s.disc_pos[2 * i + 1],
+                       s.disc_angle[i], &world[2 * o]);
+    }
+  }
+  const double* vertices(int i) const { return &world[2 * static_cast<std::size_t>(sys.poly_offset[i])]; }
+  int count(int i) const { return sys.poly_offset[i + 1] - sys.poly_offset[i]; }
+  // distance [m] from (x, z) to stone i, 0 inside
+  double gap(int i, double x, double z) const {
+    const double g = std::hypot(x - sys.disc_pos[2 * i], z - sys.disc_pos[2 * i + 1]) - sys.disc_radius[i];
+    if (!poly || g > 0.0) return std::max(g, 0.0);  // a polygon lies inside its bounding disc
+    return polygon_distance(vertices(i), count(i), x, z);
+  }
+  bool covers(int i, double x, double z) const {
+    const double dx = x - sys.disc_pos[2 * i], dz = z - sys.disc_pos[2 * i + 1];
+    const double r = sys.disc_radius[i];
+    if (!(dx * dx + dz * dz < r * r)) return false;
+    return !poly || polygon_contains(vertices(i), count(i), x, z);
+  }
+  // how far stone i reaches outside the trapezoid [m] (negative: inside by that much)
+  double reach_outside(int i, const Trapezoid& trap) const {
+    if (!poly) return trap.distance(sys.disc_pos[2 * i], sys.disc_pos[2 * i + 1]) + sys.disc_radius[i];
+    double out = -INFINITY;
+    for (int k = 0; k < count(i); ++k) out = std::max(out, trap.distance(vertices(i)[2 * k], vertices(i)[2 * k + 1]));
+    return out;
+  }
+};
+
+double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz) {
+  const Trapezoid trap(spec);
+  const StoneGeometry geo(sys);
+  double worst = 0.0;
+  for (int e = 1; e <= 3; ++e) {
+    const int a = e % 4, b = (e + 1) % 4;
+    const double len = std::hypot(trap.px[b] - trap.px[a], trap.pz[b] - trap.pz[a]);
+    const int m = std::max(2, static_cast<int>(len / 0.002));
+    for (int s = 0; s <= m; ++s) {
+      const double t = static_cast<double>(s) / m;
+      const double x = trap.px[a] + t * (trap.px[b] - trap.px[a]);
+      const double z = trap.pz[a] + t * (trap.pz[b] - trap.pz[a]);
+      double gap = INFINITY;
+      for (int i = 0; i < sys.n(); ++i) {
+        if (!sys.disc_active[i]) continue;
+        gap = std::min(gap, geo.gap(i, x, z));
+      }
+      if (gap > worst) {
+        worst = gap;
+        gx = x;
+        gz = z;
+      }
+    }
+  }
+  return worst;
+}
+}  // namespace
+
+double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
+  const Trapezoid trap(spec);
+  const StoneGeometry geo(sys);
+  double err = 0.0;
+  // (a) stones reaching outside
+  for (int i = 0; i < sys.n(); ++i) {
+    if (!sys.disc_active[i]) continue;
+    err = std::max(err, geo.reach_outside(i, trap));
+  }
+  // (b) points of the slopes and crest far from every disc
+  double gx = 0.0, gz = 0.0;
+  err = std::max(err, largest_gap(sys, spec, gx, gz));
+  return err;
+}
+
+double weir_porosity(const DEMSystem& sys, const WeirSpec& spec, double h) {
+  require_positive("h", h);
+  const Trapezoid trap(spec);
+  const StoneGeometry geo(sys);
+  long long inside = 0, covered = 0;
+  for (double z = spec.z_bed + 0.5 * h; z < spec.z_bed + spec.height; z += h) {
+    for (double x = spec.x_toe + 0.5 * h; x < spec.x_end(); x += h) {
+      if (!trap.inside(x, z)) continue;
+      ++inside;
+      for (int i = 0; i < sys.n(); ++i) {
+        if (!sys.disc_active[i]) continue;
+        if (geo.covers(i, x, z)) {
+          ++covered;
+          break;
+        }
+      }
+    }
+  }
+  return inside > 0 ? 1.0 - static_cast<double>(covered) / inside : 1.0;
+}
+
+}  // namespace vofdem
