@@ -22,14 +22,6 @@ namespace vofdem::bind {
 
 namespace {
 
-const char* shape_name(StoneShape s) { return s == StoneShape::kPolygon ? "polygon" : "disc"; }
-
-StoneShape shape_from_name(const std::string& name) {
-  if (name == "disc") return StoneShape::kDisc;
-  if (name == "polygon") return StoneShape::kPolygon;
-  throw py::value_error("shape = '" + name + "' is not one of 'disc', 'polygon'");
-}
-
 std::vector<double> flat_pos(const py::array_t<double, py::array::c_style | py::array::forcecast>& pos) {
   return std::vector<double>(pos.data(), pos.data() + pos.size());
 }
@@ -110,6 +102,8 @@ void bind_params(py::module_& m) {
 
   m.def("damping_ratio_from_restitution", &damping_ratio_from_restitution, py::arg("e"));
   m.def("restitution_from_damping_ratio", &restitution_from_damping_ratio, py::arg("zeta"));
+  m.def("stone_model_names", &stone_model_names,
+        "the registered stone models' names (DEMSystem.shape, the scene's stones.shape), the built-in ones first");
   m.def("contact_duration", &contact_duration, py::arg("k"), py::arg("m_reduced"), py::arg("zeta"));
 }
 
@@ -155,7 +149,11 @@ void bind_system(py::module_& m) {
            py::arg("i"), py::arg("ux"), py::arg("uz"))
       .def("nominal_diameter", &DEMSystem::nominal_diameter, py::arg("i"))
       .def("inertia", &DEMSystem::inertia, py::arg("i"))
-      .def_property_readonly("shape", [](const DEMSystem& s) { return shape_name(s.shape()); })
+      .def_property_readonly("shape", [](const DEMSystem& s) { return std::string(s.model().name()); },
+                             "the stone model's registered name (stone_model_names())")
+      .def("set_model", py::overload_cast<const std::string&>(&DEMSystem::set_model), py::arg("name"),
+           "Makes every stone of the registered stone model `name` (stone_model_names()); shape arrays and "
+           "contact histories are made anew. Invalidates the poly_* views.")
       .def("set_polygons",
            [](DEMSystem& s, const A& vertex, const std::vector<int>& offset) { s.set_polygons(flat_pos(vertex), offset); },
            py::arg("vertex"), py::arg("offset"),
@@ -222,8 +220,7 @@ void bind_packing(py::module_& m) {
       .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
       .def_readwrite("rest_speed", &WeirSpec::rest_speed)
       .def_property(
-          "shape", [](const WeirSpec& w) { return shape_name(w.shape); },
-          [](WeirSpec& w, const std::string& name) { w.shape = shape_from_name(name); })
+          "shape", [](const WeirSpec& w) { return w.shape; }, [](WeirSpec& w, const std::string& name) { w.shape = name; })
       .def_property(
           "polygon_vertices_min", [](const WeirSpec& w) { return w.polygon.vertices_min; },
           [](WeirSpec& w, int v) { w.polygon.vertices_min = v; })
@@ -278,7 +275,7 @@ void bind_packing(py::module_& m) {
              double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
              double aspect_ratio, double radial_jitter) {
         WeirSpec spec;
-        spec.shape = shape_from_name(shape);
+        spec.shape = shape;
         spec.polygon.vertices_min = vertices_min;
         spec.polygon.vertices_max = vertices_max;
         spec.polygon.aspect_ratio = aspect_ratio;

@@ -17,7 +17,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
@@ -123,10 +122,11 @@ void Coupler::make_mapper() {
 // the parameters' limits that depend on the scene (checked before anything changes)
 void Coupler::check_params(const CouplerParams& p) const {
   p.validate();
-  if (fluid_ && polygons() && (p.flags & kCoupleLookupPorosity))
+  if (fluid_ && stones_ && !stones_->model().lookup_footprint() && (p.flags & kCoupleLookupPorosity))
     throw std::invalid_argument("CouplerParams.flags = " + std::to_string(p.flags) +
                                 ": the lookup porosity (kCoupleLookupPorosity, the paper's table of disc areas) is "
-                                "for disc stones; polygon stones need the exact mapping (clear the flag)");
+                                "for disc stones; " + stones_->model().name() +
+                                " stones need the exact mapping (clear the flag)");
 }
 
 void Coupler::set_params(const CouplerParams& params) {
@@ -156,11 +156,7 @@ void Coupler::map_stones() {
     disc_x_[j] = stones_->disc_pos[2 * j];
     disc_z_[j] = stones_->disc_pos[2 * j + 1];
   }
-  if (polygons())
-    mapper_->map_polygons(n_, disc_x_.data(), disc_z_.data(), stones_->disc_angle.data(), stones_->poly_vertex.data(),
-                          stones_->poly_offset.data(), stones_->disc_active.data());
-  else
-    mapper_->map(n_, disc_x_.data(), disc_z_.data(), stones_->disc_radius.data(), stones_->disc_active.data());
+  stones_->model().map_footprint(*stones_, *mapper_, disc_x_.data(), disc_z_.data());
   csr_current_ = true;
 }
 
@@ -181,9 +177,8 @@ void Coupler::stage_porosity(bool keep_water_volume) {
   const std::vector<int>& off = mapper_->disc_cell_offsets();
   const std::vector<int>& idx = mapper_->disc_cell_index();
   const std::vector<double>& area = mapper_->disc_cell_area();
-  const bool poly = polygons();
   for (int j = 0; j < n_; ++j) {
-    const double d = poly ? stones_->nominal_diameter(j) : 2.0 * stones_->disc_radius[j];
+    const double d = stones_->nominal_diameter(j);
     const double u = stones_->disc_vel[2 * j], w = stones_->disc_vel[2 * j + 1];
     for (int p = off[j]; p < off[j + 1]; ++p) {
       const int c = idx[p];
@@ -297,17 +292,10 @@ void Coupler::stage_fluid_forces() {
                                                    cell_dpdz_.data(), rho, fp.medium.gravity[0], fp.medium.gravity[1]);
     const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
-    if ((fl & kCoupleDrag) && !bed && polygons()) {
-      // the 3D stone's projected area across the relative velocity
-      const double a = stones_->projected_area(j, s.u - up, s.w_vel - wp), d = stones_->nominal_diameter(j);
-      const DragForce f = stone_drag_area(s, up, wp, d, a, rho, nu, params_.drag_law);
+    if ((fl & kCoupleDrag) && !bed) {
+      const DragForce f = stones_->model().drag(*stones_, j, s, up, wp, rho, nu, params_.drag_law,
+                                                params_.implicit_drag ? &disc_drag_slope_[j] : nullptr);
       fd[0] = f.fx, fd[1] = f.fz;
-      if (params_.implicit_drag) disc_drag_slope_[j] = stone_drag_slope_area(s, up, wp, d, a, rho, nu, params_.drag_law);
-    } else if ((fl & kCoupleDrag) && !bed) {
-      const double d = 2.0 * stones_->disc_radius[j];
-      const DragForce f = stone_drag(s, up, wp, d, rho, nu, params_.drag_law);
-      fd[0] = f.fx, fd[1] = f.fz;
-      if (params_.implicit_drag) disc_drag_slope_[j] = sphere_drag_slope(s, up, wp, d, rho, nu, params_.drag_law);
     } else if (fl & kCoupleDrag) {
       const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
                                    fluid_->cell_porosity.data(), fluid_->cell_stone_diameter.data(), cell_U_.data(),
@@ -423,15 +411,7 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
         return slope > 0.0 ? params_.drag_relaxation * mass / slope : kInf;
       }
       if (!(w > 0.0)) return kInf;
-      if (polygons()) {
-        // polygons: the mean projected area and the nominal diameter
-        const double slope = drag_slope(disc_vrel_[j], stones_->nominal_diameter(j),
-                                        w * 0.5 * rho * stones_->projected_area(j), nu, DragLaw::kPaper);
-        return params_.drag_relaxation * mass / slope;
-      }
-      const double r = stones_->disc_radius[j];
-      const double slope = drag_slope(disc_vrel_[j], 2.0 * r, w * 0.5 * rho * kPi * r * r, nu, DragLaw::kPaper);
-      return params_.drag_relaxation * (mass / slope);
+      return stones_->model().drag_relaxation_dt(*stones_, j, params_.drag_relaxation, mass, disc_vrel_[j], w, rho, nu);
     };
     for (int j = 0; j < n_; ++j) {
       if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;

@@ -38,7 +38,7 @@ void DEMSystem::build_wall_candidates() {
         wall_cand_.push_back(i);
       } else {
         wall_xi_[static_cast<std::size_t>(i) * nw + w] = wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
-        if (!poly_wall_hist_.empty()) poly_wall_hist_[static_cast<std::size_t>(i) * nw + w] = PolygonHistory{};
+        wall_points_[static_cast<std::size_t>(i) * nw + w] = PointSprings{};
       }
     }
     wall_cand_start_[w + 1] = static_cast<int>(wall_cand_.size());
@@ -125,7 +125,7 @@ void DEMSystem::build_neighbours() {
     if (k < pairs_.size() && pairs_[k].i == p.i && pairs_[k].j == p.j) {
       p.xi = pairs_[k].xi;
       p.mr = pairs_[k].mr;
-      p.poly = pairs_[k].poly;
+      p.points = pairs_[k].points;
     }
   }
   pairs_.swap(new_pairs_);

@@ -26,19 +26,6 @@ bool DEMSystem::rolling_walls() const {
   return (params_.flags & kDEMRollingResistance) && params_.rolling_friction_wall > 0.0;
 }
 
-// the law is a disc's: a polygon resists rolling by its shape, and a moment capped on its bounding
-// radius would have no physical basis, so polygon stones refuse mu_r > 0
-void DEMSystem::check_rolling_shape(StoneShape shape, const DEMParams& p) const {
-  if (shape != StoneShape::kPolygon) return;
-  for (const auto& [name, value] : {std::pair<const char*, double>{"rolling_friction_stone", p.rolling_friction_stone},
-                                    {"rolling_friction_wall", p.rolling_friction_wall}}) {
-    if (value > 0.0)
-      throw std::invalid_argument(std::string(name) + " = " + std::to_string(value) +
-                                  " is outside the allowed range [0, 0] for polygon stones (the rolling resistance "
-                                  "is a law for discs; polygons resist rolling by their shape)");
-  }
-}
-
 // omega^2 [1/s^2] the rolling springs add to a stone's spin: k_r / I <= k_t r^2 / (f M r^2) per contact
 // (the largest R* is a wall's, R* = r), counted for two contacts as the tangential mode is
 double DEMSystem::rolling_spin_stiffness(double m_min) const {

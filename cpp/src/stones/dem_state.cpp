@@ -81,7 +81,15 @@ void DEMSystem::export_state(DEMState& s) const {
   s.ncontact = ncontact_;
   s.nwall_contact = nwall_contact_;
   s.forces_valid = forces_valid_;
-  export_polygons(s);
+  s.model = model_->name();
+  s.clear_model_part();
+  model_->export_state(*this, s);
+}
+
+void DEMState::clear_model_part() {
+  poly_vertex.clear(), poly_offset.clear();
+  poly_contact_i.clear(), poly_contact_j.clear(), poly_contact_id.clear(), poly_contact_xi.clear();
+  poly_wall_id.clear(), poly_wall_xi.clear();
 }
 
 void DEMSystem::check_state(const DEMState& s) const {
@@ -101,7 +109,8 @@ void DEMSystem::check_state(const DEMState& s) const {
   }
   require_size("wall_xi", s.wall_xi, nw);
   require_size("wall_mr", s.wall_mr, nw);
-  if (!s.poly_offset.empty()) check_polygon_state(s);
+  if (s.model == model_->name()) model_->check_state(*this, s);
+  else make_stone_model(s.model)->check_state(*this, s);
 }
 
 void DEMSystem::import_state(const DEMState& s) {
@@ -114,7 +123,12 @@ void DEMSystem::import_state(const DEMState& s) {
     pairs_.push_back({s.contact_i[k], s.contact_j[k], s.contact_xi[k], 0.0, s.contact_mr[k]});  // masses: next build
   state::copy_into(wall_xi_, s.wall_xi);
   state::copy_into(wall_mr_, s.wall_mr);
-  import_polygons(s);  // the shape: polygons if the state has them, else discs
+  if (s.model != model_->name()) {  // the state's own model, its shape arrays made anew
+    model_ = make_stone_model(s.model);
+    poly_vertex.clear();
+    poly_offset.clear();
+  }
+  model_->import_state(*this, s);
   time_ = s.time;
   steps_ = s.steps;
   removed_ = s.removed;
@@ -149,16 +163,7 @@ std::map<std::string, std::vector<double>> dem_state_to_map(DEMState t) {
                   static_cast<double>(t.ncontact),
                   static_cast<double>(t.nwall_contact),
                   t.forces_valid ? 1.0 : 0.0};
-  if (!t.poly_offset.empty()) {
-    s["poly_vertex"] = std::move(t.poly_vertex);
-    s["poly_offset"] = to_double(t.poly_offset);
-    s["poly_contact_i"] = to_double(t.poly_contact_i);
-    s["poly_contact_j"] = to_double(t.poly_contact_j);
-    s["poly_contact_id"] = to_double(t.poly_contact_id);
-    s["poly_contact_xi"] = std::move(t.poly_contact_xi);
-    s["poly_wall_id"] = to_double(t.poly_wall_id);
-    s["poly_wall_xi"] = std::move(t.poly_wall_xi);
-  }
+  make_stone_model(t.model)->state_to_map(t, s);
   return s;
 }
 
@@ -172,21 +177,16 @@ DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& s,
   from_double(t.contact_i, ci);
   from_double(t.contact_j, entry(s, "contact_j", ci.size()));
   t.contact_xi = entry(s, "contact_xi", ci.size());
-  t.contact_mr = s.count("contact_mr") ? entry(s, "contact_mr", ci.size()) : std::vector<double>(ci.size(), 0.0);
+  // (assigned apart: the conditional's temporary trips GCC 12's -Wfree-nonheap-object, a false positive)
+  if (s.count("contact_mr")) t.contact_mr = entry(s, "contact_mr", ci.size());
+  else t.contact_mr.assign(ci.size(), 0.0);
   const std::size_t nw = n * nwalls;
   t.wall_xi = entry(s, "wall_xi", nw);
-  t.wall_mr = s.count("wall_mr") ? entry(s, "wall_mr", nw) : std::vector<double>(nw, 0.0);
-  if (s.count("poly_vertex")) {
-    t.poly_vertex = s.at("poly_vertex");
-    from_double(t.poly_offset, entry(s, "poly_offset", n + 1));
-    const auto& pi = entry(s, "poly_contact_i", state::kAnySize);
-    from_double(t.poly_contact_i, pi);
-    from_double(t.poly_contact_j, entry(s, "poly_contact_j", pi.size()));
-    from_double(t.poly_contact_id, entry(s, "poly_contact_id", 2 * pi.size()));
-    t.poly_contact_xi = entry(s, "poly_contact_xi", 2 * pi.size());
-    from_double(t.poly_wall_id, entry(s, "poly_wall_id", 2 * nw));
-    t.poly_wall_xi = entry(s, "poly_wall_xi", 2 * nw);
-  }
+  if (s.count("wall_mr")) t.wall_mr = entry(s, "wall_mr", nw);
+  else t.wall_mr.assign(nw, 0.0);
+  // the model whose own key the checkpoint holds, and its part
+  t.model = stone_model_of_checkpoint([&](const std::string& key) { return s.count(key) > 0; });
+  make_stone_model(t.model)->state_from_map(s, n, nwalls, t);
   const auto& sc = entry(s, "scalars", 9);
   t.time = sc[0];
   t.steps = static_cast<long long>(sc[1]);

@@ -7,6 +7,7 @@
 
 #include "vofdem/common/check.h"
 #include "vofdem/stones/dem_contact.h"
+#include "vofdem/stones/stone_model.h"
 #include "vofdem/stones/wet_fraction.h"
 
 namespace vofdem {
@@ -17,8 +18,8 @@ constexpr double kPi = 3.14159265358979323846;
 const char* kStageNames[kDEMStageCount] = {"integrate", "removal", "neighbours", "body_forces",
                                             "contacts",  "walls",   "sleep",      "checks"};
 
-// sphere of the disc's diameter: volume [m^3]
-inline double sphere_volume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }
+// the model of a system made without one: discs
+constexpr const char* kDefaultStoneModel = "disc";
 
 [[noreturn]] void fail(const std::string& stage, int stone, double t, const std::string& what) {
   throw std::runtime_error("DEM stage '" + stage + "': " + what + " of stone " + std::to_string(stone) +
@@ -36,7 +37,8 @@ void DEMParams::add_flume(double x_min, double x_max, double z_bed, double mu) {
   walls.push_back({{x_max, z_bed}, {-1.0, 0.0}, mu});
 }
 
-DEMSystem::DEMSystem(const DEMParams& params, int n) : params_(params) {
+DEMSystem::DEMSystem(const DEMParams& params, int n)
+    : params_(params), model_(make_stone_model(kDefaultStoneModel)) {
   for (int s = 0; s < kDEMStageCount; ++s) profile_.add_stage(kStageNames[s]);
   check_params();
   resize(n);
@@ -82,14 +84,14 @@ void DEMSystem::resize(int n) {
   disc_alpha.assign(un, 0.0);
   disc_asleep.assign(un, 0);
   disc_sleep_timer.assign(un, 0.0);
-  // back to discs: a polygon system is made again with set_polygons()
-  shape_ = StoneShape::kDisc;
+  // back to the default model: a model with shapes is made again (set_polygons(), set_model())
+  model_ = make_stone_model(kDefaultStoneModel);
   poly_vertex.clear();
   poly_offset.clear();
-  poly_wall_hist_.clear();
   pairs_.clear();
   wall_xi_.assign(un * params_.walls.size(), 0.0);
   wall_mr_.assign(un * params_.walls.size(), 0.0);
+  wall_points_.assign(un * params_.walls.size(), PointSprings{});
   rebuild_ = true;
   prepared_ = false;
   forces_valid_ = false;
@@ -98,15 +100,14 @@ void DEMSystem::resize(int n) {
 void DEMSystem::set_params(const DEMParams& p) {
   // checked before anything changes: a refused set leaves the system as it was
   p.validate();
-  check_rolling_shape(shape_, p);
+  model_->check_params(p);
   const std::size_t old_walls = params_.walls.size();
   params_ = p;
   forces_valid_ = false;
   if (params_.walls.size() != old_walls) {
     wall_xi_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), 0.0);
     wall_mr_.assign(wall_xi_.size(), 0.0);
-    if (shape_ == StoneShape::kPolygon)
-      poly_wall_hist_.assign(static_cast<std::size_t>(n_) * params_.walls.size(), PolygonHistory{});
+    wall_points_.assign(wall_xi_.size(), PointSprings{});
   }
   rebuild_ = true;
   prepared_ = false;
@@ -148,7 +149,24 @@ void DEMParams::validate() const {
 
 void DEMSystem::check_params() const {
   params_.validate();
-  check_rolling_shape(shape_, params_);
+  model_->check_params(params_);
+}
+
+void DEMSystem::set_model(const std::string& name) { set_model(make_stone_model(name)); }
+
+void DEMSystem::set_model(std::unique_ptr<StoneModel> model) {
+  if (!model) throw std::invalid_argument("set_model: no model");
+  model->check_params(params_);
+  model_ = std::move(model);
+  poly_vertex.clear();
+  poly_offset.clear();
+  std::fill(wall_xi_.begin(), wall_xi_.end(), 0.0);
+  std::fill(wall_mr_.begin(), wall_mr_.end(), 0.0);
+  std::fill(wall_points_.begin(), wall_points_.end(), PointSprings{});
+  pairs_.clear();
+  rebuild_ = true;
+  prepared_ = false;
+  forces_valid_ = false;
 }
 
 void DEMSystem::check_stones() const {
@@ -168,23 +186,6 @@ void DEMSystem::check_stones() const {
   }
 }
 
-double DEMSystem::mass(int i) const {
-  if (shape_ == StoneShape::kPolygon) return disc_density[i] * polygon_stone_volume(poly_area_[i]);
-  return disc_density[i] * sphere_volume(disc_radius[i]);
-}
-double DEMSystem::volume(int i) const {
-  if (shape_ == StoneShape::kPolygon) return polygon_stone_volume(poly_area_[i]);
-  return sphere_volume(disc_radius[i]);
-}
-double DEMSystem::projected_area(int i) const {
-  if (shape_ == StoneShape::kPolygon) {
-    const int o = poly_offset[i];
-    const PolygonProperties q = polygon_properties(&poly_vertex[2 * o], poly_offset[i + 1] - o);
-    return 0.25 * polygon_nominal_diameter(poly_area_[i]) * q.perimeter;
-  }
-  return kPi * disc_radius[i] * disc_radius[i];
-}
-
 // derived masses (eqs. 8-9): M + M', buoyant weight, inertia; fixed or inactive stones get 1/M = 0
 void DEMSystem::update_properties() {
   const std::size_t un = static_cast<std::size_t>(n_);
@@ -200,8 +201,7 @@ void DEMSystem::update_stone_properties(int i) {
   const double m = update_stone_masses(i);
   const DEMParams& p = params_;
   const bool mobile = disc_active[i] && !disc_fixed[i];
-  const double inertia = shape_ == StoneShape::kPolygon ? 2.0 * p.inertia_factor * m * poly_jratio_[i]
-                                                        : p.inertia_factor * m * disc_radius[i] * disc_radius[i];
+  const double inertia = model_->inertia(*this, i, m);
   inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
 }
 
@@ -275,10 +275,7 @@ double DEMSystem::reduced_stiffness_mass() const {
 
 void DEMSystem::prepare() {
   check_params();  // C++ callers may have built the system from unchecked parameters
-  // polygon vertices may have been edited through the views: their sections are derived again
-  if (shape_ == StoneShape::kPolygon && cached_poly_vertex_ != poly_vertex) update_polygon_properties();
-  // and poses: no world geometry of a still stone is kept from before (dem_polygon.cpp)
-  poly_eval_ += 1;
+  model_->prepare(*this);  // shapes edited through the views
   check_stones();
   const DEMParams& p = params_;
   if (p.stiffness_normal > 0.0) {
@@ -298,8 +295,7 @@ void DEMSystem::prepare() {
   if (wall_xi_.size() != static_cast<std::size_t>(n_) * p.walls.size())
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
   if (wall_mr_.size() != wall_xi_.size()) wall_mr_.assign(wall_xi_.size(), 0.0);
-  if (shape_ == StoneShape::kPolygon && poly_wall_hist_.size() != static_cast<std::size_t>(n_) * p.walls.size())
-    poly_wall_hist_.assign(static_cast<std::size_t>(n_) * p.walls.size(), PolygonHistory{});
+  if (wall_points_.size() != wall_xi_.size()) wall_points_.assign(wall_xi_.size(), PointSprings{});
   if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
   update_properties();
   update_rolling_inertia();
@@ -323,25 +319,7 @@ void DEMSystem::prepare() {
 
 double DEMSystem::stable_dt() {
   prepare();
-  if (shape_ == StoneShape::kPolygon) return polygon_stable_dt();
-  double m_min = INFINITY;
-  for (int i = 0; i < n_; ++i)
-    if (disc_active[i] && !disc_fixed[i]) m_min = std::min(m_min, mass(i));
-  if (!std::isfinite(m_min) || kn_ <= 0.0) return INFINITY;
-  // two of the lightest stones: normal mode and the tangential mode that includes their spin
-  const double w2_n = 2.0 * kn_ / m_min;
-  const double rot = (params_.flags & kDEMRotation) ? 1.0 / params_.inertia_factor : 0.0;
-  const double w2_t = 2.0 * kt_ * (1.0 + rot) / m_min + rolling_spin_stiffness(m_min);
-  const double w = std::sqrt(std::max(w2_n, w2_t));
-  // explicit dashpots: a mode of frequency a w and damping ratio a zeta (dashpots proportional to the
-  // springs) is stable for dt <= 2 / (a w (a zeta + sqrt(1 + a^2 zeta^2))); a stone packed among
-  // kPackedContacts neighbours has modes up to a = sqrt(kPackedContacts) times the pair's. Measured on
-  // six packed weirs (critical damping): the energy grew at 0.7-0.8 of the undamped bound alone, never
-  // at 0.65; this bound is 0.61 of it there, and the undamped one where the damping is weak
-  const double zeta = (params_.flags & kDEMDamping) ? zeta_ : 0.0;
-  const double a = std::sqrt(kPackedContacts), az = a * zeta;
-  const double damped = 2.0 / (a * w * (az + std::sqrt(1.0 + az * az)));
-  return std::min(kPi / (10.0 * w), damped);
+  return model_->stable_dt(*this);
 }
 
 void DEMSystem::step(double dt) { advance_checked(dt, 1); }
@@ -392,13 +370,16 @@ void DEMSystem::evaluate_forces(double dt, bool body, StageLaps& laps) {
     body_forces(dt);
     laps.lap(kStageBodyForces);
   }
-  const bool poly = shape_ == StoneShape::kPolygon;
-  if (poly) polygon_contact_forces(dt);
-  else contact_forces(dt);
+  const ContactTally c = model_->contact_forces(*this, dt);
+  elastic_ = c.elastic;
+  dissipated_ += c.dissipated;
+  ncontact_ = c.count;
   laps.lap(kStageContacts);
   if (!params_.walls.empty()) {
-    if (poly) polygon_wall_forces(dt);
-    else wall_forces(dt);
+    const ContactTally w = model_->wall_forces(*this, dt);
+    elastic_ += w.elastic;
+    dissipated_ += w.dissipated;
+    nwall_contact_ = w.count;
     laps.lap(kStageWalls);
   }
 }
@@ -547,9 +528,8 @@ void DEMSystem::remove_escaped() {
     for (std::size_t w = 0; w < p.walls.size(); ++w) {
       wall_xi_[i * p.walls.size() + w] = 0.0;
       wall_mr_[i * p.walls.size() + w] = 0.0;
+      wall_points_[i * p.walls.size() + w] = PointSprings{};
     }
-    if (shape_ == StoneShape::kPolygon)
-      for (std::size_t w = 0; w < p.walls.size(); ++w) poly_wall_hist_[i * p.walls.size() + w] = PolygonHistory{};
     ++removed_;
     rebuild_ = true;
   }
@@ -578,107 +558,6 @@ void DEMSystem::body_forces(double dt) {
       work_external_ += (fx * v[0] + fz * v[1]) * dt;
     }
   }
-}
-
-void DEMSystem::contact_forces(double dt) {
-  const DEMParams& p = params_;
-  const auto [friction, damp, kt] = contact_law();
-  const double ct_factor = p.tangential_damping_factor;
-  const bool rolling = rolling_stones();
-  double elastic = 0.0, dissipated = 0.0;
-  int ncontact = 0;
-  for (Pair& c : pairs_) {
-    const int i = c.i, j = c.j;
-    const double dx = disc_pos[2 * j] - disc_pos[2 * i];
-    const double dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
-    const double ri = disc_radius[i], rj = disc_radius[j];
-    const double rs = ri + rj;
-    const double d2 = dx * dx + dz * dz;
-    if (d2 >= rs * rs) {
-      c.xi = 0.0;
-      c.mr = 0.0;
-      continue;
-    }
-    ++ncontact;
-    const double d = std::sqrt(d2);
-    const double inv_d = d > 0.0 ? 1.0 / d : 0.0;
-    const double nx = d > 0.0 ? dx * inv_d : 1.0, nz = dz * inv_d;
-    const double vrx = disc_vel[2 * i] - disc_vel[2 * j];
-    const double vrz = disc_vel[2 * i + 1] - disc_vel[2 * j + 1];
-    const double vn = vrx * nx + vrz * nz;
-    const double vt = -vrx * nz + vrz * nx + disc_omega[i] * ri + disc_omega[j] * rj;
-    const double cn = damp * c.sqrt_m;
-    const ContactForce f = friction ? linear_contact(rs - d, vn, vt, c.xi, dt, kn_, kt, cn, ct_factor * cn,
-                                                     p.friction_stone, true)
-                                    : linear_contact(rs - d, vn, 0.0, c.xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
-    // force on i: -f_n n + f_s t, with t = (-n_z, n_x)
-    const double fx = -f.fn * nx - f.ft * nz;
-    const double fz = -f.fn * nz + f.ft * nx;
-    disc_force[2 * i] += fx;
-    disc_force[2 * i + 1] += fz;
-    disc_force[2 * j] -= fx;
-    disc_force[2 * j + 1] -= fz;
-    disc_torque[i] += ri * f.ft;
-    disc_torque[j] += rj * f.ft;
-    elastic += f.energy_spring;
-    dissipated += f.power_damp * dt + f.energy_slip;
-    if (rolling) {
-      const RollingEnergy e = rolling_contact(c, f.fn, dt);
-      elastic += e.elastic;
-      dissipated += e.dissipated;
-    }
-  }
-  elastic_ = elastic;
-  dissipated_ += dissipated;
-  ncontact_ = ncontact;
-}
-
-void DEMSystem::wall_forces(double dt) {
-  const DEMParams& p = params_;
-  const auto [friction, damp, kt] = contact_law();
-  const bool rolling = rolling_walls();
-  const std::size_t nw = p.walls.size();
-  double elastic = 0.0, dissipated = 0.0;
-  int ncontact = 0;
-  for (std::size_t w = 0; w < nw; ++w) {
-    const DEMWall& wall = p.walls[w];
-    const auto [wx, wz] = wall_unit_normal(wall);
-    // contact normal from the stone into the wall
-    const double nx = -wx, nz = -wz;
-    for (int c = wall_cand_start_[w]; c < wall_cand_start_[w + 1]; ++c) {
-      const int i = wall_cand_[c];
-      if (inv_mass_[i] == 0.0) continue;
-      double& xi = wall_xi_[static_cast<std::size_t>(i) * nw + w];
-      const double r = disc_radius[i];
-      const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
-      if (s >= r) {
-        xi = 0.0;
-        wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
-        continue;
-      }
-      ++ncontact;
-      const double vx = disc_vel[2 * i], vz = disc_vel[2 * i + 1];
-      const double vn = vx * nx + vz * nz;
-      const double vt = -vx * nz + vz * nx + disc_omega[i] * r;
-      const double cn = damp * std::sqrt(mass_eff_[i]);
-      const ContactForce f = friction ? linear_contact(r - s, vn, vt, xi, dt, kn_, kt,
-                                                       cn, p.tangential_damping_factor * cn, wall.friction, true)
-                                      : linear_contact(r - s, vn, 0.0, xi, dt, kn_, 0.0, cn, 0.0, 0.0, false);
-      disc_force[2 * i] += -f.fn * nx - f.ft * nz;
-      disc_force[2 * i + 1] += -f.fn * nz + f.ft * nx;
-      disc_torque[i] += r * f.ft;
-      elastic += f.energy_spring;
-      dissipated += f.power_damp * dt + f.energy_slip;
-      if (rolling) {
-        const RollingEnergy e = rolling_wall(i, wall_mr_[static_cast<std::size_t>(i) * nw + w], f.fn, dt);
-        elastic += e.elastic;
-        dissipated += e.dissipated;
-      }
-    }
-  }
-  elastic_ += elastic;
-  dissipated_ += dissipated;
-  nwall_contact_ = ncontact;
 }
 
 // Box2D-like sleeping: slow for sleep_time -> frozen; woken when its net force would accelerate it
@@ -715,13 +594,6 @@ void DEMSystem::sleep_update(double dt) {
   }
 }
 
-double DEMSystem::inertia(int i) const { return inertia_of(i, mass(i)); }
-
-double DEMSystem::inertia_of(int i, double m) const {
-  if (shape_ == StoneShape::kPolygon) return 2.0 * params_.inertia_factor * m * poly_jratio_[i];
-  return params_.inertia_factor * m * disc_radius[i] * disc_radius[i];
-}
-
 DEMEnergy DEMSystem::energy() const {
   const DEMParams& p = params_;
   DEMEnergy e;
@@ -735,7 +607,7 @@ DEMEnergy DEMSystem::energy() const {
     const double wv = v * disc_wet[i];
     const double me = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
     const double mw = m - (buoy ? p.water_density() * wv : 0.0);
-    const double inertia = inertia_of(i, m);
+    const double inertia = model_->inertia(*this, i, m);
     const double* u = &disc_vel[2 * i];
     e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * disc_omega[i] * disc_omega[i];
     if (grav) e.potential -= mw * (p.medium.gravity[0] * disc_pos[2 * i] + p.medium.gravity[1] * disc_pos[2 * i + 1]);

@@ -35,7 +35,9 @@ void check_spec(const WeirSpec& s) {
   require_positive("density", s.density);
   require_positive("settle_time_max", s.settle_time_max);
   require_positive("rest_speed", s.rest_speed);
-  if (s.shape == StoneShape::kPolygon) s.polygon.validate();
+  if (s.shape != "disc" && s.shape != "polygon")
+    throw std::invalid_argument("shape = '" + s.shape + "' is not one of the packing generator's stone models 'disc', 'polygon'");
+  if (s.shape == "polygon") s.polygon.validate();
   if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
 }
 
@@ -263,7 +265,7 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   std::mt19937_64 rng(spec.seed);
   const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
   const double x_end = spec.x_end();
-  const bool poly = spec.shape == StoneShape::kPolygon;
+  const bool poly = spec.shape == "polygon";
   Shapes shapes(spec);
   Pile pile(spec, poly);
 
@@ -382,46 +384,9 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
 
 namespace {
 // the point of the slopes and crest farthest from every disc; returns that distance [m]
-// the stones' shapes for the outline and porosity samples: discs, or polygons in the world frame
-struct StoneGeometry {
-  const DEMSystem& sys;
-  bool poly;
-  std::vector<double> world;
-  explicit StoneGeometry(const DEMSystem& s) : sys(s), poly(s.shape() == StoneShape::kPolygon) {
-    if (!poly) return;
-    world.assign(s.poly_vertex.size(), 0.0);
-    for (int i = 0; i < s.n(); ++i) {
-      const int o = s.poly_offset[i];
-      polygon_to_world(&s.poly_vertex[2 * o], s.poly_offset[i + 1] - o, s.disc_pos[2 * i], s.disc_pos[2 * i + 1],
-                       s.disc_angle[i], &world[2 * o]);
-    }
-  }
-  const double* vertices(int i) const { return &world[2 * static_cast<std::size_t>(sys.poly_offset[i])]; }
-  int count(int i) const { return sys.poly_offset[i + 1] - sys.poly_offset[i]; }
-  // distance [m] from (x, z) to stone i, 0 inside
-  double gap(int i, double x, double z) const {
-    const double g = std::hypot(x - sys.disc_pos[2 * i], z - sys.disc_pos[2 * i + 1]) - sys.disc_radius[i];
-    if (!poly || g > 0.0) return std::max(g, 0.0);  // a polygon lies inside its bounding disc
-    return polygon_distance(vertices(i), count(i), x, z);
-  }
-  bool covers(int i, double x, double z) const {
-    const double dx = x - sys.disc_pos[2 * i], dz = z - sys.disc_pos[2 * i + 1];
-    const double r = sys.disc_radius[i];
-    if (!(dx * dx + dz * dz < r * r)) return false;
-    return !poly || polygon_contains(vertices(i), count(i), x, z);
-  }
-  // how far stone i reaches outside the trapezoid [m] (negative: inside by that much)
-  double reach_outside(int i, const Trapezoid& trap) const {
-    if (!poly) return trap.distance(sys.disc_pos[2 * i], sys.disc_pos[2 * i + 1]) + sys.disc_radius[i];
-    double out = -INFINITY;
-    for (int k = 0; k < count(i); ++k) out = std::max(out, trap.distance(vertices(i)[2 * k], vertices(i)[2 * k + 1]));
-    return out;
-  }
-};
-
 double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz) {
   const Trapezoid trap(spec);
-  const StoneGeometry geo(sys);
+  const StoneModel& model = sys.model();
   double worst = 0.0;
   for (int e = 1; e <= 3; ++e) {
     const int a = e % 4, b = (e + 1) % 4;
@@ -434,7 +399,7 @@ double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, doubl
       double gap = INFINITY;
       for (int i = 0; i < sys.n(); ++i) {
         if (!sys.disc_active[i]) continue;
-        gap = std::min(gap, geo.gap(i, x, z));
+        gap = std::min(gap, model.gap(sys, i, x, z));
       }
       if (gap > worst) {
         worst = gap;
@@ -449,12 +414,12 @@ double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, doubl
 
 double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
   const Trapezoid trap(spec);
-  const StoneGeometry geo(sys);
+  const auto distance = [&trap](double x, double z) { return trap.distance(x, z); };
   double err = 0.0;
   // (a) stones reaching outside
   for (int i = 0; i < sys.n(); ++i) {
     if (!sys.disc_active[i]) continue;
-    err = std::max(err, geo.reach_outside(i, trap));
+    err = std::max(err, sys.model().outline_max(sys, i, distance));
   }
   // (b) points of the slopes and crest far from every disc
   double gx = 0.0, gz = 0.0;
@@ -465,7 +430,7 @@ double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
 double weir_porosity(const DEMSystem& sys, const WeirSpec& spec, double h) {
   require_positive("h", h);
   const Trapezoid trap(spec);
-  const StoneGeometry geo(sys);
+  const StoneModel& model = sys.model();
   long long inside = 0, covered = 0;
   for (double z = spec.z_bed + 0.5 * h; z < spec.z_bed + spec.height; z += h) {
     for (double x = spec.x_toe + 0.5 * h; x < spec.x_end(); x += h) {
@@ -473,7 +438,7 @@ double weir_porosity(const DEMSystem& sys, const WeirSpec& spec, double h) {
       ++inside;
       for (int i = 0; i < sys.n(); ++i) {
         if (!sys.disc_active[i]) continue;
-        if (geo.covers(i, x, z)) {
+        if (model.covers(sys, i, x, z)) {
           ++covered;
           break;
         }

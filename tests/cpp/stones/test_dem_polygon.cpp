@@ -9,6 +9,7 @@
 
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/polygon.h"
 #include "common/pin_hash.h"
 
 using namespace vofdem;
@@ -69,7 +70,7 @@ DEMSystem random_polygons(int n, std::uint64_t seed) {
 TEST(DEMPolygon, MassAndInertiaOfTheMatchingStone) {
   DEMParams p;
   DEMSystem s = boxes(p, {0.0, 0.0}, 0.03, 0.01);
-  EXPECT_EQ(s.shape(), StoneShape::kPolygon);
+  EXPECT_STREQ(s.model().name(), "polygon");
   const double m = box_mass(0.03, 0.01);
   EXPECT_NEAR(s.mass(0), m, 1e-15);
   EXPECT_NEAR(s.volume(0), m / kRho, 1e-18);
@@ -228,7 +229,7 @@ TEST(DEMPolygon, RunsAreBitForBitReproducibleAndRestartable) {
   // a disc state makes the system discs again
   DEMSystem d(c.params(), {0.1, 0.1}, {0.024}, {kRho});
   c.import_state(d.export_state());
-  EXPECT_EQ(c.shape(), StoneShape::kDisc);
+  EXPECT_STREQ(c.model().name(), "disc");
   EXPECT_EQ(c.n(), 1);
 }
 
@@ -279,7 +280,7 @@ TEST(DEMPolygon, RefusesBadPolygons) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("stone 0"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(s.shape(), StoneShape::kDisc);  // unchanged by the refused calls
+  EXPECT_STREQ(s.model().name(), "disc");  // unchanged by the refused calls
 }
 
 TEST(DEMPolygon, RefusesTheDiscsRollingResistance) {
@@ -294,7 +295,7 @@ TEST(DEMPolygon, RefusesTheDiscsRollingResistance) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("rolling_friction_stone"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(s.shape(), StoneShape::kDisc);  // unchanged by the refused call
+  EXPECT_STREQ(s.model().name(), "disc");  // unchanged by the refused call
   p.rolling_friction_stone = 0.0;
   s.set_params(p);
   s.set_polygons(box, {0, 4});

@@ -7,6 +7,7 @@
 
 #include "common/pin_hash.h"
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/polygon.h"
 
 using namespace vofdem;
 

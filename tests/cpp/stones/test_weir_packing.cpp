@@ -58,7 +58,7 @@ TEST(WeirPacking, SmallPolygonWeirIsPackedAtRestInsideTheOutlineAndReproducible)
   s.height = 0.12;
   s.crest = 0.08;
   s.seed = 5;
-  s.shape = StoneShape::kPolygon;
+  s.shape = "polygon";
   s.settle_time_max = 2.0;
   DEMParams p;
   p.dt = 4e-5;
@@ -66,7 +66,7 @@ TEST(WeirPacking, SmallPolygonWeirIsPackedAtRestInsideTheOutlineAndReproducible)
   WeirPackingReport r1, r2;
   DEMSystem a = pack_weir(s, p, r1);
   DEMSystem b = pack_weir(s, p, r2);
-  EXPECT_EQ(a.shape(), StoneShape::kPolygon);
+  EXPECT_STREQ(a.model().name(), "polygon");
   EXPECT_EQ(a.disc_pos, b.disc_pos);
   EXPECT_EQ(a.poly_vertex, b.poly_vertex);
   EXPECT_GT(r1.n_fixed, 3);

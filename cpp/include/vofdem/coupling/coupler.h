@@ -235,7 +235,6 @@ class Coupler {
   [[noreturn]] void fail(const std::string& stage, const std::string& what, double courant = 0.0);
   bool has_fluid() const { return fluid_ != nullptr; }
   bool has_stones() const { return stones_ != nullptr && n_ > 0; }
-  bool polygons() const { return stones_ != nullptr && stones_->shape() == StoneShape::kPolygon; }
 
   VOFGrid* fluid_;
   DEMSystem* stones_;

@@ -16,10 +16,11 @@
 // is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (disc_drag_coef c_i, disc_drag_vel
 // U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
 //
-// Stone shape: discs (the default) or convex polygons (set_polygons(); polygon.h gives the matching 3D
-// stone's V and I, polygon_contact.h the contact manifolds). For polygons disc_radius is the bounding
-// radius (neighbour search), disc_angle the orientation of the body-frame vertices poly_vertex.
-//
+// Stone shape: a stone model (stone_model.h), registered by name: discs (disc_model.h, the default) or
+// convex polygons (polygon_model.h, set_polygons()). The model gives V_i, I_i and the areas, the contact
+// forces with their histories and their stable step; DEMSystem never asks which model it holds. For
+// polygons disc_radius is the bounding radius (neighbour search), disc_angle the orientation of the
+// body-frame vertices poly_vertex.
 // Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
 // evaluation per step. The linear drag is integrated exactly in each half kick (exponential integrator):
 // a half kick of h with the total acceleration a (drag included) adds h a phi(h k), k = c / (M + M'),
@@ -41,40 +42,15 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "vofdem/common/medium.h"
-#include "vofdem/stones/polygon.h"
-#include "vofdem/stones/polygon_contact.h"
 #include "vofdem/common/profile.h"
+#include "vofdem/stones/stone_model.h"
 
 namespace vofdem {
-
-namespace detail {
-// separating-axis cache of one polygon pair (dem_polygon.cpp): saves the full test while the pose has
-// not moved enough to change its answer; never changes a result, so it is no part of the state
-// a touching polygon pair of one force evaluation: its index in the pair list and its manifold
-struct PolygonContact {
-  int pair = 0;
-  ContactManifold m;
-};
-
-struct PolygonPairCache {
-  int flip = -1, edge = 0;  // the axis (flip -1: none)
-  int flip2 = 0, edge2 = 0; // overlapping: the runner-up axis
-  double margin = -1.0;     // overlapping: the axis's lead over every other [m] (>= 0); < 0: a separating axis
-  double margin2 = 0.0;     // overlapping: the runner-up's lead over every other axis but the first [m]
-  double sep = 0.0;         // a separating axis: its separation at the pose below [m]
-  double dx = 0.0, dz = 0.0, ai = 0.0, aj = 0.0;  // the pose it was found at
-  double s = 0.0;           // a reference axis: its separation [m] (< 0: the depth) at the pose below
-  double sx = 0.0, sz = 0.0, sai = 0.0, saj = 0.0;
-  // the incident edge found for the reference face (inc_flip, inc_edge) at angles (inc_ai, inc_aj), and
-  // its lead over the next edge (in n . u) [-]; inc -1: none
-  int inc = -1, inc_flip = 0, inc_edge = 0;
-  double inc_margin = 0.0, inc_ai = 0.0, inc_aj = 0.0;
-};
-}  // namespace detail
 
 // effect flags of DEMParams::flags; each stage checks its bit first
 enum DEMFlag : unsigned {
@@ -160,7 +136,8 @@ struct DEMState {
   std::vector<int> contact_i, contact_j;
   std::vector<double> contact_xi, contact_mr;  // tangential spring [m], rolling spring moment [N m]
   std::vector<double> wall_xi, wall_mr;        // per (stone, wall)
-  // polygon stones (empty poly_offset: discs): the shape and the manifold points' springs
+  // the stone model (stone_model.h) and its part: polygon stones' shapes and manifold points' springs
+  std::string model = "disc";
   std::vector<double> poly_vertex;
   std::vector<int> poly_offset, poly_contact_i, poly_contact_j, poly_contact_id, poly_wall_id;
   std::vector<double> poly_contact_xi, poly_wall_xi;
@@ -169,6 +146,8 @@ struct DEMState {
   int removed = 0, ncontact = 0, nwall_contact = 0;
   double dissipated = 0.0, work_external = 0.0, elastic = 0.0;  // energy accumulators [J]
   bool forces_valid = false;
+  // empties the stone model's part (a model's export_state fills what it holds)
+  void clear_model_part();
 };
 
 // a DEMState as the checkpoint's named flat arrays, and back (nwalls: the system's wall count; entries
@@ -224,24 +203,36 @@ class DEMSystem {
   int neighbour_builds() const { return nbuilds_; }
   DEMEnergy energy() const;
 
-  // derived per-stone properties of the sphere of the disc's diameter, or of the matching 3D stone of
-  // a polygon (polygon.h) (read-only for users)
-  double mass(int i) const;    // M_i [kg]
-  double volume(int i) const;  // V_i [m^3]
-  double projected_area(int i) const;  // A_pi = pi d^2 / 4 [m^2]; polygons: mean over directions, r_A P / 2
-  // ---- stone shape ----
-  StoneShape shape() const { return shape_; }
-  // makes every stone a convex polygon: body-frame vertices (x, z pairs, counter-clockwise, centroid at
-  // the origin) [m], stone i owning vertices offset[i] .. offset[i+1]-1 (3 to 16 each); sets disc_radius
-  // to each bounding radius. Throws std::invalid_argument for a bad polygon (naming the stone).
+  // ---- the stone model (stone_model.h): the shape of every stone ----
+  const StoneModel& model() const { return *model_; }
+  // makes every stone of the registered model `name` ("disc", "polygon", or a program's own): its shape
+  // arrays and contact histories are made anew (a model with shapes needs them set: set_polygons()).
+  // Throws std::invalid_argument for an unknown name or parameters the model refuses (nothing changed)
+  void set_model(const std::string& name);
+  void set_model(std::unique_ptr<StoneModel> model);
+  // makes every stone a convex polygon (polygon_model.h): body-frame vertices (x, z pairs,
+  // counter-clockwise, centroid at the origin) [m], stone i owning vertices offset[i] .. offset[i+1]-1
+  // (3 to 16 each); sets disc_radius to each bounding radius. Throws std::invalid_argument for a bad
+  // polygon (naming the stone).
   void set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset);
+
+  // derived per-stone properties of the 3D stone the model stands for (read-only for users)
+  double mass(int i) const { return disc_density[i] * model_->volume(*this, i); }  // M_i [kg]
+  double volume(int i) const { return model_->volume(*this, i); }                    // V_i [m^3]
+  // A_pi, the mean over directions [m^2]: pi d^2 / 4 for a disc; r_A P / 2 for a polygon
+  double projected_area(int i) const { return model_->projected_area(*this, i); }
   // nominal diameter [m]: 2 r for a disc, the equal-area disc's diameter for a polygon
-  double nominal_diameter(int i) const;
+  double nominal_diameter(int i) const { return model_->nominal_diameter(*this, i); }
   // projected area [m^2] of the 3D stone seen along the direction (ux, uz) in the flume's plane: pi r^2
   // for a disc; (pi / 2) r_A W for a polygon, W its width across the direction (an ellipsoid's exact rule)
-  double projected_area(int i, double ux, double uz) const;
+  double projected_area(int i, double ux, double uz) const { return model_->projected_area(*this, i, ux, uz); }
   // moment of inertia I_i [kg m^2] about the axis normal to the flume's plane
-  double inertia(int i) const;
+  double inertia(int i) const { return model_->inertia(*this, i, mass(i)); }
+  // a wall's unit normal (wx, wz), out of the solid
+  static std::array<double, 2> wall_unit_normal(const DEMWall& wall) {
+    const double len = std::hypot(wall.normal[0], wall.normal[1]);
+    return {wall.normal[0] / len, wall.normal[1] / len};
+  }
   // stone-stone pairs currently in the neighbour list, as (i, j) with i < j (for tests)
   std::vector<std::array<int, 2>> neighbour_pairs() const;
   // pairs (i, j), i < j, that overlap now, by the O(N^2) reference search (for tests; for polygon stones,
@@ -286,27 +277,14 @@ class DEMSystem {
   std::vector<double> disc_alpha;           // angular acceleration of the last evaluation [rad/s^2], n
   std::vector<std::uint8_t> disc_asleep;    // 1: sleeping (not integrated), n
   std::vector<double> disc_sleep_timer;     // time spent below the sleep speed [s], n
-  // polygon stones only (empty for discs): body-frame vertices (x, z pairs, CCW) [m] and the index of
-  // each stone's first vertex, n + 1 (set_polygons)
+  // shape arrays of the models that have them (empty for discs): polygons' body-frame vertices (x, z
+  // pairs, CCW) [m] and the index of each stone's first vertex, n + 1 (set_polygons)
   std::vector<double> poly_vertex;
   std::vector<int> poly_offset;
 
  private:
-  // tangential springs of up to two manifold points of a polygon contact, by feature id (-1: empty)
-  struct PolygonHistory {
-    int id[2] = {-1, -1};
-    double xi[2] = {0.0, 0.0};
-    double spring(int feature) const { return id[0] == feature ? xi[0] : (id[1] == feature ? xi[1] : 0.0); }
-  };
-  struct Pair {
-    int i, j;
-    double xi;         // tangential spring [m]
-    double sqrt_m;     // sqrt of the pair's reduced mass [kg^0.5], set at each build
-    double mr = 0.0;   // rolling spring moment M_r^k on i [N m] (rolling resistance only)
-    double roll_c = 0.0;  // 2 R* sqrt(I_r) [kg^0.5 m^2]: C_r = eta_r sqrt(k_t) roll_c (rolling resistance only)
-    double roll_r = 0.0;  // R* = r_i r_j / (r_i + r_j) [m] (rolling resistance only)
-    PolygonHistory poly{};  // polygon stones: the springs of the manifold points
-  };
+  friend class StoneModel;  // the models' loops reach the arrays below through StoneModel's accessors
+  using Pair = ContactPair;
   void prepare();
   void check_params() const;
   void check_stones() const;
@@ -331,30 +309,16 @@ class DEMSystem {
   double drag_kick_scale(int i, double dt) const;
   void remove_escaped();
   void body_forces(double dt);
-  // the constants of the contact law (dem_contact.h) in a force evaluation, the same for every contact of
-  // discs and polygons, stone-stone and stone-wall: the Coulomb cap on (kDEMFriction), c_n / sqrt(m*) =
-  // 2 zeta sqrt(k_n) (0 with the dashpots off), k_t (0 without friction)
-  struct ContactLaw {
-    bool friction;
-    double damp, kt;
-  };
+  // the constants of the contact law in a force evaluation (ContactLaw, stone_model.h)
   ContactLaw contact_law() const {
     const bool friction = params_.flags & kDEMFriction;
     return {friction, (params_.flags & kDEMDamping) ? 2.0 * zeta_ * std::sqrt(kn_) : 0.0, friction ? kt_ : 0.0};
   }
-  // a wall's unit normal (wx, wz), out of the solid
-  static std::array<double, 2> wall_unit_normal(const DEMWall& wall) {
-    const double len = std::hypot(wall.normal[0], wall.normal[1]);
-    return {wall.normal[0] / len, wall.normal[1] / len};
-  }
-  void contact_forces(double dt);
-  void wall_forces(double dt);
   // rolling resistance (dem_rolling.cpp, law in rolling_resistance.h): whether a contact kind has it,
-  // its check, its term of stable_dt(), and the moments of one stone-stone or stone-wall contact
-  // (applied to disc_torque; the energies returned)
+  // its term of stable_dt(), and the moments of one stone-stone or stone-wall contact (applied to
+  // disc_torque; the energies returned)
   bool rolling_stones() const;
   bool rolling_walls() const;
-  void check_rolling_shape(StoneShape shape, const DEMParams& p) const;  // refuses mu_r > 0 for polygon stones
   double rolling_spin_stiffness(double m_min) const;
   void update_rolling_inertia();
   void update_pair_rolling();  // Pair::roll_c of every listed pair
@@ -365,18 +329,8 @@ class DEMSystem {
   RollingEnergy rolling_wall(int i, double& mr, double fn, double dt);
   void sleep_update(double dt);
   double reduced_stiffness_mass() const;
-  // polygon stones (dem_polygon.cpp)
-  void update_polygon_properties();
-  std::size_t polygon_touching();
-  void polygon_contact_forces(double dt);
-  void polygon_wall_forces(double dt);
-  double polygon_stable_dt() const;
-  double inertia_of(int i, double mass) const;
-  void export_polygons(DEMState& s) const;
-  void check_polygon_state(const DEMState& s) const;
-  void import_polygons(const DEMState& s);
-
   DEMParams params_;
+  std::unique_ptr<StoneModel> model_;  // the stones' shape (stone_model.h)
   int n_ = 0;
   bool prepared_ = false;
   bool forces_valid_ = false;  // disc_acc holds the accelerations of the current state
@@ -403,6 +357,7 @@ class DEMSystem {
   std::vector<Pair> pairs_;
   std::vector<double> wall_xi_;      // tangential spring per (stone, wall) [m], n * nwall
   std::vector<double> wall_mr_;      // rolling spring moment per (stone, wall) [N m], n * nwall
+  std::vector<PointSprings> wall_points_;  // several-point contacts' springs per (stone, wall), n * nwall
   std::vector<double> build_pos_;    // positions at the last neighbour build
   double skin_ = 0.0;
   bool rebuild_ = true;
@@ -417,23 +372,6 @@ class DEMSystem {
   std::vector<Pair> new_pairs_;
   std::vector<double> cached_radius_;
   std::vector<std::uint8_t> cached_active_, cached_fixed_;
-
-  // polygon stones: shape, derived section properties and per-evaluation world geometry
-  StoneShape shape_ = StoneShape::kDisc;
-  std::vector<double> poly_area_;     // section area A [m^2], n
-  std::vector<double> poly_jratio_;   // J_A / A [m^2], n
-  std::vector<double> poly_normal_;   // body-frame edge normals, as poly_vertex
-  std::vector<double> poly_world_, poly_world_normal_;  // world-frame vertices and normals
-  std::vector<long long> poly_world_stamp_;  // the force evaluation whose world geometry a stone holds
-  std::vector<int> poly_todo_;               // scratch: the stones whose world geometry is made first
-  std::vector<double> poly_cs_;              // scratch: their cosines and sines
-  long long poly_eval_ = 0;                  // force evaluations so far (a cache key, not state)
-  // separating-axis cache of each polygon pair (dem_polygon.cpp)
-  std::vector<detail::PolygonPairCache> poly_sat_cache_;
-  std::vector<detail::PolygonContact> poly_contacts_;  // the touching pairs of a force evaluation (scratch)
-  int poly_sat_builds_ = -1;  // the neighbour build the cache belongs to
-  std::vector<double> cached_poly_vertex_;
-  std::vector<PolygonHistory> poly_wall_hist_;  // per (stone, wall)
 
   DEMState backup_;  // the state at the start of advance(), restored on a failure
 

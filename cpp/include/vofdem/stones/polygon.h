@@ -41,9 +41,6 @@
 
 namespace vofdem {
 
-// shape of the stones of a DEMSystem: all discs (the default) or all convex polygons
-enum class StoneShape : int { kDisc = 0, kPolygon = 1 };
-
 // largest vertex count of a polygon stone
 constexpr int kPolygonMaxVertices = 16;
 

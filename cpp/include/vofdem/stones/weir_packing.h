@@ -12,7 +12,7 @@
 // rest_speed. Diameters are d_mean (1 + d_spread (2u - 1)), u uniform in [0, 1) from std::mt19937_64
 // with our own conversion (so a seed gives the same weir with any standard library).
 //
-// Polygon stones (shape = kPolygon): the same steps with convex polygons of nominal diameter d (the
+// Polygon stones (shape "polygon"): the same steps with convex polygons of nominal diameter d (the
 // equal-area disc's, polygon.h), their shapes and orientations from a second generator seeded from
 // `seed` (the diameters follow the same draws as for discs). The bottom row lies on its longest edges,
 // touching; the free stones take random orientations; the lattice pitch and the free-site tests use the
@@ -20,8 +20,10 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/polygon.h"
 
 namespace vofdem {
 
@@ -38,8 +40,10 @@ struct WeirSpec {
   std::uint64_t seed = 0;       // random seed of the diameters and lattice jitter
   double settle_time_max = 6.0; // simulated time allowed for each settling phase [s]
   double rest_speed = 1e-3;     // packing is at rest when every stone is slower [m/s]
-  StoneShape shape = StoneShape::kDisc;  // discs (default) or convex polygons
-  PolygonSpec polygon;          // how polygon stones are drawn (shape = kPolygon)
+  // the stone model drawn (stone_model.h): "disc" (default) or "polygon" (convex polygons), the models
+  // this generator packs
+  std::string shape = "disc";
+  PolygonSpec polygon;          // how polygon stones are drawn (shape "polygon")
 
   double x_end() const;                 // downstream toe [m]
   double top(double x) const;           // trapezoid's height above the bed at x [m] (0 outside)
