@@ -197,8 +197,9 @@ class Stones(_Section):
                                     "1 - (1 - n_exp) / phi that makes the weir's mean porosity n_exp ('bulk'; phi: the "
                                     "packing's 2D solid fraction)")
     fix_bottom_layer: bool = _flag(True, "stones touching the bed are fixed to it (as in the paper)")
-    shape: str = _choice("disc", ("disc", "polygon"),
-                         "stone shape: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
+    # the choices are the stone models' registry (stone_model.h), each name written once there
+    shape: str = _choice("disc", tuple(_core.stone_model_names()),
+                         "stone model: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
                          "form, one per stone from the seed)")
     polygon_vertices_min: int = _p(5, None, 3, 16, "fewest vertices of a polygon stone [-]; usual 5")
     polygon_vertices_max: int = _p(8, None, 3, 16, "most vertices of a polygon stone [-]; usual 8")
