@@ -55,41 +55,30 @@ int PorosityMapper::add_polygon(const double* world, int count, int p) {
 
 void PorosityMapper::map_polygons(int n, const double* x, const double* z, const double* angle,
                                   const double* poly_vertex, const int* poly_offset, const std::uint8_t* active) {
-  ScopedStage timer(profile_, stage_map_);
   if (params_.method == PorosityMethod::kLookup)
     throw std::invalid_argument(
         "method = 1 (lookup): the paper's lookup table holds disc areas; polygon stones need method = 0 (exact)");
-  if (n < 0 || n > params_.max_discs)
-    throw std::invalid_argument("ndisc = " + std::to_string(n) + " is outside the allowed range [0, " +
-                                std::to_string(params_.max_discs) + "] (max_discs)");
-  // check everything before touching the outputs, so a refused call leaves the last map intact
-  for (int j = 0; j < n; ++j) {
-    if (active && !active[j]) continue;
-    require_finite("x", x[j]);
-    require_finite("z", z[j]);
-    require_finite("angle", angle[j]);
-    const int count = poly_offset[j + 1] - poly_offset[j];
-    if (count < 3 || count > kPolygonMaxVertices)
-      throw std::invalid_argument("polygon " + std::to_string(j) + " has " + std::to_string(count) +
-                                  " vertices: allowed range [3, " + std::to_string(kPolygonMaxVertices) + "]");
-    double r2 = 0.0;
-    for (int k = poly_offset[j]; k < poly_offset[j + 1]; ++k)
-      r2 = std::max(r2, poly_vertex[2 * k] * poly_vertex[2 * k] + poly_vertex[2 * k + 1] * poly_vertex[2 * k + 1]);
-    require_in_closed("polygon bounding radius", std::sqrt(r2), 0.0, params_.r_max * (1.0 + 1e-12));
-  }
-  std::fill(cell_solid_area_.begin(), cell_solid_area_.end(), 0.0);
   double* world = poly_scratch_.data();
-  int p = 0;
-  for (int j = 0; j < n; ++j) {
-    disc_cell_offsets_[j] = p;
-    if (active && !active[j]) continue;
-    const int o = poly_offset[j], count = poly_offset[j + 1] - o;
-    polygon_to_world(poly_vertex + 2 * o, count, x[j], z[j], angle[j], world);
-    p = add_polygon(world, count, p);
-  }
-  disc_cell_offsets_[n] = p;
-  ndisc_ = n;
-  apply_eq11();
+  map_each(
+      n, active,
+      [&](int j) {
+        require_finite("x", x[j]);
+        require_finite("z", z[j]);
+        require_finite("angle", angle[j]);
+        const int count = poly_offset[j + 1] - poly_offset[j];
+        if (count < 3 || count > kPolygonMaxVertices)
+          throw std::invalid_argument("polygon " + std::to_string(j) + " has " + std::to_string(count) +
+                                      " vertices: allowed range [3, " + std::to_string(kPolygonMaxVertices) + "]");
+        double r2 = 0.0;
+        for (int k = poly_offset[j]; k < poly_offset[j + 1]; ++k)
+          r2 = std::max(r2, poly_vertex[2 * k] * poly_vertex[2 * k] + poly_vertex[2 * k + 1] * poly_vertex[2 * k + 1]);
+        require_in_closed("polygon bounding radius", std::sqrt(r2), 0.0, params_.r_max * (1.0 + 1e-12));
+      },
+      [&](int j, int p) {
+        const int o = poly_offset[j], count = poly_offset[j + 1] - o;
+        polygon_to_world(poly_vertex + 2 * o, count, x[j], z[j], angle[j], world);
+        return add_polygon(world, count, p);
+      });
 }
 
 }  // namespace vofdem

@@ -255,28 +255,17 @@ int PorosityMapper::add_lookup(int j, double x, double z, double r, int p) {
 
 void PorosityMapper::map(int n, const double* disc_x, const double* disc_z, const double* disc_r,
                          const std::uint8_t* disc_active) {
-  ScopedStage timer(profile_, stage_map_);
-  if (n < 0 || n > params_.max_discs)
-    throw std::invalid_argument("ndisc = " + std::to_string(n) + " is outside the allowed range [0, " +
-                                std::to_string(params_.max_discs) + "] (max_discs)");
-  // check everything before touching the outputs, so a refused call leaves the last map intact
-  for (int j = 0; j < n; ++j) {
-    if (disc_active && !disc_active[j]) continue;
-    require_finite("disc_x", disc_x[j]);
-    require_finite("disc_z", disc_z[j]);
-    require_in_closed("disc_r", disc_r[j], params_.r_min, params_.r_max);
-  }
-  std::fill(cell_solid_area_.begin(), cell_solid_area_.end(), 0.0);
   const bool lookup = params_.method == PorosityMethod::kLookup;
-  int p = 0;
-  for (int j = 0; j < n; ++j) {
-    disc_cell_offsets_[j] = p;
-    if (disc_active && !disc_active[j]) continue;
-    p = lookup ? add_lookup(j, disc_x[j], disc_z[j], disc_r[j], p) : add_exact(j, disc_x[j], disc_z[j], disc_r[j], p);
-  }
-  disc_cell_offsets_[n] = p;
-  ndisc_ = n;
-  apply_eq11();
+  map_each(
+      n, disc_active,
+      [&](int j) {
+        require_finite("disc_x", disc_x[j]);
+        require_finite("disc_z", disc_z[j]);
+        require_in_closed("disc_r", disc_r[j], params_.r_min, params_.r_max);
+      },
+      [&](int j, int p) {
+        return lookup ? add_lookup(j, disc_x[j], disc_z[j], disc_r[j], p) : add_exact(j, disc_x[j], disc_z[j], disc_r[j], p);
+      });
 }
 
 // eq. (11) with A_s capped at the cell area

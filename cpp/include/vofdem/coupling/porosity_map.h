@@ -36,7 +36,10 @@
 // VOF-DEM coupled model, ICHE 2008, Nagoya, section 2.4 and Fig. 3.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "vofdem/common/grid.h"
@@ -139,6 +142,27 @@ class PorosityMapper {
   int add_lookup(int j, double x, double z, double r, int p);
   int add_polygon(const double* world, int count, int p);
   void apply_eq11();
+  // what map() and map_polygons() share: n checked against max_discs and each active stone by check(j)
+  // before any output is touched (a refused call leaves the last map intact), the areas cleared, each
+  // active stone's cells added by add(j, p) (returns the next free CSR slot), eq. (11) applied
+  template <class Check, class Add>
+  void map_each(int n, const std::uint8_t* active, Check&& check, Add&& add) {
+    ScopedStage timer(profile_, stage_map_);
+    if (n < 0 || n > params_.max_discs)
+      throw std::invalid_argument("ndisc = " + std::to_string(n) + " is outside the allowed range [0, " +
+                                  std::to_string(params_.max_discs) + "] (max_discs)");
+    for (int j = 0; j < n; ++j)
+      if (!active || active[j]) check(j);
+    std::fill(cell_solid_area_.begin(), cell_solid_area_.end(), 0.0);
+    int p = 0;
+    for (int j = 0; j < n; ++j) {
+      disc_cell_offsets_[j] = p;
+      if (!active || active[j]) p = add(j, p);
+    }
+    disc_cell_offsets_[n] = p;
+    ndisc_ = n;
+    apply_eq11();
+  }
 
   Grid2D grid_;
   PorosityParams params_;
