@@ -44,10 +44,7 @@ int PorosityMapper::add_polygon(const double* world, int count, int p) {
       const double area = std::clamp(polygon_area(piece, q), 0.0, grid_.cell_area(k));
       if (area <= 0.0) continue;
       const int c = grid_.cell(i, k);
-      cell_solid_area_[c] += area;
-      disc_cell_index_[p] = c;
-      disc_cell_area_[p] = area;
-      ++p;
+      p = append_cell(c, area, p);
     }
   }
   return p;

@@ -202,10 +202,7 @@ int PorosityMapper::add_exact(int /*j*/, double x, double z, double r, int p) {
       const double area = std::clamp(hi[1] - hi[0] - lo[1] + lo[0], 0.0, cell_area);
       if (area <= 0.0) continue;
       const int c = grid_.cell(i0 + i, k0 + k);
-      cell_solid_area_[c] += area;
-      disc_cell_index_[p] = c;
-      disc_cell_area_[p] = area;
-      ++p;
+      p = append_cell(c, area, p);
     }
   }
   return p;
@@ -244,10 +241,7 @@ int PorosityMapper::add_lookup(int j, double x, double z, double r, int p) {
       const double area = r2 * (t0[e] + w * (t1[e] - t0[e]));
       if (area <= 0.0) continue;
       const int cell = grid_.cell(ii, kk);
-      cell_solid_area_[cell] += area;
-      disc_cell_index_[p] = cell;
-      disc_cell_area_[p] = area;
-      ++p;
+      p = append_cell(cell, area, p);
     }
   }
   return p;

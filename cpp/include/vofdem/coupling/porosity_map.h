@@ -142,6 +142,13 @@ class PorosityMapper {
   int add_lookup(int j, double x, double z, double r, int p);
   int add_polygon(const double* world, int count, int p);
   void apply_eq11();
+  // cell c gets area [m^2] of the stone being mapped: the cell's sum and the stone's CSR entry p; returns p + 1
+  int append_cell(int c, double area, int p) {
+    cell_solid_area_[c] += area;
+    disc_cell_index_[p] = c;
+    disc_cell_area_[p] = area;
+    return p + 1;
+  }
   // what map() and map_polygons() share: n checked against max_discs and each active stone by check(j)
   // before any output is touched (a refused call leaves the last map intact), the areas cleared, each
   // active stone's cells added by add(j, p) (returns the next free CSR slot), eq. (11) applied
