@@ -199,7 +199,7 @@ class Stones(_Section):
     fix_bottom_layer: bool = _flag(True, "stones touching the bed are fixed to it (as in the paper)")
     # the choices are the stone models' registry (stone_model.h), each name written once there
     shape: str = _choice("disc", tuple(_core.stone_model_names()),
-                         "stone model: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
+                         "stone shape: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
                          "form, one per stone from the seed)")
     polygon_vertices_min: int = _p(5, None, 3, 16, "fewest vertices of a polygon stone [-]; usual 5")
     polygon_vertices_max: int = _p(8, None, 3, 16, "most vertices of a polygon stone [-]; usual 8")
