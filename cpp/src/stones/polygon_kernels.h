@@ -1,7 +1,7 @@
 // Inline kernels of the polygon contact (polygon_contact.h), private to the library: the world transform,
 // the vertex minimum along an edge normal, the separating-axis test with its runner-up axis, the incident
 // edge, and the clipping of the incident edge against the reference face. polygon_contact.cpp and the
-// DEM's contact loop (dem_polygon.cpp) both call them, so the loop inlines them and both do the same
+// DEM's contact loop (polygon_model.cpp) both call them, so the loop inlines them and both do the same
 // arithmetic, operation for operation.
 #pragma once
 
