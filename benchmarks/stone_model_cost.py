@@ -14,7 +14,8 @@ Cases:
 Writes benchmarks/results/stone_model_cost.md (medians over the rounds; ratios against the first
 interpreter).
 
-    python3 benchmarks/stone_model_cost.py --python BEFORE/bin/python AFTER/bin/python [--rounds 5]
+    python3 benchmarks/stone_model_cost.py --python BEFORE/bin/python AFTER/bin/python
+        [--label before after] [--rounds 5]
         [--dem-time 2] [--end-time 30] [--out FILE]
 """
 import argparse
@@ -109,6 +110,7 @@ def table(pythons, rounds) -> str:
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--python", nargs="+", default=[sys.executable], help="interpreters, each with its vofdem")
+    ap.add_argument("--label", nargs="+", help="a name for each interpreter's build (default: its path)")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--dem-time", type=float, default=2.0, help="DEM-alone duration [s]")
     ap.add_argument("--end-time", type=float, default=30.0, help="coupled scenes' end time [s]")
@@ -117,6 +119,9 @@ def main(argv=None) -> None:
     args = ap.parse_args(argv)
     if args.child:
         return child(args)
+    labels = args.label or args.python
+    if len(labels) != len(args.python):
+        raise SystemExit(f"--label has {len(labels)} names for {len(args.python)} interpreters: give one each")
     rounds, loads = [], []
     for r in range(args.rounds):
         loads.append(os.getloadavg()[0])
@@ -129,7 +134,7 @@ def main(argv=None) -> None:
             f"{platform.processor() or platform.machine()}, one core per child (OMP_NUM_THREADS=1), "
             f"builds alternating round by round; load average during the run "
             f"{min(loads):.2f}-{max(loads):.2f}.\n\n"
-            + "\n".join(f"- build {k}: `{p}`" for k, p in enumerate(args.python)) +
+            + "\n".join(f"- build {k}: {label}" for k, label in enumerate(labels)) +
             "\n\nMedians over the rounds; 'same bits': every round of every build ended in the same state "
             "(sha256 of the exported state's arrays).\n\n" + table(args.python, rounds) + "\n")
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)

@@ -163,6 +163,10 @@ void DEMSystem::set_model(std::unique_ptr<StoneModel> model) {
   std::fill(wall_xi_.begin(), wall_xi_.end(), 0.0);
   std::fill(wall_mr_.begin(), wall_mr_.end(), 0.0);
   std::fill(wall_points_.begin(), wall_points_.end(), PointSprings{});
+  shapes_changed();
+}
+
+void DEMSystem::shapes_changed() {
   pairs_.clear();
   rebuild_ = true;
   prepared_ = false;

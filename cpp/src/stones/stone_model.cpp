@@ -111,11 +111,6 @@ void StoneModel::rolling_wall(DEMSystem& s, int i, double& mr, double fn, double
 
 double StoneModel::rolling_spin_stiffness(const DEMSystem& s, double m_min) { return s.rolling_spin_stiffness(m_min); }
 
-void StoneModel::shapes_changed(DEMSystem& s) {
-  s.pairs_.clear();
-  s.rebuild_ = true;
-  s.prepared_ = false;
-  s.forces_valid_ = false;
-}
+void StoneModel::shapes_changed(DEMSystem& s) { s.shapes_changed(); }
 
 }  // namespace vofdem

@@ -286,6 +286,8 @@ class DEMSystem {
   friend class StoneModel;  // the models' loops reach the arrays below through StoneModel's accessors
   using Pair = ContactPair;
   void prepare();
+  // the shapes changed: the neighbour list, the derived masses and the accelerations are made again
+  void shapes_changed();
   void check_params() const;
   void check_stones() const;
   void update_properties();
