@@ -1,4 +1,4 @@
-# The two commands of the README:
+# The README's commands:
 #   make demo   installs what is missing and runs the main job, writing results and figures to out/
 #   make test   installs what is missing and runs every test (C++, C++ under sanitizers, Python)
 PY ?= python3
@@ -12,7 +12,7 @@ install:
 demo: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --quick --out $(OUT)/maeno2008_quick
 
-# the whole scenario on the paper's grid and hydrograph (long: see the README for its cost)
+# the whole scenario on the paper's grid and hydrograph (long: see docs/accuracy_cost.md for its cost)
 full: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --out $(OUT)/maeno2008
 
