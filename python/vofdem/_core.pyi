@@ -2623,7 +2623,7 @@ def restitution_from_damping_ratio(zeta: typing.SupportsFloat | typing.SupportsI
     ...
 def vof_stable_dt(grid: Grid2D, cell_porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_u: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_w: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cfl: typing.SupportsFloat | typing.SupportsIndex = 0.45) -> float:
     """
-    Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers |v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.
+    Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers abs(v) dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.
     """
 def weir_outline_error(system: DEMSystem, spec: WeirSpec) -> float:
     ...

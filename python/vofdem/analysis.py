@@ -2,7 +2,7 @@
 
 Definitions (all from the recorded snapshots of stone positions):
 
-* **Displacement** of stone i at time t: |x_i(t) - x_i(0)| [m].
+* **Displacement** of stone i at time t: ``|x_i(t) - x_i(0)|`` [m].
 * **Removal**: a stone counts as removed at the first snapshot where its displacement exceeds
   ``removal_factor`` (default 1) times its own diameter, or where the solver reports it inactive
   (it left the domain). Fixed stones are never removed. The time resolution is the snapshot interval.

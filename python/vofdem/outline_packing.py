@@ -3,6 +3,7 @@ stones are placed geometrically and settled under gravity by the DEM (dem_system
 "free packing method due to gravity" and as `pack_weir` (weir_packing.h) does for the trapezoid.
 
 Steps:
+
 1. the bottom row: touching stones on the bed from toe to toe (fixed to the bed);
 2. a mould: small fixed discs ("ghosts", a quarter of the smallest stone's diameter, overlapping, so
    nothing passes between them) along the upper boundary, half a local d50 outside it, so that the
