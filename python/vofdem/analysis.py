@@ -51,6 +51,9 @@ class StageCriterion:
 
 @dataclass
 class Stage:
+    """A destruction stage: stones removed together, with pauses no longer than the criterion's (times [s],
+    discharge [l/s])."""
+
     number: int
     start_time: float  # simulation time of its first removal [s]
     end_time: float  # simulation time of its last removal [s]
@@ -72,6 +75,9 @@ class Stage:
 
 @dataclass
 class FailureAnalysis:
+    """What a run's stones did: their displacements [m] and removal times [s] over the snapshots, the stages,
+    the isolated removals and the crest level [m] (made by `analyse`)."""
+
     times: np.ndarray  # (T,) snapshot times [s]
     displacement: np.ndarray  # (T, n) [m]
     removal_time: np.ndarray  # (n,) [s], nan = never removed
