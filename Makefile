@@ -1,10 +1,10 @@
-# The two commands of the README:
+# The README's commands:
 #   make demo   installs what is missing and runs the main job, writing results and figures to out/
-#   make test   installs what is missing and runs every test (C++, C++ under sanitizers, Python)
+#   make test   installs what is missing and runs every test (C++, C++ under sanitizers, Python) and builds the docs
 PY ?= python3
 OUT ?= out
 
-.PHONY: demo full ensemble-demo maeno-fragility verdict verdict-small test test-fast install test-cpp test-py bench
+.PHONY: demo full ensemble-demo maeno-fragility verdict verdict-small test test-fast install test-cpp test-py docs bench
 
 install:
 	bash scripts/install_deps.sh test
@@ -12,7 +12,7 @@ install:
 demo: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --quick --out $(OUT)/maeno2008_quick
 
-# the whole scenario on the paper's grid and hydrograph (long: see the README for its cost)
+# the whole scenario on the paper's grid and hydrograph (long: see docs/accuracy_cost.md for its cost)
 full: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --out $(OUT)/maeno2008
 
@@ -33,7 +33,14 @@ verdict: install
 verdict-small: install
 	$(PY) benchmarks/maeno2008_verdict.py --small
 
-test: install test-cpp test-py
+test: install test-cpp test-py docs
+
+# the documentation site into build/docs/html/: the guide of docs/, the results files, the notebooks (not
+# executed) and the API reference from the installed package's docstrings; every warning is an error, and
+# every page is read again (-E) so that a warning of an unchanged page is not hidden by the cache
+docs: install
+	$(PY) -m sphinx -E -W --keep-going -q -b html -c docs . build/docs/html
+	@echo "documentation: build/docs/html/index.html"
 
 # the developer's loop: the optimised C++ tests and the Python tests not marked slow (minutes less)
 test-fast: install

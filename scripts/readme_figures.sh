@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Remakes the README's scenario figures and tables: the whole Maeno 2008 scenario on the paper's grid
+# Remakes the scenario figures and tables of docs/results.md: the whole Maeno 2008 scenario on the paper's grid
 # and hydrograph, once with the paper's coupling (scenes/maeno2008.toml) and once with the consistent
 # coupling options (scenes/maeno2008_consistent.toml), a few minutes each on one core; copies each
 # run's figures and stage table to docs/figures/<scene>/ and writes the paper scene's cost report to
-# benchmarks/results/. The benchmark figures of the README come from the scripts named beside them.
+# benchmarks/results/. The benchmark figures of the docs come from the scripts named beside them.
 # It runs the vofdem that python3 imports: in a build in place (VOFDEM_INPLACE) give PYTHONPATH=python.
 # It stops when that vofdem's Python sources differ from this tree's (an older installed one).
 set -euo pipefail

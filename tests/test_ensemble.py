@@ -253,7 +253,7 @@ def test_a_member_of_an_older_version_without_new_default_keys_is_the_same_scene
 
 
 def test_the_maeno_fragility_script_at_a_tiny_size(tmp_path):
-    """benchmarks/maeno2008_fragility.py, which makes the README's 30-seed figure, on 1 seed of the quick
+    """benchmarks/maeno2008_fragility.py, which makes docs/results.md's 30-seed figure, on 1 seed of the quick
     variant for 2 s."""
     mod = load_script("benchmarks/maeno2008_fragility.py")
     md = mod.main(["--quick", "--seeds", "0", "--end-time", "2", "--workers", "0", "--out", str(tmp_path / "ens"),

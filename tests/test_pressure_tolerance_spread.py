@@ -1,4 +1,4 @@
-"""benchmarks/pressure_tolerance_spread.py, the source of the README's pressure-tolerance row: its
+"""benchmarks/pressure_tolerance_spread.py, the source of docs/accuracy_cost.md's pressure-tolerance row: its
 permutation test by hand, and the script at a tiny size."""
 import re
 

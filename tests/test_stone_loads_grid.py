@@ -1,4 +1,4 @@
-"""benchmarks/stone_loads_grid.py, the source of the README's loads on the held stones on two grids: its
+"""benchmarks/stone_loads_grid.py, the source of docs/accuracy_cost.md's loads on the held stones on two grids: its
 per-stone comparison by hand, and the script at a tiny size."""
 
 import numpy as np

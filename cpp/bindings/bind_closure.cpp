@@ -9,7 +9,7 @@ namespace py = pybind11;
 namespace vofdem::bind {
 
 void bind_closure(py::module_& m) {
-  py::enum_<DragLaw>(m, "DragLaw")
+  py::enum_<DragLaw>(m, "DragLaw", "Drag coefficient C_D [-] of a stone against its Reynolds number (drag.h).")
       .value("PAPER", DragLaw::kPaper, "C_D = 0.4 + 24/Re (seed eq. 18)")
       .value("SCHILLER_NAUMANN", DragLaw::kSchillerNaumann, "C_D = 24/Re (1 + 0.15 Re^0.687), 0.44 above Re=1000");
 

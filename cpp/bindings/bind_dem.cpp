@@ -100,11 +100,15 @@ void bind_params(py::module_& m) {
       .def_readonly("work_external", &DEMEnergy::work_external)
       .def_property_readonly("total", &DEMEnergy::total);
 
-  m.def("damping_ratio_from_restitution", &damping_ratio_from_restitution, py::arg("e"));
-  m.def("restitution_from_damping_ratio", &restitution_from_damping_ratio, py::arg("zeta"));
+  m.def("damping_ratio_from_restitution", &damping_ratio_from_restitution, py::arg("e"),
+        "Damping ratio zeta [-] of a linear spring-dashpot that gives the restitution coefficient e [-] (e = 0: zeta = 1).");
+  m.def("restitution_from_damping_ratio", &restitution_from_damping_ratio, py::arg("zeta"),
+        "Restitution coefficient e [-] of a linear spring-dashpot of damping ratio zeta [-] (0 for zeta >= 1).");
   m.def("stone_model_names", &stone_model_names,
         "the registered stone models' names (DEMSystem.shape, the scene's stones.shape), the built-in ones first");
-  m.def("contact_duration", &contact_duration, py::arg("k"), py::arg("m_reduced"), py::arg("zeta"));
+  m.def("contact_duration", &contact_duration, py::arg("k"), py::arg("m_reduced"), py::arg("zeta"),
+        "Contact duration t_c [s] of a linear spring-dashpot: stiffness k [N/m], reduced mass m_reduced [kg], damping "
+        "ratio zeta [-] (inf for zeta >= 1).");
 }
 
 void bind_system(py::module_& m) {
@@ -323,8 +327,12 @@ void bind_packing(py::module_& m) {
       "(vertices (m, 2) body frame [m], offsets (n + 1)). See polygon.h.",
       py::arg("diameters"), py::arg("seed") = 0, py::arg("vertices_min") = 5, py::arg("vertices_max") = 8,
       py::arg("aspect_ratio") = 1.5, py::arg("radial_jitter") = 0.2);
-  m.def("weir_porosity", &weir_porosity, py::arg("system"), py::arg("spec"), py::arg("h") = 0.002);
-  m.def("weir_outline_error", &weir_outline_error, py::arg("system"), py::arg("spec"));
+  m.def("weir_porosity", &weir_porosity, py::arg("system"), py::arg("spec"), py::arg("h") = 0.002,
+        "2D porosity [-] of the weir's trapezoid filled by the stones (discs or polygons), sampled on a grid of spacing "
+        "h [m].");
+  m.def("weir_outline_error", &weir_outline_error, py::arg("system"), py::arg("spec"),
+        "Largest deviation [m] of the packing from the trapezoid: how far a stone reaches outside it, or how far a "
+        "point of its slopes and crest lies from the nearest stone, whichever is larger.");
 }
 
 }  // namespace

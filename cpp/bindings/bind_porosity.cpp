@@ -37,7 +37,7 @@ void bind_porosity(py::module_& m) {
   m.def("porosity_eq11", py::vectorize(&porosity_eq11), py::arg("a_s"), py::arg("a_c"), py::arg("n_exp") = 0.41,
         "Porosity of seed eq. (11) from stone area a_s [m^2] (capped at a_c) and cell area a_c [m^2].");
 
-  py::enum_<PorosityMethod>(m, "PorosityMethod")
+  py::enum_<PorosityMethod>(m, "PorosityMethod", "How the stones' solid area [m^2] in each cell is found (porosity_map.h, eq. 11).")
       .value("EXACT", PorosityMethod::kExact, "closed-form disc-rectangle areas")
       .value("LOOKUP", PorosityMethod::kLookup, "the paper's precomputed sub-area tables");
 

@@ -28,7 +28,7 @@ void copy_into(const std::vector<double>& v, py::array_t<double, py::array::c_st
 }  // namespace
 
 void bind_pressure(py::module_& m) {
-  py::enum_<PressureSolverKind>(m, "PressureSolverKind")
+  py::enum_<PressureSolverKind>(m, "PressureSolverKind", "Solver of the pressure Poisson problem of the projection (FlowParams.pressure_solver).")
       .value("EIGEN_DIRECT", PressureSolverKind::kEigenDirect, "Eigen sparse LDL^T: exact to round-off, the reference")
       .value("MULTIGRID_CG", PressureSolverKind::kMultigridCG,
              "conjugate gradient preconditioned by a geometric multigrid V-cycle: the default");

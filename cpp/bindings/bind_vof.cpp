@@ -55,47 +55,59 @@ void bind_vof(py::module_& m) {
       .value("DEFAULT", kFlowDefault, "free surface, porous resistance, viscosity, gravity, convection")
       .finalize();
 
-  py::enum_<InletBoundary>(m, "InletBoundary")
-      .value("WALL", InletBoundary::kWall)
+  py::enum_<InletBoundary>(m, "InletBoundary", "The upstream end x = 0 of the flume (FlowParams.inlet).")
+      .value("WALL", InletBoundary::kWall, "a closed wall")
       .value("DISCHARGE", InletBoundary::kDischarge, "prescribed discharge Q(t) over the wetted inlet");
-  py::enum_<InletProfile>(m, "InletProfile")
+  py::enum_<InletProfile>(m, "InletProfile", "How the inlet spreads the discharge [m^3/s] over its rows (FlowParams.inlet_profile).")
       .value("EQUIVALENT_DEPTH", InletProfile::kEquivalentDepth, "the rows below the inlet's level h = sum(F dz)")
       .value("WATER_FRACTION", InletProfile::kWaterFraction, "every row by its water fraction (the former profile)");
-  py::enum_<OutletBoundary>(m, "OutletBoundary")
-      .value("WALL", OutletBoundary::kWall)
+  py::enum_<OutletBoundary>(m, "OutletBoundary", "The downstream end of the flume (FlowParams.outlet).")
+      .value("WALL", OutletBoundary::kWall, "a closed wall")
       .value("FREE_OVERFALL", OutletBoundary::kFreeOverfall, "the end face is a brink open to still air (hydrostatic air pressure)")
       .value("TAILWATER", OutletBoundary::kTailwater, "hydrostatic pressure below FlowParams.tailwater_level");
-  py::enum_<TopBoundary>(m, "TopBoundary")
+  py::enum_<TopBoundary>(m, "TopBoundary", "The top of the domain (FlowParams.top).")
       .value("OPEN", TopBoundary::kOpen, "open to the atmosphere, p = 0")
       .value("WALL", TopBoundary::kWall, "a slip lid");
-  py::enum_<WallCondition>(m, "WallCondition").value("SLIP", WallCondition::kSlip).value("NO_SLIP", WallCondition::kNoSlip);
-  py::enum_<ViscousScheme>(m, "ViscousScheme")
-      .value("EXPLICIT", ViscousScheme::kExplicit)
-      .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical)
-      .value("IMPLICIT_VERTICAL_FROM_START", ViscousScheme::kImplicitVerticalFromStart)
+  py::enum_<WallCondition>(m, "WallCondition", "Tangential velocity at the bed and the closed walls (FlowParams.walls).")
+      .value("SLIP", WallCondition::kSlip, "no shear stress: the tangential velocity slips")
+      .value("NO_SLIP", WallCondition::kNoSlip, "zero tangential velocity at the wall");
+  py::enum_<ViscousScheme>(m, "ViscousScheme",
+                            "Time stepping of the viscous (molecular + eddy) stresses (FlowParams.viscous_scheme).")
+      .value("EXPLICIT", ViscousScheme::kExplicit, "forward Euler of every stress: the step limit dz^2 / (4 nu)")
+      .value("IMPLICIT_VERTICAL", ViscousScheme::kImplicitVertical,
+             "the vertical diffusion by backward Euler per column, from the velocities after the explicit part")
+      .value("IMPLICIT_VERTICAL_FROM_START", ViscousScheme::kImplicitVerticalFromStart,
+             "the former scheme: the columns from u^n beside the explicit part (unstable above 0.7 of its limit)")
       .value("IMPLICIT", ViscousScheme::kImplicit, "rows and columns implicit, the cross terms explicit: no step bound");
-  py::enum_<ViscousBound>(m, "ViscousBound")
+  py::enum_<ViscousBound>(m, "ViscousBound", "Bound of the viscous step limit [s] (FlowParams.viscous_bound).")
       .value("ENERGY", ViscousBound::kEnergy, "the split scheme's energy bound: no cross terms (a proof)")
       .value("ROW_SUM", ViscousBound::kRowSum, "Gershgorin row sums of the explicit stresses, cross terms in");
-  py::enum_<KEpsilonPoreStrain>(m, "KEpsilonPoreStrain")
-      .value("NEIGHBOURS", KEpsilonPoreStrain::kNeighbours)
-      .value("LOCAL", KEpsilonPoreStrain::kLocal)
-      .value("FILTERED", KEpsilonPoreStrain::kFiltered);
-  py::enum_<KEpsilonProduction>(m, "KEpsilonProduction")
-      .value("STRAIN", KEpsilonProduction::kStrain)
-      .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder);
-  py::enum_<KEpsilonTimeScheme>(m, "KEpsilonTimeScheme")
+  py::enum_<KEpsilonPoreStrain>(m, "KEpsilonPoreStrain",
+                                  "Which velocity's cross derivatives dU/dz, dW/dx [1/s] enter the k-epsilon production in "
+                                  "porous cells (FlowParams.turbulence_pore_strain).")
+      .value("NEIGHBOURS", KEpsilonPoreStrain::kNeighbours, "each neighbour's own pore velocity u / n")
+      .value("LOCAL", KEpsilonPoreStrain::kLocal, "the neighbours' superficial velocities over this cell's porosity")
+      .value("FILTERED", KEpsilonPoreStrain::kFiltered,
+             "the pore velocity over the porosity averaged over a box of turbulence_pore_filter_length [m]");
+  py::enum_<KEpsilonProduction>(m, "KEpsilonProduction",
+                                  "Production term P [m^2/s^3] of k (FlowParams.turbulence_production).")
+      .value("STRAIN", KEpsilonProduction::kStrain, "P = nu_t S^2 (the standard term)")
+      .value("KATO_LAUNDER", KEpsilonProduction::kKatoLaunder, "P = nu_t S Omega: none in irrotational strain");
+  py::enum_<KEpsilonTimeScheme>(m, "KEpsilonTimeScheme", "Time stepping of the k-epsilon transport (FlowParams.turbulence_time_scheme).")
       .value("POINT_IMPLICIT", KEpsilonTimeScheme::kPointImplicit,
              "predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces")
       .value("VERTICAL_LINES", KEpsilonTimeScheme::kVerticalLines,
              "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only");
-  py::enum_<MomentumTimeScheme>(m, "MomentumTimeScheme")
+  py::enum_<MomentumTimeScheme>(m, "MomentumTimeScheme", "Time integration of the convective term (FlowParams.time_scheme).")
       .value("EULER", MomentumTimeScheme::kEuler, "forward Euler of the explicit momentum terms (first order)")
       .value("ADAMS_BASHFORTH2", MomentumTimeScheme::kAdamsBashforth2,
              "variable-step Adams-Bashforth 2 of the explicit momentum terms (second order)");
-  py::enum_<CornerViscosity>(m, "CornerViscosity")
-      .value("ARITHMETIC", CornerViscosity::kArithmetic)
-      .value("HARMONIC", CornerViscosity::kHarmonic);
+  py::enum_<CornerViscosity>(m, "CornerViscosity",
+                               "Viscosity [Pa s] of a cell corner, where the shear stress lives, from its four cells "
+                               "(FlowParams.corner_viscosity).")
+      .value("ARITHMETIC", CornerViscosity::kArithmetic, "the arithmetic mean of the four cells")
+      .value("HARMONIC", CornerViscosity::kHarmonic,
+             "the molecular part by arithmetic, the eddy part by harmonic mean (none next to air or solid)");
 
   py::class_<FlowParams> fp(m, "FlowParams", "Flow parameters, constant while stepping (SI units).");
   fp.def(py::init<>())

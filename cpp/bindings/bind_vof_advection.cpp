@@ -103,7 +103,7 @@ void bind_vof_advection(py::module_& m) {
       },
       py::arg("grid"), py::arg("cell_porosity"), py::arg("face_u"), py::arg("face_w"), py::arg("cfl") = 0.45,
       "Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers "
-      "|v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.");
+      "abs(v) dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.");
 
   m.def("plic_line_constant", py::vectorize(&plic_line_constant), py::arg("mx"), py::arg("mz"), py::arg("dx"),
         py::arg("dz"), py::arg("f"),

@@ -2,7 +2,7 @@
 
 Definitions (all from the recorded snapshots of stone positions):
 
-* **Displacement** of stone i at time t: |x_i(t) - x_i(0)| [m].
+* **Displacement** of stone i at time t: ``|x_i(t) - x_i(0)|`` [m].
 * **Removal**: a stone counts as removed at the first snapshot where its displacement exceeds
   ``removal_factor`` (default 1) times its own diameter, or where the solver reports it inactive
   (it left the domain). Fixed stones are never removed. The time resolution is the snapshot interval.
@@ -51,6 +51,9 @@ class StageCriterion:
 
 @dataclass
 class Stage:
+    """A destruction stage: stones removed together, with pauses no longer than the criterion's (times [s],
+    discharge [l/s])."""
+
     number: int
     start_time: float  # simulation time of its first removal [s]
     end_time: float  # simulation time of its last removal [s]
@@ -72,6 +75,9 @@ class Stage:
 
 @dataclass
 class FailureAnalysis:
+    """What a run's stones did: their displacements [m] and removal times [s] over the snapshots, the stages,
+    the isolated removals and the crest level [m] (made by `analyse`)."""
+
     times: np.ndarray  # (T,) snapshot times [s]
     displacement: np.ndarray  # (T, n) [m]
     removal_time: np.ndarray  # (n,) [s], nan = never removed

@@ -75,6 +75,8 @@ class ReposeSetup:
 
 @dataclass
 class FlankFit:
+    """A straight line fitted to one flank of a heap's envelope (z = slope x + intercept, [m])."""
+
     slope: float      # dz/dx of the fitted line [-]
     intercept: float  # z at x = 0 [m]
     x: np.ndarray     # envelope points used [m]
@@ -88,6 +90,9 @@ class FlankFit:
 
 @dataclass
 class ReposeResult:
+    """One heap poured from a funnel: both flanks' fits, its height [m], whether it came to rest, and the
+    stones at the end (positions and radii [m])."""
+
     seed: int
     submerged: bool
     left: FlankFit
@@ -360,6 +365,9 @@ def pull_directions(scene: Scene) -> Dict[str, np.ndarray]:
 
 @dataclass
 class PullResult:
+    """One pull-out test of a slope stone: the peak spring force [N], the anchor's travel at it [m], the stone's
+    weight [N], and the force [N] against the travel [m] over the pull."""
+
     seed: int
     stone: int
     direction: str

@@ -160,6 +160,7 @@ def plan_members(scene: Scene, seeds: Sequence[int], vary: Optional[Sequence] = 
 
 
 def scene_digest(scene: Scene) -> str:
+    """SHA-256 of the scene's TOML text: a member's scene, to tell whether a finished member ran the same one."""
     return hashlib.sha256(scene.to_toml().encode()).hexdigest()
 
 

@@ -13,7 +13,7 @@ is left-censored there (q_first), since the run cannot say at which lower discha
 censored at the same discharge above all events (one hydrograph), it is the plain fraction
 #{Q_i <= q} / n, censored members counted in n.
 
-**Lognormal fit.** ln Q ~ N(mu, sigma^2), by maximum likelihood with the censoring:
+**Lognormal fit.** ln Q ~ N(mu, sigma^2), by maximum likelihood with the censoring::
 
     ln L(mu, sigma) = sum_exact [-ln sigma - z_i^2 / 2 - ln Q_i - ln sqrt(2 pi)]
                       + sum_right ln S(z_j) + sum_left ln S(-z_k),

@@ -148,7 +148,7 @@ def mass_passing(diameters, sizes) -> np.ndarray:
 
 
 def grading_deviation(grading: Grading, diameters, n: int = 200) -> float:
-    """Largest |F_packed - F_requested| over sizes from the grading's smallest to its largest stone."""
+    """Largest ``|F_packed - F_requested|`` over sizes from the grading's smallest to its largest stone."""
     sizes = np.exp(np.linspace(math.log(grading.d_min), math.log(grading.d_max), n))
     return float(np.max(np.abs(mass_passing(diameters, sizes) - grading.passing_at(sizes))))
 

@@ -1,6 +1,6 @@
 """Run output: one HDF5 file written snapshot by snapshot, and XDMF 3 files beside it for ParaView and meshio.
 
-Layout of ``run.h5`` (SI units; a capacity of T snapshots, a grid of nx x nz cells, n stones):
+Layout of ``run.h5`` (SI units; a capacity of T snapshots, a grid of nx x nz cells, n stones)::
 
     /                   attrs: scene_toml, vofdem_version, seed, created (UTC ISO date), status, capacity
     /grid/x_faces       (nx+1,)   [m]     cell edges along the flume

@@ -3,6 +3,7 @@ stones are placed geometrically and settled under gravity by the DEM (dem_system
 "free packing method due to gravity" and as `pack_weir` (weir_packing.h) does for the trapezoid.
 
 Steps:
+
 1. the bottom row: touching stones on the bed from toe to toe (fixed to the bed);
 2. a mould: small fixed discs ("ghosts", a quarter of the smallest stone's diameter, overlapping, so
    nothing passes between them) along the upper boundary, half a local d50 outside it, so that the
@@ -52,6 +53,9 @@ class Source:
 
 @dataclass
 class OutlinePackingReport:
+    """How a weir of an outline was packed: stone counts, its 2D porosity [-], the largest speed at the end
+    [m/s], the settling time [s], the outline error [m], the wall time [s] and the zone of each stone."""
+
     n_stones: int = 0  # stones of the weir (fixed included; no ghosts)
     n_fixed: int = 0  # fixed bottom stones
     porosity: float = 0.0  # 2D porosity of the body: 1 - area covered by the stones / area [-]
@@ -99,6 +103,7 @@ class _Pile:
 
 
 def max_speed(sys_) -> float:
+    """The largest speed [m/s] of the moving stones of a DEMSystem, translation or rim speed of rotation."""
     moving = np.asarray(sys_.disc_active, bool) & ~np.asarray(sys_.disc_fixed, bool)
     if not moving.any():
         return 0.0
@@ -359,6 +364,8 @@ def uniform_source(d_mean: float, spread: float, rng: np.random.Generator) -> So
 
 
 def grading_source(grading, rng: np.random.Generator) -> Source:
+    """A Source of stone diameters [m] drawn by mass from a Grading, with its d50 and its smallest and largest
+    diameters [m]."""
     from .grading import Sampler
 
     s = Sampler(grading, rng)

@@ -51,6 +51,9 @@ def request_stop() -> None:
 
 @dataclass
 class RunResult:
+    """What a run returns: its output paths, the failure analysis, wall and simulated time [s], the cost per
+    stage, the coupled steps and the steps each step limit bound."""
+
     out_dir: Path
     h5_path: Path
     xmf_path: Path

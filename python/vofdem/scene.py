@@ -337,6 +337,9 @@ def _make_whole(section, prefix: str, name: str, allowed: str) -> None:
 
 @dataclass
 class Numerics(_Section):
+    """The scene's [numerics] section: time steps [s], Courant numbers, solvers and schemes of the flow, the
+    stones and the coupling (`vofdem params` lists every field with its unit and range)."""
+
     cfl: float = _p(0.5, None, 0.0, 0.5, "Courant number of the fluid step [-]; usual 0.5 with adams_bashforth2 "
                     "(0.3 with euler); above 0.5 the VOF advection is not bounded", "(]")
     dem_dt: float = _p(1e-4, "time", 0.0, 1e-2, "DEM time step [s]; paper 1e-4", "(]")
@@ -434,6 +437,9 @@ class Effects(_Section):
 
 @dataclass
 class Output(_Section):
+    """The scene's [output] section: the snapshot interval [s], the upstream gauge's x [m], figures and the
+    animation."""
+
     snapshot_interval: float = _p(0.5, "time", 0.0, 1e4, "simulated time between snapshots [s]", "(]")
     gauge_x: Optional[float] = _p(None, "length", 0.0, 100.0,
                                   "x of the upstream water-level gauge [m]; default halfway to the weir", "(]")

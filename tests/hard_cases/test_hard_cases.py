@@ -43,13 +43,13 @@ def test_catalogue_is_large_and_named():
         assert c.hard and c.must_hold and c.group in ("flow", "stones", "coupled", "errors")
 
 
-def test_the_readme_quotes_the_counts():
+def test_the_overview_quotes_the_counts():
     import re
     from pathlib import Path
 
-    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    text = (Path(__file__).resolve().parents[2] / "docs" / "overview.md").read_text(encoding="utf-8")
     total = re.search(r"runs (\d+) small scenes", text)
     counts = re.search(r"\*\*(\d+) pass, (\d+) are expected to fail\*\*", text)
-    assert total and counts, "the README's reliability paragraph is missing its counts"
+    assert total and counts, "docs/overview.md's reliability paragraph is missing its counts"
     xfail = sum(1 for c in CASES if c.xfail)
     assert (int(total.group(1)), int(counts.group(1)), int(counts.group(2))) == (len(CASES), len(CASES) - xfail, xfail)

@@ -1,0 +1,83 @@
+"""Every public name has a docstring: the names `import vofdem` exports (the C++ extension's classes,
+enums and functions, and the Python functions beside them) and the public classes and functions of each
+module of the package. The API reference (docs/api.md, `make docs`) is made from these docstrings.
+
+A pybind11 enum's generated docstring lists its members only; it counts when it says first what the enum
+chooses. A pybind11 function's generated docstring is its signature; it counts when text follows it.
+The test lists every name that lacks one."""
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+
+import vofdem
+from vofdem import _core
+
+
+def own_text(obj, name: str) -> str:
+    """The docstring's own text: without the signature lines pybind11 writes for a function, and without
+    the member list it writes for an enum."""
+    doc = obj.__doc__ if isinstance(getattr(obj, "__doc__", None), str) else ""
+    lines = [line for line in doc.strip().splitlines()
+             if not line.startswith(name + "(") and line.strip() != "Overloaded function."]
+    text = "\n".join(lines).strip()
+    if text.startswith("Members:"):  # a pybind11 enum without a doc of its own
+        return ""
+    return text.split("\n\nMembers:")[0].strip()
+
+
+def public_modules():
+    return [m.name for m in pkgutil.iter_modules(vofdem.__path__) if not m.name.startswith("_")]
+
+
+def undocumented_exports() -> list[str]:
+    bad = []
+    for name in vofdem.__all__:
+        obj = getattr(vofdem, name)
+        if (inspect.isclass(obj) or callable(obj)) and not own_text(obj, name):
+            bad.append(f"vofdem.{name}")
+    return bad
+
+
+def undocumented_module_names() -> list[str]:
+    bad = []
+    for module_name in public_modules():
+        module = importlib.import_module(f"vofdem.{module_name}")
+        if not own_text(module, module_name):
+            bad.append(f"vofdem.{module_name} (the module)")
+        for name, obj in vars(module).items():
+            if name.startswith("_") or getattr(obj, "__module__", None) != module.__name__:
+                continue
+            if (inspect.isclass(obj) or inspect.isfunction(obj)) and not own_text(obj, name):
+                bad.append(f"vofdem.{module_name}.{name}")
+    return bad
+
+
+def test_every_exported_name_has_a_docstring():
+    assert len(vofdem.__all__) > 50
+    assert undocumented_exports() == []
+
+
+def test_every_public_name_of_every_module_has_a_docstring():
+    assert len(public_modules()) > 20
+    assert undocumented_module_names() == []
+
+
+def test_every_bound_class_has_a_docstring():
+    classes = [(n, c) for n, c in vars(_core).items() if inspect.isclass(c) and not n.startswith("_")]
+    assert len(classes) > 30
+    assert [n for n, c in classes if not own_text(c, n)] == []
+
+
+def test_the_check_sees_a_missing_docstring():
+    class Fake:
+        def __init__(self, doc):
+            self.__doc__ = doc
+
+    assert own_text(Fake("Water level [m]."), "level") == "Water level [m]."
+    assert own_text(Fake(None), "level") == ""
+    assert own_text(Fake("level(x: float) -> float\n"), "level") == ""  # pybind11's signature alone
+    assert own_text(Fake("level(x: float) -> float\n\nWater level [m].\n"), "level") == "Water level [m]."
+    assert own_text(Fake("Members:\n\n  SLIP : a\n\n  NO_SLIP : b"), "Wall") == ""  # an enum's members alone
+    assert own_text(Fake("Wall condition.\n\nMembers:\n\n  SLIP : a"), "Wall") == "Wall condition."
