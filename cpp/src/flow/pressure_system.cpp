@@ -1,11 +1,13 @@
 #include "flow/pressure_system.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel.h"
 #include "vofdem/common/check.h"
 
 namespace vofdem::detail {
@@ -50,46 +52,13 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
 
   // checks, and the pattern of open faces and active cells: the groups change only with it
   const int nfx = grid.nface_x(), nfz = grid.nface_z();
-  bool same = groups_valid_ && pattern_.size() == static_cast<std::size_t>(nfx + nfz + grid.ncell());
+  const bool had_pattern = groups_valid_ && pattern_.size() == static_cast<std::size_t>(nfx + nfz + grid.ncell());
   groups_valid_ = false;  // until this build completes
   pattern_.resize(nfx + nfz + grid.ncell());
-  auto note = [&](int slot, std::uint8_t v) {
-    if (pattern_[slot] != v) {
-      pattern_[slot] = v;
-      same = false;
-    }
-  };
+  if (!pattern_checked(grid, pb, had_pattern)) check_pattern(grid, pb);
+  const bool same = had_pattern && !pattern_changed_;
   nactive_ = 0;
-  for (int c = 0; c < grid.ncell(); ++c) {
-    if (active_[c] > 1) require_in_closed("cell_active", active_[c], 0, 1);
-    nactive_ += active_[c];
-    note(nfx + nfz + c, active_[c]);
-  }
-  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i <= nx; ++i) {
-      const int f = i + (nx + 1) * k;
-      const double a = ax_[f];
-      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_x_coef", a);
-      note(f, a > 0.0);
-      if (a == 0.0) continue;
-      const bool boundary = (i == 0 || i == nx);
-      if (boundary ? !act(i == 0 ? 0 : nx - 1, k) : !(act(i - 1, k) && act(i, k)))
-        refuse_open_face("face_x_coef", f, i, k, a);
-      if (boundary) require_finite("face_x_bc", pb.face_x_bc[f]);
-    }
-  for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int f = i + nx * k;
-      const double a = az_[f];
-      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_z_coef", a);
-      note(nfx + f, a > 0.0);
-      if (a == 0.0) continue;
-      const bool boundary = (k == 0 || k == nz);
-      if (boundary ? !act(i, k == 0 ? 0 : nz - 1) : !(act(i, k - 1) && act(i, k)))
-        refuse_open_face("face_z_coef", f, i, k, a);
-      if (boundary) require_finite("face_z_bc", pb.face_z_bc[f]);
-    }
+  for (int c = 0; c < grid.ncell(); ++c) nactive_ += active_[c];
 
   // boundary source g
   std::fill(g_.begin(), g_.end(), 0.0);
@@ -106,25 +75,108 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
   groups_valid_ = true;
 }
 
+// The pattern of open faces and active cells written on the threads (rows of faces, pieces of cells),
+// with whether it changed; true if every value passed the checks (else check_pattern names the first
+// that fails). The face_x_bc and face_z_bc values are read on open boundary faces only
+bool PressureSystem::pattern_checked(const Grid2D& grid, const PressureProblem& pb, bool had_pattern) {
+  const int nx = grid.nx(), nz = grid.nz(), nfx = grid.nface_x(), nfz = grid.nface_z();
+  std::atomic<bool> ok{true}, changed{!had_pattern};
+  auto note = [&](int slot, std::uint8_t v, bool& diff) {
+    diff |= pattern_[slot] != v;
+    pattern_[slot] = v;
+  };
+  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
+  auto finite_face = [](double a) { return a >= 0.0 && a <= std::numeric_limits<double>::max(); };
+  detail::parallel_for(nz + 1, 2 * nx, [&](int k0, int k1) {
+    bool good = true, diff = false;
+    for (int k = k0; k < k1; ++k) {
+      for (int i = 0; i < nx; ++i) {
+        if (k < nz) {
+          const int c = i + nx * k;
+          good &= active_[c] <= 1;
+          note(nfx + nfz + c, active_[c], diff);
+        }
+        const int f = i + nx * k;
+        const double a = az_[f];
+        good &= finite_face(a);
+        note(nfx + f, a > 0.0, diff);
+        if (!(a > 0.0)) continue;
+        const bool boundary = (k == 0 || k == nz);
+        good &= boundary ? act(i, k == 0 ? 0 : nz - 1) && std::isfinite(pb.face_z_bc[f]) : act(i, k - 1) && act(i, k);
+      }
+      if (k == nz) continue;
+      for (int i = 0; i <= nx; ++i) {
+        const int f = i + (nx + 1) * k;
+        const double a = ax_[f];
+        good &= finite_face(a);
+        note(f, a > 0.0, diff);
+        if (!(a > 0.0)) continue;
+        const bool boundary = (i == 0 || i == nx);
+        good &= boundary ? act(i == 0 ? 0 : nx - 1, k) && std::isfinite(pb.face_x_bc[f]) : act(i - 1, k) && act(i, k);
+      }
+    }
+    if (!good) ok.store(false, std::memory_order_relaxed);
+    if (diff) changed.store(true, std::memory_order_relaxed);
+  });
+  pattern_changed_ = changed.load();
+  return ok.load();
+}
+
+// the checks of pattern_checked one value after the other: throws naming the first that fails
+void PressureSystem::check_pattern(const Grid2D& grid, const PressureProblem& pb) const {
+  const int nx = grid.nx(), nz = grid.nz();
+  for (int c = 0; c < grid.ncell(); ++c)
+    if (active_[c] > 1) require_in_closed("cell_active", active_[c], 0, 1);
+  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) {
+      const int f = i + (nx + 1) * k;
+      const double a = ax_[f];
+      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_x_coef", a);
+      if (a == 0.0) continue;
+      const bool boundary = (i == 0 || i == nx);
+      if (boundary ? !act(i == 0 ? 0 : nx - 1, k) : !(act(i - 1, k) && act(i, k)))
+        refuse_open_face("face_x_coef", f, i, k, a);
+      if (boundary) require_finite("face_x_bc", pb.face_x_bc[f]);
+    }
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int f = i + nx * k;
+      const double a = az_[f];
+      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_z_coef", a);
+      if (a == 0.0) continue;
+      const bool boundary = (k == 0 || k == nz);
+      if (boundary ? !act(i, k == 0 ? 0 : nz - 1) : !(act(i, k - 1) && act(i, k)))
+        refuse_open_face("face_z_coef", f, i, k, a);
+      if (boundary) require_finite("face_z_bc", pb.face_z_bc[f]);
+    }
+}
+
 void PressureSystem::close_negligible_faces(const Grid2D& grid) {
   const int nx = grid.nx(), nz = grid.nz(), sx = nx + 1;
   cell_amax_.assign(grid.ncell(), 0.0);
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      // NaN or negative values are left to the checks that follow
-      cell_amax_[c] = std::max(std::max(ax_[i + sx * k], ax_[i + 1 + sx * k]), std::max(az_[c], az_[c + nx]));
+  detail::parallel_for(nz, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int i = 0; i < nx; ++i) {
+        const int c = i + nx * k;
+        // NaN or negative values are left to the checks that follow
+        cell_amax_[c] = std::max(std::max(ax_[i + sx * k], ax_[i + 1 + sx * k]), std::max(az_[c], az_[c + nx]));
+      }
+  });
+  // the faces read the cells' largest of the faces as they came (one pass for all, then these)
+  detail::parallel_for(nz, 2 * nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      for (int i = 1; i < nx; ++i) {
+        double& a = ax_[i + sx * k];
+        if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i - 1 + nx * k], cell_amax_[i + nx * k])) a = 0.0;
+      }
+      if (k == 0) continue;
+      for (int i = 0; i < nx; ++i) {
+        double& a = az_[i + nx * k];
+        if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i + nx * (k - 1)], cell_amax_[i + nx * k])) a = 0.0;
+      }
     }
-  for (int k = 0; k < nz; ++k)
-    for (int i = 1; i < nx; ++i) {
-      double& a = ax_[i + sx * k];
-      if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i - 1 + nx * k], cell_amax_[i + nx * k])) a = 0.0;
-    }
-  for (int k = 1; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      double& a = az_[i + nx * k];
-      if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i + nx * (k - 1)], cell_amax_[i + nx * k])) a = 0.0;
-    }
+  });
 }
 
 void PressureSystem::find_groups() {
@@ -173,12 +225,19 @@ void PressureSystem::find_groups() {
 void PressureSystem::source(const std::vector<double>& rhs, std::vector<double>& f, bool project) const {
   require_size("rhs", rhs.size(), ncell());
   f.resize(ncell());
-  for (int c = 0; c < ncell(); ++c) {
+  std::atomic<bool> finite{true};
+  detail::parallel_range(ncell(), [&](long long c0, long long c1) {
+    bool ok = true;
+    for (long long c = c0; c < c1; ++c) {
+      ok &= !active_[c] || std::isfinite(rhs[c]);
+      f[c] = active_[c] ? g_[c] - rhs[c] : 0.0;
+    }
+    if (!ok) finite.store(false, std::memory_order_relaxed);
+  });
+  for (int c = 0; !finite.load() && c < ncell(); ++c)
     if (active_[c] && !std::isfinite(rhs[c]))
       throw std::invalid_argument("rhs[" + std::to_string(c) + "] = " + format_value(rhs[c]) +
                                   " is outside the allowed range (finite values)");
-    f[c] = active_[c] ? g_[c] - rhs[c] : 0.0;
-  }
   if (!project) return;
   // twice: the first removal leaves a mean of its round-off, eps times the mean removed, that a solve
   // cannot reduce (and that the direct solver's pinned cell turns into a point source); the second
