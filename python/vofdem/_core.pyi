@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -2569,6 +2569,10 @@ def advect_vof(grid: Grid2D, cell_porosity: typing.Annotated[numpy.typing.ArrayL
     """
     Advances the water fraction cell_F (float64, C-contiguous, size ncell; updated in place) by dt [s] with the superficial face velocities face_u, face_w [m/s] (seed eq. 4, PLIC, split with the Weymouth-Yue correction). Raises RuntimeError above CFL 1 (F untouched).
     """
+def built_with_openmp() -> bool:
+    """
+    True if the solvers can run on several threads.
+    """
 def contact_duration(k: typing.SupportsFloat | typing.SupportsIndex, m_reduced: typing.SupportsFloat | typing.SupportsIndex, zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
 def damping_ratio_from_restitution(e: typing.SupportsFloat | typing.SupportsIndex) -> float:
@@ -2584,6 +2588,10 @@ def drag_coefficient(re: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]
 def forchheimer_coefficient(n: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 200.0, k2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 2.8) -> typing.Any:
     """
     Forchheimer coefficient C = k2 / sqrt(k1 n^3) [-] (seed eq. 7).
+    """
+def max_threads() -> int:
+    """
+    The most threads set_threads accepts (1 when built without OpenMP).
     """
 @typing.overload
 def pack_weir(spec: WeirSpec, params: DEMParams = ...) -> tuple[DEMSystem, WeirPackingReport]:
@@ -2621,6 +2629,22 @@ def random_polygons(diameters: typing.Annotated[numpy.typing.ArrayLike, numpy.fl
     """
 def restitution_from_damping_ratio(zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
+def set_thread_min_cells(n: typing.SupportsInt | typing.SupportsIndex) -> None:
+    """
+    The fewest cells a thread is given [-], in [1, 1e9], default 2048: smaller loops run on fewer threads; 1 splits every loop (the determinism tests). ValueError outside the range.
+    """
+def set_threads(n: typing.SupportsInt | typing.SupportsIndex) -> None:
+    """
+    Threads of the next steps of every solver in this process [-], in [1, max_threads()]; the results are the same bits for any count (docs/threads.md). ValueError outside the range.
+    """
+def thread_min_cells() -> int:
+    """
+    The fewest cells a thread is given [-].
+    """
+def threads() -> int:
+    """
+    Threads of the solvers' parallel stages [-] (default: OMP_NUM_THREADS, else every core).
+    """
 def vof_stable_dt(grid: Grid2D, cell_porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_u: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_w: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cfl: typing.SupportsFloat | typing.SupportsIndex = 0.45) -> float:
     """
     Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers |v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.
