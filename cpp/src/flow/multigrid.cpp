@@ -402,17 +402,22 @@ double Multigrid::multiply(const double* x, double* q) const {
   const MultigridLevel& f = levels_[0];
   const int w = f.w, nx = f.nx;
   const double *we = f.west.data(), *so = f.south.data(), *d = f.diag.data();
-  parallel_for(f.nz, nx, [&](int k0, int k1) {
-    for (int k = k0; k < k1; ++k) {
-      const int row = w * (k + 1) + 1;
-      for (int j = row; j < row + nx; ++j)
-        q[j] = d[j] * x[j] - we[j] * x[j - 1] - we[j + 1] * x[j + 1] - so[j] * x[j - w] - so[j + w] * x[j + w];
-    }
-  });
+  auto product_row = [&](int k) {
+    const int row = w * (k + 1) + 1;
+    for (int j = row; j < row + nx; ++j)
+      q[j] = d[j] * x[j] - we[j] * x[j - 1] - we[j + 1] * x[j + 1] - so[j] * x[j - w] - so[j + w] * x[j + w];
+  };
+  // several threads: the rows of q on them first
+  const bool threads = loop_threads(f.nz, nx) > 1;
+  if (threads)
+    parallel_for(f.nz, nx, [&](int k0, int k1) {
+      for (int k = k0; k < k1; ++k) product_row(k);
+    });
   // x . q row by row with four partial sums: a single chain of adds waits on their latency; the order
-  // is fixed, and one thread keeps it (threads.h)
+  // is fixed, and one thread keeps it (threads.h). On one thread each row's q right before (in cache)
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
   for (int k = 0; k < f.nz; ++k) {
+    if (!threads) product_row(k);
     const int row = w * (k + 1) + 1;
     int j = row;
     for (; j + 4 <= row + nx; j += 4) {

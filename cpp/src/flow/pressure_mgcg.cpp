@@ -33,15 +33,36 @@ double dot(const double* a, const double* b, std::size_t n) {
   return (s0 + s1) + (s2 + s3);
 }
 
-// x += alpha d, r -= alpha q; returns r . r
+// x += alpha d, r -= alpha q; returns r . r. On one thread in one pass (while r is in cache); on several,
+// the updates on the threads, then the norm in its one order
 double update_and_norm(double alpha, const double* d, const double* q, double* x, double* r, std::size_t n) {
-  parallel_range(static_cast<long long>(n), [&, alpha](long long j0, long long j1) {
-    for (long long j = j0; j < j1; ++j) {
-      x[j] += alpha * d[j];
-      r[j] -= alpha * q[j];
+  if (loop_threads((static_cast<long long>(n) + 1023) / 1024, 1024) > 1) {
+    parallel_range(static_cast<long long>(n), [&, alpha](long long j0, long long j1) {
+      for (long long j = j0; j < j1; ++j) {
+        x[j] += alpha * d[j];
+        r[j] -= alpha * q[j];
+      }
+    });
+    return dot(r, r, n);
+  }
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    for (std::size_t l = 0; l < 4; ++l) {
+      x[j + l] += alpha * d[j + l];
+      r[j + l] -= alpha * q[j + l];
     }
-  });
-  return dot(r, r, n);
+    s0 += r[j] * r[j];
+    s1 += r[j + 1] * r[j + 1];
+    s2 += r[j + 2] * r[j + 2];
+    s3 += r[j + 3] * r[j + 3];
+  }
+  for (; j < n; ++j) {
+    x[j] += alpha * d[j];
+    r[j] -= alpha * q[j];
+    s0 += r[j] * r[j];
+  }
+  return (s0 + s1) + (s2 + s3);
 }
 }  // namespace
 

@@ -75,45 +75,70 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
   groups_valid_ = true;
 }
 
-// The pattern of open faces and active cells written on the threads (rows of faces, pieces of cells),
+namespace {
+
+// one row of the pattern: the flags v[i] written into pat; true if any changed. The arrays never overlap
+// (restrict: a store of a byte could otherwise alias every pointer the loop reads)
+template <class Flag>
+bool note_row(int count, Flag flag, std::uint8_t* __restrict pat) {
+  bool changed = false;
+  for (int i = 0; i < count; ++i) {
+    const std::uint8_t v = flag(i);
+    changed |= pat[i] != v;
+    pat[i] = v;
+  }
+  return changed;
+}
+
+// a row of inner faces passes the checks: a coefficient finite and >= 0, an open face between two active cells
+bool inner_faces_ok(int count, const double* __restrict a, const std::uint8_t* __restrict act_lo,
+                    const std::uint8_t* __restrict act_hi) {
+  bool ok = true;
+  for (int i = 0; i < count; ++i) {
+    const double v = a[i];
+    ok &= (v >= 0.0) & (v <= std::numeric_limits<double>::max());
+    ok &= (v <= 0.0) | ((act_lo[i] != 0) & (act_hi[i] != 0));
+  }
+  return ok;
+}
+
+// a boundary face passes: a coefficient finite and >= 0; open, its one cell active and its value finite
+bool boundary_face_ok(double a, std::uint8_t active, double bc) {
+  if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) return false;
+  return !(a > 0.0) || (active != 0 && std::isfinite(bc));
+}
+
+}  // namespace
+
+// The pattern of open faces and active cells written on the threads (rows of cells, x-faces and z-faces),
 // with whether it changed; true if every value passed the checks (else check_pattern names the first
-// that fails). The face_x_bc and face_z_bc values are read on open boundary faces only
+// that fails)
 bool PressureSystem::pattern_checked(const Grid2D& grid, const PressureProblem& pb, bool had_pattern) {
-  const int nx = grid.nx(), nz = grid.nz(), nfx = grid.nface_x(), nfz = grid.nface_z();
+  const int nx = grid.nx(), nz = grid.nz(), sx = nx + 1, nfx = grid.nface_x(), nfz = grid.nface_z();
   std::atomic<bool> ok{true}, changed{!had_pattern};
-  auto note = [&](int slot, std::uint8_t v, bool& diff) {
-    diff |= pattern_[slot] != v;
-    pattern_[slot] = v;
-  };
-  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
-  auto finite_face = [](double a) { return a >= 0.0 && a <= std::numeric_limits<double>::max(); };
-  detail::parallel_for(nz + 1, 2 * nx, [&](int k0, int k1) {
+  const std::uint8_t* act = active_.data();
+  const double *ax = ax_.data(), *az = az_.data(), *bx = pb.face_x_bc.data(), *bz = pb.face_z_bc.data();
+  std::uint8_t* pat = pattern_.data();
+  detail::parallel_for(nz + 1, 3 * nx, [&](int k0, int k1) {
     bool good = true, diff = false;
     for (int k = k0; k < k1; ++k) {
-      for (int i = 0; i < nx; ++i) {
-        if (k < nz) {
-          const int c = i + nx * k;
-          good &= active_[c] <= 1;
-          note(nfx + nfz + c, active_[c], diff);
-        }
-        const int f = i + nx * k;
-        const double a = az_[f];
-        good &= finite_face(a);
-        note(nfx + f, a > 0.0, diff);
-        if (!(a > 0.0)) continue;
-        const bool boundary = (k == 0 || k == nz);
-        good &= boundary ? act(i, k == 0 ? 0 : nz - 1) && std::isfinite(pb.face_z_bc[f]) : act(i, k - 1) && act(i, k);
+      const double* a = az + nx * k;
+      diff |= note_row(nx, [a](int i) { return static_cast<std::uint8_t>(a[i] > 0.0); }, pat + nfx + nx * k);
+      if (k == 0 || k == nz) {
+        const std::uint8_t* cells = act + nx * (k == 0 ? 0 : nz - 1);
+        for (int i = 0; i < nx; ++i) good &= boundary_face_ok(a[i], cells[i], bz[nx * k + i]);
+      } else {
+        good &= inner_faces_ok(nx, a, act + nx * (k - 1), act + nx * k);
       }
       if (k == nz) continue;
-      for (int i = 0; i <= nx; ++i) {
-        const int f = i + (nx + 1) * k;
-        const double a = ax_[f];
-        good &= finite_face(a);
-        note(f, a > 0.0, diff);
-        if (!(a > 0.0)) continue;
-        const bool boundary = (i == 0 || i == nx);
-        good &= boundary ? act(i == 0 ? 0 : nx - 1, k) && std::isfinite(pb.face_x_bc[f]) : act(i - 1, k) && act(i, k);
-      }
+      const std::uint8_t* cells = act + nx * k;
+      for (int i = 0; i < nx; ++i) good &= cells[i] <= 1;
+      diff |= note_row(nx, [cells](int i) { return cells[i]; }, pat + nfx + nfz + nx * k);
+      const double* b = ax + sx * k;
+      diff |= note_row(sx, [b](int i) { return static_cast<std::uint8_t>(b[i] > 0.0); }, pat + sx * k);
+      good &= inner_faces_ok(nx - 1, b + 1, cells, cells + 1);
+      good &= boundary_face_ok(b[0], cells[0], bx[sx * k]);
+      good &= boundary_face_ok(b[nx], cells[nx - 1], bx[sx * k + nx]);
     }
     if (!good) ok.store(false, std::memory_order_relaxed);
     if (diff) changed.store(true, std::memory_order_relaxed);

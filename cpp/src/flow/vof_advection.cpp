@@ -273,9 +273,20 @@ void sweep_x_row(const SweepArgs& s, double* F_swept, int k, int c0, int c1, dou
 // whose fluxes read the row below, the threads wait for each other (a barrier); a row of pure cells
 // reads nothing outside itself
 void sweep_x(const SweepArgs& s, VofScratch& scratch) {
-  double* F_swept = scratch.cell_F_new.data();  // s.F_below
   const Grid2D& g = s.g;
   const int nx = g.nx(), nz = g.nz();
+  const int team = detail::loop_threads(nx, 4LL * nz);
+  scratch.row_flux.resize(std::max(scratch.row_flux.size(), static_cast<std::size_t>(team) * (nx + 3)));
+  std::mutex lock;
+  if (team == 1) {
+    // one thread: the rows in place, as the copy would hold them
+    const SweepArgs in_place{s.g, s.n, s.vel, s.inflow, s.dt, s.c, s.F, s.F, s.flux, s.normal};
+    ClipReport report;
+    for (int k = 0; k < nz; ++k) sweep_x_row(in_place, s.F, k, 0, nx, scratch.row_flux.data(), report);
+    report.add_to(scratch, lock);
+    return;
+  }
+  double* F_swept = scratch.cell_F_new.data();  // s.F_below
   std::vector<unsigned char>& reads_below = scratch.row_reads_below;
   reads_below.resize(nz);
   detail::parallel_for(nz, nx, [&](int k0, int k1) {
@@ -288,9 +299,6 @@ void sweep_x(const SweepArgs& s, VofScratch& scratch) {
       reads_below[k] = any;
     }
   });
-  const int team = detail::loop_threads(nx, 4LL * nz);
-  scratch.row_flux.resize(std::max(scratch.row_flux.size(), static_cast<std::size_t>(team) * (nx + 3)));
-  std::mutex lock;
   detail::parallel_team(team, [&](int id, int count) {
     int c0, c1;
     detail::piece(nx, id, count, c0, c1);
