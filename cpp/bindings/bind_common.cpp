@@ -5,6 +5,7 @@
 #include "vofdem/common/grid.h"
 #include "vofdem/common/medium.h"
 #include "vofdem/common/profile.h"
+#include "vofdem/common/threads.h"
 
 namespace py = pybind11;
 
@@ -46,6 +47,17 @@ void bind_common(py::module_& m) {
         return "Medium(rho_water=" + std::to_string(d.rho_water) + ", gravity=(" + std::to_string(d.gravity[0]) +
                ", " + std::to_string(d.gravity[1]) + "))";
       });
+
+  m.def("set_threads", &set_threads, py::arg("n"),
+        "Threads of the next steps of every solver in this process [-], in [1, max_threads()]; the results are the "
+        "same bits for any count (docs/threads.md). ValueError outside the range.");
+  m.def("threads", &threads, "Threads of the solvers' parallel stages [-] (default: OMP_NUM_THREADS, else every core).");
+  m.def("max_threads", &max_threads, "The most threads set_threads accepts (1 when built without OpenMP).");
+  m.def("set_thread_min_cells", &set_thread_min_cells, py::arg("n"),
+        "The fewest cells a thread is given [-], in [1, 1e9], default 2048: smaller loops run on fewer threads; 1 "
+        "splits every loop (the determinism tests). ValueError outside the range.");
+  m.def("thread_min_cells", &thread_min_cells, "The fewest cells a thread is given [-].");
+  m.def("built_with_openmp", &built_with_openmp, "True if the solvers can run on several threads.");
 
   py::class_<StageProfile>(m, "StageProfile", "Accumulated wall time [s] and calls of each named solver stage.")
       .def_property_readonly("names", &StageProfile::names)

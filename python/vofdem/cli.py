@@ -53,6 +53,9 @@ def _parser() -> argparse.ArgumentParser:
                    help="ensemble: run on an existing Dask cluster (e.g. tcp://host:8786, or a scheduler file .json)")
     r.add_argument("--retry-failed", action="store_true",
                    help="ensemble: run again the members whose solver failed (finished members are kept)")
+    r.add_argument("--threads", type=int, default=None, metavar="N",
+                   help="threads of a single run (default: OMP_NUM_THREADS, else every core); the results are the "
+                        "same bits for any N (docs/threads.md). An ensemble's members run one thread each")
     r.add_argument("--end-time", type=float, default=None, help="stop at this simulated time [s]")
     r.add_argument("--no-figures", action="store_true", help="skip the figures")
     r.add_argument("--no-animation", action="store_true", help="skip the animation")
@@ -214,6 +217,13 @@ def main(argv: Optional[Sequence[str]] = None, build: Optional[Callable] = None)
             if seeds is not None and getattr(args, opt, None) is not None:
                 raise ValueError(f"--{opt.replace('_', '-')} is for single runs (an ensemble's members use the "
                                  "default interval)")
+        if getattr(args, "threads", None) is not None:
+            if seeds is not None:
+                raise ValueError("--threads is for single runs (an ensemble's members run one thread each, one "
+                                 "member per core)")
+            from . import _core
+
+            _core.set_threads(args.threads)
     except ValueError as e:
         print(f"vofdem: error: {e}", file=sys.stderr)
         return 2

@@ -7,9 +7,9 @@
 * otherwise a LocalCluster of `workers` worker processes with one thread each (default: one per core
   this process may use), closed at the end with its processes.
 
-The solver is single-threaded, so one thread per worker process keeps one member per core. Dask's
-nanny sets OMP_NUM_THREADS, MKL_NUM_THREADS and OPENBLAS_NUM_THREADS to 1 in the workers it starts, so
-numpy does not spread either.
+A member runs on one thread (ensemble.run_member sets the solver's threads to 1, docs/threads.md), so
+one thread per worker process keeps one member per core. Dask's nanny sets OMP_NUM_THREADS,
+MKL_NUM_THREADS and OPENBLAS_NUM_THREADS to 1 in the workers it starts, so numpy does not spread either.
 """
 from __future__ import annotations
 

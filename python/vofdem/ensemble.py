@@ -200,11 +200,25 @@ def _stones_hash(h5_path: Path) -> str:
 
 
 def run_member(base: Scene, member: Member, out_dir, figures: bool = False, animation: bool = False,
-               build: Optional[Callable] = None, retry_failed: bool = False) -> Dict[str, Any]:
+               build: Optional[Callable] = None, retry_failed: bool = False, threads: int = 1) -> Dict[str, Any]:
     """Runs one member into ``out_dir/member.name`` and writes its outcome.json last (atomically);
     returns the outcome. A failure inside the run is an outcome with status 'failed'. A member that
     finished already returns its outcome without running: Dask recomputes the tasks whose results
-    were held by a worker that died, and a finished run must not be redone for that."""
+    were held by a worker that died, and a finished run must not be redone for that. `threads`: the
+    member's threads (docs/threads.md), 1 so that the members fill the cores one each (and its
+    cpu_seconds is one core's); the process's setting is restored afterwards."""
+    from . import _core
+
+    before = _core.threads()
+    _core.set_threads(threads)
+    try:
+        return _run_member(base, member, out_dir, figures, animation, build, retry_failed)
+    finally:
+        _core.set_threads(before)
+
+
+def _run_member(base: Scene, member: Member, out_dir, figures: bool, animation: bool, build: Optional[Callable],
+                retry_failed: bool) -> Dict[str, Any]:
     from . import __version__
     from .run import run_scene
 
@@ -226,7 +240,7 @@ def run_member(base: Scene, member: Member, out_dir, figures: bool = False, anim
         row["step_limits"] = res.step_limits  # in the JSON only: which limit bound the member's steps
     except Exception as e:  # noqa: BLE001 - a failing member is an outcome; the others go on
         row.update(status="failed", error=f"{type(e).__name__}: {e}")
-    # the CPU time of the member's process: the cost of a member on a loaded machine (the solver is single-threaded)
+    # the CPU time of the member's process: the cost of a member on a loaded machine (one thread, run_member)
     row["wall_seconds"], row["cpu_seconds"] = _time.perf_counter() - wall0, _time.process_time() - cpu0
     _write_atomic(mdir / OUTCOME_FILE, json.dumps(row, indent=1) + "\n")
     return row

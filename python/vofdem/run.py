@@ -24,6 +24,7 @@ from typing import Callable, Dict, List, Optional
 
 import numpy as np
 
+from . import _core
 from .analysis import FailureAnalysis, analyse
 from .checkpoint import CHECKPOINT_NAME, CHECKPOINT_SECONDS, Checkpoint, load_checkpoint, save_checkpoint
 from .io import XDMF_SECONDS, OutputError, RunData, RunWriter, cell_velocities, check_writable
@@ -259,8 +260,9 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     wall = loop.wall_seconds()
     simulated = float(sim.time) - loop.t_start
     table = profile_table(loop.profile(), wall, simulated)
+    table += f"\nThreads: {_core.threads()} (docs/threads.md).\n"
     writer = loop.writer
-    extra = {"wall_seconds": wall, "simulated_seconds": simulated}
+    extra = {"wall_seconds": wall, "simulated_seconds": simulated, "threads": _core.threads()}
     if loop.first_stage_reached():
         extra["stopped"] = "at the first destruction stage"
     loop.close("completed", extra)

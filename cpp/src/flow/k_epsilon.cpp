@@ -1,11 +1,13 @@
 #include "vofdem/flow/k_epsilon.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel.h"
 #include "vofdem/common/check.h"
 
 namespace vofdem {
@@ -109,31 +111,35 @@ void filter_porosity(const Grid2D& g, const std::vector<double>& n, double lengt
   double* sum_n = work.data();
   double* sum_w = work.data() + n.size();
   const int hx = static_cast<int>(std::ceil(half / dx + 0.5));
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i)
-      for (int o = std::max(-hx, -i); o <= std::min(hx, nx - 1 - i); ++o) {
-        const double nn = n[g.cell(i + o, k)];
-        const double w = nn > 0.0 ? overlap((o - 0.5) * dx, (o + 0.5) * dx, -half, half) : 0.0;
-        sum_n[g.cell(i, k)] += w * nn;
-        sum_w[g.cell(i, k)] += w;
-      }
+  detail::parallel_for(nz, nx * (2 * hx + 1), [&, dx, half](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int i = 0; i < nx; ++i)
+        for (int o = std::max(-hx, -i); o <= std::min(hx, nx - 1 - i); ++o) {
+          const double nn = n[g.cell(i + o, k)];
+          const double w = nn > 0.0 ? overlap((o - 0.5) * dx, (o + 0.5) * dx, -half, half) : 0.0;
+          sum_n[g.cell(i, k)] += w * nn;
+          sum_w[g.cell(i, k)] += w;
+        }
+  });
   out.assign(n.size(), 0.0);
-  for (int k = 0; k < nz; ++k) {
-    const double z0 = g.z_center(k) - half, z1 = g.z_center(k) + half;
-    int lo = k, hi = k;
-    while (lo > 0 && g.z_face(lo) > z0) --lo;
-    while (hi < nz - 1 && g.z_face(hi + 1) < z1) ++hi;
-    for (int i = 0; i < nx; ++i) {
-      if (!(n[g.cell(i, k)] > 0.0)) continue;
-      double num = 0.0, den = 0.0;
-      for (int kk = lo; kk <= hi; ++kk) {
-        const double w = overlap(g.z_face(kk), g.z_face(kk + 1), z0, z1);
-        num += w * sum_n[g.cell(i, kk)];
-        den += w * sum_w[g.cell(i, kk)];
+  detail::parallel_for(nz, nx * 4, [&, half](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double z0 = g.z_center(k) - half, z1 = g.z_center(k) + half;
+      int lo = k, hi = k;
+      while (lo > 0 && g.z_face(lo) > z0) --lo;
+      while (hi < nz - 1 && g.z_face(hi + 1) < z1) ++hi;
+      for (int i = 0; i < nx; ++i) {
+        if (!(n[g.cell(i, k)] > 0.0)) continue;
+        double num = 0.0, den = 0.0;
+        for (int kk = lo; kk <= hi; ++kk) {
+          const double w = overlap(g.z_face(kk), g.z_face(kk + 1), z0, z1);
+          num += w * sum_n[g.cell(i, kk)];
+          den += w * sum_w[g.cell(i, kk)];
+        }
+        out[g.cell(i, k)] = num / den;
       }
-      out[g.cell(i, k)] = num / den;
     }
-  }
+  });
 }
 
 // one face of a cell: coefficients a [1/s] per unit volume of advection-in plus diffusion for k
@@ -226,45 +232,53 @@ void KEpsilonModel::half_cell_resistances(const std::vector<double>& cell_porosi
   if (!has(params_.flags, kKEpsDiffusion)) return;
   const double inv_sigma[2] = {1.0 / params_.sigma_k, 1.0 / params_.sigma_eps};
   const double half_x = 0.5 * grid_.dx();
-  for (int k = 0; k < grid_.nz(); ++k) {
-    const double half_z = 0.5 * grid_.dz(k);
-    for (int i = 0; i < grid_.nx(); ++i) {
-      const int c = grid_.cell(i, k);
-      if (!is_active(c, cell_porosity, cell_F)) continue;  // neither a solved cell nor a neighbour
-      const double n = cell_porosity[c];
-      for (int e = 0; e < 2; ++e) {
-        const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
-        half_res_x_[e][c] = half_x / cond;
-        if (!x_only) half_res_z_[e][c] = half_z / cond;
+  detail::parallel_for(grid_.nz(), grid_.nx(), [&, half_x, inv_sigma](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double half_z = 0.5 * grid_.dz(k);
+      for (int i = 0; i < grid_.nx(); ++i) {
+        const int c = grid_.cell(i, k);
+        if (!is_active(c, cell_porosity, cell_F)) continue;  // neither a solved cell nor a neighbour
+        const double n = cell_porosity[c];
+        for (int e = 0; e < 2; ++e) {
+          const double cond = n * (cell_nu[c] + cell_nut[c] * inv_sigma[e]);
+          half_res_x_[e][c] = half_x / cond;
+          if (!x_only) half_res_z_[e][c] = half_z / cond;
+        }
       }
     }
-  }
+  });
 }
 
 void KEpsilonModel::classify_cells(const std::vector<double>& cell_porosity, const std::vector<double>& cell_F) {
   const int nx = grid_.nx(), nz = grid_.nz();
-  for (int c = 0; c < grid_.ncell(); ++c) cell_role_[c] = is_active(c, cell_porosity, cell_F) ? kSolved : kInactive;
-  // a cell that just filled with water starts from the mean of its neighbours that held water
-  for (int k = 0; k < nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int c = grid_.cell(i, k);
-      if (cell_role_[c] == kInactive || cell_role_prev_[c] != kInactive) continue;
-      double sk = 0.0, se = 0.0;
-      int count = 0;
-      const int nbs[4][2] = {{i - 1, k}, {i + 1, k}, {i, k - 1}, {i, k + 1}};
-      for (const auto& nb : nbs) {
-        if (nb[0] < 0 || nb[0] >= nx || nb[1] < 0 || nb[1] >= nz) continue;
-        const int cn = grid_.cell(nb[0], nb[1]);
-        if (cell_role_prev_[cn] == kInactive || cell_role_[cn] == kInactive) continue;
-        sk += k_old_[cn];
-        se += eps_old_[cn];
-        ++count;
+  detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+    for (int c = static_cast<int>(c0); c < c1; ++c)
+      cell_role_[c] = is_active(c, cell_porosity, cell_F) ? kSolved : kInactive;
+  });
+  // a cell that just filled with water starts from the mean of its neighbours that held water (which
+  // did not just fill: no cell reads a value this loop writes)
+  detail::parallel_for(nz, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      for (int i = 0; i < nx; ++i) {
+        const int c = grid_.cell(i, k);
+        if (cell_role_[c] == kInactive || cell_role_prev_[c] != kInactive) continue;
+        double sk = 0.0, se = 0.0;
+        int count = 0;
+        const int nbs[4][2] = {{i - 1, k}, {i + 1, k}, {i, k - 1}, {i, k + 1}};
+        for (const auto& nb : nbs) {
+          if (nb[0] < 0 || nb[0] >= nx || nb[1] < 0 || nb[1] >= nz) continue;
+          const int cn = grid_.cell(nb[0], nb[1]);
+          if (cell_role_prev_[cn] == kInactive || cell_role_[cn] == kInactive) continue;
+          sk += k_old_[cn];
+          se += eps_old_[cn];
+          ++count;
+        }
+        // the step starts from these values (also what a failed step leaves there)
+        cell_k[c] = k_old_[c] = count ? sk / count : params_.k_min;
+        cell_eps[c] = eps_old_[c] = count ? se / count : params_.eps_min;
       }
-      // the step starts from these values (also what a failed step leaves there)
-      cell_k[c] = k_old_[c] = count ? sk / count : params_.k_min;
-      cell_eps[c] = eps_old_[c] = count ? se / count : params_.eps_min;
     }
-  }
+  });
 }
 
 bool KEpsilonModel::is_wall_face(int i, int k, int di, int dk, const std::vector<double>& cell_porosity) const {
@@ -289,45 +303,48 @@ void KEpsilonModel::apply_wall_functions(const std::vector<double>& face_u, cons
   const int nx = grid_.nx(), nz = grid_.nz();
   bool solid = false;
   for (int c = 0; c < grid_.ncell(); ++c) solid |= cell_porosity[c] <= 0.0;
-  for (int k = 0; k < nz; ++k) {
-    // an inner row without solid cells: its two end cells
-    const int step = solid || k == 0 || k == nz - 1 ? 1 : std::max(nx - 1, 1);
-    for (int i = 0; i < nx; i += step) {
-      const int c = grid_.cell(i, k);
-      if (cell_role_[c] == kInactive) continue;
-      const double n = cell_porosity[c];
-      // tangential pore velocities: x along horizontal walls, z along vertical ones
-      const double ut_h = 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / n;
-      const double ut_v = 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / n;
-      double best_eps = -1.0, best_k = 0.0, best_ut = 0.0;
-      // (di, dk) of the four neighbours: west, east, south, north
-      const int dirs[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
-      for (const auto& d : dirs) {
-        if (!is_wall_face(i, k, d[0], d[1], cell_porosity)) continue;
-        const bool vertical_wall = d[0] != 0;
-        const double y = 0.5 * (vertical_wall ? grid_.dx() : grid_.dz(k));
-        const double ut = vertical_wall ? ut_v : ut_h;
-        const double ks = (d[1] == -1 && k == 0) ? p.bed_roughness : p.wall_roughness;
-        const double u_tau = wall_shear_velocity(std::abs(ut), y, cell_nu[c], ks, p.kappa, p.log_law_e);
-        const double tau = ut > 0.0 ? -u_tau * u_tau : (ut < 0.0 ? u_tau * u_tau : 0.0);
-        if (vertical_wall)
-          face_x_wall_shear[grid_.face_x(d[0] < 0 ? i : i + 1, k)] = tau;
-        else
-          face_z_wall_shear[grid_.face_z(i, d[1] < 0 ? k : k + 1)] = tau;
-        const double e = u_tau * u_tau * u_tau / (p.kappa * y);
-        if (e > best_eps) {
-          best_eps = e;
-          best_k = u_tau * u_tau / sqrt_cmu;
-          best_ut = u_tau;
+  // rows on the threads: a wall face belongs to the one fluid cell beside it
+  detail::parallel_for(nz, nx, [&, sqrt_cmu](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      // an inner row without solid cells: its two end cells
+      const int step = solid || k == 0 || k == nz - 1 ? 1 : std::max(nx - 1, 1);
+      for (int i = 0; i < nx; i += step) {
+        const int c = grid_.cell(i, k);
+        if (cell_role_[c] == kInactive) continue;
+        const double n = cell_porosity[c];
+        // tangential pore velocities: x along horizontal walls, z along vertical ones
+        const double ut_h = 0.5 * (face_u[grid_.face_x(i, k)] + face_u[grid_.face_x(i + 1, k)]) / n;
+        const double ut_v = 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / n;
+        double best_eps = -1.0, best_k = 0.0, best_ut = 0.0;
+        // (di, dk) of the four neighbours: west, east, south, north
+        const int dirs[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+        for (const auto& d : dirs) {
+          if (!is_wall_face(i, k, d[0], d[1], cell_porosity)) continue;
+          const bool vertical_wall = d[0] != 0;
+          const double y = 0.5 * (vertical_wall ? grid_.dx() : grid_.dz(k));
+          const double ut = vertical_wall ? ut_v : ut_h;
+          const double ks = (d[1] == -1 && k == 0) ? p.bed_roughness : p.wall_roughness;
+          const double u_tau = wall_shear_velocity(std::abs(ut), y, cell_nu[c], ks, p.kappa, p.log_law_e);
+          const double tau = ut > 0.0 ? -u_tau * u_tau : (ut < 0.0 ? u_tau * u_tau : 0.0);
+          if (vertical_wall)
+            face_x_wall_shear[grid_.face_x(d[0] < 0 ? i : i + 1, k)] = tau;
+          else
+            face_z_wall_shear[grid_.face_z(i, d[1] < 0 ? k : k + 1)] = tau;
+          const double e = u_tau * u_tau * u_tau / (p.kappa * y);
+          if (e > best_eps) {
+            best_eps = e;
+            best_k = u_tau * u_tau / sqrt_cmu;
+            best_ut = u_tau;
+          }
         }
+        if (best_eps < 0.0) continue;
+        cell_role_[c] = kWallFixed;
+        wall_k_[c] = std::max(best_k, p.k_min);
+        wall_eps_[c] = std::max(best_eps, p.eps_min);
+        cell_u_tau[c] = best_ut;
       }
-      if (best_eps < 0.0) continue;
-      cell_role_[c] = kWallFixed;
-      wall_k_[c] = std::max(best_k, p.k_min);
-      wall_eps_[c] = std::max(best_eps, p.eps_min);
-      cell_u_tau[c] = best_ut;
     }
-  }
+  });
 }
 
 void KEpsilonModel::compute_production(const std::vector<double>& face_u, const std::vector<double>& face_w,
@@ -347,37 +364,39 @@ void KEpsilonModel::compute_production(const std::vector<double>& face_u, const 
     return 0.5 * (face_w[grid_.face_z(i, k)] + face_w[grid_.face_z(i, k + 1)]) / (local ? n : pn[grid_.cell(i, k)]);
   };
   auto usable = [&](int i, int k) { return i >= 0 && i < nx && k >= 0 && k < nz && cell_role_[grid_.cell(i, k)]; };
-  for (int k = 0; k < nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int c = grid_.cell(i, k);
-      if (cell_role_[c] != kSolved) {
-        cell_prod_[c] = 0.0;
-        continue;
+  detail::parallel_for(nz, nx, [&, dx](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      for (int i = 0; i < nx; ++i) {
+        const int c = grid_.cell(i, k);
+        if (cell_role_[c] != kSolved) {
+          cell_prod_[c] = 0.0;
+          continue;
+        }
+        const double n = pn[c];
+        const double dudx = (face_u[grid_.face_x(i + 1, k)] - face_u[grid_.face_x(i, k)]) / (n * dx);
+        const double dwdz = (face_w[grid_.face_z(i, k + 1)] - face_w[grid_.face_z(i, k)]) / (n * grid_.dz(k));
+        // cross derivatives from the centred pore velocities of neighbours holding water (one-sided at
+        // walls, air and the domain edge)
+        const bool s = usable(i, k - 1), nn = usable(i, k + 1), w = usable(i - 1, k), e = usable(i + 1, k);
+        double dudz = 0.0, dwdx = 0.0;
+        if (s || nn) {
+          const int ka = nn ? k + 1 : k, kb = s ? k - 1 : k;
+          dudz = (uc(i, ka, n) - uc(i, kb, n)) / (grid_.z_center(ka) - grid_.z_center(kb));
+        }
+        if (w || e) {
+          const int ia = e ? i + 1 : i, ib = w ? i - 1 : i;
+          dwdx = (wc(ia, k, n) - wc(ib, k, n)) / (dx * (ia - ib));
+        }
+        const double shear = dudz + dwdx;
+        const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
+        double prod = params_.production == KEpsilonProduction::kKatoLaunder
+                          ? cell_nut[c] * std::sqrt(s2) * std::abs(dudz - dwdx)
+                          : cell_nut[c] * s2;
+        if (params_.production_limit > 0.0) prod = std::min(prod, params_.production_limit * cell_eps[c]);
+        cell_prod_[c] = prod;
       }
-      const double n = pn[c];
-      const double dudx = (face_u[grid_.face_x(i + 1, k)] - face_u[grid_.face_x(i, k)]) / (n * dx);
-      const double dwdz = (face_w[grid_.face_z(i, k + 1)] - face_w[grid_.face_z(i, k)]) / (n * grid_.dz(k));
-      // cross derivatives from the centred pore velocities of neighbours holding water (one-sided at
-      // walls, air and the domain edge)
-      const bool s = usable(i, k - 1), nn = usable(i, k + 1), w = usable(i - 1, k), e = usable(i + 1, k);
-      double dudz = 0.0, dwdx = 0.0;
-      if (s || nn) {
-        const int ka = nn ? k + 1 : k, kb = s ? k - 1 : k;
-        dudz = (uc(i, ka, n) - uc(i, kb, n)) / (grid_.z_center(ka) - grid_.z_center(kb));
-      }
-      if (w || e) {
-        const int ia = e ? i + 1 : i, ib = w ? i - 1 : i;
-        dwdx = (wc(ia, k, n) - wc(ib, k, n)) / (dx * (ia - ib));
-      }
-      const double shear = dudz + dwdx;
-      const double s2 = 2.0 * dudx * dudx + 2.0 * dwdz * dwdz + shear * shear;
-      double prod = params_.production == KEpsilonProduction::kKatoLaunder
-                        ? cell_nut[c] * std::sqrt(s2) * std::abs(dudz - dwdx)
-                        : cell_nut[c] * s2;
-      if (params_.production_limit > 0.0) prod = std::min(prod, params_.production_limit * cell_eps[c]);
-      cell_prod_[c] = prod;
     }
-  }
+  });
 }
 
 void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& face_u,
@@ -528,17 +547,31 @@ void KEpsilonModel::jacobi_sweeps(const std::vector<JacobiRow>& rows, double flo
 
 void KEpsilonModel::update_eddy_viscosity(const std::vector<double>& cell_nu) {
   const KEpsilonParams& p = params_;
-  for (int c = 0; c < grid_.ncell(); ++c) {
-    if (cell_role_[c] == kInactive) {
-      cell_nut[c] = 0.0;
-      continue;
+  detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+    for (long long c = c0; c < c1; ++c) {
+      if (cell_role_[c] == kInactive) {
+        cell_nut[c] = 0.0;
+        continue;
+      }
+      const double k = cell_k[c];
+      cell_nut[c] = std::min(p.c_mu * k * k / cell_eps[c], p.nut_max_ratio * cell_nu[c]);
     }
-    const double k = cell_k[c];
-    cell_nut[c] = std::min(p.c_mu * k * k / cell_eps[c], p.nut_max_ratio * cell_nu[c]);
-  }
+  });
 }
 
 void KEpsilonModel::check_finite(double t) {
+  // the common case (every value finite and positive) on the threads; a failure is named by the search
+  // below, which finds the first failing cell as before
+  std::atomic<bool> bad{false};
+  detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+    bool ok = true;
+    for (long long c = c0; c < c1; ++c) {
+      const double k = cell_k[c], e = cell_eps[c], nt = cell_nut[c];
+      ok &= std::isfinite(k) & std::isfinite(e) & std::isfinite(nt) & (k > 0.0) & (e > 0.0);
+    }
+    if (!ok) bad.store(true, std::memory_order_relaxed);
+  });
+  if (!bad.load()) return;
   for (int c = 0; c < grid_.ncell(); ++c) {
     const double k = cell_k[c], e = cell_eps[c], nt = cell_nut[c];
     if (std::isfinite(k) && std::isfinite(e) && std::isfinite(nt) && k > 0.0 && e > 0.0) continue;
@@ -562,10 +595,12 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
   {
     ScopedStage timer(profile_, stage_setup_);
     // the start of the step, floored: k and eps set by hand to 0 must not make eps/k infinite
-    for (int c = 0; c < grid_.ncell(); ++c) {
-      cell_k[c] = k_old_[c] = std::max(cell_k[c], params_.k_min);
-      cell_eps[c] = eps_old_[c] = std::max(cell_eps[c], params_.eps_min);
-    }
+    detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+      for (long long c = c0; c < c1; ++c) {
+        cell_k[c] = k_old_[c] = std::max(cell_k[c], params_.k_min);
+        cell_eps[c] = eps_old_[c] = std::max(cell_eps[c], params_.eps_min);
+      }
+    });
     nut_old_ = cell_nut;
     cell_role_prev_.swap(cell_role_);
     classify_cells(cell_porosity, cell_F);

@@ -17,6 +17,7 @@
 // (solve_tridiagonal_rows, momentum.h), O(ncell).
 #include <algorithm>
 
+#include "common/parallel.h"
 #include "vofdem/flow/k_epsilon.h"
 #include "vofdem/flow/momentum.h"
 
@@ -71,16 +72,12 @@ double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const
   auto row_rates = adv ? (dif ? lines_row_rates<true, true> : lines_row_rates<true, false>)
                        : (dif ? lines_row_rates<false, true> : lines_row_rates<false, false>);
   const double dx = grid_.dx(), fmin = params_.water_fraction_min;
-  row_rate_.resize(static_cast<std::size_t>(nx));
-  row_active_.resize(static_cast<std::size_t>(nx));
-  row_conductance_.resize(2 * static_cast<std::size_t>(nx));
-  double* rate = row_rate_.data();
-  double* act = row_active_.data();
-  double worst = 0.0;
-  cell = -1;
-  for (int k = 0; k < nz; ++k) {
+  // a row's rates at the start of its buffer, then its cells' activity and its faces' conductances
+  row_rate_.resize(std::max(row_rate_.size(), detail::row_maxima_size(nz, 4 * nx)));
+  detail::row_maxima(nz, 4 * nx, row_rate_.data(), [&, dx, fmin](int k, double* rate) {
     const int row = nx * k;
     const double* n = cell_porosity.data() + row;
+    double* act = rate + nx;
     if (cell_F.empty())
       for (int i = 0; i < nx; ++i) act[i] = n[i] > 0.0 ? 1.0 : 0.0;
     else
@@ -88,12 +85,15 @@ double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const
     // a row of air or solid cells has rates 0 (no water above the surface): nothing to take
     double active = 0.0;
     for (int i = 0; i < nx; ++i) active += act[i];
-    if (active == 0.0) continue;
+    if (active == 0.0) return 0;
     row_rates(nx, dx, face_u.data() + sx * k, n, act, half_res_x_[0].data() + row, half_res_x_[1].data() + row,
-              row_conductance_.data(), row_conductance_.data() + nx, rate);
-    int at;
-    if (take_row_maximum(rate, nx, worst, at)) cell = row + at;
-  }
+              rate + 2 * nx, rate + 3 * nx, rate);
+    return nx;
+  });
+  double worst = 0.0;
+  cell = -1;
+  for (int k = 0; k < nz; ++k)
+    if (row_rate_[k] > worst) worst = row_rate_[k], cell = nx * k + static_cast<int>(row_rate_[nz + k]);
   return worst;
 }
 
@@ -109,67 +109,75 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
     for (std::vector<double>& t : tri_[e]) t.resize(static_cast<std::size_t>(ncell));
   // values at the step's start: air/solid cells at the floor, wall cells at the wall-law values, solved
   // cells at their old value (or a freshly wetted cell's start)
-  for (int c = 0; c < ncell; ++c) {
-    const std::uint8_t role = cell_role_[c];
-    scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
-    scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
-  }
+  detail::parallel_range(ncell, [&](long long c0, long long c1) {
+    for (long long c = c0; c < c1; ++c) {
+      const std::uint8_t role = cell_role_[c];
+      scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
+      scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
+    }
+  });
   const std::vector<double>* start[2] = {&scratch_, &scratch_eps_};
   half_cell_resistances(cell_porosity, cell_F, cell_nu);
-  FaceCoef fc[4];
-  for (int k = 0; k < nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      const int c = grid_.cell(i, k);
-      for (int e = 0; e < 2; ++e) {
-        std::vector<double>* row = tri_[e];
-        row[0][c] = row[2][c] = 0.0;
-        row[1][c] = 1.0;
-        row[3][c] = (*start[e])[c];  // a known value unless solved
-      }
-      if (cell_role_[c] != kSolved) continue;
-      face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
-      const double n = cell_porosity[c];
-      const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
-      const double prod = prod_on ? cell_prod_[c] : 0.0;
-      const double source[2] = {prod, p.c1 * rate * prod};
-      const double sink[2] = {rate, p.c2 * rate};
-      for (int e = 0; e < 2; ++e) {
-        const std::vector<double>& x0 = *start[e];
-        std::vector<double>* row = tri_[e];
-        double diag = n / dt + n * sink[e];
-        double rhs = n * x0[c] / dt + n * source[e];
-        // horizontal faces: explicit below their own limit, lagged-implicit above
-        double ax = 0.0;
-        for (int f = 0; f < 2; ++f)
-          if (fc[f].nb >= 0) ax += fc[f].a[e];
-        const bool explicit_x = dt * ax <= n;
-        for (int f = 0; f < 4; ++f) {
-          const double a = fc[f].a[e];
-          if (a == 0.0) continue;
-          const int nb = fc[f].nb;
-          if (nb < 0) {  // boundary inflow
-            diag += a;
-            rhs += a * (e == 0 ? inflow_k(fc[f].inflow_u) : inflow_eps(fc[f].inflow_u));
-          } else if (f < 2) {
-            if (explicit_x) rhs += a * (x0[nb] - x0[c]);
-            else diag += a, rhs += a * x0[nb];
-          } else if (cell_role_[nb] != kSolved) {  // a wall cell: known value
-            diag += a, rhs += a * x0[nb];
-          } else {
-            diag += a;
-            row[f == 2 ? 0 : 2][c] = -a;
-          }
+  // rows on the threads: a cell writes its own rows of the systems and reads the start values only
+  detail::parallel_for(nz, nx, [&, dt](int k0, int k1) {
+    FaceCoef fc[4];
+    for (int k = k0; k < k1; ++k) {
+      for (int i = 0; i < nx; ++i) {
+        const int c = grid_.cell(i, k);
+        for (int e = 0; e < 2; ++e) {
+          std::vector<double>* row = tri_[e];
+          row[0][c] = row[2][c] = 0.0;
+          row[1][c] = 1.0;
+          row[3][c] = (*start[e])[c];  // a known value unless solved
         }
-        row[1][c] = diag;
-        row[3][c] = rhs;
+        if (cell_role_[c] != kSolved) continue;
+        face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+        const double n = cell_porosity[c];
+        const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
+        const double prod = prod_on ? cell_prod_[c] : 0.0;
+        const double source[2] = {prod, p.c1 * rate * prod};
+        const double sink[2] = {rate, p.c2 * rate};
+        for (int e = 0; e < 2; ++e) {
+          const std::vector<double>& x0 = *start[e];
+          std::vector<double>* row = tri_[e];
+          double diag = n / dt + n * sink[e];
+          double rhs = n * x0[c] / dt + n * source[e];
+          // horizontal faces: explicit below their own limit, lagged-implicit above
+          double ax = 0.0;
+          for (int f = 0; f < 2; ++f)
+            if (fc[f].nb >= 0) ax += fc[f].a[e];
+          const bool explicit_x = dt * ax <= n;
+          for (int f = 0; f < 4; ++f) {
+            const double a = fc[f].a[e];
+            if (a == 0.0) continue;
+            const int nb = fc[f].nb;
+            if (nb < 0) {  // boundary inflow
+              diag += a;
+              rhs += a * (e == 0 ? inflow_k(fc[f].inflow_u) : inflow_eps(fc[f].inflow_u));
+            } else if (f < 2) {
+              if (explicit_x) rhs += a * (x0[nb] - x0[c]);
+              else diag += a, rhs += a * x0[nb];
+            } else if (cell_role_[nb] != kSolved) {  // a wall cell: known value
+              diag += a, rhs += a * x0[nb];
+            } else {
+              diag += a;
+              row[f == 2 ? 0 : 2][c] = -a;
+            }
+          }
+          row[1][c] = diag;
+          row[3][c] = rhs;
+        }
       }
     }
-  }
+  });
   for (int e = 0; e < 2; ++e) {
     std::vector<double>* row = tri_[e];
     solve_tridiagonal_rows(nz, 0, nx, nx, row[0].data(), row[1].data(), row[2].data(), row[3].data());
     std::vector<double>& dst = *target[e];
-    for (int c = 0; c < ncell; ++c) dst[c] = std::max(row[3][c], floor[e]);
+    const double floor_e = floor[e];
+    detail::parallel_range(ncell, [&, floor_e](long long c0, long long c1) {
+      for (long long c = c0; c < c1; ++c) dst[c] = std::max(row[3][c], floor_e);
+    });
   }
 }
 

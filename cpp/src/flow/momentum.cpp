@@ -1,5 +1,6 @@
 #include "vofdem/flow/momentum.h"
 
+#include "common/parallel.h"
 #include "flow/momentum_implicit.h"
 
 #include <algorithm>
@@ -44,14 +45,18 @@ void pore_velocities(const Grid2D& g, const MomentumFields& f, MomentumScratch& 
   s.pore_w.resize(g.nface_z());
   // every face divided, the closed ones' quotients (inf or nan) then dropped: a division under a
   // condition is not vectorised (it could raise a flag the condition avoids)
-  for (int j = 0; j < g.nface_x(); ++j) {
-    const double n = f.face_x_porosity[j], q = f.face_u[j] / n;
-    s.pore_u[j] = n > 0.0 ? q : 0.0;
-  }
-  for (int j = 0; j < g.nface_z(); ++j) {
-    const double n = f.face_z_porosity[j], q = f.face_w[j] / n;
-    s.pore_w[j] = n > 0.0 ? q : 0.0;
-  }
+  detail::parallel_range(g.nface_x(), [&](long long j0, long long j1) {
+    for (long long j = j0; j < j1; ++j) {
+      const double n = f.face_x_porosity[j], q = f.face_u[j] / n;
+      s.pore_u[j] = n > 0.0 ? q : 0.0;
+    }
+  });
+  detail::parallel_range(g.nface_z(), [&](long long j0, long long j1) {
+    for (long long j = j0; j < j1; ++j) {
+      const double n = f.face_z_porosity[j], q = f.face_w[j] / n;
+      s.pore_w[j] = n > 0.0 ? q : 0.0;
+    }
+  });
 }
 
 // corner viscosity: arithmetic mean of the cells touching the corner; with an eddy part, that part by
@@ -61,7 +66,9 @@ void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, dou
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   // 1 / eddy once per cell rather than at each of its four corners (the same values; unused where 0)
   if (eddy)
-    for (int c = 0; c < g.ncell(); ++c) inv_eddy[c] = eddy[c] > 0.0 ? 1.0 / eddy[c] : 0.0;
+    detail::parallel_range(g.ncell(), [&](long long c0, long long c1) {
+      for (long long c = c0; c < c1; ++c) inv_eddy[c] = eddy[c] > 0.0 ? 1.0 / eddy[c] : 0.0;
+    });
   // the corner between cells a0, a1 (row below) and b0, b1 (row above); the same operations for the
   // row's inner corners (a loop without branches, vectorised) and its two end corners (the cells
   // repeated). Bitwise ands: a short-circuit would be a branch
@@ -72,19 +79,21 @@ void corner_viscosity(const Grid2D& g, const double* mu, const double* eddy, dou
     const double h = 4.0 / (inv_eddy[a0] + inv_eddy[a1] + inv_eddy[b0] + inv_eddy[b1]);
     return mean(a0, a1, b0, b1) - emean + (all ? h : 0.0);
   };
-  for (int kk = 0; kk <= nz; ++kk) {
-    const int r0 = nx * std::max(kk - 1, 0), r1 = nx * std::min(kk, nz - 1), e = nx - 1;
-    double* row = cm + sx * kk;
-    if (eddy) {
-      row[0] = with_eddy(r0, r0, r1, r1);
-      row[nx] = with_eddy(r0 + e, r0 + e, r1 + e, r1 + e);
-      for (int ii = 1; ii < nx; ++ii) row[ii] = with_eddy(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
-    } else {
-      row[0] = mean(r0, r0, r1, r1);
-      row[nx] = mean(r0 + e, r0 + e, r1 + e, r1 + e);
-      for (int ii = 1; ii < nx; ++ii) row[ii] = mean(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
+  detail::parallel_for(nz + 1, sx, [&](int kk0, int kk1) {
+    for (int kk = kk0; kk < kk1; ++kk) {
+      const int r0 = nx * std::max(kk - 1, 0), r1 = nx * std::min(kk, nz - 1), e = nx - 1;
+      double* row = cm + sx * kk;
+      if (eddy) {
+        row[0] = with_eddy(r0, r0, r1, r1);
+        row[nx] = with_eddy(r0 + e, r0 + e, r1 + e, r1 + e);
+        for (int ii = 1; ii < nx; ++ii) row[ii] = with_eddy(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
+      } else {
+        row[0] = mean(r0, r0, r1, r1);
+        row[nx] = mean(r0 + e, r0 + e, r1 + e, r1 + e);
+        for (int ii = 1; ii < nx; ++ii) row[ii] = mean(r0 + ii - 1, r0 + ii, r1 + ii - 1, r1 + ii);
+      }
     }
-  }
+  });
 }
 
 // wall functions: the corner stress on the bed and end walls is the log-law shear of the wall cells
@@ -128,17 +137,20 @@ void corner_shear(const Grid2D& g, const MomentumFields& f, const MomentumBounda
   // the open top and the slip lid are stress-free (row nz stays 0)
   const bool left_shear = bc.left_inlet || bc.no_slip;
   const bool right_shear = !bc.right_open && bc.no_slip;
-  for (int kk = 1; kk < nz; ++kk) {
-    const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
-    const double* u0 = f.face_u + sx * (kk - 1);
-    const double* u1 = f.face_u + sx * kk;
-    const double* w = f.face_w + nx * kk;
-    for (int ii = 1; ii < nx; ++ii)
-      tau[ii + sx * kk] = s.corner_mu[ii + sx * kk] * ((u1[ii] - u0[ii]) * inv_dzc + (w[ii] - w[ii - 1]) / dx);
-    // end walls: ghost w = -w (no-slip, and the inlet brings no vertical velocity)
-    if (left_shear) tau[sx * kk] = s.corner_mu[sx * kk] * ((u1[0] - u0[0]) * inv_dzc + 2.0 * w[0] / dx);
-    if (right_shear) tau[nx + sx * kk] = s.corner_mu[nx + sx * kk] * ((u1[nx] - u0[nx]) * inv_dzc - 2.0 * w[nx - 1] / dx);
-  }
+  detail::parallel_for(nz - 1, sx, [&, dx](int k0, int k1) {
+    for (int kk = k0 + 1; kk < k1 + 1; ++kk) {
+      const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
+      const double* u0 = f.face_u + sx * (kk - 1);
+      const double* u1 = f.face_u + sx * kk;
+      const double* w = f.face_w + nx * kk;
+      for (int ii = 1; ii < nx; ++ii)
+        tau[ii + sx * kk] = s.corner_mu[ii + sx * kk] * ((u1[ii] - u0[ii]) * inv_dzc + (w[ii] - w[ii - 1]) / dx);
+      // end walls: ghost w = -w (no-slip, and the inlet brings no vertical velocity)
+      if (left_shear) tau[sx * kk] = s.corner_mu[sx * kk] * ((u1[0] - u0[0]) * inv_dzc + 2.0 * w[0] / dx);
+      if (right_shear)
+        tau[nx + sx * kk] = s.corner_mu[nx + sx * kk] * ((u1[nx] - u0[nx]) * inv_dzc - 2.0 * w[nx - 1] / dx);
+    }
+  });
   wall_function_shear(g, f, bc, tau);
 }
 
@@ -150,11 +162,13 @@ void explicit_part_for_u(const Grid2D& g, const MomentumFields& f, const Momentu
   std::vector<double>& t = s.corner_tau_u;
   if (bc.no_slip && !f.face_z_wall_shear)
     for (int ii = 1; ii < nx; ++ii) t[ii] = 0.0;
-  for (int kk = 1; kk < nz; ++kk) {
-    const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
-    for (int ii = 1; ii < nx; ++ii)
-      t[ii + sx * kk] -= s.corner_mu[ii + sx * kk] * (f.face_u[ii + sx * kk] - f.face_u[ii + sx * (kk - 1)]) * inv_dzc;
-  }
+  detail::parallel_for(nz - 1, sx, [&](int k0, int k1) {
+    for (int kk = k0 + 1; kk < k1 + 1; ++kk) {
+      const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
+      for (int ii = 1; ii < nx; ++ii)
+        t[ii + sx * kk] -= s.corner_mu[ii + sx * kk] * (f.face_u[ii + sx * kk] - f.face_u[ii + sx * (kk - 1)]) * inv_dzc;
+    }
+  });
 }
 
 // the corner stress of the w-equation without its horizontal part mu dw/dx, which the row solve takes
@@ -165,72 +179,104 @@ void explicit_part_for_w(const Grid2D& g, const MomentumFields& f, const Momentu
   s.corner_tau_w = s.corner_tau;
   std::vector<double>& t = s.corner_tau_w;
   const bool left = left_w_ghost(f, bc), right = right_w_ghost(f, bc);
-  for (int kk = 1; kk < nz; ++kk) {
-    const double* w = f.face_w + nx * kk;
-    const double* cm = s.corner_mu.data() + sx * kk;
-    double* row = t.data() + sx * kk;
-    for (int ii = 1; ii < nx; ++ii) row[ii] -= cm[ii] * (w[ii] - w[ii - 1]) * inv_dx;
-    if (left) row[0] -= cm[0] * 2.0 * w[0] * inv_dx;
-    if (right) row[nx] += cm[nx] * 2.0 * w[nx - 1] * inv_dx;
+  detail::parallel_for(nz - 1, sx, [&, inv_dx](int k0, int k1) {
+    for (int kk = k0 + 1; kk < k1 + 1; ++kk) {
+      const double* w = f.face_w + nx * kk;
+      const double* cm = s.corner_mu.data() + sx * kk;
+      double* row = t.data() + sx * kk;
+      for (int ii = 1; ii < nx; ++ii) row[ii] -= cm[ii] * (w[ii] - w[ii - 1]) * inv_dx;
+      if (left) row[0] -= cm[0] * 2.0 * w[0] * inv_dx;
+      if (right) row[nx] += cm[nx] * 2.0 * w[nx - 1] * inv_dx;
+    }
+  });
+}
+
+// the centre fluxes of row k: x-flux of u and z-flux of w (the lines' inner values by carried_inner in
+// loops of their own, the ends by carried: the same values)
+void centre_fluxes_row(const Grid2D& g, const MomentumFields& f, MomentumScratch& s, int k) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  const double* u = f.face_u + sx * k;
+  const double* p = s.pore_u.data() + sx * k;
+  double* flux = s.cell_flux_u.data() + nx * k;
+  for (int i = 0; i < nx; i += std::max(nx - 1, 1)) {
+    const double a = 0.5 * (u[i] + u[i + 1]);
+    flux[i] = a * carried(p, 1, i, nx + 1, a);
+  }
+  for (int i = 1; i < nx - 1; ++i) {
+    const double a = 0.5 * (u[i] + u[i + 1]);
+    flux[i] = a * carried_inner(p, 1, i, a);
+  }
+  const double* pw = s.pore_w.data();
+  const double* w = f.face_w + nx * k;
+  flux = s.cell_flux_w.data() + nx * k;
+  if (k >= 1 && k <= nz - 2) {
+    for (int i = 0; i < nx; ++i) {
+      const double b = 0.5 * (w[i] + w[i + nx]);
+      flux[i] = b * carried_inner(pw + i, nx, k, b);
+    }
+  } else {
+    for (int i = 0; i < nx; ++i) {
+      const double b = 0.5 * (w[i] + w[i + nx]);
+      flux[i] = b * carried(pw + i, nx, k, nz + 1, b);
+    }
   }
 }
 
-// convective fluxes of both momentum components: cell centres and corners
+// the fluxes at the inner corners of z-face row kk (1 <= kk < nz): z-flux of u, and x-flux of w with u
+// interpolated to the corner height
+void corner_fluxes_row(const Grid2D& g, const MomentumFields& f, MomentumScratch& s, int kk) {
+  const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
+  const double* pu = s.pore_u.data();
+  const double* w = f.face_w + nx * kk;
+  double* flux = s.corner_flux_u.data() + sx * kk;
+  if (kk >= 2 && kk <= nz - 2) {
+    for (int ii = 1; ii < nx; ++ii) {
+      const double a = 0.5 * (w[ii - 1] + w[ii]);
+      flux[ii] = a * carried_inner(pu + ii, sx, kk - 1, a);
+    }
+  } else {
+    for (int ii = 1; ii < nx; ++ii) {
+      const double a = 0.5 * (w[ii - 1] + w[ii]);
+      flux[ii] = a * carried(pu + ii, sx, kk - 1, nz, a);
+    }
+  }
+  const double wl = g.dz(kk) / (g.dz(kk - 1) + g.dz(kk)), wu = 1.0 - wl;
+  const double* u0 = f.face_u + sx * (kk - 1);
+  const double* u1 = f.face_u + sx * kk;
+  const double* prow = s.pore_w.data() + nx * kk;
+  flux = s.corner_flux_w.data() + sx * kk;
+  for (int ii = 0; ii <= nx; ++ii) {
+    if (ii == 2) ii = std::max(2, nx - 1);  // the inner corners below
+    const double a = wl * u0[ii] + wu * u1[ii];
+    double v;
+    if (ii == 0) v = a > 0.0 ? 0.0 : prow[0];  // the inlet brings no vertical momentum
+    else if (ii == nx) v = prow[nx - 1];       // open end: zero gradient (a = 0 at a wall)
+    else v = carried(prow, 1, ii - 1, nx, a);
+    flux[ii] = a * v;
+  }
+  for (int ii = 2; ii < nx - 1; ++ii) {
+    const double a = wl * u0[ii] + wu * u1[ii];
+    flux[ii] = a * carried_inner(prow, 1, ii - 1, a);
+  }
+}
+
+// convective fluxes of both momentum components: cell centres and corners, row by row on the threads,
+// then the corners of the open boundaries
 void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumBoundary& bc, MomentumScratch& s) {
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   s.cell_flux_u.resize(g.ncell());
   s.cell_flux_w.resize(g.ncell());
   s.corner_flux_u.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
   s.corner_flux_w.assign(static_cast<size_t>(sx) * (nz + 1), 0.0);
+  detail::parallel_for(nz, 4 * sx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      centre_fluxes_row(g, f, s, k);
+      if (k >= 1) corner_fluxes_row(g, f, s, k);
+    }
+  });
   const double* pu = s.pore_u.data();
   const double* pw = s.pore_w.data();
-  // (the lines' inner values by carried_inner in loops of their own, the ends by carried: the same values)
-  // x-flux of u at cell centres
-  for (int k = 0; k < nz; ++k) {
-    const double* u = f.face_u + sx * k;
-    const double* p = pu + sx * k;
-    double* flux = s.cell_flux_u.data() + nx * k;
-    for (int i = 0; i < nx; i += std::max(nx - 1, 1)) {
-      const double a = 0.5 * (u[i] + u[i + 1]);
-      flux[i] = a * carried(p, 1, i, nx + 1, a);
-    }
-    for (int i = 1; i < nx - 1; ++i) {
-      const double a = 0.5 * (u[i] + u[i + 1]);
-      flux[i] = a * carried_inner(p, 1, i, a);
-    }
-  }
-  // z-flux of w at cell centres
-  for (int k = 0; k < nz; ++k) {
-    const double* w = f.face_w + nx * k;
-    double* flux = s.cell_flux_w.data() + nx * k;
-    if (k >= 1 && k <= nz - 2) {
-      for (int i = 0; i < nx; ++i) {
-        const double b = 0.5 * (w[i] + w[i + nx]);
-        flux[i] = b * carried_inner(pw + i, nx, k, b);
-      }
-    } else {
-      for (int i = 0; i < nx; ++i) {
-        const double b = 0.5 * (w[i] + w[i + nx]);
-        flux[i] = b * carried(pw + i, nx, k, nz + 1, b);
-      }
-    }
-  }
-  // z-flux of u at interior corners (x-face ii, z-face kk); the open top is zero-gradient
-  for (int kk = 1; kk < nz; ++kk) {
-    const double* w = f.face_w + nx * kk;
-    double* flux = s.corner_flux_u.data() + sx * kk;
-    if (kk >= 2 && kk <= nz - 2) {
-      for (int ii = 1; ii < nx; ++ii) {
-        const double a = 0.5 * (w[ii - 1] + w[ii]);
-        flux[ii] = a * carried_inner(pu + ii, sx, kk - 1, a);
-      }
-    } else {
-      for (int ii = 1; ii < nx; ++ii) {
-        const double a = 0.5 * (w[ii - 1] + w[ii]);
-        flux[ii] = a * carried(pu + ii, sx, kk - 1, nz, a);
-      }
-    }
-  }
+  // the open top is zero-gradient
   if (bc.top_open)
     for (int ii = 1; ii < nx; ++ii) {
       const double a = 0.5 * (f.face_w[ii - 1 + nx * nz] + f.face_w[ii + nx * nz]);
@@ -254,27 +300,6 @@ void convective_fluxes(const Grid2D& g, const MomentumFields& f, const MomentumB
       else if (ii == nx) v = prow[nx - 1];
       else v = carried(prow, 1, ii - 1, nx, a);
       s.corner_flux_w[ii + sx * nz] = a * v;
-    }
-  }
-  // x-flux of w at corners of interior z-faces: u interpolated to the corner height
-  for (int kk = 1; kk < nz; ++kk) {
-    const double wl = g.dz(kk) / (g.dz(kk - 1) + g.dz(kk)), wu = 1.0 - wl;
-    const double* u0 = f.face_u + sx * (kk - 1);
-    const double* u1 = f.face_u + sx * kk;
-    const double* prow = pw + nx * kk;
-    double* flux = s.corner_flux_w.data() + sx * kk;
-    for (int ii = 0; ii <= nx; ++ii) {
-      if (ii == 2) ii = std::max(2, nx - 1);  // the inner corners below
-      const double a = wl * u0[ii] + wu * u1[ii];
-      double v;
-      if (ii == 0) v = a > 0.0 ? 0.0 : prow[0];  // the inlet brings no vertical momentum
-      else if (ii == nx) v = prow[nx - 1];       // open end: zero gradient (a = 0 at a wall)
-      else v = carried(prow, 1, ii - 1, nx, a);
-      flux[ii] = a * v;
-    }
-    for (int ii = 2; ii < nx - 1; ++ii) {
-      const double a = wl * u0[ii] + wu * u1[ii];
-      flux[ii] = a * carried_inner(prow, 1, ii - 1, a);
     }
   }
 }
@@ -321,68 +346,72 @@ void momentum_once(const Grid2D& g, const MomentumFields& f, const MomentumTerms
   const double* mu = f.cell_mu;
   const double xx = rows ? 0.0 : 1.0;  // the normal stress 2 mu du/dx explicit (else in the row solve)
   // x-faces
-  for (int k = 0; k < nz; ++k) {
-    const double dz = g.dz(k), inv_dz = 1.0 / dz;
-    for (int i = 1; i < nx; ++i) {
-      const int j = i + sx * k, c = i + nx * k;
-      if (f.face_x_porosity[j] <= 0.0) {
-        if (stressed) s.stressed_u[j] = f.face_u[j];
-        continue;
+  detail::parallel_for(nz, sx, [&, inv_dx, dt, xx](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double dz = g.dz(k), inv_dz = 1.0 / dz;
+      for (int i = 1; i < nx; ++i) {
+        const int j = i + sx * k, c = i + nx * k;
+        if (f.face_x_porosity[j] <= 0.0) {
+          if (stressed) s.stressed_u[j] = f.face_u[j];
+          continue;
+        }
+        double rhs = f.face_x_porosity[j] * t.gravity_x;
+        if (t.convection)
+          rhs -= (s.cell_flux_u[c] - s.cell_flux_u[c - 1]) * inv_dx +
+                 (s.corner_flux_u[i + sx * (k + 1)] - s.corner_flux_u[i + sx * k]) * inv_dz;
+        if (t.viscosity) {
+          const double txx_e = xx * 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
+          const double txx_w = xx * 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
+          const double visc =
+              ((txx_e - txx_w) * inv_dx + (tau_u[i + sx * (k + 1)] - tau_u[i + sx * k]) * inv_dz) / f.face_x_rho[j];
+          rhs += visc;
+          if (stressed) s.stressed_u[j] = f.face_u[j] + dt * visc;
+        }
+        u_star[j] = f.face_u[j] + dt * rhs;
       }
-      double rhs = f.face_x_porosity[j] * t.gravity_x;
-      if (t.convection)
-        rhs -= (s.cell_flux_u[c] - s.cell_flux_u[c - 1]) * inv_dx +
-               (s.corner_flux_u[i + sx * (k + 1)] - s.corner_flux_u[i + sx * k]) * inv_dz;
-      if (t.viscosity) {
-        const double txx_e = xx * 2.0 * mu[c] * (f.face_u[j + 1] - f.face_u[j]) * inv_dx;
-        const double txx_w = xx * 2.0 * mu[c - 1] * (f.face_u[j] - f.face_u[j - 1]) * inv_dx;
-        const double visc =
-            ((txx_e - txx_w) * inv_dx + (tau_u[i + sx * (k + 1)] - tau_u[i + sx * k]) * inv_dz) / f.face_x_rho[j];
-        rhs += visc;
-        if (stressed) s.stressed_u[j] = f.face_u[j] + dt * visc;
+      // ends: the inlet keeps its value for the boundary stage; an open end's control volume reaches a
+      // ghost cell of zero gradient, so the momentum leaving carries u_b u_b / n_b out
+      if (bc.left_inlet) u_star[sx * k] = f.face_u[sx * k];
+      const int je = nx + sx * k;
+      if (bc.right_open && f.face_x_porosity[je] > 0.0) {
+        double rhs = f.face_x_porosity[je] * t.gravity_x, keep = 1.0;
+        if (t.convection) {
+          rhs -= (open_inflow(fc.face_u[je], s.pore_u[je]) - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
+                 (s.corner_flux_u[nx + sx * (k + 1)] - s.corner_flux_u[nx + sx * k]) * inv_dz;
+          keep = open_outflow_keep(fc.face_u[je], f.face_x_porosity[je], dt * inv_dx);
+        }
+        u_star[je] = (f.face_u[je] + dt * rhs) * keep;
       }
-      u_star[j] = f.face_u[j] + dt * rhs;
     }
-    // ends: the inlet keeps its value for the boundary stage; an open end's control volume reaches a
-    // ghost cell of zero gradient, so the momentum leaving carries u_b u_b / n_b out
-    if (bc.left_inlet) u_star[sx * k] = f.face_u[sx * k];
-    const int je = nx + sx * k;
-    if (bc.right_open && f.face_x_porosity[je] > 0.0) {
-      double rhs = f.face_x_porosity[je] * t.gravity_x, keep = 1.0;
-      if (t.convection) {
-        rhs -= (open_inflow(fc.face_u[je], s.pore_u[je]) - s.cell_flux_u[nx - 1 + nx * k]) * inv_dx +
-               (s.corner_flux_u[nx + sx * (k + 1)] - s.corner_flux_u[nx + sx * k]) * inv_dz;
-        keep = open_outflow_keep(fc.face_u[je], f.face_x_porosity[je], dt * inv_dx);
-      }
-      u_star[je] = (f.face_u[je] + dt * rhs) * keep;
-    }
-  }
+  });
   // interior z-faces
-  for (int k = 1; k < nz; ++k) {
-    const double inv_dzc = 1.0 / (g.z_center(k) - g.z_center(k - 1));
-    const double inv_dz0 = 1.0 / g.dz(k - 1), inv_dz1 = 1.0 / g.dz(k);
-    for (int i = 0; i < nx; ++i) {
-      const int j = i + nx * k;
-      if (f.face_z_porosity[j] <= 0.0) {
-        if (stressed) s.stressed_w[j] = f.face_w[j];
-        continue;
+  detail::parallel_for(nz - 1, nx, [&, inv_dx, dt](int k0, int k1) {
+    for (int k = k0 + 1; k <= k1; ++k) {
+      const double inv_dzc = 1.0 / (g.z_center(k) - g.z_center(k - 1));
+      const double inv_dz0 = 1.0 / g.dz(k - 1), inv_dz1 = 1.0 / g.dz(k);
+      for (int i = 0; i < nx; ++i) {
+        const int j = i + nx * k;
+        if (f.face_z_porosity[j] <= 0.0) {
+          if (stressed) s.stressed_w[j] = f.face_w[j];
+          continue;
+        }
+        double rhs = f.face_z_porosity[j] * t.gravity_z;
+        if (t.convection)
+          rhs -= (s.corner_flux_w[i + 1 + sx * k] - s.corner_flux_w[i + sx * k]) * inv_dx +
+                 (s.cell_flux_w[j] - s.cell_flux_w[j - nx]) * inv_dzc;
+        if (t.viscosity) {
+          const double tzz_n = implicit ? 0.0 : 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
+          const double tzz_s = implicit ? 0.0 : 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
+          const double visc =
+              ((tau_w[i + 1 + sx * k] - tau_w[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
+              f.face_z_rho[j];
+          rhs += visc;
+          if (stressed) s.stressed_w[j] = f.face_w[j] + dt * visc;
+        }
+        w_star[j] = f.face_w[j] + dt * rhs;
       }
-      double rhs = f.face_z_porosity[j] * t.gravity_z;
-      if (t.convection)
-        rhs -= (s.corner_flux_w[i + 1 + sx * k] - s.corner_flux_w[i + sx * k]) * inv_dx +
-               (s.cell_flux_w[j] - s.cell_flux_w[j - nx]) * inv_dzc;
-      if (t.viscosity) {
-        const double tzz_n = implicit ? 0.0 : 2.0 * mu[j] * (f.face_w[j + nx] - f.face_w[j]) * inv_dz1;
-        const double tzz_s = implicit ? 0.0 : 2.0 * mu[j - nx] * (f.face_w[j] - f.face_w[j - nx]) * inv_dz0;
-        const double visc =
-            ((tau_w[i + 1 + sx * k] - tau_w[i + sx * k]) * inv_dx + (tzz_n - tzz_s) * inv_dzc) /
-            f.face_z_rho[j];
-        rhs += visc;
-        if (stressed) s.stressed_w[j] = f.face_w[j] + dt * visc;
-      }
-      w_star[j] = f.face_w[j] + dt * rhs;
     }
-  }
+  });
   // the open top: a ghost cell of zero gradient above, as the open end
   if (bc.top_open) {
     const double inv_dz = 1.0 / g.dz(nz - 1);
@@ -423,10 +452,14 @@ void add_viscous_substeps(const Grid2D& g, const MomentumFields& f, const Moment
     momentum_once(g, vf, vt, bc, h, s.sub_u_next, s.sub_w_next, s);
     s.sub_u.swap(s.sub_u_next), s.sub_w.swap(s.sub_w_next);
   }
-  for (int j = 0; j < g.nface_x(); ++j)
-    if (f.face_x_porosity[j] > 0.0) u_star[j] += s.sub_u[j] - f.face_u[j];
-  for (int j = 0; j < g.nface_z(); ++j)
-    if (f.face_z_porosity[j] > 0.0) w_star[j] += s.sub_w[j] - f.face_w[j];
+  detail::parallel_range(g.nface_x(), [&](long long j0, long long j1) {
+    for (long long j = j0; j < j1; ++j)
+      if (f.face_x_porosity[j] > 0.0) u_star[j] += s.sub_u[j] - f.face_u[j];
+  });
+  detail::parallel_range(g.nface_z(), [&](long long j0, long long j1) {
+    for (long long j = j0; j < j1; ++j)
+      if (f.face_z_porosity[j] > 0.0) w_star[j] += s.sub_w[j] - f.face_w[j];
+  });
 }
 
 }  // namespace
@@ -455,19 +488,21 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
   const double xf = energy ? 0.0 : 1.0, wf = energy ? 2.0 : 1.0;
   const int nx = g.nx(), nz = g.nz(), sx = nx + 1;
   const double dx = g.dx();
-  // corners first, then the per-cell work values of the corner viscosity, then a row of rates
+  // corners first, then the per-cell work values of the corner viscosity, then the rows' largest rates
   const std::size_t ncorner = static_cast<std::size_t>(sx) * (nz + 1);
-  cm.resize(ncorner + g.ncell() + sx);
+  const std::size_t rows_x = detail::row_maxima_size(nz, sx), rows_z = detail::row_maxima_size(nz - 1, sx);
+  cm.resize(ncorner + g.ncell() + std::max(rows_x, rows_z));
   corner_viscosity(g, f.cell_mu, f.cell_mu_eddy, cm.data(), cm.data() + ncorner);
-  double* rate = cm.data() + ncorner + g.ncell();
+  double* work = cm.data() + ncorner + g.ncell();
   double worst = 0.0;
   int where = -1;
   // each row's rates first (divisions without a branch, closed faces 0: vectorised), then its largest
-  auto scan = [&](int i0, int i1, int k) {
-    int at;
-    if (take_row_maximum(rate + i0, i1 - i0, worst, at)) where = i0 + at + nx * k;
+  // (the rows on the threads), then the rows in order: row k's first face at i0 + (its position) + nx k
+  auto take = [&](int rows, int k0, int i0) {
+    for (int r = 0; r < rows; ++r)
+      if (work[r] > worst) worst = work[r], where = i0 + static_cast<int>(work[rows + r]) + nx * (k0 + r);
   };
-  for (int k = 0; k < nz; ++k) {
+  detail::row_maxima(nz, sx, work, [&, dx, zf, xf](int k, double* rate) {
     const double dz = g.dz(k);
     const double* mu = f.cell_mu + nx * k;  // mu[i - 1], mu[i]: the cells left and right of x-face i
     const double* mn = cm.data() + sx * (k + 1);
@@ -478,11 +513,13 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       const double diag = 2.0 * (mu[i - 1] + mu[i]) / (dx * dx) + zf * (mn[i] + ms[i]) / (dz * dz);
       const double cross = xf * 2.0 * (mn[i] + ms[i]) / (dx * dz);
       const double r = (2.0 * diag + cross) / rho[i];
-      rate[i] = n[i] > 0.0 ? r : 0.0;
+      rate[i - 1] = n[i] > 0.0 ? r : 0.0;
     }
-    scan(1, nx, k);
-  }
-  for (int k = 1; k < nz; ++k) {
+    return nx - 1;
+  });
+  take(nz, 0, 1);
+  detail::row_maxima(nz - 1, sx, work, [&, dx, zf, xf, wf](int r, double* rate) {
+    const int k = r + 1;
     const double dzc = g.z_center(k) - g.z_center(k - 1);
     const double hz = std::min(g.dz(k), g.dz(k - 1));
     const double* mb = f.cell_mu + nx * (k - 1);
@@ -496,8 +533,9 @@ double viscous_stable_dt(const Grid2D& g, const MomentumFields& f, std::vector<d
       const double r = (2.0 * diag + cross) / rho[i];
       rate[i] = n[i] > 0.0 ? r : 0.0;
     }
-    scan(0, nx, k);
-  }
+    return nx;
+  });
+  take(nz - 1, 1, 0);
   if (cell) *cell = where;
   return worst > 0.0 ? 2.0 / worst : std::numeric_limits<double>::infinity();
 }

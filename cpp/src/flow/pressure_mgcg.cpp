@@ -2,11 +2,13 @@
 
 #include <chrono>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel.h"
 #include "vofdem/common/check.h"
 
 namespace vofdem::detail {
@@ -31,8 +33,18 @@ double dot(const double* a, const double* b, std::size_t n) {
   return (s0 + s1) + (s2 + s3);
 }
 
-// x += alpha d, r -= alpha q; returns r . r
+// x += alpha d, r -= alpha q; returns r . r. On one thread in one pass (while r is in cache); on several,
+// the updates on the threads, then the norm in its one order
 double update_and_norm(double alpha, const double* d, const double* q, double* x, double* r, std::size_t n) {
+  if (loop_threads((static_cast<long long>(n) + 1023) / 1024, 1024) > 1) {
+    parallel_range(static_cast<long long>(n), [&, alpha](long long j0, long long j1) {
+      for (long long j = j0; j < j1; ++j) {
+        x[j] += alpha * d[j];
+        r[j] -= alpha * q[j];
+      }
+    });
+    return dot(r, r, n);
+  }
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
   std::size_t j = 0;
   for (; j + 4 <= n; j += 4) {
@@ -137,17 +149,25 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
   sys_.source(rhs, f_);
   const MultigridLevel& lv = mg_.level(0);
   const auto& act = sys_.cell_active();
+  std::atomic<bool> finite{true};
+  parallel_for(nz, nx, [&](int k0, int k1) {
+    bool ok = true;
+    for (int k = k0; k < k1; ++k)
+      for (int i = 0; i < nx; ++i) {
+        const int c = i + nx * k, j = lv.index(i, k);
+        b_[j] = f_[c];
+        x_[j] = act[c] ? p[c] : 0.0;
+        ok &= std::isfinite(x_[j]);
+      }
+    if (!ok) finite.store(false, std::memory_order_relaxed);
+  });
+  for (int c = 0; !finite.load() && c < nx * nz; ++c)
+    if (act[c] && !std::isfinite(p[c]))
+      throw std::invalid_argument("p[" + std::to_string(c) + "] = " + format_value(p[c]) +
+                                  " (initial guess) is outside the allowed range (finite values)");
+  // the source's norm in its one order (threads.h)
   double ff = 0.0;
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k, j = lv.index(i, k);
-      b_[j] = f_[c];
-      x_[j] = act[c] ? p[c] : 0.0;
-      if (!std::isfinite(x_[j]))
-        throw std::invalid_argument("p[" + std::to_string(c) + "] = " + format_value(x_[j]) +
-                                    " (initial guess) is outside the allowed range (finite values)");
-      ff += f_[c] * f_[c];
-    }
+  for (int c = 0; c < nx * nz; ++c) ff += f_[c] * f_[c];
   PressureSolveStats st;
   st.setup_seconds = setup_seconds_;
   const double fnorm = std::sqrt(ff);
@@ -164,13 +184,13 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
   mg_.set_correction_scale(params_.coarse_correction_scale);
   for (int restart = 0;; ++restart) {
     mg_.multiply(x_.data(), q_.data());
+    parallel_for(nz, nx, [&](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        for (int i = 0; i < nx; ++i) r_[lv.index(i, k)] = b_[lv.index(i, k)] - q_[lv.index(i, k)];
+    });
     double rr = 0.0;
     for (int k = 0; k < nz; ++k)
-      for (int i = 0; i < nx; ++i) {
-        const int j = lv.index(i, k);
-        r_[j] = b_[j] - q_[j];
-        rr += r_[j] * r_[j];
-      }
+      for (int i = 0; i < nx; ++i) rr += r_[lv.index(i, k)] * r_[lv.index(i, k)];
     rel = std::sqrt(rr) / fnorm;
     if (rel <= tol) break;
     if (it >= params_.max_iterations || restart >= 3 || !std::isfinite(rel)) fail(it, rel, tol, fnorm);
@@ -194,15 +214,19 @@ PressureSolveStats MultigridCGPressureSolver::solve(const std::vector<double>& r
       const double rz_new = dot(r_.data(), z_.data(), n);
       const double beta = rz_new / rz;
       rz = rz_new;
-      for (std::size_t j = 0; j < n; ++j) d_[j] = z_[j] + beta * d_[j];
+      parallel_range(static_cast<long long>(n), [&, beta](long long j0, long long j1) {
+        for (long long j = j0; j < j1; ++j) d_[j] = z_[j] + beta * d_[j];
+      });
     }
   }
   st.iterations = it;
   st.residual = rel;
   project(x_.data());
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i)
-      if (act[i + nx * k]) p[i + nx * k] = x_[lv.index(i, k)];
+  parallel_for(nz, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int i = 0; i < nx; ++i)
+        if (act[i + nx * k]) p[i + nx * k] = x_[lv.index(i, k)];
+  });
   st.solve_seconds = seconds_since(t0);
   return st;
 }

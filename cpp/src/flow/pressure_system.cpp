@@ -1,11 +1,13 @@
 #include "flow/pressure_system.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel.h"
 #include "vofdem/common/check.h"
 
 namespace vofdem::detail {
@@ -50,46 +52,13 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
 
   // checks, and the pattern of open faces and active cells: the groups change only with it
   const int nfx = grid.nface_x(), nfz = grid.nface_z();
-  bool same = groups_valid_ && pattern_.size() == static_cast<std::size_t>(nfx + nfz + grid.ncell());
+  const bool had_pattern = groups_valid_ && pattern_.size() == static_cast<std::size_t>(nfx + nfz + grid.ncell());
   groups_valid_ = false;  // until this build completes
   pattern_.resize(nfx + nfz + grid.ncell());
-  auto note = [&](int slot, std::uint8_t v) {
-    if (pattern_[slot] != v) {
-      pattern_[slot] = v;
-      same = false;
-    }
-  };
+  if (!pattern_checked(grid, pb, had_pattern)) check_pattern(grid, pb);
+  const bool same = had_pattern && !pattern_changed_;
   nactive_ = 0;
-  for (int c = 0; c < grid.ncell(); ++c) {
-    if (active_[c] > 1) require_in_closed("cell_active", active_[c], 0, 1);
-    nactive_ += active_[c];
-    note(nfx + nfz + c, active_[c]);
-  }
-  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i <= nx; ++i) {
-      const int f = i + (nx + 1) * k;
-      const double a = ax_[f];
-      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_x_coef", a);
-      note(f, a > 0.0);
-      if (a == 0.0) continue;
-      const bool boundary = (i == 0 || i == nx);
-      if (boundary ? !act(i == 0 ? 0 : nx - 1, k) : !(act(i - 1, k) && act(i, k)))
-        refuse_open_face("face_x_coef", f, i, k, a);
-      if (boundary) require_finite("face_x_bc", pb.face_x_bc[f]);
-    }
-  for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int f = i + nx * k;
-      const double a = az_[f];
-      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_z_coef", a);
-      note(nfx + f, a > 0.0);
-      if (a == 0.0) continue;
-      const bool boundary = (k == 0 || k == nz);
-      if (boundary ? !act(i, k == 0 ? 0 : nz - 1) : !(act(i, k - 1) && act(i, k)))
-        refuse_open_face("face_z_coef", f, i, k, a);
-      if (boundary) require_finite("face_z_bc", pb.face_z_bc[f]);
-    }
+  for (int c = 0; c < grid.ncell(); ++c) nactive_ += active_[c];
 
   // boundary source g
   std::fill(g_.begin(), g_.end(), 0.0);
@@ -106,25 +75,133 @@ void PressureSystem::build(const Grid2D& grid, const PressureProblem& pb) {
   groups_valid_ = true;
 }
 
+namespace {
+
+// one row of the pattern: the flags v[i] written into pat; true if any changed. The arrays never overlap
+// (restrict: a store of a byte could otherwise alias every pointer the loop reads)
+template <class Flag>
+bool note_row(int count, Flag flag, std::uint8_t* __restrict pat) {
+  bool changed = false;
+  for (int i = 0; i < count; ++i) {
+    const std::uint8_t v = flag(i);
+    changed |= pat[i] != v;
+    pat[i] = v;
+  }
+  return changed;
+}
+
+// a row of inner faces passes the checks: a coefficient finite and >= 0, an open face between two active cells
+bool inner_faces_ok(int count, const double* __restrict a, const std::uint8_t* __restrict act_lo,
+                    const std::uint8_t* __restrict act_hi) {
+  bool ok = true;
+  for (int i = 0; i < count; ++i) {
+    const double v = a[i];
+    ok &= (v >= 0.0) & (v <= std::numeric_limits<double>::max());
+    ok &= (v <= 0.0) | ((act_lo[i] != 0) & (act_hi[i] != 0));
+  }
+  return ok;
+}
+
+// a boundary face passes: a coefficient finite and >= 0; open, its one cell active and its value finite
+bool boundary_face_ok(double a, std::uint8_t active, double bc) {
+  if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) return false;
+  return !(a > 0.0) || (active != 0 && std::isfinite(bc));
+}
+
+}  // namespace
+
+// The pattern of open faces and active cells written on the threads (rows of cells, x-faces and z-faces),
+// with whether it changed; true if every value passed the checks (else check_pattern names the first
+// that fails)
+bool PressureSystem::pattern_checked(const Grid2D& grid, const PressureProblem& pb, bool had_pattern) {
+  const int nx = grid.nx(), nz = grid.nz(), sx = nx + 1, nfx = grid.nface_x(), nfz = grid.nface_z();
+  std::atomic<bool> ok{true}, changed{!had_pattern};
+  const std::uint8_t* act = active_.data();
+  const double *ax = ax_.data(), *az = az_.data(), *bx = pb.face_x_bc.data(), *bz = pb.face_z_bc.data();
+  std::uint8_t* pat = pattern_.data();
+  detail::parallel_for(nz + 1, 3 * nx, [&](int k0, int k1) {
+    bool good = true, diff = false;
+    for (int k = k0; k < k1; ++k) {
+      const double* a = az + nx * k;
+      diff |= note_row(nx, [a](int i) { return static_cast<std::uint8_t>(a[i] > 0.0); }, pat + nfx + nx * k);
+      if (k == 0 || k == nz) {
+        const std::uint8_t* cells = act + nx * (k == 0 ? 0 : nz - 1);
+        for (int i = 0; i < nx; ++i) good &= boundary_face_ok(a[i], cells[i], bz[nx * k + i]);
+      } else {
+        good &= inner_faces_ok(nx, a, act + nx * (k - 1), act + nx * k);
+      }
+      if (k == nz) continue;
+      const std::uint8_t* cells = act + nx * k;
+      for (int i = 0; i < nx; ++i) good &= cells[i] <= 1;
+      diff |= note_row(nx, [cells](int i) { return cells[i]; }, pat + nfx + nfz + nx * k);
+      const double* b = ax + sx * k;
+      diff |= note_row(sx, [b](int i) { return static_cast<std::uint8_t>(b[i] > 0.0); }, pat + sx * k);
+      good &= inner_faces_ok(nx - 1, b + 1, cells, cells + 1);
+      good &= boundary_face_ok(b[0], cells[0], bx[sx * k]);
+      good &= boundary_face_ok(b[nx], cells[nx - 1], bx[sx * k + nx]);
+    }
+    if (!good) ok.store(false, std::memory_order_relaxed);
+    if (diff) changed.store(true, std::memory_order_relaxed);
+  });
+  pattern_changed_ = changed.load();
+  return ok.load();
+}
+
+// the checks of pattern_checked one value after the other: throws naming the first that fails
+void PressureSystem::check_pattern(const Grid2D& grid, const PressureProblem& pb) const {
+  const int nx = grid.nx(), nz = grid.nz();
+  for (int c = 0; c < grid.ncell(); ++c)
+    if (active_[c] > 1) require_in_closed("cell_active", active_[c], 0, 1);
+  auto act = [&](int i, int k) { return active_[i + nx * k] != 0; };
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i <= nx; ++i) {
+      const int f = i + (nx + 1) * k;
+      const double a = ax_[f];
+      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_x_coef", a);
+      if (a == 0.0) continue;
+      const bool boundary = (i == 0 || i == nx);
+      if (boundary ? !act(i == 0 ? 0 : nx - 1, k) : !(act(i - 1, k) && act(i, k)))
+        refuse_open_face("face_x_coef", f, i, k, a);
+      if (boundary) require_finite("face_x_bc", pb.face_x_bc[f]);
+    }
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int f = i + nx * k;
+      const double a = az_[f];
+      if (!(a >= 0.0 && a <= std::numeric_limits<double>::max())) require_non_negative("face_z_coef", a);
+      if (a == 0.0) continue;
+      const bool boundary = (k == 0 || k == nz);
+      if (boundary ? !act(i, k == 0 ? 0 : nz - 1) : !(act(i, k - 1) && act(i, k)))
+        refuse_open_face("face_z_coef", f, i, k, a);
+      if (boundary) require_finite("face_z_bc", pb.face_z_bc[f]);
+    }
+}
+
 void PressureSystem::close_negligible_faces(const Grid2D& grid) {
   const int nx = grid.nx(), nz = grid.nz(), sx = nx + 1;
   cell_amax_.assign(grid.ncell(), 0.0);
-  for (int k = 0; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const int c = i + nx * k;
-      // NaN or negative values are left to the checks that follow
-      cell_amax_[c] = std::max(std::max(ax_[i + sx * k], ax_[i + 1 + sx * k]), std::max(az_[c], az_[c + nx]));
+  detail::parallel_for(nz, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int i = 0; i < nx; ++i) {
+        const int c = i + nx * k;
+        // NaN or negative values are left to the checks that follow
+        cell_amax_[c] = std::max(std::max(ax_[i + sx * k], ax_[i + 1 + sx * k]), std::max(az_[c], az_[c + nx]));
+      }
+  });
+  // the faces read the cells' largest of the faces as they came (one pass for all, then these)
+  detail::parallel_for(nz, 2 * nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      for (int i = 1; i < nx; ++i) {
+        double& a = ax_[i + sx * k];
+        if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i - 1 + nx * k], cell_amax_[i + nx * k])) a = 0.0;
+      }
+      if (k == 0) continue;
+      for (int i = 0; i < nx; ++i) {
+        double& a = az_[i + nx * k];
+        if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i + nx * (k - 1)], cell_amax_[i + nx * k])) a = 0.0;
+      }
     }
-  for (int k = 0; k < nz; ++k)
-    for (int i = 1; i < nx; ++i) {
-      double& a = ax_[i + sx * k];
-      if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i - 1 + nx * k], cell_amax_[i + nx * k])) a = 0.0;
-    }
-  for (int k = 1; k < nz; ++k)
-    for (int i = 0; i < nx; ++i) {
-      double& a = az_[i + nx * k];
-      if (a > 0.0 && a < kNegligibleFace * std::max(cell_amax_[i + nx * (k - 1)], cell_amax_[i + nx * k])) a = 0.0;
-    }
+  });
 }
 
 void PressureSystem::find_groups() {
@@ -173,12 +250,19 @@ void PressureSystem::find_groups() {
 void PressureSystem::source(const std::vector<double>& rhs, std::vector<double>& f, bool project) const {
   require_size("rhs", rhs.size(), ncell());
   f.resize(ncell());
-  for (int c = 0; c < ncell(); ++c) {
+  std::atomic<bool> finite{true};
+  detail::parallel_range(ncell(), [&](long long c0, long long c1) {
+    bool ok = true;
+    for (long long c = c0; c < c1; ++c) {
+      ok &= !active_[c] || std::isfinite(rhs[c]);
+      f[c] = active_[c] ? g_[c] - rhs[c] : 0.0;
+    }
+    if (!ok) finite.store(false, std::memory_order_relaxed);
+  });
+  for (int c = 0; !finite.load() && c < ncell(); ++c)
     if (active_[c] && !std::isfinite(rhs[c]))
       throw std::invalid_argument("rhs[" + std::to_string(c) + "] = " + format_value(rhs[c]) +
                                   " is outside the allowed range (finite values)");
-    f[c] = active_[c] ? g_[c] - rhs[c] : 0.0;
-  }
   if (!project) return;
   // twice: the first removal leaves a mean of its round-off, eps times the mean removed, that a solve
   // cannot reduce (and that the direct solver's pinned cell turns into a point source); the second

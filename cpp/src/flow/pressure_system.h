@@ -51,11 +51,15 @@ class PressureSystem {
  private:
   void find_groups();
   void close_negligible_faces(const Grid2D& grid);
+  // writes the pattern (pattern_changed_: whether it changed); false if a value fails a check
+  bool pattern_checked(const Grid2D& grid, const PressureProblem& problem, bool had_pattern);
+  // throws std::invalid_argument naming the first value that fails a check
+  void check_pattern(const Grid2D& grid, const PressureProblem& problem) const;
 
   int nx_ = 0, nz_ = 0, nactive_ = 0;
   // open faces (x then z) and active cells of the last build, and whether its groups are known
   std::vector<std::uint8_t> pattern_;
-  bool groups_valid_ = false;
+  bool groups_valid_ = false, pattern_changed_ = false;
   std::vector<double> ax_, az_, g_;
   std::vector<std::uint8_t> active_;
   // cells of the singular groups, group s holds singular_cells_[singular_start_[s] .. singular_start_[s+1])

@@ -9,11 +9,14 @@
 #include "vofdem/flow/vof_advection.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel.h"
 #include "vofdem/common/check.h"
 
 namespace vofdem {
@@ -69,26 +72,40 @@ struct SweepArgs {
   const VofBoundaryInflow& inflow;
   double dt;
   const double* c;
-  double* F;
-  double* flux;  // face_flux_x or face_flux_z
-  VofScratch& scratch;
+  double* F;              // F at the sweep's start (updated at its end)
+  const double* F_below;  // the row below a cell's as its stencil reads it: F, or the rows already swept
+  double* flux;           // face_flux_x or face_flux_z
   VofNormal normal;
 };
 
-// the 3x3 stencil v[a][b] of F around cell (i, k) (a along x, b along z). A neighbour outside the
-// domain or solid is replaced by the nearest fluid cell of the stencil along the grid lines
-// (zero-gradient ghost), else by the cell itself, so a level surface next to a wall stays level.
-void stencil(const Grid2D& g, const double* n, const double* F, int i, int k, double v[3][3]) {
+// the clipping report of a thread's cells, added to the scratch's at the end (a count and a largest
+// value: the same for any order)
+struct ClipReport {
+  long long count = 0;
+  double max = 0.0;
+  void add_to(VofScratch& scratch, std::mutex& lock) const {
+    const std::lock_guard<std::mutex> hold(lock);
+    scratch.clip_count += count;
+    scratch.clip_max = std::max(scratch.clip_max, max);
+  }
+};
+
+// the 3x3 stencil v[a][b] of F around cell (i, k) (a along x, b along z), the row below from F_below.
+// A neighbour outside the domain or solid is replaced by the nearest fluid cell of the stencil along the
+// grid lines (zero-gradient ghost), else by the cell itself, so a level surface next to a wall stays level.
+void stencil(const Grid2D& g, const double* n, const double* F, const double* F_below, int i, int k,
+             double v[3][3]) {
   const int nx = g.nx(), nz = g.nz();
   auto fluid = [&](int ii, int kk) { return ii >= 0 && ii < nx && kk >= 0 && kk < nz && n[g.cell(ii, kk)] > 0.0; };
   for (int b = -1; b <= 1; ++b)
     for (int a = -1; a <= 1; ++a) {
       const int ii = i + a, kk = k + b;
+      const double* row_F = b < 0 ? F_below : F;
       double val;
       if (fluid(ii, kk))
-        val = F[g.cell(ii, kk)];
+        val = row_F[g.cell(ii, kk)];
       else if (fluid(i, kk))
-        val = F[g.cell(i, kk)];
+        val = row_F[g.cell(i, kk)];
       else if (fluid(ii, k))
         val = F[g.cell(ii, k)];
       else
@@ -151,10 +168,10 @@ void mixed_youngs_centered(const double v[3][3], double dx, const RowGeometry& r
 }
 
 // interface normal (pointing out of the water) of cell (i, k)
-void interface_normal(const Grid2D& g, const double* n, const double* F, int i, int k, VofNormal method, double& mx,
-                      double& mz) {
+void interface_normal(const Grid2D& g, const double* n, const double* F, const double* F_below, int i, int k,
+                      VofNormal method, double& mx, double& mz) {
   double v[3][3];
-  stencil(g, n, F, i, k, v);
+  stencil(g, n, F, F_below, i, k, v);
   const RowGeometry r(g, k);
   if (method == VofNormal::kMixedYoungsCentered)
     mixed_youngs_centered(v, g.dx(), r, mx, mz);
@@ -172,7 +189,7 @@ void mixed_outflow(const SweepArgs& s, int dir, int i, int k, double lo, double 
   const double f = s.F[cell], n = s.n[cell];
   const double dx = s.g.dx(), dz = s.g.dz(k);
   double mx, mz;
-  interface_normal(s.g, s.n, s.F, i, k, s.normal, mx, mz);
+  interface_normal(s.g, s.n, s.F, s.F_below, i, k, s.normal, mx, mz);
   const double alpha = line_constant(mx, mz, dx, dz, f);
   const double wlo = lo * s.dt / n, whi = hi * s.dt / n;  // strip widths
   if (dir == 0) {
@@ -202,78 +219,145 @@ inline void cell_outflows(const SweepArgs& s, int dir, int i, int k, double n, d
   if (vlo < 0.0) *flo = -out_lo;
 }
 
-void clip(double& f, VofScratch& scratch) {
+void clip(double& f, ClipReport& report) {
   if (f >= 0.0 && f <= 1.0) return;
   const double excess = f < 0.0 ? -f : f - 1.0;
   if (excess > kVofClipTolerance) {
-    ++scratch.clip_count;
-    scratch.clip_max = std::max(scratch.clip_max, excess);
+    ++report.count;
+    report.max = std::max(report.max, excess);
   }
   f = std::clamp(f, 0.0, 1.0);
 }
 
-void sweep_x(const SweepArgs& s) {
-  const Grid2D& g = s.g;
-  const int nx = g.nx(), nz = g.nz();
-  const double dx = g.dx(), dt = s.dt;
-  for (int k = 0; k < nz; ++k) {
-    const double dz = g.dz(k);
-    double* flux = s.flux + g.face_x(0, k);
-    const double* u = s.vel + g.face_x(0, k);
-    const double* n = s.n + g.cell(0, k);
-    double* F = s.F + g.cell(0, k);
-    const double* c = s.c + g.cell(0, k);
-    std::fill(flux, flux + nx + 1, 0.0);
-    // each face's flux from its upwind cell
-    for (int i = 0; i < nx; ++i) cell_outflows(s, 0, i, k, n[i], F[i], u[i], u[i + 1], dz, &flux[i], &flux[i + 1]);
-    // boundary faces where the flow enters carry the given fraction
-    if (u[0] > 0.0) flux[0] = u[0] * dt * dz * (s.inflow.left.empty() ? 0.0 : s.inflow.left[k]);
-    if (u[nx] < 0.0) flux[nx] = u[nx] * dt * dz * (s.inflow.right.empty() ? 0.0 : s.inflow.right[k]);
-    for (int i = 0; i < nx; ++i) {
-      if (!(n[i] > 0.0)) continue;
-      const double dv = flux[i] - flux[i + 1] + c[i] * dt * dz * (u[i + 1] - u[i]);
-      F[i] += dv / (n[i] * dx * dz);
-      clip(F[i], s.scratch);
-    }
-  }
+// true if a flux of cell (i, k) reads its PLIC stencil: a fluid cell between pure ones with an outflow
+inline bool reconstructs(double n, double f, double vlo, double vhi) {
+  return n > 0.0 && f > kPure && !(vlo >= 0.0 && vhi <= 0.0) && f < 1.0 - kPure;
 }
 
-void sweep_z(const SweepArgs& s) {
+// row k of the sweep along x on the columns [c0, c1) of a thread: the fluxes of the cells beside them
+// (their own and one more on each side, the same values as their owners compute) into `local` (faces
+// c0 - 1 to c1 + 1), the new F into F_swept (the array s.F_below), the faces [c0, c1) (and the last) into
+// s.flux
+void sweep_x_row(const SweepArgs& s, double* F_swept, int k, int c0, int c1, double* local, ClipReport& clip_report) {
+  const Grid2D& g = s.g;
+  const int nx = g.nx();
+  const double dx = g.dx(), dt = s.dt, dz = g.dz(k);
+  const double* u = s.vel + g.face_x(0, k);
+  const double* n = s.n + g.cell(0, k);
+  const double* F = s.F + g.cell(0, k);
+  const double* c = s.c + g.cell(0, k);
+  double* F_new = F_swept + g.cell(0, k);
+  const int lo = std::max(c0 - 1, 0), hi = std::min(c1 + 1, nx);
+  double* flux = local - lo;  // flux[f] for the faces lo..hi
+  std::fill(flux + lo, flux + hi + 1, 0.0);
+  // each face's flux from its upwind cell
+  for (int i = lo; i < hi; ++i) cell_outflows(s, 0, i, k, n[i], F[i], u[i], u[i + 1], dz, &flux[i], &flux[i + 1]);
+  // boundary faces where the flow enters carry the given fraction
+  if (c0 == 0 && u[0] > 0.0) flux[0] = u[0] * dt * dz * (s.inflow.left.empty() ? 0.0 : s.inflow.left[k]);
+  if (c1 == nx && u[nx] < 0.0) flux[nx] = u[nx] * dt * dz * (s.inflow.right.empty() ? 0.0 : s.inflow.right[k]);
+  for (int i = c0; i < c1; ++i) {
+    F_new[i] = F[i];
+    if (!(n[i] > 0.0)) continue;
+    const double dv = flux[i] - flux[i + 1] + c[i] * dt * dz * (u[i + 1] - u[i]);
+    F_new[i] += dv / (n[i] * dx * dz);
+    clip(F_new[i], clip_report);
+  }
+  double* out = s.flux + g.face_x(0, k);
+  for (int f = c0; f < c1; ++f) out[f] = flux[f];
+  if (c1 == nx) out[nx] = flux[nx];
+}
+
+// The sweep along x. Row by row, a flux of a reconstructed cell reads the rows below as already swept
+// and the rest at the sweep's start (the order of one thread): the new rows go to a copy of F, which the
+// stencils read for the row below, and the threads take pieces of each row's columns. Before a row
+// whose fluxes read the row below, the threads wait for each other (a barrier); a row of pure cells
+// reads nothing outside itself
+void sweep_x(const SweepArgs& s, VofScratch& scratch) {
+  const Grid2D& g = s.g;
+  const int nx = g.nx(), nz = g.nz();
+  const int team = detail::loop_threads(nx, 4LL * nz);
+  scratch.row_flux.resize(std::max(scratch.row_flux.size(), static_cast<std::size_t>(team) * (nx + 3)));
+  std::mutex lock;
+  if (team == 1) {
+    // one thread: the rows in place, as the copy would hold them
+    const SweepArgs in_place{s.g, s.n, s.vel, s.inflow, s.dt, s.c, s.F, s.F, s.flux, s.normal};
+    ClipReport report;
+    for (int k = 0; k < nz; ++k) sweep_x_row(in_place, s.F, k, 0, nx, scratch.row_flux.data(), report);
+    report.add_to(scratch, lock);
+    return;
+  }
+  double* F_swept = scratch.cell_F_new.data();  // s.F_below
+  std::vector<unsigned char>& reads_below = scratch.row_reads_below;
+  reads_below.resize(nz);
+  detail::parallel_for(nz, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double* u = s.vel + g.face_x(0, k);
+      const double* n = s.n + g.cell(0, k);
+      const double* F = s.F + g.cell(0, k);
+      bool any = false;
+      for (int i = 0; i < nx; ++i) any |= reconstructs(n[i], F[i], u[i], u[i + 1]);
+      reads_below[k] = any;
+    }
+  });
+  detail::parallel_team(team, [&](int id, int count) {
+    int c0, c1;
+    detail::piece(nx, id, count, c0, c1);
+    double* local = scratch.row_flux.data() + static_cast<std::size_t>(id) * (nx + 3);
+    ClipReport report;
+    for (int k = 0; k < nz; ++k) {
+      if (k > 0 && reads_below[k]) detail::team_barrier();
+      if (c0 < c1) sweep_x_row(s, F_swept, k, c0, c1, local, report);
+    }
+    report.add_to(scratch, lock);
+  });
+  detail::parallel_range(g.ncell(), [&](long long j0, long long j1) { std::copy(F_swept + j0, F_swept + j1, s.F + j0); });
+}
+
+// The sweep along z: every flux from F at the sweep's start (rows on the threads; a face is written by its
+// one upwind cell), then every cell's update
+void sweep_z(const SweepArgs& s, VofScratch& scratch) {
   const Grid2D& g = s.g;
   const int nx = g.nx(), nz = g.nz();
   const double dx = g.dx(), dt = s.dt;
   std::fill(s.flux, s.flux + g.nface_z(), 0.0);
-  for (int k = 0; k < nz; ++k) {
-    const double* wb = s.vel + g.face_z(0, k);
-    const double* wt = s.vel + g.face_z(0, k + 1);
-    double* fb = s.flux + g.face_z(0, k);
-    double* ft = s.flux + g.face_z(0, k + 1);
-    const double* n = s.n + g.cell(0, k);
-    const double* F = s.F + g.cell(0, k);
-    for (int i = 0; i < nx; ++i) cell_outflows(s, 1, i, k, n[i], F[i], wb[i], wt[i], dx, &fb[i], &ft[i]);
-  }
+  detail::parallel_for(nz, 4 * nx, [&, dx](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double* wb = s.vel + g.face_z(0, k);
+      const double* wt = s.vel + g.face_z(0, k + 1);
+      double* fb = s.flux + g.face_z(0, k);
+      double* ft = s.flux + g.face_z(0, k + 1);
+      const double* n = s.n + g.cell(0, k);
+      const double* F = s.F + g.cell(0, k);
+      for (int i = 0; i < nx; ++i) cell_outflows(s, 1, i, k, n[i], F[i], wb[i], wt[i], dx, &fb[i], &ft[i]);
+    }
+  });
   const double* w = s.vel;
   for (int i = 0; i < nx; ++i) {
     const int fb = g.face_z(i, 0), ft = g.face_z(i, nz);
     if (w[fb] > 0.0) s.flux[fb] = w[fb] * dt * dx * (s.inflow.bottom.empty() ? 0.0 : s.inflow.bottom[i]);
     if (w[ft] < 0.0) s.flux[ft] = w[ft] * dt * dx * (s.inflow.top.empty() ? 0.0 : s.inflow.top[i]);
   }
-  for (int k = 0; k < nz; ++k) {
-    const double dz = g.dz(k);
-    const double* wb = s.vel + g.face_z(0, k);
-    const double* wt = s.vel + g.face_z(0, k + 1);
-    const double* fb = s.flux + g.face_z(0, k);
-    const double* ft = s.flux + g.face_z(0, k + 1);
-    const double* n = s.n + g.cell(0, k);
-    double* F = s.F + g.cell(0, k);
-    const double* c = s.c + g.cell(0, k);
-    for (int i = 0; i < nx; ++i) {
-      if (!(n[i] > 0.0)) continue;
-      const double dv = fb[i] - ft[i] + c[i] * dt * dx * (wt[i] - wb[i]);
-      F[i] += dv / (n[i] * dx * dz);
-      clip(F[i], s.scratch);
+  std::mutex lock;
+  detail::parallel_for(nz, nx, [&, dx, dt](int k0, int k1) {
+    ClipReport report;
+    for (int k = k0; k < k1; ++k) {
+      const double dz = g.dz(k);
+      const double* wb = s.vel + g.face_z(0, k);
+      const double* wt = s.vel + g.face_z(0, k + 1);
+      const double* fb = s.flux + g.face_z(0, k);
+      const double* ft = s.flux + g.face_z(0, k + 1);
+      const double* n = s.n + g.cell(0, k);
+      double* F = s.F + g.cell(0, k);
+      const double* c = s.c + g.cell(0, k);
+      for (int i = 0; i < nx; ++i) {
+        if (!(n[i] > 0.0)) continue;
+        const double dv = fb[i] - ft[i] + c[i] * dt * dx * (wt[i] - wb[i]);
+        F[i] += dv / (n[i] * dx * dz);
+        clip(F[i], report);
+      }
     }
-  }
+    report.add_to(scratch, lock);
+  });
 }
 
 void check_inflow_size(const char* name, const std::vector<double>& v, int size) {
@@ -330,27 +414,32 @@ double max_cfl(const Grid2D& g, const double* n, const double* vel, int dir, dou
 // cells (n = 0) and finite velocities; multiplications only (NaN fails every comparison)
 bool faces_pass(const Grid2D& g, const double* n, const double* u, const double* w, double dt) {
   const int nx = g.nx(), nz = g.nz();
-  bool ok = true;
+  std::atomic<bool> all_ok{true};
   const double dx = g.dx();
-  for (int k = 0; k < nz; ++k) {
-    const double* nr = n + g.cell(0, k);
-    const double* ur = u + g.face_x(0, k);
-    ok &= std::abs(ur[0]) * dt <= nr[0] * dx;
-    ok &= std::abs(ur[nx]) * dt <= nr[nx - 1] * dx;
-    for (int i = 1; i < nx; ++i) ok &= std::abs(ur[i]) * dt <= std::min(nr[i - 1], nr[i]) * dx;
-  }
-  for (int k = 0; k <= nz; ++k) {
-    const double* wr = w + g.face_z(0, k);
-    const double* nb = n + g.cell(0, std::max(k - 1, 0));
-    const double* nt = n + g.cell(0, std::min(k, nz - 1));
-    const double hb = g.dz(std::max(k - 1, 0)), ht = g.dz(std::min(k, nz - 1));
-    for (int i = 0; i < nx; ++i) {
-      const double a = std::abs(wr[i]) * dt;
-      ok &= a <= nb[i] * hb;
-      ok &= a <= nt[i] * ht;
+  // the rows on the threads (an and in any order)
+  detail::parallel_for(nz + 1, 2 * nx, [&, dx, dt](int k0, int k1) {
+    bool ok = true;
+    for (int k = k0; k < k1; ++k) {
+      if (k < nz) {
+        const double* nr = n + g.cell(0, k);
+        const double* ur = u + g.face_x(0, k);
+        ok &= std::abs(ur[0]) * dt <= nr[0] * dx;
+        ok &= std::abs(ur[nx]) * dt <= nr[nx - 1] * dx;
+        for (int i = 1; i < nx; ++i) ok &= std::abs(ur[i]) * dt <= std::min(nr[i - 1], nr[i]) * dx;
+      }
+      const double* wr = w + g.face_z(0, k);
+      const double* nb = n + g.cell(0, std::max(k - 1, 0));
+      const double* nt = n + g.cell(0, std::min(k, nz - 1));
+      const double hb = g.dz(std::max(k - 1, 0)), ht = g.dz(std::min(k, nz - 1));
+      for (int i = 0; i < nx; ++i) {
+        const double a = std::abs(wr[i]) * dt;
+        ok &= a <= nb[i] * hb;
+        ok &= a <= nt[i] * ht;
+      }
     }
-  }
-  return ok;
+    if (!ok) all_ok.store(false, std::memory_order_relaxed);
+  });
+  return all_ok.load();
 }
 
 // sizes a work array for the grid: allocates on first use or when the grid changed, never per step
@@ -457,26 +546,32 @@ void advect_vof(const Grid2D& grid, const double* cell_porosity, const double* f
   ensure_size(scratch.face_flux_z, static_cast<std::size_t>(grid.nface_z()));
   ensure_size(scratch.cell_c, static_cast<std::size_t>(ncell));
   // the divergence-correction indicator is frozen at the start of the step for both sweeps
-  bool finite = true;
-  for (int c = 0; c < ncell; ++c) {
-    scratch.cell_c[c] = cell_F[c] > 0.5 ? 1.0 : 0.0;
-    finite &= std::isfinite(cell_F[c]);
-  }
-  if (!finite)
+  std::atomic<bool> all_finite{true};
+  detail::parallel_range(ncell, [&](long long c0, long long c1) {
+    bool finite = true;
+    for (long long c = c0; c < c1; ++c) {
+      scratch.cell_c[c] = cell_F[c] > 0.5 ? 1.0 : 0.0;
+      finite &= std::isfinite(cell_F[c]);
+    }
+    if (!finite) all_finite.store(false, std::memory_order_relaxed);
+  });
+  if (!all_finite.load())
     for (int c = 0; c < ncell; ++c)
       if (!std::isfinite(cell_F[c]) && cell_porosity[c] > 0.0)
         throw std::runtime_error("vof advection: F = " + format_value(cell_F[c]) + " in cell (i=" +
                                  std::to_string(c % grid.nx()) + ", k=" + std::to_string(c / grid.nx()) +
                                  ") is not finite");
+  ensure_size(scratch.cell_F_new, static_cast<std::size_t>(ncell));
   const double* c = scratch.cell_c.data();
-  const SweepArgs sx{grid, cell_porosity, face_u, inflow, dt, c, cell_F, scratch.face_flux_x.data(), scratch, normal};
-  const SweepArgs sz{grid, cell_porosity, face_w, inflow, dt, c, cell_F, scratch.face_flux_z.data(), scratch, normal};
+  const SweepArgs sx{grid,   cell_porosity, face_u, inflow, dt, c, cell_F, scratch.cell_F_new.data(),
+                     scratch.face_flux_x.data(), normal};
+  const SweepArgs sz{grid, cell_porosity, face_w, inflow, dt, c, cell_F, cell_F, scratch.face_flux_z.data(), normal};
   if (x_first) {
-    sweep_x(sx);
-    sweep_z(sz);
+    sweep_x(sx, scratch);
+    sweep_z(sz, scratch);
   } else {
-    sweep_z(sz);
-    sweep_x(sx);
+    sweep_z(sz, scratch);
+    sweep_x(sx, scratch);
   }
 }
 

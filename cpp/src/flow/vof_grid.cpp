@@ -1,6 +1,7 @@
 #include "vofdem/flow/vof_grid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/parallel.h"
 #include "vofdem/common/advance.h"
 #include "vofdem/common/check.h"
 #include "vofdem/flow/porous_stage.h"
@@ -222,35 +224,49 @@ void VOFGrid::update_face_porosity(bool displace) {
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const double* n = cell_porosity.data();
   const double* d = cell_stone_diameter.data();
-  // the checks' calls (which build the message) only for a value that fails
-  for (int c = 0; c < grid_.ncell(); ++c) {
+  // the checks' calls (which build the message) only for a value that fails, searched again in order
+  auto fails = [&](long long c) {
+    return !(n[c] >= 0.0 && n[c] <= 1.0) ||
+           (n[c] > 0.0 && n[c] < 1.0 && !(d[c] > 0.0 && d[c] <= std::numeric_limits<double>::max()));
+  };
+  std::atomic<bool> bad{false};
+  detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+    bool any = false;
+    for (long long c = c0; c < c1; ++c) any |= fails(c);
+    if (any) bad.store(true, std::memory_order_relaxed);
+  });
+  for (int c = 0; bad.load() && c < grid_.ncell(); ++c) {
     if (!(n[c] >= 0.0 && n[c] <= 1.0)) require_in_closed("cell_porosity", n[c], 0.0, 1.0);
     if (n[c] > 0.0 && n[c] < 1.0 && !(d[c] > 0.0 && d[c] <= std::numeric_limits<double>::max()))
       require_positive("cell_stone_diameter", d[c]);
   }
   // a boundary face has its one cell on both sides
-  for (int k = 0; k < nz; ++k) {
-    const double* nr = n + nx * k;
-    const double* dr = d + nx * k;
-    double* fn = face_x_porosity.data() + sx * k;
-    double* fd = face_x_diameter_.data() + sx * k;
-    double* u = face_u.data() + sx * k;
-    const int e = nx - 1;
-    face_porosity_row(1, nr, nr, dr, dr, fn, fd, u);
-    face_porosity_row(nx - 1, nr, nr + 1, dr, dr + 1, fn + 1, fd + 1, u + 1);
-    face_porosity_row(1, nr + e, nr + e, dr + e, dr + e, fn + nx, fd + nx, u + nx);
-    // walls are closed; the inlet and an open end stay open as far as their cell is
-    if (params_.inlet != InletBoundary::kDischarge) fn[0] = 0.0, u[0] = 0.0;
-    if (params_.outlet == OutletBoundary::kWall) fn[nx] = 0.0, u[nx] = 0.0;
-  }
-  for (int k = 0; k <= nz; ++k) {
-    const int below = nx * std::max(k - 1, 0), above = nx * std::min(k, nz - 1);
-    double* fn = face_z_porosity.data() + nx * k;
-    double* w = face_w.data() + nx * k;
-    face_porosity_row(nx, n + below, n + above, d + below, d + above, fn, face_z_diameter_.data() + nx * k, w);
-    if (k == 0 || (k == nz && params_.top == TopBoundary::kWall))
-      for (int i = 0; i < nx; ++i) fn[i] = 0.0, w[i] = 0.0;
-  }
+  detail::parallel_for(nz, sx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double* nr = n + nx * k;
+      const double* dr = d + nx * k;
+      double* fn = face_x_porosity.data() + sx * k;
+      double* fd = face_x_diameter_.data() + sx * k;
+      double* u = face_u.data() + sx * k;
+      const int e = nx - 1;
+      face_porosity_row(1, nr, nr, dr, dr, fn, fd, u);
+      face_porosity_row(nx - 1, nr, nr + 1, dr, dr + 1, fn + 1, fd + 1, u + 1);
+      face_porosity_row(1, nr + e, nr + e, dr + e, dr + e, fn + nx, fd + nx, u + nx);
+      // walls are closed; the inlet and an open end stay open as far as their cell is
+      if (params_.inlet != InletBoundary::kDischarge) fn[0] = 0.0, u[0] = 0.0;
+      if (params_.outlet == OutletBoundary::kWall) fn[nx] = 0.0, u[nx] = 0.0;
+    }
+  });
+  detail::parallel_for(nz + 1, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const int below = nx * std::max(k - 1, 0), above = nx * std::min(k, nz - 1);
+      double* fn = face_z_porosity.data() + nx * k;
+      double* w = face_w.data() + nx * k;
+      face_porosity_row(nx, n + below, n + above, d + below, d + above, fn, face_z_diameter_.data() + nx * k, w);
+      if (k == 0 || (k == nz && params_.top == TopBoundary::kWall))
+        for (int i = 0; i < nx; ++i) fn[i] = 0.0, w[i] = 0.0;
+    }
+  });
 }
 
 void VOFGrid::update_phase_properties() const {
@@ -258,23 +274,27 @@ void VOFGrid::update_phase_properties() const {
   const double rw = params_.medium.rho_water, ra = params_.medium.rho_air;
   const double mw = rw * params_.medium.nu_water, ma = ra * params_.medium.nu_air;
   const bool turb = params_.flags & kFlowTurbulence;
-  for (int c = 0; c < grid_.ncell(); ++c) {
-    const double f = two_phase ? std::clamp(cell_F[c], 0.0, 1.0) : 1.0;
-    cell_rho_[c] = f * rw + (1.0 - f) * ra;
-    const double mu = f * mw + (1.0 - f) * ma;
-    cell_nu_[c] = mu / cell_rho_[c];
-    cell_mu_eddy_[c] = turb ? cell_rho_[c] * cell_nut[c] : 0.0;
-    cell_mu_[c] = mu + cell_mu_eddy_[c];
-  }
+  detail::parallel_range(grid_.ncell(), [&, rw, ra, mw, ma](long long c0, long long c1) {
+    for (long long c = c0; c < c1; ++c) {
+      const double f = two_phase ? std::clamp(cell_F[c], 0.0, 1.0) : 1.0;
+      cell_rho_[c] = f * rw + (1.0 - f) * ra;
+      const double mu = f * mw + (1.0 - f) * ma;
+      cell_nu_[c] = mu / cell_rho_[c];
+      cell_mu_eddy_[c] = turb ? cell_rho_[c] * cell_nut[c] : 0.0;
+      cell_mu_[c] = mu + cell_mu_eddy_[c];
+    }
+  });
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   // the faces' mean of the two cells (a boundary face's cell twice), row by row (vectorised)
-  for (int k = 0; k < nz; ++k) {
-    const double* r = cell_rho_.data() + nx * k;
-    double* f = face_x_rho_.data() + sx * k;
-    f[0] = 0.5 * (r[0] + r[0]);
-    for (int i = 1; i < nx; ++i) f[i] = 0.5 * (r[i - 1] + r[i]);
-    f[nx] = 0.5 * (r[nx - 1] + r[nx - 1]);
-  }
+  detail::parallel_for(nz, sx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double* r = cell_rho_.data() + nx * k;
+      double* f = face_x_rho_.data() + sx * k;
+      f[0] = 0.5 * (r[0] + r[0]);
+      for (int i = 1; i < nx; ++i) f[i] = 0.5 * (r[i - 1] + r[i]);
+      f[nx] = 0.5 * (r[nx - 1] + r[nx - 1]);
+    }
+  });
   // an open end faces still fluid outside: water below the tailwater level, air above (two-phase)
   if (two_phase && params_.outlet != OutletBoundary::kWall)
     for (int k = 0; k < nz; ++k) {
@@ -283,12 +303,14 @@ void VOFGrid::update_phase_properties() const {
                            : 0.0;
       face_x_rho_[grid_.face_x(nx, k)] = 0.5 * (cell_rho_[grid_.cell(nx - 1, k)] + f * rw + (1.0 - f) * ra);
     }
-  for (int k = 0; k <= nz; ++k) {
-    const double* r0 = cell_rho_.data() + nx * std::max(k - 1, 0);
-    const double* r1 = cell_rho_.data() + nx * std::min(k, nz - 1);
-    double* f = face_z_rho_.data() + nx * k;
-    for (int i = 0; i < nx; ++i) f[i] = 0.5 * (r0[i] + r1[i]);
-  }
+  detail::parallel_for(nz + 1, nx, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      const double* r0 = cell_rho_.data() + nx * std::max(k - 1, 0);
+      const double* r1 = cell_rho_.data() + nx * std::min(k, nz - 1);
+      double* f = face_z_rho_.data() + nx * k;
+      for (int i = 0; i < nx; ++i) f[i] = 0.5 * (r0[i] + r1[i]);
+    }
+  });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -321,17 +343,20 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
   kind = 0;
   index = -1;
   // each row's Courant numbers first (a division per face, vectorised; closed faces 0), then the row's
-  // largest, and where it beats the largest so far its first face. Water leaving through an open
-  // boundary face counts half: the VOF sweep stays bounded up to 2 cfl on outflow faces
-  // (vof_advection.h) and the face's own momentum outflow is implicit (momentum.h); its limit would
-  // otherwise be a numerical one, the fast bed row at a free overfall's brink.
+  // largest, and where it beats the largest so far its first face (the rows on the threads, taken in
+  // order). Water leaving through an open boundary face counts half: the VOF sweep stays bounded up to
+  // 2 cfl on outflow faces (vof_advection.h) and the face's own momentum outflow is implicit
+  // (momentum.h); its limit would otherwise be a numerical one, the fast bed row at a free overfall's brink.
   const bool right_open = params_.outlet != OutletBoundary::kWall;
-  double* row = cfl_row_.data();
-  auto take_row = [&](int count, int row_kind, int first_face) {
-    int at;
-    if (take_row_maximum(row, count, worst, at)) kind = row_kind, index = first_face + at;
+  // the rows of one kind, `width` faces each, on the threads, then taken in order
+  auto take_rows = [&](int rows, int width, int row_kind, auto fill) {
+    cfl_row_.resize(std::max(cfl_row_.size(), detail::row_maxima_size(rows, width)));
+    detail::row_maxima(rows, width, cfl_row_.data(), fill);
+    for (int k = 0; k < rows; ++k)
+      if (cfl_row_[k] > worst)
+        worst = cfl_row_[k], kind = row_kind, index = width * k + static_cast<int>(cfl_row_[rows + k]);
   };
-  for (int k = 0; k < nz; ++k) {
+  take_rows(nz, sx, 1, [&, dt](int k, double* row) {
     const double inv_h = dt / grid_.dx();
     const double* u = face_u.data() + sx * k;
     const double* n = face_x_porosity.data() + sx * k;
@@ -340,9 +365,9 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
       row[i] = n[i] > 0.0 ? c : 0.0;
     }
     if (right_open && u[nx] > 0.0) row[nx] *= 0.5;
-    take_row(sx, 1, sx * k);
-  }
-  for (int k = 0; k <= nz; ++k) {
+    return sx;
+  });
+  take_rows(nz + 1, nx, 2, [&, dt](int k, double* row) {
     const double h = std::min(grid_.dz(std::max(k - 1, 0)), grid_.dz(std::min(k, nz - 1)));
     const double* w = face_w.data() + nx * k;
     const double* n = face_z_porosity.data() + nx * k;
@@ -350,8 +375,8 @@ double VOFGrid::max_cfl(double dt, int& kind, int& index) const {
       const double c = std::abs(w[i]) / n[i] * dt / h;
       row[i] = n[i] > 0.0 ? c : 0.0;
     }
-    take_row(nx, 2, nx * k);
-  }
+    return nx;
+  });
   return worst;
 }
 
@@ -475,15 +500,19 @@ void VOFGrid::fail(const std::string& stage, const std::string& what, int kind, 
 
 void VOFGrid::check_finite(const char* stage, const char* name, const std::vector<double>& a, int kind) {
   // x - x is +0 (all bits clear) for a finite x and NaN otherwise: one vectorised pass of subtractions
-  // and ORs of their bits, searched only on failure
-  std::uint64_t bits = 0;
-  for (const double x : a) {
-    const double d = x - x;
-    std::uint64_t b;
-    std::memcpy(&b, &d, sizeof b);
-    bits |= b;
-  }
-  if (bits == 0) return;
+  // and ORs of their bits (pieces on the threads; an OR in any order), searched only on failure
+  std::atomic<std::uint64_t> all_bits{0};
+  detail::parallel_range(a.size(), [&](long long j0, long long j1) {
+    std::uint64_t bits = 0;
+    for (long long j = j0; j < j1; ++j) {
+      const double d = a[j] - a[j];
+      std::uint64_t b;
+      std::memcpy(&b, &d, sizeof b);
+      bits |= b;
+    }
+    all_bits.fetch_or(bits, std::memory_order_relaxed);
+  });
+  if (all_bits.load() == 0) return;
   for (size_t j = 0; j < a.size(); ++j)
     if (!std::isfinite(a[j])) fail(stage, std::string("non-finite ") + name + " (" + format_value(a[j]) + ")", kind,
                                    static_cast<int>(j));
@@ -589,15 +618,23 @@ void VOFGrid::stage_momentum(double dt) {
     const double r = 0.5 * dt / prev_dt_;
     const std::size_t nu = face_u.size(), nw = face_w.size();
     face_u_ext_.resize(nu), face_w_ext_.resize(nw);
-    for (std::size_t j = 0; j < nu; ++j) face_u_ext_[j] = face_u[j] + r * (face_u[j] - face_u_prev[j]);
-    for (std::size_t j = 0; j < nw; ++j) face_w_ext_[j] = face_w[j] + r * (face_w[j] - face_w_prev[j]);
+    detail::parallel_range(nu, [&, r](long long j0, long long j1) {
+      for (long long j = j0; j < j1; ++j) face_u_ext_[j] = face_u[j] + r * (face_u[j] - face_u_prev[j]);
+    });
+    detail::parallel_range(nw, [&, r](long long j0, long long j1) {
+      for (long long j = j0; j < j1; ++j) face_w_ext_[j] = face_w[j] + r * (face_w[j] - face_w_prev[j]);
+    });
     MomentumFields f = momentum_fields();
     f.conv_face_u = face_u_ext_.data(), f.conv_face_w = face_w_ext_.data();
     momentum_explicit(grid_, f, terms, momentum_boundary(), dt, u_star_, w_star_, momentum_scratch_);
   }
   // projection coefficients without resistance; the porous stage divides them by 1 + dt n R'
-  for (size_t j = 0; j < face_x_beta_.size(); ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
-  for (size_t j = 0; j < face_z_beta_.size(); ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
+  detail::parallel_range(face_x_beta_.size(), [&, dt](long long j0, long long j1) {
+    for (long long j = j0; j < j1; ++j) face_x_beta_[j] = dt * face_x_porosity[j] / face_x_rho_[j];
+  });
+  detail::parallel_range(face_z_beta_.size(), [&, dt](long long j0, long long j1) {
+    for (long long j = j0; j < j1; ++j) face_z_beta_[j] = dt * face_z_porosity[j] / face_z_rho_[j];
+  });
   check_finite("momentum", "x-velocity", u_star_, 1);
   check_finite("momentum", "z-velocity", w_star_, 2);
 }
@@ -691,9 +728,17 @@ void VOFGrid::stage_correct() {
 
 void VOFGrid::stage_checks(double dt) {
   ScopedStage timer(profile_, st_checks_);
-  for (int c = 0; c < grid_.ncell(); ++c)
-    if (cell_F[c] < -kFractionSlack || cell_F[c] > 1.0 + kFractionSlack)
-      fail("checks", "water fraction out of [0, 1] (" + format_value(cell_F[c]) + ")", 0, c);
+  // every cell on the threads; a failure is named by the first failing cell, searched again
+  auto outside = [&](long long c) { return cell_F[c] < -kFractionSlack || cell_F[c] > 1.0 + kFractionSlack; };
+  std::atomic<bool> bad{false};
+  detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+    bool any = false;
+    for (long long c = c0; c < c1; ++c) any |= outside(c);
+    if (any) bad.store(true, std::memory_order_relaxed);
+  });
+  if (bad.load())
+    for (int c = 0; c < grid_.ncell(); ++c)
+      if (outside(c)) fail("checks", "water fraction out of [0, 1] (" + format_value(cell_F[c]) + ")", 0, c);
   // the rate per face (the next step's advective limit, kept), times dt: within a few round-offs of the
   // check's own dt / h per face, so that a Courant number near 1 is checked exactly
   int kind, index;

@@ -301,8 +301,9 @@ class KEpsilonModel {
   std::vector<double> tri_[2][4];              // kVerticalLines: sub, diagonal, super, rhs of k and eps
   // half a cell over its conductance n (nu + nu_t / sigma) [s/m], along x and along z, for k and for eps
   mutable std::vector<double> half_res_x_[2], half_res_z_[2];
-  // one row's rates, active cells and faces' conductances of k and eps (lines_stable_rate)
-  mutable std::vector<double> row_rate_, row_active_, row_conductance_;
+  // the rows' largest rates, then per thread one row's rates, active cells and faces' conductances of k
+  // and eps (lines_stable_rate)
+  mutable std::vector<double> row_rate_;
 };
 
 }  // namespace vofdem

@@ -43,6 +43,10 @@ struct VofScratch {
   // the caller last set them to 0 (VOFGrid does so before each step's advection):
   long long clip_count = 0;  // number of cell updates clipped by more than kVofClipTolerance
   double clip_max = 0.0;     // largest such excursion [-]
+  // the sweep along x: the new F of the rows done (its fluxes read the row below as updated), one row
+  // of fluxes per thread, and which rows read the row below (a reconstructed cell with an outflow)
+  std::vector<double> cell_F_new, row_flux;
+  std::vector<unsigned char> row_reads_below;
 };
 
 // interface normal of the PLIC reconstruction

@@ -417,7 +417,7 @@ class VOFGrid {
   // momentum stage's substeps reuse it within that step; -1: none)
   mutable double viscous_limit_ = 0.0;
   mutable long long viscous_limit_step_ = -1;
-  mutable std::vector<double> cfl_row_;     // Courant numbers of one row of faces (max_cfl)
+  mutable std::vector<double> cfl_row_;     // each row's largest Courant number, rows per thread (max_cfl)
   // max_cfl(1.0) at the end of the step that made step_count_ = step (see reuse_step_end_courant)
   struct StepEndCourant {
     long long step = -1;
