@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -121,6 +121,8 @@ class StageProfile:
         ...
 class DragLaw:
     """
+    Drag coefficient C_D [-] of a stone against its Reynolds number (drag.h).
+    
     Members:
     
       PAPER : C_D = 0.4 + 24/Re (seed eq. 18)
@@ -166,6 +168,8 @@ class DragLaw:
         ...
 class PorosityMethod:
     """
+    How the stones' solid area [m^2] in each cell is found (porosity_map.h, eq. 11).
+    
     Members:
     
       EXACT : closed-form disc-rectangle areas
@@ -625,6 +629,10 @@ class DEMSystem:
         """
         n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories
         """
+    def set_model(self, name: str) -> None:
+        """
+        Makes every stone of the registered stone model `name` (stone_model_names()); shape arrays and contact histories are made anew. Invalidates the poly_* views.
+        """
     def set_polygons(self, vertex: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], offset: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
         """
         Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.
@@ -733,7 +741,9 @@ class DEMSystem:
         ...
     @property
     def shape(self) -> str:
-        ...
+        """
+        the stone model's registered name (stone_model_names())
+        """
     @property
     def steps(self) -> int:
         ...
@@ -1012,6 +1022,8 @@ class VofScratch:
         """
 class PressureSolverKind:
     """
+    Solver of the pressure Poisson problem of the projection (FlowParams.pressure_solver).
+    
     Members:
     
       EIGEN_DIRECT : Eigen sparse LDL^T: exact to round-off, the reference
@@ -1154,9 +1166,11 @@ class FlowEffect(enum.IntFlag):
         ...
 class InletBoundary:
     """
+    The upstream end x = 0 of the flume (FlowParams.inlet).
+    
     Members:
     
-      WALL
+      WALL : a closed wall
     
       DISCHARGE : prescribed discharge Q(t) over the wetted inlet
     """
@@ -1199,6 +1213,8 @@ class InletBoundary:
         ...
 class InletProfile:
     """
+    How the inlet spreads the discharge [m^3/s] over its rows (FlowParams.inlet_profile).
+    
     Members:
     
       EQUIVALENT_DEPTH : the rows below the inlet's level h = sum(F dz)
@@ -1244,9 +1260,11 @@ class InletProfile:
         ...
 class OutletBoundary:
     """
+    The downstream end of the flume (FlowParams.outlet).
+    
     Members:
     
-      WALL
+      WALL : a closed wall
     
       FREE_OVERFALL : the end face is a brink open to still air (hydrostatic air pressure)
     
@@ -1292,6 +1310,8 @@ class OutletBoundary:
         ...
 class TopBoundary:
     """
+    The top of the domain (FlowParams.top).
+    
     Members:
     
       OPEN : open to the atmosphere, p = 0
@@ -1337,11 +1357,13 @@ class TopBoundary:
         ...
 class WallCondition:
     """
+    Tangential velocity at the bed and the closed walls (FlowParams.walls).
+    
     Members:
     
-      SLIP
+      SLIP : no shear stress: the tangential velocity slips
     
-      NO_SLIP
+      NO_SLIP : zero tangential velocity at the wall
     """
     NO_SLIP: typing.ClassVar[WallCondition]
     SLIP: typing.ClassVar[WallCondition]
@@ -1382,13 +1404,15 @@ class WallCondition:
         ...
 class ViscousScheme:
     """
+    Time stepping of the viscous (molecular + eddy) stresses (FlowParams.viscous_scheme).
+    
     Members:
     
-      EXPLICIT
+      EXPLICIT : forward Euler of every stress: the step limit dz^2 / (4 nu)
     
-      IMPLICIT_VERTICAL
+      IMPLICIT_VERTICAL : the vertical diffusion by backward Euler per column, from the velocities after the explicit part
     
-      IMPLICIT_VERTICAL_FROM_START
+      IMPLICIT_VERTICAL_FROM_START : the former scheme: the columns from u^n beside the explicit part (unstable above 0.7 of its limit)
     
       IMPLICIT : rows and columns implicit, the cross terms explicit: no step bound
     """
@@ -1433,6 +1457,8 @@ class ViscousScheme:
         ...
 class ViscousBound:
     """
+    Bound of the viscous step limit [s] (FlowParams.viscous_bound).
+    
     Members:
     
       ENERGY : the split scheme's energy bound: no cross terms (a proof)
@@ -1478,13 +1504,15 @@ class ViscousBound:
         ...
 class KEpsilonPoreStrain:
     """
+    Which velocity's cross derivatives dU/dz, dW/dx [1/s] enter the k-epsilon production in porous cells (FlowParams.turbulence_pore_strain).
+    
     Members:
     
-      NEIGHBOURS
+      NEIGHBOURS : each neighbour's own pore velocity u / n
     
-      LOCAL
+      LOCAL : the neighbours' superficial velocities over this cell's porosity
     
-      FILTERED
+      FILTERED : the pore velocity over the porosity averaged over a box of turbulence_pore_filter_length [m]
     """
     FILTERED: typing.ClassVar[KEpsilonPoreStrain]
     LOCAL: typing.ClassVar[KEpsilonPoreStrain]
@@ -1526,11 +1554,13 @@ class KEpsilonPoreStrain:
         ...
 class KEpsilonProduction:
     """
+    Production term P [m^2/s^3] of k (FlowParams.turbulence_production).
+    
     Members:
     
-      STRAIN
+      STRAIN : P = nu_t S^2 (the standard term)
     
-      KATO_LAUNDER
+      KATO_LAUNDER : P = nu_t S Omega: none in irrotational strain
     """
     KATO_LAUNDER: typing.ClassVar[KEpsilonProduction]
     STRAIN: typing.ClassVar[KEpsilonProduction]
@@ -1571,6 +1601,8 @@ class KEpsilonProduction:
         ...
 class KEpsilonTimeScheme:
     """
+    Time stepping of the k-epsilon transport (FlowParams.turbulence_time_scheme).
+    
     Members:
     
       POINT_IMPLICIT : predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces
@@ -1616,6 +1648,8 @@ class KEpsilonTimeScheme:
         ...
 class MomentumTimeScheme:
     """
+    Time integration of the convective term (FlowParams.time_scheme).
+    
     Members:
     
       EULER : forward Euler of the explicit momentum terms (first order)
@@ -1661,11 +1695,13 @@ class MomentumTimeScheme:
         ...
 class CornerViscosity:
     """
+    Viscosity [Pa s] of a cell corner, where the shear stress lives, from its four cells (FlowParams.corner_viscosity).
+    
     Members:
     
-      ARITHMETIC
+      ARITHMETIC : the arithmetic mean of the four cells
     
-      HARMONIC
+      HARMONIC : the molecular part by arithmetic, the eddy part by harmonic mean (none next to air or solid)
     """
     ARITHMETIC: typing.ClassVar[CornerViscosity]
     HARMONIC: typing.ClassVar[CornerViscosity]
@@ -2574,9 +2610,13 @@ def built_with_openmp() -> bool:
     True if the solvers can run on several threads.
     """
 def contact_duration(k: typing.SupportsFloat | typing.SupportsIndex, m_reduced: typing.SupportsFloat | typing.SupportsIndex, zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
-    ...
+    """
+    Contact duration t_c [s] of a linear spring-dashpot: stiffness k [N/m], reduced mass m_reduced [kg], damping ratio zeta [-] (inf for zeta >= 1).
+    """
 def damping_ratio_from_restitution(e: typing.SupportsFloat | typing.SupportsIndex) -> float:
-    ...
+    """
+    Damping ratio zeta [-] of a linear spring-dashpot that gives the restitution coefficient e [-] (e = 0: zeta = 1).
+    """
 def disc_cell_area(cx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     Exact area [m^2] of the disc of centre (cx, cz) [m] and radius r [m] inside [x0, x1] x [z0, z1] [m].
@@ -2628,7 +2668,9 @@ def random_polygons(diameters: typing.Annotated[numpy.typing.ArrayLike, numpy.fl
     Random convex polygon stones of the given nominal diameters [m] (equal-area discs) from one seed: (vertices (m, 2) body frame [m], offsets (n + 1)). See polygon.h.
     """
 def restitution_from_damping_ratio(zeta: typing.SupportsFloat | typing.SupportsIndex) -> float:
-    ...
+    """
+    Restitution coefficient e [-] of a linear spring-dashpot of damping ratio zeta [-] (0 for zeta >= 1).
+    """
 def set_thread_min_cells(n: typing.SupportsInt | typing.SupportsIndex) -> None:
     """
     The fewest cells a thread is given [-], in [1, 1e9], default 2048: smaller loops run on fewer threads; 1 splits every loop (the determinism tests). ValueError outside the range.
@@ -2636,6 +2678,10 @@ def set_thread_min_cells(n: typing.SupportsInt | typing.SupportsIndex) -> None:
 def set_threads(n: typing.SupportsInt | typing.SupportsIndex) -> None:
     """
     Threads of the next steps of every solver in this process [-], in [1, max_threads()]; the results are the same bits for any count (docs/threads.md). ValueError outside the range.
+    """
+def stone_model_names() -> list[str]:
+    """
+    the registered stone models' names (DEMSystem.shape, the scene's stones.shape), the built-in ones first
     """
 def thread_min_cells() -> int:
     """
@@ -2647,12 +2693,16 @@ def threads() -> int:
     """
 def vof_stable_dt(grid: Grid2D, cell_porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_u: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], face_w: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cfl: typing.SupportsFloat | typing.SupportsIndex = 0.45) -> float:
     """
-    Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers |v| dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.
+    Largest advection step [s] at CFL number cfl: per cell and direction the inflow CFL numbers abs(v) dt / (n h) add up to <= cfl, the outflow ones to <= 2 cfl (cfl <= 0.5 keeps F in [0, 1]); inf if at rest.
     """
 def weir_outline_error(system: DEMSystem, spec: WeirSpec) -> float:
-    ...
+    """
+    Largest deviation [m] of the packing from the trapezoid: how far a stone reaches outside it, or how far a point of its slopes and crest lies from the nearest stone, whichever is larger.
+    """
 def weir_porosity(system: DEMSystem, spec: WeirSpec, h: typing.SupportsFloat | typing.SupportsIndex = 0.002) -> float:
-    ...
+    """
+    2D porosity [-] of the weir's trapezoid filled by the stones (discs or polygons), sampled on a grid of spacing h [m].
+    """
 COUPLE_CHECKS: CouplerEffect
 COUPLE_DEFAULT: CouplerEffect
 COUPLE_DEM: CouplerEffect
