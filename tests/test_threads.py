@@ -1,5 +1,6 @@
 """Threads for one run (docs/threads.md): the option's range from Python and the CLI, the same bits on
 one and two threads, the GIL released while the threads step, ensemble members on one thread."""
+import multiprocessing
 import threading
 
 import numpy as np
@@ -86,6 +87,26 @@ def test_two_threads_step_with_the_gil_released(restore_threads):
     t.join()
     assert sim.time == pytest.approx(0.1)
     assert count > 1000
+
+
+def _flume_hash_in_child(_):
+    sim = flume()
+    sim.advance(0.05)
+    return _core.threads(), {k: np.array(v).tobytes() for k, v in sim.export_state().items()}
+
+
+@needs_two
+def test_a_forked_child_steps_on_one_thread_after_the_parent_ran_two(restore_threads):
+    # GNU OpenMP hangs in a forked child's first parallel region once the parent has run one: the
+    # library sets a forked child to one thread
+    _core.set_threads(2)
+    _core.set_thread_min_cells(1)
+    parent = flume()
+    parent.advance(0.05)
+    with multiprocessing.get_context("fork").Pool(1) as pool:
+        threads, state = pool.apply_async(_flume_hash_in_child, (0,)).get(timeout=120)
+    assert threads == 1
+    assert state == {k: np.array(v).tobytes() for k, v in parent.export_state().items()}
 
 
 def test_cli_threads_option(tmp_path, restore_threads, capsys):

@@ -51,7 +51,8 @@ void bind_common(py::module_& m) {
   m.def("set_threads", &set_threads, py::arg("n"),
         "Threads of the next steps of every solver in this process [-], in [1, max_threads()]; the results are the "
         "same bits for any count (docs/threads.md). ValueError outside the range.");
-  m.def("threads", &threads, "Threads of the solvers' parallel stages [-] (default: OMP_NUM_THREADS, else every core).");
+  m.def("threads", &threads,
+        "Threads of the solvers' parallel stages [-] (default: OMP_NUM_THREADS, else every core).");
   m.def("max_threads", &max_threads, "The most threads set_threads accepts (1 when built without OpenMP).");
   m.def("set_thread_min_cells", &set_thread_min_cells, py::arg("n"),
         "The fewest cells a thread is given [-], in [1, 1e9], default 2048: smaller loops run on fewer threads; 1 "

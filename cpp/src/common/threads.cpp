@@ -7,6 +7,7 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+#include <pthread.h>
 #endif
 
 namespace vofdem {
@@ -29,6 +30,16 @@ std::atomic<int>& thread_count() {
   static std::atomic<int> n{default_threads()};
   return n;
 }
+
+#ifdef _OPENMP
+// A process forked after a parallel loop holds none of the parent's OpenMP threads, and GNU OpenMP hangs
+// in its next parallel region: a forked child runs its loops on one thread (set_threads again at its
+// own risk; a child that execs, or a process started by spawn, has its own default)
+const bool one_thread_after_fork = [] {
+  pthread_atfork(nullptr, nullptr, [] { thread_count().store(1, std::memory_order_relaxed); });
+  return true;
+}();
+#endif
 
 std::atomic<int> min_cells{2048};
 

@@ -166,7 +166,8 @@ void explicit_part_for_u(const Grid2D& g, const MomentumFields& f, const Momentu
     for (int kk = k0 + 1; kk < k1 + 1; ++kk) {
       const double inv_dzc = 1.0 / (g.z_center(kk) - g.z_center(kk - 1));
       for (int ii = 1; ii < nx; ++ii)
-        t[ii + sx * kk] -= s.corner_mu[ii + sx * kk] * (f.face_u[ii + sx * kk] - f.face_u[ii + sx * (kk - 1)]) * inv_dzc;
+        t[ii + sx * kk] -=
+            s.corner_mu[ii + sx * kk] * (f.face_u[ii + sx * kk] - f.face_u[ii + sx * (kk - 1)]) * inv_dzc;
     }
   });
 }

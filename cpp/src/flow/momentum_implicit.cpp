@@ -81,7 +81,8 @@ void vertical_u(const Grid2D& g, const MomentumFields& f, const MomentumBoundary
       const double* rho = f.face_x_rho + sx * k;
       const double* u = u0 + sx * k;
       const std::size_t row = static_cast<std::size_t>(sx) * k;
-      diffusion_row(1, nx, {dt, dzk, lo_c, lo_h, up_c, up_h}, rho, mu_lo, mu_up, n, u, a + row, b + row, c + row, d + row);
+      diffusion_row(1, nx, {dt, dzk, lo_c, lo_h, up_c, up_h}, rho, mu_lo, mu_up, n, u, a + row, b + row, c + row,
+                    d + row);
       keep_open_neighbours(1, nx, has_lo, has_up, n, n_lo, n_up, a + row, c + row);
     }
   });

@@ -18,7 +18,8 @@ void porous_resistance_stage(const Grid2D& g, const PorousStageFields& f, const 
   const double k1 = t.k1, k2 = t.k2;
   // R' = a + b |u_rel| from the velocity of the last step (Picard), then (1 + dt n R') u = u* + dt n R' n u_s
   // (the scalars by value: each thread's copy keeps them in registers, parallel.h)
-  auto apply = [=](double n, double d, double rho, double mu, double u_rel_mag, double us, double& ustar, double& beta) {
+  auto apply = [=](double n, double d, double rho, double mu, double u_rel_mag, double us, double& ustar,
+                   double& beta) {
     if (n <= 0.0 || n >= 1.0) return;
     const PorousCoefficients pc = porous_coefficients_unchecked(n, d, mu / rho, k1, k2);
     const double r = (lin ? pc.linear : 0.0) + (quad ? pc.quadratic * u_rel_mag : 0.0);
@@ -37,7 +38,9 @@ void porous_resistance_stage(const Grid2D& g, const PorousStageFields& f, const 
         if (n <= 0.0 || n >= 1.0) continue;
         // the z-faces below and above the two cells beside the face (columns a, b)
         const int a = std::max(i - 1, 0), b = std::min(i, nx - 1);
-        auto sum4 = [&](const double* v) { return v[a + nx * k] + v[b + nx * k] + v[a + nx * (k + 1)] + v[b + nx * (k + 1)]; };
+        auto sum4 = [&](const double* v) {
+          return v[a + nx * k] + v[b + nx * k] + v[a + nx * (k + 1)] + v[b + nx * (k + 1)];
+        };
         double ur = f.face_u[j], wr = 0.25 * sum4(f.face_w);
         if (rel) {
           ur -= n * f.face_x_solid_u[j];
@@ -56,7 +59,9 @@ void porous_resistance_stage(const Grid2D& g, const PorousStageFields& f, const 
         if (n <= 0.0 || n >= 1.0) continue;
         // the x-faces left and right of the two cells beside the face (rows a, b)
         const int a = std::max(k - 1, 0), b = std::min(k, nz - 1);
-        auto sum4 = [&](const double* v) { return v[i + sx * a] + v[i + 1 + sx * a] + v[i + sx * b] + v[i + 1 + sx * b]; };
+        auto sum4 = [&](const double* v) {
+          return v[i + sx * a] + v[i + 1 + sx * a] + v[i + sx * b] + v[i + 1 + sx * b];
+        };
         double ur = 0.25 * sum4(f.face_u), wr = f.face_w[j];
         if (rel) {
           wr -= n * f.face_z_solid_w[j];

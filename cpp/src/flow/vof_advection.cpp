@@ -310,7 +310,9 @@ void sweep_x(const SweepArgs& s, VofScratch& scratch) {
     }
     report.add_to(scratch, lock);
   });
-  detail::parallel_range(g.ncell(), [&](long long j0, long long j1) { std::copy(F_swept + j0, F_swept + j1, s.F + j0); });
+  detail::parallel_range(g.ncell(), [&](long long j0, long long j1) {
+    std::copy(F_swept + j0, F_swept + j1, s.F + j0);
+  });
 }
 
 // The sweep along z: every flux from F at the sweep's start (rows on the threads; a face is written by its
