@@ -41,6 +41,8 @@ void parallel_team(int count, const Body& body) {
     }
     return;
   }
+#else
+  (void)count;  // one thread without OpenMP
 #endif
   Body local = body;
   local(0, 1);
