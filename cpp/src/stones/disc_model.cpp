@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "vofdem/coupling/drag_exchange.h"
 #include "vofdem/coupling/fluid_forces.h"
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/stone_packing.h"
+#include "vofdem/stones/weir_packing.h"
 
 namespace vofdem {
 
@@ -187,5 +190,42 @@ bool DiscModel::covers(const DEMSystem& s, int i, double x, double z) const {
 double DiscModel::outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const {
   return f(s.disc_pos[2 * i], s.disc_pos[2 * i + 1]) + s.disc_radius[i];
 }
+
+}  // namespace vofdem
+
+namespace vofdem {
+
+namespace {
+// discs in the weir's packing generator (stone_packing.h): circles of the drawn diameter
+class DiscPacking final : public StonePacking {
+ public:
+  PackedStone draw(double d) override { return PackedStone{0.5 * d}; }
+
+  // touching discs on the bed
+  void bottom_row(const WeirSpec& spec, const std::function<double()>& next_diameter, PackedStones& pile) override {
+    const double x_end = spec.x_end();
+    double r = 0.5 * next_diameter();
+    double x = spec.x_toe + r;
+    while (x + r <= x_end + 1e-12) {
+      pile.add(x, spec.z_bed + r, PackedStone{r}, 1);
+      const double r_next = 0.5 * next_diameter();
+      x += r + r_next;
+      r = r_next;
+    }
+  }
+
+  bool fits(const PackedStones& pile, double x, double z, const PackedStone& s, double margin) const override {
+    for (std::size_t i = 0; i < pile.size(); ++i)
+      if (std::hypot(x - pile.pos[2 * i], z - pile.pos[2 * i + 1]) - pile.radius[i] - s.radius <= margin) return false;
+    return true;
+  }
+
+  DEMSystem make(const DEMParams& p, const PackedStones& pile, double density) const override {
+    return DEMSystem(p, pile.pos, pile.radius, {density}, pile.fixed);
+  }
+};
+}  // namespace
+
+std::unique_ptr<StonePacking> DiscModel::packing(const WeirSpec&) const { return std::make_unique<DiscPacking>(); }
 
 }  // namespace vofdem

@@ -9,6 +9,7 @@
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/disc_model.h"
 #include "vofdem/stones/polygon_model.h"
+#include "vofdem/stones/stone_packing.h"
 
 namespace vofdem {
 
@@ -40,6 +41,8 @@ std::string quoted_names(const std::vector<std::pair<std::string, StoneModelFact
   return out;
 }
 }  // namespace
+
+std::unique_ptr<StonePacking> StoneModel::packing(const WeirSpec&) const { return nullptr; }
 
 void register_stone_model(const std::string& name, StoneModelFactory make) {
   Registry& r = registry();

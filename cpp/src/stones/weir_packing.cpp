@@ -7,9 +7,12 @@
 #include <random>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <stdexcept>
 
 #include "vofdem/common/check.h"
-#include "vofdem/stones/polygon_contact.h"
+#include "vofdem/stones/stone_model.h"
+#include "vofdem/stones/stone_packing.h"
 
 namespace vofdem {
 
@@ -35,9 +38,6 @@ void check_spec(const WeirSpec& s) {
   require_positive("density", s.density);
   require_positive("settle_time_max", s.settle_time_max);
   require_positive("rest_speed", s.rest_speed);
-  if (s.shape != "disc" && s.shape != "polygon")
-    throw std::invalid_argument("shape = '" + s.shape + "' is not one of the packing generator's stone models 'disc', 'polygon'");
-  if (s.shape == "polygon") s.polygon.validate();
   if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
 }
 
@@ -65,119 +65,38 @@ double settle(DEMSystem& sys, const WeirSpec& s, double hold) {
   return t;
 }
 
-// the stones being packed: centres, (bounding) radii, fixed flags, and for polygons their orientations
-// and body-frame vertices; make() builds the DEM system of them
-struct Shape {
-  double radius = 0.0;          // disc radius, or the polygon's bounding radius [m]
-  double angle = 0.0;           // polygon orientation [rad]
-  std::vector<double> vertex{};  // polygon body-frame vertices (empty for a disc)
-};
+}  // namespace
 
-// random polygon shapes from their own generator (the diameters keep the disc draws)
-struct Shapes {
-  std::mt19937_64 rng;
-  PolygonSpec spec;
-  explicit Shapes(const WeirSpec& s) : rng(s.seed ^ 0x9e3779b97f4a7c15ull), spec(s.polygon) {}
-  // a polygon of nominal diameter d at a random orientation
-  Shape draw(double d) {
-    Shape out;
-    out.vertex = random_convex_polygon(rng, spec, d);
-    out.angle = 2.0 * kPi * uniform01(rng);
-    out.radius = polygon_properties(out.vertex.data(), static_cast<int>(out.vertex.size() / 2)).bounding_radius;
-    return out;
-  }
-};
-
-struct Pile {
-  const WeirSpec& spec;
-  bool poly;
-  std::vector<double> pos, radius, angle;
-  std::vector<std::uint8_t> fixed;
-  std::vector<std::vector<double>> vertex;
-  Pile(const WeirSpec& s, bool polygons) : spec(s), poly(polygons) {}
-  Pile& operator=(const Pile& o) {
-    poly = o.poly, pos = o.pos, radius = o.radius, angle = o.angle, fixed = o.fixed, vertex = o.vertex;
-    return *this;
-  }
-  void add(double x, double z, double r, std::uint8_t f, const Shape& shape = Shape{}) {
-    pos.push_back(x);
-    pos.push_back(z);
-    radius.push_back(r);
-    fixed.push_back(f);
-    if (poly) angle.push_back(shape.angle), vertex.push_back(shape.vertex);
-  }
-  // stone i of the system sys, whose shapes are those of `from`
-  void copy_stone(const DEMSystem& sys, const Pile& from, int i) {
-    pos.push_back(sys.disc_pos[2 * i]);
-    pos.push_back(sys.disc_pos[2 * i + 1]);
-    radius.push_back(sys.disc_radius[i]);
-    fixed.push_back(sys.disc_fixed[i]);
-    if (poly) angle.push_back(sys.disc_angle[i]), vertex.push_back(from.vertex[static_cast<std::size_t>(i)]);
-  }
-  // polygons: stone `shape` at (x, z) keeps more than `margin` [m] from every stone (separating axes)
-  bool polygon_fits(double x, double z, const Shape& shape, double margin) const {
-    const int n = static_cast<int>(shape.vertex.size() / 2);
-    double wc[2 * kPolygonMaxVertices], uc[2 * kPolygonMaxVertices], wi[2 * kPolygonMaxVertices],
-        ui[2 * kPolygonMaxVertices];
-    polygon_to_world(shape.vertex.data(), n, x, z, shape.angle, wc);
-    polygon_edge_normals(wc, n, uc);
-    for (std::size_t i = 0; i < radius.size(); ++i) {
-      if (std::hypot(x - pos[2 * i], z - pos[2 * i + 1]) > radius[i] + shape.radius + margin) continue;
-      const int m = static_cast<int>(vertex[i].size() / 2);
-      polygon_to_world(vertex[i].data(), m, pos[2 * i], pos[2 * i + 1], angle[i], wi);
-      polygon_edge_normals(wi, m, ui);
-      if (polygon_separation(wc, uc, n, wi, ui, m) <= margin) return false;
-    }
-    return true;
-  }
-  // positions (and orientations) of the settled system
-  void take(const DEMSystem& sys) {
-    pos = sys.disc_pos;
-    if (poly) angle = sys.disc_angle;
-  }
-  DEMSystem make(const DEMParams& p) const {
-    DEMSystem sys(p, pos, radius, {spec.density}, fixed);
-    if (poly) {
-      std::vector<double> v;
-      std::vector<int> off = {0};
-      for (const auto& w : vertex) {
-        v.insert(v.end(), w.begin(), w.end());
-        off.push_back(off.back() + static_cast<int>(w.size() / 2));
-      }
-      sys.disc_angle = angle;
-      sys.set_polygons(v, off);
-    }
-    return sys;
-  }
-};
-
-// the fixed bottom row of polygons: each lying on its longest edge, touching its neighbour
-void bottom_row_polygons(const WeirSpec& spec, std::mt19937_64& rng, Shapes& shapes, Pile& pile) {
-  double x_left = spec.x_toe;
-  const double x_end = spec.x_end();
-  for (;;) {
-    Shape s = shapes.draw(draw_diameter(rng, spec));
-    const int n = static_cast<int>(s.vertex.size() / 2);
-    s.angle = polygon_rest_angle(s.vertex.data(), n);
-    std::vector<double> w(s.vertex.size());
-    polygon_to_world(s.vertex.data(), n, 0.0, 0.0, s.angle, w.data());
-    double xmin = INFINITY, xmax = -INFINITY, zmin = INFINITY;
-    for (int k = 0; k < n; ++k)
-      xmin = std::min(xmin, w[2 * k]), xmax = std::max(xmax, w[2 * k]), zmin = std::min(zmin, w[2 * k + 1]);
-    const double xc = x_left - xmin;
-    if (xc + xmax > x_end + 1e-12) break;
-    pile.add(xc, spec.z_bed - zmin, s.radius, 1, s);
-    x_left = xc + xmax;
-  }
+void PackedStones::add(double x, double z, const PackedStone& s, std::uint8_t fixed_flag) {
+  pos.push_back(x);
+  pos.push_back(z);
+  radius.push_back(s.radius);
+  angle.push_back(s.angle);
+  fixed.push_back(fixed_flag);
+  shape.push_back(s.shape);
 }
 
+void PackedStones::copy_stone(const DEMSystem& sys, const PackedStones& from, int i) {
+  pos.push_back(sys.disc_pos[2 * i]);
+  pos.push_back(sys.disc_pos[2 * i + 1]);
+  radius.push_back(sys.disc_radius[i]);
+  angle.push_back(sys.disc_angle[i]);
+  fixed.push_back(sys.disc_fixed[i]);
+  shape.push_back(from.shape[static_cast<std::size_t>(i)]);
+}
+
+void PackedStones::take(const DEMSystem& sys) {
+  pos = sys.disc_pos;
+  angle = sys.disc_angle;
+}
+
+namespace {
 // adds stones at the free sites of a loose triangular lattice filling the trapezoid (centres up to the
-// crest, within `off` [m] outside the slopes); returns how many. Polygons: the pitch of their largest
-// bounding diameter (sqrt(aspect) (1 + jitter / 2) of the nominal one) and their bounding radii
-int pour_round(const WeirSpec& spec, double off, std::mt19937_64& rng, Shapes& shapes, Pile& pile) {
+// crest, within `off` [m] outside the slopes); returns how many. The pitch is that of the largest
+// bounding diameter, the free-site test the model's
+int pour_round(const WeirSpec& spec, double off, std::mt19937_64& rng, StonePacking& packing, PackedStones& pile) {
   const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
-  const double kappa = pile.poly ? std::sqrt(spec.polygon.aspect_ratio) * (1.0 + 0.5 * spec.polygon.radial_jitter) : 1.0;
-  const double d_max = spec.d_mean * (1.0 + spec.d_spread) * kappa;
+  const double d_max = spec.d_mean * (1.0 + spec.d_spread) * packing.bounding_factor();
   const double pitch = 1.04 * d_max;
   const double row = pitch * std::sqrt(3.0) / 2.0;
   const double z_fill = spec.z_bed + spec.height;
@@ -189,16 +108,9 @@ int pour_round(const WeirSpec& spec, double off, std::mt19937_64& rng, Shapes& s
     for (double xc = xa + (k % 2) * 0.5 * pitch; xc <= xb; xc += pitch) {
       const double dc = draw_diameter(rng, spec);
       const double xj = xc + 0.02 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean;
-      const Shape shape = pile.poly ? shapes.draw(dc) : Shape{0.5 * dc};
-      const double rc = shape.radius;
-      bool free_site = true;
-      if (pile.poly) free_site = pile.polygon_fits(xj, z, shape, 0.02 * spec.d_mean);
-      for (std::size_t i = 0; i < pile.radius.size() && free_site && !pile.poly; ++i) {
-        const double gap = std::hypot(xj - pile.pos[2 * i], z - pile.pos[2 * i + 1]) - pile.radius[i] - rc;
-        free_site = gap > 0.02 * spec.d_mean;
-      }
-      if (!free_site) continue;
-      pile.add(xj, z, rc, 0, shape);
+      const PackedStone stone = packing.draw(dc);
+      if (!packing.fits(pile, xj, z, stone, 0.02 * spec.d_mean)) continue;
+      pile.add(xj, z, stone, 0);
       ++added;
     }
   }
@@ -259,30 +171,32 @@ double WeirSpec::top(double x) const {
 
 double WeirSpec::area() const { return 0.5 * height * (crest + (x_end() - x_toe)); }
 
+namespace {
+// the model's packing of the spec's stones; std::invalid_argument naming `shape` for an unknown model or
+// one without a packing
+std::unique_ptr<StonePacking> model_packing(const WeirSpec& spec) {
+  std::unique_ptr<StonePacking> packing = make_stone_model(spec.shape)->packing(spec);
+  if (!packing)
+    throw std::invalid_argument("shape = '" + spec.shape + "': the packing generator cannot pack this stone model");
+  return packing;
+}
+}  // namespace
+
 DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report) {
   check_spec(spec);
   const auto wall_start = std::chrono::steady_clock::now();
+  std::unique_ptr<StonePacking> packing = model_packing(spec);
   std::mt19937_64 rng(spec.seed);
   const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
   const double x_end = spec.x_end();
-  const bool poly = spec.shape == "polygon";
-  Shapes shapes(spec);
-  Pile pile(spec, poly);
+  PackedStones pile;
+  const auto make = [&packing, &spec](const DEMParams& p, const PackedStones& stones) {
+    return packing->make(p, stones, spec.density);
+  };
 
   // (1) the fixed bottom row: touching stones on the bed along the base
-  if (poly) {
-    bottom_row_polygons(spec, rng, shapes, pile);
-  } else {
-    double r = 0.5 * draw_diameter(rng, spec);
-    double x = spec.x_toe + r;
-    while (x + r <= x_end + 1e-12) {
-      pile.add(x, spec.z_bed + r, r, 1);
-      const double r_next = 0.5 * draw_diameter(rng, spec);
-      x += r + r_next;
-      r = r_next;
-    }
-  }
-  const int n_fixed = static_cast<int>(pile.radius.size());
+  packing->bottom_row(spec, [&rng, &spec] { return draw_diameter(rng, spec); }, pile);
+  const int n_fixed = static_cast<int>(pile.size());
 
   // (2) free stones poured in rounds: the free sites of a loose triangular lattice filling the
   // trapezoid are occupied, the stones settle inside temporary slope walls, and the gaps left at the
@@ -300,15 +214,15 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   double t_total = 0.0;
   DEMSystem box(p, 0);
   for (int round = 0; round < 6; ++round) {
-    if (pour_round(spec, off, rng, shapes, pile) == 0 && round > 0) break;
-    box = pile.make(p);
+    if (pour_round(spec, off, rng, *packing, pile) == 0 && round > 0) break;
+    box = make(p, pile);
     t_total += settle(box, spec, 0.2);
     pile.take(box);
   }
 
   // (3) keep the stones whose centres lie below the crest
   const double z_crest = spec.z_bed + spec.height;
-  Pile kept(spec, poly);
+  PackedStones kept;
   for (int i = 0; i < box.n(); ++i) {
     if (!box.disc_active[i]) continue;
     if (!box.disc_fixed[i] && box.disc_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
@@ -319,54 +233,48 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   // (4) slope walls removed: the mound settles on its own
   DEMParams q = params;
   q.walls = final_walls;
-  DEMSystem weir = pile.make(q);
+  DEMSystem weir = make(q, pile);
   t_total += settle(weir, spec, 0.5);
   // (5) hollows left where stones rolled off the crest corners are topped up, without the walls
   for (int round = 0; round < 3; ++round) {
     pile.take(weir);
-    if (pour_round(spec, off, rng, shapes, pile) == 0) break;
-    weir = pile.make(q);
+    if (pour_round(spec, off, rng, *packing, pile) == 0) break;
+    weir = make(q, pile);
     t_total += settle(weir, spec, 0.5);
   }
   // (6) stones laid by hand into the largest remaining hollows of the slopes and crest
   for (int k = 0; k < 12; ++k) {
     double px = 0.0, pz = 0.0;
     if (largest_gap(weir, spec, px, pz) < 0.5 * spec.d_mean) break;
-    const double dc = draw_diameter(rng, spec);
-    Shape shape = poly ? shapes.draw(dc) : Shape{0.5 * dc};
-    const double rc = shape.radius;
+    PackedStone stone = packing->draw(draw_diameter(rng, spec));
+    const double rc = stone.radius;
     pile.take(weir);
-    // lowest free spot above the hollow's point (a polygon is tried in six orientations at each height)
+    // lowest free spot above the hollow's point, in each of the model's orientations at each height
     bool placed = false;
     for (double lift = 0.0; lift <= 2.0 * rc && !placed; lift += 0.05 * rc) {
-      bool free_site = true;
-      if (poly) {
-        free_site = false;
-        for (int turn = 0; turn < 6 && !free_site; ++turn, shape.angle += kPi / 3.0)
-          free_site = pile.polygon_fits(px, pz + lift, shape, 1e-4);
-      }
-      for (std::size_t i = 0; i < pile.radius.size() && free_site && !poly; ++i)
-        free_site = std::hypot(px - pile.pos[2 * i], pz + lift - pile.pos[2 * i + 1]) > pile.radius[i] + rc + 1e-4;
+      bool free_site = false;
+      for (int turn = 0; turn < packing->turns() && !free_site; ++turn, stone.angle += kPi / 3.0)
+        free_site = packing->fits(pile, px, pz + lift, stone, 1e-4);
       if (!free_site) continue;
-      pile.add(px, pz + lift, rc, 0, shape);
+      pile.add(px, pz + lift, stone, 0);
       placed = true;
     }
     if (!placed) break;
-    weir = pile.make(q);
+    weir = make(q, pile);
     t_total += settle(weir, spec, 0.3);
   }
 
-  // (7) polygons: stones that rolled off a toe onto the bed beyond it (centre more than half a diameter
-  // outside the trapezoid) are not part of the weir
-  if (poly) {
+  // (7) stones that rolled off a toe onto the bed beyond it (centre more than half a diameter outside
+  // the trapezoid) are not part of the weir, for the models whose stones roll that far
+  if (packing->drop_toe_rollers()) {
     const Trapezoid trap(spec);
-    Pile kept_on(spec, poly);
+    PackedStones kept_on;
     for (int i = 0; i < weir.n(); ++i)
       if (weir.disc_fixed[i] || trap.distance(weir.disc_pos[2 * i], weir.disc_pos[2 * i + 1]) < 0.5 * spec.d_mean)
         kept_on.copy_stone(weir, pile, i);
-    if (kept_on.radius.size() < static_cast<std::size_t>(weir.n())) {
+    if (kept_on.size() < static_cast<std::size_t>(weir.n())) {
       pile = kept_on;
-      weir = pile.make(q);
+      weir = make(q, pile);
       t_total += settle(weir, spec, 0.3);
     }
   }

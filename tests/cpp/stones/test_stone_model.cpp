@@ -13,6 +13,7 @@
 #include "common/coupler_scenes.h"
 #include "stones/frictionless_disc_model.h"
 #include "vofdem/stones/stone_model.h"
+#include "vofdem/stones/weir_packing.h"
 
 namespace vofdem {
 namespace {
@@ -90,6 +91,30 @@ TEST(StoneModel, ATestModelRunsThroughCoupledStepsWithoutTurningAndRestsOnTheBed
   const Grid2D& grid = s.fluid->grid();
   const int c = grid.cell(grid.locate_x(s.stones->disc_pos[0]), grid.locate_z(s.stones->disc_pos[1]));
   EXPECT_LT(s.fluid->cell_porosity[c], 0.9);
+}
+
+// the packing generator asks the model how to draw and place its stones: a model without a packing is
+// refused with the key named, and an unknown name with the registered ones
+TEST(StoneModel, ThePackingGeneratorRefusesAModelWithoutAPackingAndNamesTheKey) {
+  ASSERT_TRUE(kRegistered);
+  WeirSpec spec;
+  WeirPackingReport report;
+  spec.shape = "frictionless_disc";
+  try {
+    pack_weir(spec, DEMParams{}, report);
+    FAIL() << "packed a model without a packing";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "shape = 'frictionless_disc': the packing generator cannot pack this stone model");
+  }
+  spec.shape = "cube";
+  try {
+    pack_weir(spec, DEMParams{}, report);
+    FAIL() << "packed an unknown model";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("shape = 'cube' is not one of the registered stone models"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

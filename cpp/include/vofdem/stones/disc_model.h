@@ -36,6 +36,7 @@ class DiscModel final : public StoneModel {
   double gap(const DEMSystem& s, int i, double x, double z) const override;
   bool covers(const DEMSystem& s, int i, double x, double z) const override;
   double outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const override;
+  std::unique_ptr<StonePacking> packing(const WeirSpec& spec) const override;
 };
 
 }  // namespace vofdem

@@ -85,6 +85,7 @@ class PolygonModel final : public StoneModel {
   double gap(const DEMSystem& s, int i, double x, double z) const override;
   bool covers(const DEMSystem& s, int i, double x, double z) const override;
   double outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const override;
+  std::unique_ptr<StonePacking> packing(const WeirSpec& spec) const override;
 
   // makes the stones of s these polygons (DEMSystem::set_polygons), checked first: a refused set
   // changes nothing

@@ -11,6 +11,7 @@
 //   footprint            which cells of the flow grid a stone covers and how much solid it puts in each
 //                        (PorosityMapper), and the drag of the flow on it (its diameter and areas)
 //   outline              the point queries of the packing diagnostics (distance, cover, reach)
+//   packing              how the weir's packing generator draws and places its stones
 //
 // A model is a class derived from StoneModel in a header/source pair of its own under stones/, and one
 // line in the registry (stone_model.cpp: kBuiltinModels) or a call of register_stone_model() by a program
@@ -36,6 +37,8 @@ class PorosityMapper;
 struct PorosityParams;
 struct StoneFlowSample;
 struct DragForce;
+class StonePacking;
+struct WeirSpec;
 enum class DragLaw;
 
 // the checkpoint's named flat arrays
@@ -132,6 +135,10 @@ class StoneModel {
   virtual double gap(const DEMSystem& s, int i, double x, double z) const = 0;
   virtual bool covers(const DEMSystem& s, int i, double x, double z) const = 0;
   virtual double outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const = 0;
+
+  // ---- the weir's packing generator (stone_packing.h): how this model's stones are drawn and placed;
+  // nullptr: the generator cannot pack it
+  virtual std::unique_ptr<StonePacking> packing(const WeirSpec&) const;
 
  protected:
   // DEMSystem's working arrays and constants for the models' loops (DEMSystem befriends StoneModel alone)

@@ -12,11 +12,9 @@
 // rest_speed. Diameters are d_mean (1 + d_spread (2u - 1)), u uniform in [0, 1) from std::mt19937_64
 // with our own conversion (so a seed gives the same weir with any standard library).
 //
-// Polygon stones (shape "polygon"): the same steps with convex polygons of nominal diameter d (the
-// equal-area disc's, polygon.h), their shapes and orientations from a second generator seeded from
-// `seed` (the diameters follow the same draws as for discs). The bottom row lies on its longest edges,
-// touching; the free stones take random orientations; the lattice pitch and the free-site tests use the
-// bounding radii, so no two polygons are placed overlapping.
+// What depends on the stone model (how a stone is drawn, the bottom row, whether a stone fits at a
+// point, the DEM system of the placed stones) is the model's StonePacking (stone_packing.h): discs in
+// disc_model.cpp, polygons in polygon_packing.cpp.
 #pragma once
 
 #include <cstdint>
@@ -40,8 +38,7 @@ struct WeirSpec {
   std::uint64_t seed = 0;       // random seed of the diameters and lattice jitter
   double settle_time_max = 6.0; // simulated time allowed for each settling phase [s]
   double rest_speed = 1e-3;     // packing is at rest when every stone is slower [m/s]
-  // the stone model drawn (stone_model.h): "disc" (default) or "polygon" (convex polygons), the models
-  // this generator packs
+  // the stone model drawn (stone_model.h), by its registered name; the model must have a packing
   std::string shape = "disc";
   PolygonSpec polygon;          // how polygon stones are drawn (shape "polygon")
 

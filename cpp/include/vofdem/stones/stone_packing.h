@@ -1,0 +1,63 @@
+// How a stone model's stones are drawn and placed by the weir's packing generator (weir_packing.h).
+//
+// The generator owns the procedure (bottom row, pours on a loose lattice, settling, trimming, stones laid
+// into hollows) and asks the model's StonePacking for what depends on the shape: a stone of nominal
+// diameter d (its bounding radius, orientation and body-frame shape), the fixed bottom row, whether a
+// stone fits at a point, and how the placed stones become a DEMSystem of that model. A model that can be
+// packed returns one from StoneModel::packing(); the generator never asks which model it holds.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace vofdem {
+
+class DEMSystem;
+struct DEMParams;
+struct WeirSpec;
+
+// a stone drawn for the packing: its bounding radius [m], orientation [rad] and the model's body-frame
+// shape data (empty for a disc)
+struct PackedStone {
+  double radius = 0.0;
+  double angle = 0.0;
+  std::vector<double> shape{};
+};
+
+// the stones placed so far: centres (x, z) [m], bounding radii [m], orientations [rad], fixed flags and
+// shapes, one entry each
+struct PackedStones {
+  std::vector<double> pos, radius, angle;
+  std::vector<std::uint8_t> fixed;
+  std::vector<std::vector<double>> shape;
+  void add(double x, double z, const PackedStone& s, std::uint8_t fixed_flag);
+  // stone i of sys, whose shape is that of `from`'s stone i
+  void copy_stone(const DEMSystem& sys, const PackedStones& from, int i);
+  // the positions and orientations of sys (the same stones, settled)
+  void take(const DEMSystem& sys);
+  std::size_t size() const { return radius.size(); }
+};
+
+class StonePacking {
+ public:
+  virtual ~StonePacking() = default;
+  // a stone of nominal diameter d [m] (its shape and orientation from the model's own generator)
+  virtual PackedStone draw(double d) = 0;
+  // the largest bounding diameter over the nominal one [-]: the pour lattice's pitch
+  virtual double bounding_factor() const { return 1.0; }
+  // the fixed bottom row on the bed along the base [x_toe, x_end], touching stones whose nominal
+  // diameters come from next_diameter()
+  virtual void bottom_row(const WeirSpec& spec, const std::function<double()>& next_diameter,
+                          PackedStones& pile) = 0;
+  // whether stone s at (x, z) keeps more than margin [m] from every placed stone
+  virtual bool fits(const PackedStones& pile, double x, double z, const PackedStone& s, double margin) const = 0;
+  // orientations tried, a sixth of a turn apart, where a stone is laid by hand into a hollow
+  virtual int turns() const { return 1; }
+  // whether stones that rolled off a toe onto the bed are removed at the end (shapes that roll far)
+  virtual bool drop_toe_rollers() const { return false; }
+  // the DEM system of the placed stones (radii, density, fixed flags; the model and its shapes)
+  virtual DEMSystem make(const DEMParams& p, const PackedStones& pile, double density) const = 0;
+};
+
+}  // namespace vofdem
