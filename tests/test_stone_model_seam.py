@@ -48,3 +48,27 @@ def test_the_scene_and_the_binding_take_the_names_from_the_registry():
     assert s.shape == "polygon"
     with pytest.raises(ValueError, match="'cube' is not one of the registered stone models 'disc', 'polygon'"):
         s.set_model("cube")
+
+
+# the Python front: a model's name compared with the scene's or a system's shape
+PY = sorted((ROOT / "python/vofdem").glob("*.py"))
+PY_BRANCH = re.compile(r'shape\s*[=!]=\s*["\']|["\']\s*[=!]=\s*\S*shape\b|is_polygon_system')
+PY_OWN = {"stone_models", "polygon_output"}
+
+
+def test_the_python_front_asks_the_model_front_not_the_name():
+    found = [f"{p.relative_to(ROOT)}:{k}: {line.strip()}" for p in PY if p.stem not in PY_OWN
+             for k, line in enumerate(p.read_text().splitlines(), 1) if PY_BRANCH.search(line.split("#")[0])]
+    assert not found, "branches on the stone model in the Python front:\n" + "\n".join(found)
+    assert PY_BRANCH.search('if scene.stones.shape == "polygon":') and PY_BRANCH.search("if s.shape != 'disc'")
+
+
+def test_every_registered_model_has_a_python_front():
+    from vofdem import stone_models
+
+    for name in _core.stone_model_names():
+        assert stone_models.front(name).name == name
+    with pytest.raises(ValueError, match="stones.shape = 'cube' is not one of the stone models with a Python front"):
+        stone_models.front("cube")
+    with pytest.raises(ValueError, match="not taken"):
+        stone_models.register_front(stone_models.StoneFront())

@@ -11,6 +11,7 @@ import numpy as np
 
 from . import _core
 from .scene import Scene
+from .stone_models import front
 
 import math
 
@@ -109,34 +110,23 @@ def graded_contact(scene: Scene, params):
     return kn, min(n.dem_dt, 0.98 * stable)
 
 
-def polygon_options(scene: Scene) -> dict:
-    """The scene's polygon-shape parameters as keyword arguments of pack_weir / random_polygons."""
-    st = scene.stones
-    return dict(polygon_vertices_min=st.polygon_vertices_min, polygon_vertices_max=st.polygon_vertices_max,
-                aspect_ratio=st.aspect_ratio, radial_jitter=st.polygon_radial_jitter)
-
-
 def stone_shapes(scene: Scene, diameters, seed=None):
-    """(body-frame vertices (m, 2) [m], offsets (n + 1)) of polygon stones of these nominal diameters [m],
-    drawn from `seed` (default the scene's) with the scene's shape parameters; None for disc stones."""
-    if scene.stones.shape != "polygon":
-        return None
-    o = polygon_options(scene)
-    return _core.random_polygons(np.asarray(diameters, float), seed=scene.seed if seed is None else int(seed),
-                                 vertices_min=o["polygon_vertices_min"], vertices_max=o["polygon_vertices_max"],
-                                 aspect_ratio=o["aspect_ratio"], radial_jitter=o["radial_jitter"])
+    """The shapes of stones of the scene's model with these nominal diameters [m], drawn from `seed`
+    (default the scene's) with the scene's shape options (stone_models.py); None for stones without
+    shapes of their own (discs)."""
+    seed = scene.seed if seed is None else int(seed)
+    return front(scene.stones.shape).draw_shapes(scene.stones, diameters, seed)
 
 
 def stone_system(scene: Scene, params, pos, diameters, fixed, shapes=None):
     """A DEMSystem of the scene's stone model at centres pos (n, 2) [m] with (nominal) diameters [m] and
     fixed flags; the one place that turns positions and sizes into stones, so that every experiment on
-    the stones (calibration.py) builds them the way the weir is built. Polygon stones take `shapes`
-    (stone_shapes' (vertex, offset)) or are drawn from the scene's seed, unrotated."""
+    the stones (calibration.py) builds them the way the weir is built. Stones with shapes of their own
+    take `shapes` (stone_shapes') or have them drawn from the scene's seed, unrotated."""
     pos = np.asarray(pos, float).reshape(-1, 2)
     d = np.asarray(diameters, float)
     sys_ = _core.DEMSystem(params, pos, 0.5 * d, np.full(len(d), scene.stones.density), [int(f) for f in fixed])
-    if scene.stones.shape == "polygon":
-        sys_.set_polygons(*(shapes if shapes is not None else stone_shapes(scene, d)))
+    front(scene.stones.shape).install(sys_, shapes if shapes is not None else stone_shapes(scene, d))
     return sys_
 
 
@@ -147,10 +137,7 @@ def _explicit_stones(scene: Scene):
     pos = np.asarray(st.positions, float)
     d = np.asarray(st.diameters if st.diameters else [st.diameter] * len(pos), float)
     shapes = stone_shapes(scene, d)
-    low = pos[:, 1] - 0.5 * d
-    if shapes is not None:
-        vertex, offset = shapes
-        low = pos[:, 1] + np.array([vertex[offset[i]:offset[i + 1], 1].min() for i in range(len(pos))])
+    low = front(st.shape).lowest(pos, d, shapes)
     fixed = (low <= 1e-9) if st.fix_bottom_layer else np.zeros(len(pos), bool)
     return stone_system(scene, dem_params(scene), pos, d, fixed, shapes)
 
@@ -340,19 +327,17 @@ def weir_spec(scene: Scene):
     spec.slope_up_deg, spec.slope_down_deg = t["upstream_slope_deg"], t["downstream_slope_deg"]
     spec.x_toe, spec.z_bed = t["toe_x"], 0.0
     spec.d_mean, spec.d_spread, spec.density, spec.seed = st.diameter, st.diameter_spread, st.density, scene.seed
-    if st.shape == "polygon":
-        spec.shape = "polygon"
-        for key, value in polygon_options(scene).items():
-            setattr(spec, key, value)
+    spec.shape = st.shape
+    front(st.shape).spec_options(st, spec)
     return spec
 
 
 def solid_fraction(scene: Scene, stones) -> float:
     """phi [-]: the 2D area fraction of the weir's outline covered by the stones (discs or polygons), 1 minus the
     packing porosity that pack_weir reports (weir_porosity, sampled every 2 mm; for an outline that is
-    not a trapezoid, outline_packing.body_porosity, the same sampling, of discs; polygons come with a
-    trapezoid only, scene.py)."""
-    if scene.weir.outline and scene.stones.shape != "polygon":
+    not a trapezoid, outline_packing.body_porosity, the same sampling, of discs; the models the outline
+    packer cannot place come with a trapezoid only, scene.py)."""
+    if scene.weir.outline and front(scene.stones.shape).outline_packer:
         from .outline_packing import body_porosity
 
         act = np.asarray(stones.disc_active, bool)

@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 from . import builder
-from .polygon_output import is_polygon_system, outlines, stone_diameters, world_polygon_vertices
+from .stone_models import front_of, stone_diameters
 from .scene import Scene
 
 # the seed paper's Table 1: mean pull-out force of a slope stone in each direction, dry [N]
@@ -116,19 +116,12 @@ class ReposeResult:
 
 def stone_tops(system) -> np.ndarray:
     """Height of each stone's highest point [m]: a disc's centre + radius, a polygon's highest vertex."""
-    if is_polygon_system(system):
-        offset = np.asarray(system.poly_offset)
-        w = world_polygon_vertices(system.poly_vertex, offset, system.disc_pos, system.disc_angle)
-        return np.maximum.reduceat(w[:, 1], offset[:-1])
-    return np.asarray(system.disc_pos)[:, 1] + np.asarray(system.disc_radius)
+    return front_of(system).tops(system)
 
 
 def stone_outlines(system) -> Optional[List[np.ndarray]]:
-    """The world outline (v, 2) [m] of every polygon stone; None for discs."""
-    if not is_polygon_system(system):
-        return None
-    return outlines(np.asarray(system.poly_vertex), np.asarray(system.poly_offset), system.disc_pos,
-                    system.disc_angle)
+    """The world outline (v, 2) [m] of every stone with a shape of its own (polygons); None for discs."""
+    return front_of(system).outlines(system)
 
 
 def _speeds(system) -> np.ndarray:
@@ -238,7 +231,8 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
     fixed = np.r_[np.ones(nb, bool), np.zeros(setup.n_stones, bool)]
     shapes = builder.stone_shapes(scene, diam, seed)
     sys_ = builder.stone_system(scene, repose_params(scene, submerged, xb[-1] + db[-1]), pos, diam, fixed, shapes)
-    turn = _orientations(sys_, seed, nb)
+    # stones whose orientation shows take a random one from the heap's seed; the base stones at once
+    turn = front_of(sys_).turn_base(sys_, seed, nb)
     sys_.disc_active[nb:] = 0
     base_top = float(stone_tops(sys_)[:nb].max())
     dt_release = setup.release_interval
@@ -275,21 +269,6 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
                         base_top=base_top, settled=settled, max_speed=float(_speeds(sys_)[nb:].max()),
                         time=float(sys_.time), pos=P.copy(), radius=np.asarray(sys_.disc_radius).copy(),
                         fixed=fixed, envelope=env, outlines=stone_outlines(sys_))
-
-
-def _orientations(system, seed: int, nb: int) -> Optional[np.ndarray]:
-    """Polygon stones: a random orientation per stone [rad] from the heap's seed (a generator of its own,
-    so the discs' draws stay as they were); the nb stones of the base are turned at once and set on the
-    bed by their lowest vertex, the others take theirs as they leave the funnel. None for discs."""
-    if not is_polygon_system(system):
-        return None
-    turn = np.random.default_rng([seed, 1]).uniform(0.0, 2.0 * math.pi, system.n)
-    offset = np.asarray(system.poly_offset)
-    low = np.minimum.reduceat(world_polygon_vertices(system.poly_vertex, offset, np.zeros((system.n, 2)), turn)[:, 1],
-                              offset[:-1])
-    system.disc_angle[:nb] = turn[:nb]
-    system.disc_pos[:nb, 1] = -low[:nb]
-    return turn
 
 
 def repose_test(scene: Scene, seeds: Sequence[int] = (0, 1, 2), submerged: bool = False,

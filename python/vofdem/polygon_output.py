@@ -20,31 +20,12 @@ creation, snapshot and read steps.
 """
 from __future__ import annotations
 
-from typing import List, Optional, Tuple
+from typing import List
 
 import numpy as np
 
 # XDMF's mixed-topology code of a polygon (followed by its vertex count)
 XDMF_POLYGON = 3
-
-
-def is_polygon_system(stones) -> bool:
-    """True for a DEMSystem of polygon stones."""
-    return stones.shape == "polygon"
-
-
-def stone_diameters(stones) -> np.ndarray:
-    """Diameters [m] of the stones: 2 r for discs, the nominal (equal-area disc's) diameter for polygons."""
-    if is_polygon_system(stones):
-        return np.array([stones.nominal_diameter(i) for i in range(stones.n)], float)
-    return 2.0 * np.asarray(stones.disc_radius, float)
-
-
-def stone_polygons(stones) -> Optional[Tuple[np.ndarray, np.ndarray]]:
-    """(body-frame vertices (m, 2) [m], offsets (n + 1)) of polygon stones, copied; None for discs."""
-    if not is_polygon_system(stones):
-        return None
-    return np.array(stones.poly_vertex, float), np.array(stones.poly_offset, np.int64)
 
 
 def world_polygon_vertices(vertex, offset, pos, angle) -> np.ndarray:

@@ -28,7 +28,7 @@ from . import _core
 from .analysis import FailureAnalysis, analyse
 from .checkpoint import CHECKPOINT_NAME, CHECKPOINT_SECONDS, Checkpoint, load_checkpoint, save_checkpoint
 from .io import XDMF_SECONDS, OutputError, RunData, RunWriter, cell_velocities, check_writable
-from .polygon_output import stone_diameters, stone_polygons
+from .stone_models import front_of, stone_diameters
 from .scene import Scene
 
 
@@ -122,7 +122,7 @@ class _Recorder:
         start = sim.stones.disc_pos if pos0 is None else pos0
         self.pos0 = np.array(start, float).reshape(-1, 2).copy()
         self.diameter = stone_diameters(sim.stones)
-        self.polygons = stone_polygons(sim.stones) is not None
+        self.polygons = front_of(sim.stones).output_shapes(sim.stones) is not None
         self.fixed0 = np.zeros(len(self.diameter), bool) if fixed0 is None else np.asarray(fixed0, bool)
         self.removal_t = np.full(len(self.diameter), np.nan)  # first snapshot of each removal (analysis.py)
         self.moved = 0
@@ -296,7 +296,7 @@ class _Loop:
             x_faces, z_faces = grid_faces(sim.fluid.grid)
             self.writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), self.fixed0,
                                     capacity=1 + len(self.targets), scene_toml=scene.to_toml(), seed=scene.seed,
-                                    version=version, polygons=stone_polygons(st), xdmf_seconds=xdmf_seconds)
+                                    version=version, polygons=front_of(st).output_shapes(st), xdmf_seconds=xdmf_seconds)
             if self.hold:
                 st.disc_fixed[:] = True
             self.base_profile, self.base_wall, pos0 = {}, 0.0, None

@@ -24,6 +24,7 @@ from typing import Any, Dict, List, Optional, Tuple
 from . import _core
 from .flood import Hydrograph
 from .reference import Reference, maeno2008_reference
+from .stone_models import front, has_front as _has_front
 from .schema import (_BASE_UNIT, _UNITS, _Section, _check_list, _check_number, _choice, _flag, _fmt,  # noqa: F401
                      _p, _parse_quantity, _range_text, _toml, _toml_value, _unknown, describe, parse_toml,
                      section_args, section_dict, toml_table)
@@ -241,12 +242,8 @@ class Stones(_Section):
         if self.polygon_vertices_max < self.polygon_vertices_min:
             raise ValueError(f"{prefix}.polygon_vertices_max = {self.polygon_vertices_max} is outside the allowed "
                              f"range [{self.polygon_vertices_min}, 16] (at least {prefix}.polygon_vertices_min)")
-        # a polygon resists rolling by its shape; the disc law on its bounding radius has no physical basis
-        for name in ("rolling_friction", "rolling_friction_wall"):
-            if self.shape == "polygon" and getattr(self, name) > 0.0:
-                raise ValueError(f"{prefix}.{name} = {_fmt(getattr(self, name))} is outside the allowed range [0, 0] "
-                                 f"with {prefix}.shape = 'polygon': the rolling resistance is a law for disc stones "
-                                 "(polygon stones resist rolling by their shape)")
+        # what the stone model cannot honour (stone_models.py)
+        front(self.shape).check(self, prefix)
 
     def grading(self):
         """The sieve curve of the stones (grading.Grading) when one is given (grading_diameters and
@@ -585,17 +582,17 @@ class Scene:
             _check_number("end_time", self.end_time, {"lo": 0.0, "hi": 1e6, "closed": "(]", "kind": "time"})
         self._validate_zones()
         self._validate_geometry()
-        self._validate_polygon_packing()
+        self._validate_model_packing()
         from .fidelity import check
 
         check(self)
         return self
 
-    def _validate_polygon_packing(self) -> None:
-        # polygon stones are packed by pack_weir (a trapezoid of uniform sizes) or given explicitly; the
-        # outline packer (outline_packing.py) places discs only
+    def _validate_model_packing(self) -> None:
+        # stones the outline packer (outline_packing.py) cannot place are packed by pack_weir (a trapezoid
+        # of uniform sizes) or given explicitly
         s, w = self.stones, self.weir
-        if s.shape != "polygon" or s.positions:
+        if front(s.shape).outline_packer or s.positions:
             return
         from .outline import as_trapezoid
 
@@ -603,8 +600,9 @@ class Scene:
                "a sieve curve (stones.grading_diameters/grading_passing or d15/d50/d85)" if s.grading() is not None else
                f"weir.outline = {w.outline!r}, not a trapezoid" if w.outline and as_trapezoid(w.outline) is None else "")
         if why:
-            raise ValueError(f"stones.shape = 'polygon' is outside the allowed values ['disc'] with {why}: the outline "
-                             "packer places disc stones only; polygons need a trapezoid weir of sizes uniform in "
+            placed = [k for k in _core.stone_model_names() if _has_front(k) and front(k).outline_packer]
+            raise ValueError(f"stones.shape = {s.shape!r} is outside the allowed values {placed} with {why}: the outline "
+                             f"packer cannot place {s.shape} stones; they need a trapezoid weir of sizes uniform in "
                              "stones.diameter +- diameter_spread, or explicit stones.positions")
 
     def _validate_zones(self) -> None:
@@ -645,9 +643,9 @@ class Scene:
         if g.dx >= f.length / 4 or g.dz >= f.height / 4:
             raise ValueError(f"grid.dx = {g.dx:.4g} m / grid.dz = {g.dz:.4g} m is too coarse: the flume needs at "
                              f"least 4 cells each way (length {f.length:.4g} m, height {f.height:.4g} m)")
-        if s.shape == "polygon" and self.numerics.porosity_method == "lookup":
+        if not front(s.shape).lookup_table and self.numerics.porosity_method == "lookup":
             raise ValueError("numerics.porosity_method = 'lookup' (the paper's table of disc areas) is for disc "
-                             "stones; stones.shape = 'polygon' needs porosity_method = 'exact'")
+                             f"stones; stones.shape = {s.shape!r} needs porosity_method = 'exact'")
         if g.bed_layer_height >= f.height / 2:
             raise ValueError(f"grid.bed_layer_height = {g.bed_layer_height:.4g} m is outside the allowed range "
                              f"[0, {f.height / 2:.4g}) m (half the domain height)")

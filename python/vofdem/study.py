@@ -31,15 +31,13 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .fragility import BAND, EVENTS, empirical_quantile, event_fragility
+from .stone_models import front
 
 
 def stone_model(scene) -> str:
     """The stone model in words: 'discs', 'discs, mu_r = 0.5', or the shape's name."""
     st = scene.stones
-    shape = getattr(st, "shape", "disc")
-    if shape != "disc":
-        return f"{shape}s"
-    return f"discs, mu_r = {st.rolling_friction:g}" if st.rolling_friction > 0 else "discs"
+    return front(getattr(st, "shape", "disc")).label(st)
 
 
 def coupling(scene) -> str:
