@@ -29,7 +29,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
 from vofdem.builder import build_stones, dem_params  # noqa: E402
-from vofdem.grading import grading_deviation, packed_d, packed_report  # noqa: E402
+from vofdem.grading import grading_deviation, packed_d  # noqa: E402
+from vofdem.reports import packed_report  # noqa: E402
 from vofdem.outline_packing import reach_outside  # noqa: E402
 from vofdem.scene import Scene, load_scene  # noqa: E402
 

@@ -31,9 +31,14 @@ def public_modules():
     return [m.name for m in pkgutil.iter_modules(vofdem.__path__) if not m.name.startswith("_")]
 
 
+def exported_names() -> list[str]:
+    """What `import vofdem` offers: its curated __all__ and every public name of the C++ core."""
+    return sorted(set(vofdem.__all__) | {n for n in dir(_core) if not n.startswith("_")})
+
+
 def undocumented_exports() -> list[str]:
     bad = []
-    for name in vofdem.__all__:
+    for name in exported_names():
         obj = getattr(vofdem, name)
         if (inspect.isclass(obj) or callable(obj)) and not own_text(obj, name):
             bad.append(f"vofdem.{name}")
@@ -55,8 +60,23 @@ def undocumented_module_names() -> list[str]:
 
 
 def test_every_exported_name_has_a_docstring():
-    assert len(vofdem.__all__) > 50
+    assert len(exported_names()) > 50
     assert undocumented_exports() == []
+
+
+def test_import_vofdem_offers_a_short_curated_list_and_reaches_the_rest():
+    assert vofdem.__all__ == ["Scene", "load_scene", "run_scene", "VOFGrid", "DEMSystem", "Coupler", "set_threads",
+                              "__version__"]
+    assert vofdem.Scene is importlib.import_module("vofdem.scene").Scene
+    assert vofdem.run_scene is importlib.import_module("vofdem.run").run_scene
+    assert vofdem.DEMParams is _core.DEMParams  # the rest of the core by name
+    assert "DEM_GRAVITY" not in dir(vofdem)
+    try:
+        vofdem.no_such_name
+    except AttributeError as e:
+        assert "no attribute 'no_such_name'" in str(e)
+    else:
+        raise AssertionError("vofdem.no_such_name did not raise AttributeError")
 
 
 def test_every_public_name_of_every_module_has_a_docstring():

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from vofdem.builder import build_stones, dem_params, is_graded
-from vofdem.grading import BLOCK, Grading, Sampler, grading_deviation, mass_passing, packed_d, packed_report
+from vofdem.grading import BLOCK, Grading, Sampler, grading_deviation, mass_passing, packed_d
+from vofdem.reports import packed_report
 from vofdem.scene import Scene
 
 

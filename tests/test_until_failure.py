@@ -6,7 +6,7 @@ from fake_sim import FakeSimulation, short_scene
 
 from vofdem import cli
 from vofdem.ensemble import run_ensemble
-from vofdem.flood import critical_discharge
+from vofdem.reports import critical_discharge
 from vofdem.io import RunData
 from vofdem.run import run_scene
 from vofdem.scene import Scene

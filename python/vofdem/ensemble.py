@@ -372,7 +372,7 @@ def run_ensemble(scene: Scene, seeds: Sequence[int], out_dir, client=None, vary=
     frag_md = write_fragility(out, frame, keys, n_boot=n_boot, seed=boot_seed, reference=scene.reference)
     _write_atomic(out / "ensemble.md", members_markdown(frame, len(members), frag_md))
     if scene.hydrograph.stops_at_first_stage and (frame["status"] == "completed").any():
-        from .flood import ensemble_until_failure_markdown
+        from .reports import ensemble_until_failure_markdown
 
         widths = {m.combination: m.scene(scene).flume.width for m in members}
         _write_atomic(out / "until_failure.md", ensemble_until_failure_markdown(frame, widths, n_boot, boot_seed))

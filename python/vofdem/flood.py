@@ -23,7 +23,7 @@ the file as measured). The run lasts the spin-up plus the file's span (times ``t
 is held at the scene's first discharge of its rise for the spin-up, then raised linearly at
 ``hydrograph.until_failure_rate_lps_per_s`` up to the scene's largest discharge; the run stops at the
 first destruction stage (analysis.py's definition), and its discharge is the weir's critical
-discharge for this rate.
+discharge for this rate (reports.py's `critical_discharge` and `until_failure_markdown`).
 """
 from __future__ import annotations
 
@@ -318,84 +318,3 @@ def until_failure_hydrograph(h):
     out.spin_up_duration = h.spin_up_duration if h.kind in ("ramp", "csv", "until_failure") else 0.0
     out.ramp_duration = (q_max - q_start) / h.until_failure_rate_lps_per_s
     return out
-
-
-def critical_discharge(analysis, scene) -> dict:
-    """The design answer of an until-failure run: the discharge of its first destruction stage.
-
-    Returns dict(status, q_lps, q_per_width_lps_m, q_per_width_m2s, resolution_lps, first_lps, last_lps):
-    status 'stage' (q_lps: the stage's discharge), 'at release' (the weir failed as soon as it was
-    loaded: the critical discharge is q_lps = the first discharge or below), or 'none' (no stage up to
-    the run's last discharge q_lps: the critical discharge is above it). resolution_lps: the rise
-    between two snapshots, the uncertainty of q_lps from the snapshot interval."""
-    a, h = analysis, scene.hydrograph
-    release = h.ramp_start if h.hold_stones_during_spin_up and h.ramp_start > a.times[0] else float(a.times[0])
-    after = a.times[a.times > release + 1e-9]
-    first = float(a.discharge_lps_at(float(after[0]))) if after.size else float(a.discharge_lps_at(release))
-    last = float(a.discharge_lps_at(float(a.times[-1])))
-    if a.stages:
-        st = a.stages[0]
-        status = "at release" if after.size and st.start_time <= after[0] + 1e-9 else "stage"
-        q = float(st.discharge_lps)
-    else:
-        status, q = "none", last
-    rate = h.until_failure_rate_lps_per_s if h.kind == "until_failure" else float("nan")
-    width = scene.flume.width
-    return dict(status=status, q_lps=q, q_per_width_lps_m=q / width, q_per_width_m2s=q * 1e-3 / width,
-                resolution_lps=rate * scene.output.snapshot_interval, first_lps=first, last_lps=last,
-                stones=int(a.stages[0].n_stones) if a.stages else 0, width_m=width)
-
-
-def until_failure_markdown(analysis, scene) -> str:
-    """The critical discharge of an until-failure run in words and numbers (until_failure.md)."""
-    c = critical_discharge(analysis, scene)
-    h = scene.hydrograph
-    per = f"{c['q_per_width_lps_m']:.2f} l/s per m of width ({c['q_per_width_m2s']:.4g} m2/s; width {c['width_m']:g} m)"
-    if c["status"] == "stage":
-        answer = (f"**Critical discharge: {c['q_lps']:.2f} l/s** in total, {per}: the first destruction stage "
-                  f"({c['stones']} stones when the run stopped) began there.")
-    elif c["status"] == "at release":
-        answer = (f"**Critical discharge: {c['q_lps']:.2f} l/s or below** ({per}): the weir lost a stage "
-                  f"({c['stones']} stones) as soon as it was loaded, at the first discharge of the rise; a start "
-                  f"at a lower discharge (hydrograph) would say how far below.")
-    else:
-        cut = "" if c["last_lps"] >= h.discharge_end_lps - 1e-9 else (
-            f" (the run ended before the largest discharge, {h.discharge_end_lps:g} l/s)")
-        answer = (f"**Critical discharge: above {c['q_lps']:.2f} l/s** ({per}): no destruction stage up to the "
-                  f"run's last discharge{cut}.")
-    return "\n".join([
-        f"# Until failure: {scene.name}", "",
-        f"The discharge rose from {h.discharge_start_lps:g} l/s at {h.until_failure_rate_lps_per_s:g} l/s per s "
-        f"(after a {h.spin_up_duration:g} s spin-up) up to {h.discharge_end_lps:g} l/s at most; the run stops at the "
-        f"first destruction stage (at least two stones removed, pauses under 3 s).", "", answer, "",
-        f"Resolution: a snapshot every {scene.output.snapshot_interval:g} s, so {c['resolution_lps']:.3g} l/s of "
-        f"rise between two; the answer belongs to this rate (a slower rise gives the stones more time) and to "
-        f"this packing (seed {scene.seed}; an ensemble over seeds gives its spread).", ""])
-
-
-def ensemble_until_failure_markdown(members, widths: dict, n_boot: int = 1000, seed: int = 0) -> str:
-    """The critical discharge's distribution over an until-failure ensemble (until_failure.md of the
-    ensemble): per parameter combination, the fragility of the first stage (fragility.py: censored
-    empirical median, lognormal median and 16-84 % band), in total and per unit width. widths:
-    {combination: flume width [m]}."""
-    from .fragility import fragility_by_combination
-
-    out = ["# Until failure: the critical discharge over the ensemble", "",
-           "The critical discharge of a member is the discharge of its first destruction stage. Members "
-           "without a stage are censored at their last discharge; members that failed as soon as they were "
-           "loaded count at the first discharge or below (fragility.md's rules).", "",
-           "| combination | members | with a stage (at the first discharge) | empirical median [l/s] | "
-           "lognormal median [16-84 %] [l/s] | per unit width: median [16-84 %] [l/s per m] |",
-           "|---|---|---|---|---|---|"]
-    for combo, evs in fragility_by_combination(members, n_boot, seed).items():
-        e = next(x for x in evs if x.event == "stage1")
-        r, w = e.row(), widths.get(combo, float("nan"))
-        emp = r["empirical_median_lps"]
-        if e.fit is None:
-            fit = per = "no fit"
-        else:
-            fit = f"{r['fit_median_lps']:.2f} [{r['fit_q16_lps']:.2f}-{r['fit_q84_lps']:.2f}]"
-            per = f"{r['fit_median_lps'] / w:.2f} [{r['fit_q16_lps'] / w:.2f}-{r['fit_q84_lps'] / w:.2f}]"
-        out.append(f"| {combo or 'all members'} | {r['members']} | {r['happened']} ({r['at_first_discharge']}) | "
-                   f"{'not reached' if emp is None else f'{emp:.2f}'} | {fit} | {per} |")
-    return "\n".join(out) + "\n"

@@ -17,7 +17,7 @@ seed: any run of draws reproduces the curve more closely than independent draws 
 stone per stratum and block), and the sizes are not ordered in space.
 
 **The packed weir's curve.** F_packed(d) = sum of d_i^3 over stones with d_i <= d, divided by the sum
-over all (`mass_passing`), compared with the requested curve in `grading_table` and `fig_grading`.
+over all (`mass_passing`), compared with the requested curve in `reports.grading_table` and `reports.fig_grading`.
 """
 from __future__ import annotations
 
@@ -153,52 +153,11 @@ def grading_deviation(grading: Grading, diameters, n: int = 200) -> float:
     return float(np.max(np.abs(mass_passing(diameters, sizes) - grading.passing_at(sizes))))
 
 
-def grading_table(grading: Grading, diameters, label: str = "stones") -> str:
-    """Markdown: the requested and the packed mass fraction passing at the curve's points and at d15 / d50
-    / d85, and the packed characteristic sizes."""
-    d = np.asarray(diameters, float)
-    sizes = sorted({round(v, 9) for v in (*grading.diameters, *(grading.d(p) for p in (0.15, 0.5, 0.85)))})
-    rows = [f"**{label}**: {d.size} stones, {1e3 * d.min():.1f}-{1e3 * d.max():.1f} mm; largest deviation of "
-            f"the packed curve from the requested one {grading_deviation(grading, d):.3f} (mass fraction).", "",
-            "| size [mm] | requested passing | packed passing |", "|---|---|---|"]
-    packed = mass_passing(d, sizes)
-    for s, f in zip(sizes, packed):
-        rows.append(f"| {1e3 * s:.1f} | {float(grading.passing_at(s)):.3f} | {f:.3f} |")
-    rows += ["", "| | d15 [mm] | d50 [mm] | d85 [mm] |", "|---|---|---|---|",
-             "| requested | " + " | ".join(f"{1e3 * grading.d(p):.1f}" for p in (0.15, 0.5, 0.85)) + " |",
-             "| packed | " + " | ".join(f"{1e3 * packed_d(d, p):.1f}" for p in (0.15, 0.5, 0.85)) + " |"]
-    return "\n".join(rows) + "\n"
-
-
 def packed_d(diameters, p: float) -> float:
     """The size [m] that a mass fraction p of the stones passes (interpolated in ln d between stones)."""
     d = np.sort(np.asarray(diameters, float))
     f = np.cumsum(d ** 3) / np.sum(d ** 3)
     return float(np.exp(np.interp(p, f, np.log(d))))
-
-
-def fig_grading(curves):
-    """Sieve curves: per (label, Grading, packed diameters), the requested curve (line) and the packed
-    weir's (steps), mass fraction passing against size on a log axis."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(6.0, 4.0), layout="constrained")
-    ax = fig.add_subplot()
-    for j, (label, g, d) in enumerate(curves):
-        c = f"C{j}"
-        sizes = np.exp(np.linspace(math.log(g.d_min), math.log(g.d_max), 200))
-        ax.plot(1e3 * sizes, g.passing_at(sizes), color=c, lw=1.6, label=f"{label}: requested")
-        ds = np.sort(np.asarray(d, float))
-        ax.step(1e3 * ds, mass_passing(ds, ds), where="post", color=c, ls="--", lw=1.2,
-                label=f"{label}: packed ({ds.size} stones)")
-    ax.set_xscale("log")
-    ax.set_xlabel("stone size d [mm]")
-    ax.set_ylabel("mass fraction passing [-]")
-    ax.set_ylim(0.0, 1.02)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
-    ax.set_title("Grading: requested and packed", fontsize=10)
-    return fig
 
 
 def grading_of(section, prefix: str) -> Optional[Grading]:
@@ -218,42 +177,3 @@ def grading_of(section, prefix: str) -> Optional[Grading]:
             raise ValueError(f"{prefix}.{missing} is required: a grading by sizes needs d15, d50 and d85")
         return Grading.from_d(*ds, name=prefix)
     return None
-
-
-def packed_report(scene, pos, diameters, zone=None):
-    """(markdown, figure) of a packed weir's grading against the scene's sieve curves, per zone and the
-    core: the table of `grading_table` and the curves of `fig_grading`, with the DEM contact the builder
-    chose for the grading (builder.graded_contact). zone: the zone each stone was drawn for (the outline
-    packer's OutlinePackingReport.zone, -1 the core); without it a stone counts in the zone where its
-    centre lies. (None, None) when the scene has no sieve curve."""
-    from .builder import dem_params, is_graded
-    from .outline import zone_index
-
-    if not is_graded(scene):
-        return None, None
-    pos = np.asarray(pos, float).reshape(-1, 2)
-    d = np.asarray(diameters, float)
-    where = zone_index(pos[:, 0], pos[:, 1], scene.weir.body(), scene.zones)
-    label = where if zone is None else np.asarray(zone, int)
-    parts = [(zn.name, zn.grading(), label == j) for j, zn in enumerate(scene.zones)]
-    core = scene.stones.grading()
-    if core is not None:
-        parts.append(("core" if scene.zones else "stones", core, label == -1))
-    p, n = dem_params(scene), scene.numerics
-    how = ("Each stone counts in the zone it was drawn for (the packer's label); the share of them whose "
-           "centre lies in that zone in the packed weir is given." if zone is not None else
-           "Each stone counts in the zone where its centre lies in the packed weir.")
-    lines = [f"# Grading of the packed weir: {scene.name} (seed {scene.seed})", "",
-             how + " Masses as spheres of the stones' diameters (d^3).", ""]
-    for (label_, g, sel), j in zip(parts, list(range(len(scene.zones))) + [-1]):
-        if not sel.any():
-            lines.append(f"**{label_}**: no stone\n")
-            continue
-        lines.append(grading_table(g, d[sel], label_))
-        if zone is not None and scene.zones:
-            lines.append(f"Centres in their zone: {np.mean(where[sel] == j):.0%} of the {label_} stones.\n")
-    lines += [f"DEM contact of the graded stones: k_n = {p.stiffness_normal:.4g} N/m ({n.dem_contact_steps:g} steps "
-              f"of {n.dem_dt:g} s per contact of two stones of the finest d50), DEM step {p.dt:.3g} s"
-              + (" (lowered from numerics.dem_dt for the smallest stones)" if p.dt < n.dem_dt else "") + ".", ""]
-    fig = fig_grading([(label_, g, d[sel]) for label_, g, sel in parts if sel.any()])
-    return "\n".join(lines), fig

@@ -412,7 +412,7 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
     files += [out / "stage_table.md", out / "stage_table.csv", out / "crest_lowering.csv"]
     files += _grading_files(out, scene, data, figures)
     if scene.hydrograph.stops_at_first_stage:
-        from .flood import until_failure_markdown
+        from .reports import until_failure_markdown
 
         (out / "until_failure.md").write_text(until_failure_markdown(a, scene), encoding="utf-8")
         files.append(out / "until_failure.md")
@@ -428,8 +428,8 @@ def postprocess(out_dir, scene: Optional[Scene] = None, figures: bool = True, an
 
 def _write_grading(out: Path, scene: Scene, stones, zone, figures: bool) -> None:
     """grading.md (and figures/grading.png) of a weir the outline packer built: each stone in the zone it
-    was drawn for (grading.packed_report)."""
-    from .grading import packed_report
+    was drawn for (reports.packed_report)."""
+    from .reports import packed_report
 
     pos = np.asarray(stones.disc_pos, float).reshape(-1, 2)
     md, fig = packed_report(scene, pos, 2.0 * np.asarray(stones.disc_radius, float), zone)
@@ -443,9 +443,9 @@ def _write_grading(out: Path, scene: Scene, stones, zone, figures: bool) -> None
 
 def _grading_files(out: Path, scene: Scene, data: RunData, figures: bool) -> list:
     """grading.md (and figures/grading.png) of a graded scene: the packed weir's grading against the
-    requested one (grading.packed_report). Written when the weir was built (the stones' zones as
+    requested one (reports.packed_report). Written when the weir was built (the stones' zones as
     drawn); a weir from elsewhere (a test double) counts each stone in the zone of its first place."""
-    from .grading import packed_report
+    from .reports import packed_report
 
     if (out / "grading.md").exists():
         return [out / "grading.md"] + ([out / "figures" / "grading.png"] if (out / "figures" / "grading.png").exists()
