@@ -1,5 +1,6 @@
 # The README's commands:
-#   make demo   installs what is missing and runs the main job, writing results and figures to out/
+#   make demo   installs what is missing and runs the main job (the quick Maeno scene once and over 10 packings),
+#               writing results and figures to out/
 #   make test   installs what is missing and runs every test (C++, C++ under sanitizers, Python) and builds the docs
 PY ?= python3
 OUT ?= out
@@ -9,8 +10,12 @@ OUT ?= out
 install:
 	bash scripts/install_deps.sh test
 
+# the main job: the quick Maeno scene once (stage table, figures, animation), then over 10 packings on a
+# local Dask cluster, ending with the fragility figure next to the experiment and the paper's model
 demo: install
 	$(PY) -m vofdem run scenes/maeno2008.toml --quick --out $(OUT)/maeno2008_quick
+	$(PY) -m vofdem run scenes/maeno2008.toml --quick --seeds 0-9 --no-figures --no-animation --out $(OUT)/maeno2008_quick_fragility
+	@echo "one run: $(OUT)/maeno2008_quick/ (figures/); over 10 packings: $(OUT)/maeno2008_quick_fragility/fragility.png"
 
 # the whole scenario on the paper's grid and hydrograph (long: see docs/accuracy_cost.md for its cost)
 full: install
