@@ -101,3 +101,27 @@ def test_the_check_sees_a_missing_docstring():
     assert own_text(Fake("level(x: float) -> float\n\nWater level [m].\n"), "level") == "Water level [m]."
     assert own_text(Fake("Members:\n\n  SLIP : a\n\n  NO_SLIP : b"), "Wall") == ""  # an enum's members alone
     assert own_text(Fake("Wall condition.\n\nMembers:\n\n  SLIP : a"), "Wall") == "Wall condition."
+
+
+# bound classes whose methods and properties are still to be documented (the option structs wait for
+# the option registry, which will write their docs from one place)
+PENDING = {"VOFGrid", "Coupler", "FlowStableDt", "DischargeTable", "FlowState", "CouplerState", "WeirSpec",
+           "DEMParams", "FlowParams", "CouplerParams", "PorosityParams"}
+
+
+def undocumented_members() -> list[str]:
+    bad = []
+    for cname, cls in vars(_core).items():
+        if not inspect.isclass(cls) or cname.startswith("_") or cname in PENDING:
+            continue
+        enum = hasattr(cls, "__members__")
+        for name, member in vars(cls).items():
+            if name.startswith("_") or (enum and name in ("name", "value")) or (enum and name in cls.__members__):
+                continue
+            if not own_text(member, name):
+                bad.append(f"{cname}.{name}")
+    return bad
+
+
+def test_every_method_and_property_of_a_bound_class_has_a_docstring():
+    assert undocumented_members() == []

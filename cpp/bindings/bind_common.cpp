@@ -19,14 +19,22 @@ void bind_common(py::module_& m) {
                   py::arg("height_z"), py::arg("x0") = 0.0, py::arg("z0") = 0.0)
       .def_static("graded", &Grid2D::graded, py::arg("nx"), py::arg("length_x"), py::arg("height_z"), py::arg("dz"),
                   py::arg("dz_bed"), py::arg("z_bed_top"), py::arg("merge_fraction") = 0.5)
-      .def_property_readonly("nx", &Grid2D::nx)
-      .def_property_readonly("nz", &Grid2D::nz)
-      .def_property_readonly("ncell", &Grid2D::ncell)
-      .def_property_readonly("dx", &Grid2D::dx)
-      .def_property_readonly("x0", &Grid2D::x0)
-      .def_property_readonly("length_x", &Grid2D::length_x)
-      .def_property_readonly("height_z", &Grid2D::height_z)
-      .def_property_readonly("z_faces", &Grid2D::z_faces)
+      .def_property_readonly("nx", &Grid2D::nx,
+           "columns [-]")
+      .def_property_readonly("nz", &Grid2D::nz,
+           "rows [-]")
+      .def_property_readonly("ncell", &Grid2D::ncell,
+           "cells nx nz [-]")
+      .def_property_readonly("dx", &Grid2D::dx,
+           "column width [m] (uniform in x)")
+      .def_property_readonly("x0", &Grid2D::x0,
+           "x of the first column's left face [m]")
+      .def_property_readonly("length_x", &Grid2D::length_x,
+           "length of the domain along the flume [m]")
+      .def_property_readonly("height_z", &Grid2D::height_z,
+           "height of the domain [m]")
+      .def_property_readonly("z_faces", &Grid2D::z_faces,
+           "heights of the nz + 1 row faces [m], increasing from the bed")
       .def("__repr__", [](const Grid2D& g) {
         return "Grid2D(nx=" + std::to_string(g.nx()) + ", nz=" + std::to_string(g.nz()) + ")";
       });
@@ -40,7 +48,8 @@ void bind_common(py::module_& m) {
       .def_readwrite("nu_water", &Medium::nu_water, "water kinematic viscosity [m^2/s], 1.004e-6")
       .def_readwrite("nu_air", &Medium::nu_air, "air kinematic viscosity [m^2/s], 1.516e-5")
       .def_readwrite("gravity", &Medium::gravity, "gravitational acceleration (x along the flume, z up) [m/s^2]")
-      .def("validate", &Medium::validate)
+      .def("validate", &Medium::validate,
+           "ValueError naming the field unless the densities are positive, the viscosities non-negative and the gravity finite")
       .def(py::self == py::self)
       .def(py::self != py::self)
       .def("__repr__", [](const Medium& d) {
@@ -61,11 +70,16 @@ void bind_common(py::module_& m) {
   m.def("built_with_openmp", &built_with_openmp, "True if the solvers can run on several threads.");
 
   py::class_<StageProfile>(m, "StageProfile", "Accumulated wall time [s] and calls of each named solver stage.")
-      .def_property_readonly("names", &StageProfile::names)
-      .def_property_readonly("seconds", &StageProfile::seconds)
-      .def_property_readonly("calls", &StageProfile::calls)
-      .def_property_readonly("total_seconds", &StageProfile::total_seconds)
-      .def("reset", &StageProfile::reset);
+      .def_property_readonly("names", &StageProfile::names,
+           "the stages' names, in the order they first ran")
+      .def_property_readonly("seconds", &StageProfile::seconds,
+           "accumulated wall time of each stage [s]")
+      .def_property_readonly("calls", &StageProfile::calls,
+           "how often each stage ran [-]")
+      .def_property_readonly("total_seconds", &StageProfile::total_seconds,
+           "the stages' summed wall time [s]")
+      .def("reset", &StageProfile::reset,
+           "zeroes every stage's time and calls");
 }
 
 }  // namespace vofdem::bind

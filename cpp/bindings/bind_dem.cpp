@@ -32,9 +32,12 @@ void bind_params(py::module_& m) {
              return DEMWall{point, normal, friction};
            }),
            py::arg("point"), py::arg("normal"), py::arg("friction") = 0.176)
-      .def_readwrite("point", &DEMWall::point)
-      .def_readwrite("normal", &DEMWall::normal)
-      .def_readwrite("friction", &DEMWall::friction);
+      .def_readwrite("point", &DEMWall::point,
+           "a point of the wall's line (x, z) [m]")
+      .def_readwrite("normal", &DEMWall::normal,
+           "the wall's normal (x, z) into the stones' side [-]; scaled to unit length")
+      .def_readwrite("friction", &DEMWall::friction,
+           "stone-wall Coulomb coefficient [-] (paper 0.176)");
 
   py::class_<DEMParams>(m, "DEMParams", "Constant parameters of the DEM of the stones (SI units; see dem_system.h).")
       .def(py::init<>())
@@ -93,12 +96,18 @@ void bind_params(py::module_& m) {
   export_flag_members(m, "DEMFlag", "DEM_");  // the older module constants
 
   py::class_<DEMEnergy>(m, "DEMEnergy", "Energy bookkeeping of the DEM [J].")
-      .def_readonly("kinetic", &DEMEnergy::kinetic)
-      .def_readonly("potential", &DEMEnergy::potential)
-      .def_readonly("elastic", &DEMEnergy::elastic)
-      .def_readonly("dissipated", &DEMEnergy::dissipated)
-      .def_readonly("work_external", &DEMEnergy::work_external)
-      .def_property_readonly("total", &DEMEnergy::total);
+      .def_readonly("kinetic", &DEMEnergy::kinetic,
+           "sum of 1/2 (M + M') v^2 + 1/2 I omega^2 [J]")
+      .def_readonly("potential", &DEMEnergy::potential,
+           "sum of -(M - rho_w V w) g . x [J], zero at the origin")
+      .def_readonly("elastic", &DEMEnergy::elastic,
+           "energy in the contact springs (the rolling ones too) at the last evaluation [J]")
+      .def_readonly("dissipated", &DEMEnergy::dissipated,
+           "dashpots, Coulomb and rolling slip and sleeping, accumulated [J]")
+      .def_readonly("work_external", &DEMEnergy::work_external,
+           "work of the external (fluid) forces disc_force_ext, accumulated [J]")
+      .def_property_readonly("total", &DEMEnergy::total,
+           "kinetic + potential + elastic + dissipated - work_external [J]: constant but for round-off and the step's error");
 
   m.def("damping_ratio_from_restitution", &damping_ratio_from_restitution, py::arg("e"),
         "Damping ratio zeta [-] of a linear spring-dashpot that gives the restitution coefficient e [-] (e = 0: zeta = 1).");
@@ -125,34 +134,52 @@ void bind_system(py::module_& m) {
            }),
            py::arg("params"), py::arg("pos"), py::arg("radius"), py::arg("density") = A(py::cast(2650.0)),
            py::arg("fixed") = std::vector<std::uint8_t>{})
-      .def_property_readonly("n", &DEMSystem::n)
+      .def_property_readonly("n", &DEMSystem::n,
+           "number of stones (removed ones included; see disc_active)")
       .def_property(
           "params", [](const DEMSystem& s) { return s.params(); }, &DEMSystem::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked")
       .def("resize", &DEMSystem::resize, py::arg("n"),
            "n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories")
-      .def("stable_dt", &DEMSystem::stable_dt)
-      .def("step", &DEMSystem::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
-      .def("advance", &DEMSystem::advance, py::arg("duration"), py::call_guard<py::gil_scoped_release>())
-      .def_property_readonly("stiffness_normal", &DEMSystem::stiffness_normal)
-      .def_property_readonly("stiffness_tangential", &DEMSystem::stiffness_tangential)
-      .def_property_readonly("damping_ratio", &DEMSystem::damping_ratio)
-      .def_property_readonly("time", &DEMSystem::time)
-      .def_property_readonly("steps", &DEMSystem::steps)
-      .def_property_readonly("removed_count", &DEMSystem::removed_count)
-      .def_property_readonly("contact_count", &DEMSystem::contact_count)
-      .def_property_readonly("wall_contact_count", &DEMSystem::wall_contact_count)
-      .def_property_readonly("neighbour_builds", &DEMSystem::neighbour_builds)
-      .def("energy", &DEMSystem::energy)
-      .def("mass", &DEMSystem::mass, py::arg("i"))
+      .def("stable_dt", &DEMSystem::stable_dt,
+           "the stable DEM step [s] of the stones' contacts (the stone model's bound); advance() substeps never exceed min(params.dt, it)")
+      .def("step", &DEMSystem::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>(),
+           "one DEM step of dt [s] (checked against the stable step); the GIL is released")
+      .def("advance", &DEMSystem::advance, py::arg("duration"), py::call_guard<py::gil_scoped_release>(),
+           "advances by duration [s] in steps of at most params.dt and the stable step; the GIL is released")
+      .def_property_readonly("stiffness_normal", &DEMSystem::stiffness_normal,
+           "normal contact stiffness k_n in use [N/m] (params.stiffness_normal, or the automatic value)")
+      .def_property_readonly("stiffness_tangential", &DEMSystem::stiffness_tangential,
+           "tangential contact stiffness k_t = stiffness_ratio k_n [N/m]")
+      .def_property_readonly("damping_ratio", &DEMSystem::damping_ratio,
+           "normal damping ratio zeta [-] from params.restitution")
+      .def_property_readonly("time", &DEMSystem::time,
+           "simulated time of the stones [s]")
+      .def_property_readonly("steps", &DEMSystem::steps,
+           "DEM steps taken")
+      .def_property_readonly("removed_count", &DEMSystem::removed_count,
+           "stones that left the domain (disc_active = 0)")
+      .def_property_readonly("contact_count", &DEMSystem::contact_count,
+           "touching stone-stone contacts at the last force evaluation")
+      .def_property_readonly("wall_contact_count", &DEMSystem::wall_contact_count,
+           "touching stone-wall contacts at the last force evaluation")
+      .def_property_readonly("neighbour_builds", &DEMSystem::neighbour_builds,
+           "how often the neighbour (Verlet) list was built")
+      .def("energy", &DEMSystem::energy,
+           "the energy account (DEMEnergy) [J] at the last evaluation")
+      .def("mass", &DEMSystem::mass, py::arg("i"),
+           "M_i = rho_s V_i [kg] of stone i")
       .def("set_wet_fraction", &DEMSystem::set_wet_fraction, py::arg("i"), py::arg("w"),
            "wet fraction of stone i; when it grows, (M + M') v is kept")
-      .def("volume", &DEMSystem::volume, py::arg("i"))
+      .def("volume", &DEMSystem::volume, py::arg("i"),
+           "V_i [m^3] of stone i: that of the 3D stone its model stands for")
       .def("projected_area", py::overload_cast<int>(&DEMSystem::projected_area, py::const_), py::arg("i"))
       .def("projected_area", py::overload_cast<int, double, double>(&DEMSystem::projected_area, py::const_),
            py::arg("i"), py::arg("ux"), py::arg("uz"))
-      .def("nominal_diameter", &DEMSystem::nominal_diameter, py::arg("i"))
-      .def("inertia", &DEMSystem::inertia, py::arg("i"))
+      .def("nominal_diameter", &DEMSystem::nominal_diameter, py::arg("i"),
+           "nominal diameter [m] of stone i (a disc's 2 r, a polygon's equal-area disc's)")
+      .def("inertia", &DEMSystem::inertia, py::arg("i"),
+           "moment of inertia I_i [kg m^2] of stone i about the plane's normal")
       .def_property_readonly("shape", [](const DEMSystem& s) { return std::string(s.model().name()); },
                              "the stone model's registered name (stone_model_names())")
       .def("set_model", py::overload_cast<const std::string&>(&DEMSystem::set_model), py::arg("name"),
@@ -164,47 +191,70 @@ void bind_system(py::module_& m) {
            "Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; "
            "stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.")
       .def_property_readonly("poly_vertex",
-                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().poly_vertex, self); })
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().poly_vertex, self); },
+           "polygon stones' body-frame vertices (m, 2) [m], zero-copy view (set_polygons reallocates it)")
       .def_property_readonly("poly_offset",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().poly_offset, self); })
-      .def("neighbour_pairs", &DEMSystem::neighbour_pairs)
-      .def("overlapping_pairs", &DEMSystem::overlapping_pairs)
-      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference);
+                             [](py::object self) { return view(self.cast<DEMSystem&>().poly_offset, self); },
+           "stone i owns poly_vertex[poly_offset[i]:poly_offset[i + 1]] (n + 1), zero-copy view")
+      .def("neighbour_pairs", &DEMSystem::neighbour_pairs,
+           "the neighbour list's pairs (i, j), i < j")
+      .def("overlapping_pairs", &DEMSystem::overlapping_pairs,
+           "the pairs (i, j) that touch now, from the neighbour list")
+      .def("overlapping_pairs_reference", &DEMSystem::overlapping_pairs_reference,
+           "the pairs that touch now by testing every pair (the slow reference of overlapping_pairs)");
   def_checkpoint_state(cls,
                        "restores export_state() exactly, written into the arrays in place; a state of another stone "
                        "count (or, for polygons, vertex count) resizes and so invalidates earlier views");
   def_copy_state<DEMState>(cls, "a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit",
                            "returns to a copy_state() copy (checked first; written in place unless the stone or "
                            "vertex count differs, which invalidates earlier views)");
-  cls.def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal)
-      .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); })
-      .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); })
+  cls.def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal,
+           "CPU seconds per DEM stage (StageProfile)")
+      .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); },
+           "centres (x along the flume, z up) (n, 2) [m], zero-copy view")
+      .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); },
+           "velocities (n, 2) [m/s], zero-copy view")
       .def_property_readonly("disc_force_ext",
-                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force_ext, self); })
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force_ext, self); },
+           "external (fluid) forces (n, 2) [N], held until changed; zero-copy view")
       .def_property_readonly("disc_drag_coef",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_drag_coef, self); })
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_drag_coef, self); },
+           "linear drag coefficient c >= 0 per stone (n) [N s/m], zero-copy view")
       .def_property_readonly("disc_drag_vel",
-                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_drag_vel, self); })
-      .def_property_readonly("disc_force", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force, self); })
-      .def_property_readonly("disc_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_acc, self); })
-      .def_property_readonly("disc_angle", [](py::object self) { return view(self.cast<DEMSystem&>().disc_angle, self); })
-      .def_property_readonly("disc_omega", [](py::object self) { return view(self.cast<DEMSystem&>().disc_omega, self); })
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_drag_vel, self); },
+           "velocity U the linear drag c (U - v) pulls towards (n, 2) [m/s], zero-copy view")
+      .def_property_readonly("disc_force", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force, self); },
+           "total force of the last evaluation (n, 2) [N], zero-copy view")
+      .def_property_readonly("disc_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_acc, self); },
+           "acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view")
+      .def_property_readonly("disc_angle", [](py::object self) { return view(self.cast<DEMSystem&>().disc_angle, self); },
+           "rotation angle, counter-clockwise in (x, z) (n) [rad], zero-copy view")
+      .def_property_readonly("disc_omega", [](py::object self) { return view(self.cast<DEMSystem&>().disc_omega, self); },
+           "angular velocity (n) [rad/s], zero-copy view")
       .def_property_readonly("disc_radius",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_radius, self); })
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_radius, self); },
+           "radius (n) [m] (a disc's d / 2, a polygon's nominal one), zero-copy view")
       .def_property_readonly("disc_density",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_density, self); })
-      .def_property_readonly("disc_fixed", [](py::object self) { return view(self.cast<DEMSystem&>().disc_fixed, self); })
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_density, self); },
+           "stone density rho_s (n) [kg/m^3], zero-copy view")
+      .def_property_readonly("disc_fixed", [](py::object self) { return view(self.cast<DEMSystem&>().disc_fixed, self); },
+           "1: the stone never moves (bed layer) (n), zero-copy view")
       .def_property_readonly("disc_active",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_active, self); })
-      .def_property_readonly("disc_wet", [](py::object self) { return view(self.cast<DEMSystem&>().disc_wet, self); })
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_active, self); },
+           "0: the stone left the domain (kept, not integrated) (n), zero-copy view")
+      .def_property_readonly("disc_wet", [](py::object self) { return view(self.cast<DEMSystem&>().disc_wet, self); },
+           "wet fraction in [0, 1] (n) [-], zero-copy view")
       .def_property_readonly("disc_water_level",
                              [](py::object self) { return view(self.cast<DEMSystem&>().disc_water_level, self); },
                              "free-surface level at each stone [m]; NaN: disc_wet held as set")
       .def_property_readonly("disc_torque",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_torque, self); })
-      .def_property_readonly("disc_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().disc_alpha, self); })
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_torque, self); },
+           "total torque of the last evaluation (n) [N m], zero-copy view")
+      .def_property_readonly("disc_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().disc_alpha, self); },
+           "angular acceleration of the last evaluation (n) [rad/s^2], zero-copy view")
       .def_property_readonly("disc_asleep",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_asleep, self); });
+                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_asleep, self); },
+           "1: the stone sleeps (not integrated) (n), zero-copy view");
 }
 
 void bind_packing(py::module_& m) {
@@ -241,13 +291,20 @@ void bind_packing(py::module_& m) {
       .def("top", &WeirSpec::top, py::arg("x"))
       .def("area", &WeirSpec::area);
   py::class_<WeirPackingReport>(m, "WeirPackingReport", "What pack_weir produced.")
-      .def_readonly("n_stones", &WeirPackingReport::n_stones)
-      .def_readonly("n_fixed", &WeirPackingReport::n_fixed)
-      .def_readonly("porosity", &WeirPackingReport::porosity)
-      .def_readonly("max_speed", &WeirPackingReport::max_speed)
-      .def_readonly("settle_time", &WeirPackingReport::settle_time)
-      .def_readonly("outline_error", &WeirPackingReport::outline_error)
-      .def_readonly("wall_seconds", &WeirPackingReport::wall_seconds)
+      .def_readonly("n_stones", &WeirPackingReport::n_stones,
+           "stones in the weir, the fixed ones included")
+      .def_readonly("n_fixed", &WeirPackingReport::n_fixed,
+           "fixed bottom stones")
+      .def_readonly("porosity", &WeirPackingReport::porosity,
+           "2D porosity of the trapezoid: 1 - (stone area inside) / area [-]")
+      .def_readonly("max_speed", &WeirPackingReport::max_speed,
+           "largest stone speed at the end [m/s]")
+      .def_readonly("settle_time", &WeirPackingReport::settle_time,
+           "simulated time of the settling phases [s]")
+      .def_readonly("outline_error", &WeirPackingReport::outline_error,
+           "weir_outline_error() of the result [m]")
+      .def_readonly("wall_seconds", &WeirPackingReport::wall_seconds,
+           "wall-clock time of the packing [s]")
       .def("__repr__", [](const WeirPackingReport& r) {
         return "WeirPackingReport(n_stones=" + std::to_string(r.n_stones) + ", n_fixed=" + std::to_string(r.n_fixed) +
                ", porosity=" + std::to_string(r.porosity) + ", max_speed=" + std::to_string(r.max_speed) +

@@ -56,13 +56,18 @@ void bind_porosity(py::module_& m) {
       .def(py::init<const Grid2D&, const PorosityParams&>(), py::arg("grid"), py::arg("params"))
       .def("map", &map_discs, py::arg("disc_x"), py::arg("disc_z"), py::arg("disc_r"), py::arg("active") = py::none(),
            "Maps disc centres [m] and radii [m] onto cell_solid_area and cell_porosity (no allocation).")
-      .def_property_readonly("grid", &PorosityMapper::grid)
+      .def_property_readonly("grid", &PorosityMapper::grid,
+           "the flow grid the mapper maps onto (Grid2D)")
       .def_property_readonly(
           "params", [](const PorosityMapper& p) { return p.params(); }, "a copy: fixed at construction")
-      .def_property_readonly("ndisc", &PorosityMapper::ndisc)
-      .def_property_readonly("table_count", &PorosityMapper::table_count)
-      .def_property_readonly("table_bytes", &PorosityMapper::table_bytes)
-      .def_property_readonly("row_class", &PorosityMapper::row_class)
+      .def_property_readonly("ndisc", &PorosityMapper::ndisc,
+           "number of discs of the last map() call [-]")
+      .def_property_readonly("table_count", &PorosityMapper::table_count,
+           "distinct lookup tables (row classes x radius nodes) [-]; 0 with the exact method")
+      .def_property_readonly("table_bytes", &PorosityMapper::table_bytes,
+           "memory of the lookup tables [bytes]")
+      .def_property_readonly("row_class", &PorosityMapper::row_class,
+           "row class of each grid row for the lookup tables (rows with equal z-faces within reach share one)")
       .def_property_readonly(
           "cell_solid_area",
           [](py::object self) {
@@ -99,7 +104,8 @@ void bind_porosity(py::module_& m) {
           },
           "area [m^2] of each (disc, cell) pair, uncapped")
       .def_property_readonly("profile", [](PorosityMapper& p) -> StageProfile& { return p.profile(); },
-                             py::return_value_policy::reference_internal);
+                             py::return_value_policy::reference_internal,
+           "CPU seconds per mapping stage (StageProfile)");
 }
 
 }  // namespace vofdem::bind

@@ -42,12 +42,17 @@ void bind_pressure(py::module_& m) {
              return p;
            }),
            py::arg("grid"))
-      .def_property_readonly("face_x_coef", [](py::object s) { return view(s.cast<PressureProblem&>().face_x_coef, s); })
-      .def_property_readonly("face_z_coef", [](py::object s) { return view(s.cast<PressureProblem&>().face_z_coef, s); })
-      .def_property_readonly("face_x_bc", [](py::object s) { return view(s.cast<PressureProblem&>().face_x_bc, s); })
-      .def_property_readonly("face_z_bc", [](py::object s) { return view(s.cast<PressureProblem&>().face_z_bc, s); })
+      .def_property_readonly("face_x_coef", [](py::object s) { return view(s.cast<PressureProblem&>().face_x_coef, s); },
+           "face coefficient a_f >= 0 on the x-faces, (nx + 1) nz [m^3 s/kg] (0 closes a face), zero-copy view")
+      .def_property_readonly("face_z_coef", [](py::object s) { return view(s.cast<PressureProblem&>().face_z_coef, s); },
+           "face coefficient a_f >= 0 on the z-faces, nx (nz + 1) [m^3 s/kg], zero-copy view")
+      .def_property_readonly("face_x_bc", [](py::object s) { return view(s.cast<PressureProblem&>().face_x_bc, s); },
+           "Dirichlet pressure on the boundary x-faces (i = 0, nx) [Pa], zero-copy view")
+      .def_property_readonly("face_z_bc", [](py::object s) { return view(s.cast<PressureProblem&>().face_z_bc, s); },
+           "Dirichlet pressure on the boundary z-faces (k = 0, nz) [Pa], zero-copy view")
       .def_property_readonly("cell_active",
-                             [](py::object s) { return view(s.cast<PressureProblem&>().cell_active, s); });
+                             [](py::object s) { return view(s.cast<PressureProblem&>().cell_active, s); },
+           "1: an unknown of the equation, 0: a solid cell (ncell), zero-copy view");
 
   py::class_<PressureSolveStats>(m, "PressureSolveStats", "Outcome of one pressure solve.")
       .def_readonly("iterations", &PressureSolveStats::iterations, "CG iterations (0 for the direct solver)")
@@ -69,7 +74,8 @@ void bind_pressure(py::module_& m) {
            }),
            py::arg("kind") = PressureSolverKind::kMultigridCG, py::arg("max_iterations") = 200,
            py::arg("smoothing_sweeps") = 1, py::arg("coarsest_cells") = 64)
-      .def_property_readonly("kind", &PressureSolver::kind)
+      .def_property_readonly("kind", &PressureSolver::kind,
+           "the solver (PressureSolverKind) chosen at construction")
       .def("setup", &PressureSolver::setup, py::arg("grid"), py::arg("problem"),
            py::call_guard<py::gil_scoped_release>(), "takes new coefficients (call after any change)")
       .def(

@@ -43,7 +43,7 @@ template <class State, class Steps>
 void bind_state_class(py::module_& m, const char* name, const char* doc, const char* steps_name, Steps State::*steps) {
   py::class_<State>(m, name, doc)
       .def_readonly("time", &State::time, "simulated time [s]")
-      .def_readonly(steps_name, steps);
+      .def_readonly(steps_name, steps, "steps taken since the start [-]");
 }
 
 // copy_state() / set_state(copy) of an Owner with export_state(State&) and import_state(const State&)
@@ -63,7 +63,9 @@ void def_copy_state(py::class_<Owner, Options...>& cls, const char* copy_doc, co
 // export_state() / import_state(dict) of an Owner whose checkpoint is a map of named arrays
 template <class Owner, class... Options>
 void def_checkpoint_state(py::class_<Owner, Options...>& cls, const char* import_doc) {
-  cls.def("export_state", [](const Owner& o) { return state_to_dict(o.export_state()); })
+  cls.def(
+      "export_state", [](const Owner& o) { return state_to_dict(o.export_state()); },
+      "the whole state as a dict of named numpy arrays, copied (a checkpoint; import_state(dict) restores it bit for bit)")
       .def("import_state", [](Owner& o, const py::dict& d) { o.import_state(dict_to_state(d)); }, py::arg("state"),
            import_doc);
 }

@@ -24,28 +24,44 @@ class Grid2D:
         ...
     @property
     def dx(self) -> float:
-        ...
+        """
+        column width [m] (uniform in x)
+        """
     @property
     def height_z(self) -> float:
-        ...
+        """
+        height of the domain [m]
+        """
     @property
     def length_x(self) -> float:
-        ...
+        """
+        length of the domain along the flume [m]
+        """
     @property
     def ncell(self) -> int:
-        ...
+        """
+        cells nx nz [-]
+        """
     @property
     def nx(self) -> int:
-        ...
+        """
+        columns [-]
+        """
     @property
     def nz(self) -> int:
-        ...
+        """
+        rows [-]
+        """
     @property
     def x0(self) -> float:
-        ...
+        """
+        x of the first column's left face [m]
+        """
     @property
     def z_faces(self) -> list[float]:
-        ...
+        """
+        heights of the nz + 1 row faces [m], increasing from the bed
+        """
 class Medium:
     """
     Water, air and gravity (SI units), one value for the flow and the stones: FlowParams.medium owns it, a Coupler hands it to the stones (DEMParams.medium).
@@ -60,7 +76,9 @@ class Medium:
     def __repr__(self) -> str:
         ...
     def validate(self) -> None:
-        ...
+        """
+        ValueError naming the field unless the densities are positive, the viscosities non-negative and the gravity finite
+        """
     @property
     def gravity(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
         """
@@ -106,19 +124,29 @@ class StageProfile:
     Accumulated wall time [s] and calls of each named solver stage.
     """
     def reset(self) -> None:
-        ...
+        """
+        zeroes every stage's time and calls
+        """
     @property
     def calls(self) -> list[int]:
-        ...
+        """
+        how often each stage ran [-]
+        """
     @property
     def names(self) -> list[str]:
-        ...
+        """
+        the stages' names, in the order they first ran
+        """
     @property
     def seconds(self) -> list[float]:
-        ...
+        """
+        accumulated wall time of each stage [s]
+        """
     @property
     def total_seconds(self) -> float:
-        ...
+        """
+        the stages' summed wall time [s]
+        """
 class DragLaw:
     """
     Drag coefficient C_D [-] of a stone against its Reynolds number (drag.h).
@@ -305,10 +333,14 @@ class PorosityMapper:
         """
     @property
     def grid(self) -> Grid2D:
-        ...
+        """
+        the flow grid the mapper maps onto (Grid2D)
+        """
     @property
     def ndisc(self) -> int:
-        ...
+        """
+        number of discs of the last map() call [-]
+        """
     @property
     def params(self) -> PorosityParams:
         """
@@ -316,16 +348,24 @@ class PorosityMapper:
         """
     @property
     def profile(self) -> StageProfile:
-        ...
+        """
+        CPU seconds per mapping stage (StageProfile)
+        """
     @property
     def row_class(self) -> list[int]:
-        ...
+        """
+        row class of each grid row for the lookup tables (rows with equal z-faces within reach share one)
+        """
     @property
     def table_bytes(self) -> int:
-        ...
+        """
+        memory of the lookup tables [bytes]
+        """
     @property
     def table_count(self) -> int:
-        ...
+        """
+        distinct lookup tables (row classes x radius nodes) [-]; 0 with the exact method
+        """
 class DEMWall:
     """
     Half-plane wall: the solid lies opposite to `normal` (SI units).
@@ -334,19 +374,25 @@ class DEMWall:
         ...
     @property
     def friction(self) -> float:
-        ...
+        """
+        stone-wall Coulomb coefficient [-] (paper 0.176)
+        """
     @friction.setter
     def friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def normal(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
-        ...
+        """
+        the wall's normal (x, z) into the stones' side [-]; scaled to unit length
+        """
     @normal.setter
     def normal(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
         ...
     @property
     def point(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
-        ...
+        """
+        a point of the wall's line (x, z) [m]
+        """
     @point.setter
     def point(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
         ...
@@ -555,29 +601,43 @@ class DEMEnergy:
     """
     @property
     def dissipated(self) -> float:
-        ...
+        """
+        dashpots, Coulomb and rolling slip and sleeping, accumulated [J]
+        """
     @property
     def elastic(self) -> float:
-        ...
+        """
+        energy in the contact springs (the rolling ones too) at the last evaluation [J]
+        """
     @property
     def kinetic(self) -> float:
-        ...
+        """
+        sum of 1/2 (M + M') v^2 + 1/2 I omega^2 [J]
+        """
     @property
     def potential(self) -> float:
-        ...
+        """
+        sum of -(M - rho_w V w) g . x [J], zero at the origin
+        """
     @property
     def total(self) -> float:
-        ...
+        """
+        kinetic + potential + elastic + dissipated - work_external [J]: constant but for round-off and the step's error
+        """
     @property
     def work_external(self) -> float:
-        ...
+        """
+        work of the external (fluid) forces disc_force_ext, accumulated [J]
+        """
 class DEMState:
     """
     A copy of a DEMSystem's whole state (DEMSystem.copy_state); set_state() returns to it.
     """
     @property
     def steps(self) -> int:
-        ...
+        """
+        steps taken since the start [-]
+        """
     @property
     def time(self) -> float:
         """
@@ -594,31 +654,49 @@ class DEMSystem:
     def __init__(self, params: DEMParams, pos: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], radius: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], density: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = ..., fixed: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> None:
         ...
     def advance(self, duration: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+        """
+        advances by duration [s] in steps of at most params.dt and the stable step; the GIL is released
+        """
     def copy_state(self) -> DEMState:
         """
         a copy of the whole state (DEMState): set_state(copy) continues from it bit for bit
         """
     def energy(self) -> DEMEnergy:
-        ...
+        """
+        the energy account (DEMEnergy) [J] at the last evaluation
+        """
     def export_state(self) -> dict:
-        ...
+        """
+        the whole state as a dict of named numpy arrays, copied (a checkpoint; import_state(dict) restores it bit for bit)
+        """
     def import_state(self, state: dict) -> None:
         """
         restores export_state() exactly, written into the arrays in place; a state of another stone count (or, for polygons, vertex count) resizes and so invalidates earlier views
         """
     def inertia(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
-        ...
+        """
+        moment of inertia I_i [kg m^2] of stone i about the plane's normal
+        """
     def mass(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
-        ...
+        """
+        M_i = rho_s V_i [kg] of stone i
+        """
     def neighbour_pairs(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
-        ...
+        """
+        the neighbour list's pairs (i, j), i < j
+        """
     def nominal_diameter(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
-        ...
+        """
+        nominal diameter [m] of stone i (a disc's 2 r, a polygon's equal-area disc's)
+        """
     def overlapping_pairs(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
-        ...
+        """
+        the pairs (i, j) that touch now, from the neighbour list
+        """
     def overlapping_pairs_reference(self) -> list[typing.Annotated[list[int], "FixedSize(2)"]]:
-        ...
+        """
+        the pairs that touch now by testing every pair (the slow reference of overlapping_pairs)
+        """
     @typing.overload
     def projected_area(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
         ...
@@ -646,65 +724,107 @@ class DEMSystem:
         wet fraction of stone i; when it grows, (M + M') v is kept
         """
     def stable_dt(self) -> float:
-        ...
+        """
+        the stable DEM step [s] of the stones' contacts (the stone model's bound); advance() substeps never exceed min(params.dt, it)
+        """
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+        """
+        one DEM step of dt [s] (checked against the stable step); the GIL is released
+        """
     def volume(self, i: typing.SupportsInt | typing.SupportsIndex) -> float:
-        ...
+        """
+        V_i [m^3] of stone i: that of the 3D stone its model stands for
+        """
     @property
     def contact_count(self) -> int:
-        ...
+        """
+        touching stone-stone contacts at the last force evaluation
+        """
     @property
     def damping_ratio(self) -> float:
-        ...
+        """
+        normal damping ratio zeta [-] from params.restitution
+        """
     @property
     def disc_acc(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view
+        """
     @property
     def disc_active(self) -> numpy.typing.NDArray[numpy.uint8]:
-        ...
+        """
+        0: the stone left the domain (kept, not integrated) (n), zero-copy view
+        """
     @property
     def disc_alpha(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        angular acceleration of the last evaluation (n) [rad/s^2], zero-copy view
+        """
     @property
     def disc_angle(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        rotation angle, counter-clockwise in (x, z) (n) [rad], zero-copy view
+        """
     @property
     def disc_asleep(self) -> numpy.typing.NDArray[numpy.uint8]:
-        ...
+        """
+        1: the stone sleeps (not integrated) (n), zero-copy view
+        """
     @property
     def disc_density(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        stone density rho_s (n) [kg/m^3], zero-copy view
+        """
     @property
     def disc_drag_coef(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        linear drag coefficient c >= 0 per stone (n) [N s/m], zero-copy view
+        """
     @property
     def disc_drag_vel(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        velocity U the linear drag c (U - v) pulls towards (n, 2) [m/s], zero-copy view
+        """
     @property
     def disc_fixed(self) -> numpy.typing.NDArray[numpy.uint8]:
-        ...
+        """
+        1: the stone never moves (bed layer) (n), zero-copy view
+        """
     @property
     def disc_force(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        total force of the last evaluation (n, 2) [N], zero-copy view
+        """
     @property
     def disc_force_ext(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        external (fluid) forces (n, 2) [N], held until changed; zero-copy view
+        """
     @property
     def disc_omega(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        angular velocity (n) [rad/s], zero-copy view
+        """
     @property
     def disc_pos(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        centres (x along the flume, z up) (n, 2) [m], zero-copy view
+        """
     @property
     def disc_radius(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        radius (n) [m] (a disc's d / 2, a polygon's nominal one), zero-copy view
+        """
     @property
     def disc_torque(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        total torque of the last evaluation (n) [N m], zero-copy view
+        """
     @property
     def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        velocities (n, 2) [m/s], zero-copy view
+        """
     @property
     def disc_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -712,13 +832,19 @@ class DEMSystem:
         """
     @property
     def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        wet fraction in [0, 1] (n) [-], zero-copy view
+        """
     @property
     def n(self) -> int:
-        ...
+        """
+        number of stones (removed ones included; see disc_active)
+        """
     @property
     def neighbour_builds(self) -> int:
-        ...
+        """
+        how often the neighbour (Verlet) list was built
+        """
     @property
     def params(self) -> DEMParams:
         """
@@ -729,16 +855,24 @@ class DEMSystem:
         ...
     @property
     def poly_offset(self) -> numpy.typing.NDArray[numpy.int32]:
-        ...
+        """
+        stone i owns poly_vertex[poly_offset[i]:poly_offset[i + 1]] (n + 1), zero-copy view
+        """
     @property
     def poly_vertex(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        polygon stones' body-frame vertices (m, 2) [m], zero-copy view (set_polygons reallocates it)
+        """
     @property
     def profile(self) -> StageProfile:
-        ...
+        """
+        CPU seconds per DEM stage (StageProfile)
+        """
     @property
     def removed_count(self) -> int:
-        ...
+        """
+        stones that left the domain (disc_active = 0)
+        """
     @property
     def shape(self) -> str:
         """
@@ -746,19 +880,29 @@ class DEMSystem:
         """
     @property
     def steps(self) -> int:
-        ...
+        """
+        DEM steps taken
+        """
     @property
     def stiffness_normal(self) -> float:
-        ...
+        """
+        normal contact stiffness k_n in use [N/m] (params.stiffness_normal, or the automatic value)
+        """
     @property
     def stiffness_tangential(self) -> float:
-        ...
+        """
+        tangential contact stiffness k_t = stiffness_ratio k_n [N/m]
+        """
     @property
     def time(self) -> float:
-        ...
+        """
+        simulated time of the stones [s]
+        """
     @property
     def wall_contact_count(self) -> int:
-        ...
+        """
+        touching stone-wall contacts at the last force evaluation
+        """
 class WeirSpec:
     """
     Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).
@@ -876,25 +1020,39 @@ class WeirPackingReport:
         ...
     @property
     def max_speed(self) -> float:
-        ...
+        """
+        largest stone speed at the end [m/s]
+        """
     @property
     def n_fixed(self) -> int:
-        ...
+        """
+        fixed bottom stones
+        """
     @property
     def n_stones(self) -> int:
-        ...
+        """
+        stones in the weir, the fixed ones included
+        """
     @property
     def outline_error(self) -> float:
-        ...
+        """
+        weir_outline_error() of the result [m]
+        """
     @property
     def porosity(self) -> float:
-        ...
+        """
+        2D porosity of the trapezoid: 1 - (stone area inside) / area [-]
+        """
     @property
     def settle_time(self) -> float:
-        ...
+        """
+        simulated time of the settling phases [s]
+        """
     @property
     def wall_seconds(self) -> float:
-        ...
+        """
+        wall-clock time of the packing [s]
+        """
 class VofBoundaryInflow:
     """
     Water fraction [-] entering through each boundary face where the flow enters (left/right: nz, bottom/top: nx); empty = 0. The arrays are numpy views, writable in place; assigning a whole side replaces its array (earlier views of it are invalidated).
@@ -1075,19 +1233,29 @@ class PressureProblem:
         ...
     @property
     def cell_active(self) -> numpy.typing.NDArray[numpy.uint8]:
-        ...
+        """
+        1: an unknown of the equation, 0: a solid cell (ncell), zero-copy view
+        """
     @property
     def face_x_bc(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        Dirichlet pressure on the boundary x-faces (i = 0, nx) [Pa], zero-copy view
+        """
     @property
     def face_x_coef(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        face coefficient a_f >= 0 on the x-faces, (nx + 1) nz [m^3 s/kg] (0 closes a face), zero-copy view
+        """
     @property
     def face_z_bc(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        Dirichlet pressure on the boundary z-faces (k = 0, nz) [Pa], zero-copy view
+        """
     @property
     def face_z_coef(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        face coefficient a_f >= 0 on the z-faces, nx (nz + 1) [m^3 s/kg], zero-copy view
+        """
 class PressureSolveStats:
     """
     Outcome of one pressure solve.
@@ -1130,7 +1298,9 @@ class PressureSolver:
         """
     @property
     def kind(self) -> PressureSolverKind:
-        ...
+        """
+        the solver (PressureSolverKind) chosen at construction
+        """
 class FlowEffect(enum.IntFlag):
     """
     Bit flags of the flow solver's physical effects.
@@ -2086,7 +2256,9 @@ class FlowState:
     """
     @property
     def step_count(self) -> int:
-        ...
+        """
+        steps taken since the start [-]
+        """
     @property
     def time(self) -> float:
         """
@@ -2493,7 +2665,9 @@ class CouplerState:
     """
     @property
     def steps(self) -> int:
-        ...
+        """
+        steps taken since the start [-]
+        """
     @property
     def time(self) -> float:
         """
@@ -2514,7 +2688,9 @@ class Coupler:
         a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) continues from it bit for bit
         """
     def export_state(self) -> dict:
-        ...
+        """
+        the whole state as a dict of named numpy arrays, copied (a checkpoint; import_state(dict) restores it bit for bit)
+        """
     def import_state(self, state: dict) -> None:
         """
         restores export_state() exactly (every part checked first; written into the arrays in place)
