@@ -173,7 +173,7 @@ SphereContactLoads sphere_plane_contact(const SphereOfBody& i, const ContactPlan
   law.check();
   check_sphere(i, "sphere i");
   check_dt(dt);
-  require(std::fabs(plane.normal.norm() - 1.0) < 1e-9, "plane.normal", "of unit length [-], its length is",
+  require(std::fabs(plane.normal.norm() - 1.0) < 1e-9, "plane.normal", "of unit length (within 1e-9) [-]; its length",
           plane.normal.norm());
   require(std::isfinite(plane.friction) && plane.friction >= 0.0, "plane.friction", "finite and >= 0 [-]",
           plane.friction);
