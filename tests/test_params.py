@@ -74,7 +74,7 @@ DEM_BAD_PAIRS = {
 COUPLER_BAD = {
     "flags": [1 << 10], "n_exp": [-0.1, 1.1, NAN], "lookup_m": [1, 65], "lookup_dr": [0.0, NAN],
     "max_dt": [0.0, NAN], "stone_cfl": [0.0, 1.5, NAN], "drag_relaxation": [0.0, NAN], "min_dt": [-1.0, NAN], "wet_fraction_tolerance": [-1e-9, 0.6, NAN],
-    "max_snapshot_interval": [0, 4097],
+    "max_snapshot_interval": [0, 4097], "bandwidth": [-0.01, 1.5, NAN],
 }
 # the medium shared by flow and stones (FlowParams.medium, DEMParams.medium)
 MEDIUM_BAD = {

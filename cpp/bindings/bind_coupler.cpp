@@ -39,6 +39,11 @@ void bind_coupler(py::module_& m) {
       .value("SPHERE", StoneDragModel::kSphere, "single sphere in the pore velocity, eqs. (16)-(18) (the paper's)")
       .value("BED", StoneDragModel::kBed, "reaction of the flow's porous resistance, rho n R per bulk volume");
 
+  py::enum_<CouplingMapping>(m, "CouplingMapping", "How the stones and the flow exchange cell fields.")
+      .value("CELL", CouplingMapping::kCell, "each stone's exact footprint over the raw cells (the paper's)")
+      .value("KERNEL", CouplingMapping::kKernel,
+             "footprints and flow smoothed by a Gaussian exp(-r^2/b^2) of physical width b (kernel_smoothing.h)");
+
   py::class_<CouplerParams>(m, "CouplerParams", "Parameters of the VOF-DEM coupling (SI units; see coupler.h).")
       .def(py::init<>())
       .def_readwrite("flags", &CouplerParams::flags, "CouplerEffect bits")
@@ -61,6 +66,10 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("max_snapshot_interval", &CouplerParams::max_snapshot_interval,
                      "within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096], 32; "
                      "a failing step replays the steps since it (the same bits); 1: every step")
+      .def_readwrite("mapping", &CouplerParams::mapping, "CouplingMapping of the exchanged fields, CELL")
+      .def_readwrite("bandwidth", &CouplerParams::bandwidth,
+                     "KERNEL: the Gaussian's width b in exp(-r^2/b^2) [m], (0, 1], sigma = b / sqrt(2); 0 = unset: "
+                     "1.0 x the stones' mean nominal diameter")
       .def("validate", &CouplerParams::validate);
 
   bind_state_class<CouplerState>(m, "CouplerState",
@@ -108,7 +117,12 @@ void bind_coupler(py::module_& m) {
       .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true)
       .def("update_fluid_forces", &Coupler::update_fluid_forces)
       .def("water_volume", &Coupler::water_volume)
-      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume);
+      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
+      .def_property_readonly("kernel_bandwidth", &Coupler::kernel_bandwidth,
+                             "the kernel's width b [m] in use (0 with the CELL mapping)")
+      .def_property_readonly("floored_solid_area", &Coupler::floored_solid_area,
+                             "KERNEL: solid area per unit width [m^2] the porosity floor n >= n_exp removed at the "
+                             "last mapping (0: the flow sees all of the stones' solid volume)");
   def_checkpoint_state(cls, "restores export_state() exactly (every part checked first; written into the arrays in place)");
   def_copy_state<CouplerState>(cls,
                                "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) "

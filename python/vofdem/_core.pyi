@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -2547,6 +2547,53 @@ class StoneDragModel:
     @property
     def value(self) -> int:
         ...
+class CouplingMapping:
+    """
+    How the stones and the flow exchange cell fields.
+    
+    Members:
+    
+      CELL : each stone's exact footprint over the raw cells (the paper's)
+    
+      KERNEL : footprints and flow smoothed by a Gaussian exp(-r^2/b^2) of physical width b (kernel_smoothing.h)
+    """
+    CELL: typing.ClassVar[CouplingMapping]
+    KERNEL: typing.ClassVar[CouplingMapping]
+    __members__: typing.ClassVar[dict[str, CouplingMapping]]
+    @typing.overload
+    def __eq__(self, other: CouplingMapping) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: CouplingMapping) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class CouplerParams:
     """
     Parameters of the VOF-DEM coupling (SI units; see coupler.h).
@@ -2554,6 +2601,14 @@ class CouplerParams:
     def __init__(self) -> None:
         ...
     def validate(self) -> None:
+        ...
+    @property
+    def bandwidth(self) -> float:
+        """
+        KERNEL: the Gaussian's width b in exp(-r^2/b^2) [m], (0, 1], sigma = b / sqrt(2); 0 = unset: 1.0 x the stones' mean nominal diameter
+        """
+    @bandwidth.setter
+    def bandwidth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def drag_law(self) -> DragLaw:
@@ -2602,6 +2657,14 @@ class CouplerParams:
         """
     @lookup_m.setter
     def lookup_m(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mapping(self) -> CouplingMapping:
+        """
+        CouplingMapping of the exchanged fields, CELL
+        """
+    @mapping.setter
+    def mapping(self, arg0: CouplingMapping) -> None:
         ...
     @property
     def max_dt(self) -> float:
@@ -2736,8 +2799,18 @@ class Coupler:
     def disc_force_pressure(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def floored_solid_area(self) -> float:
+        """
+        KERNEL: solid area per unit width [m^2] the porosity floor n >= n_exp removed at the last mapping (0: the flow sees all of the stones' solid volume)
+        """
+    @property
     def fluid(self) -> VOFGrid:
         ...
+    @property
+    def kernel_bandwidth(self) -> float:
+        """
+        the kernel's width b [m] in use (0 with the CELL mapping)
+        """
     @property
     def n(self) -> int:
         ...

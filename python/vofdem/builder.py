@@ -381,6 +381,9 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.implicit_drag = scene.numerics.drag_exchange == "implicit"
     p.lookup_m = scene.numerics.lookup_m
     p.wet_fraction_tolerance = scene.numerics.wet_fraction_tolerance
+    p.mapping = {"cell": _core.CouplingMapping.CELL, "kernel": _core.CouplingMapping.KERNEL}[scene.numerics.coupling_mapping]
+    # unset: 0, the coupler's own default (the stones' mean nominal diameter)
+    p.bandwidth = scene.numerics.coupling_bandwidth or 0.0
     flags = _core.CouplerEffect.FLUID | _core.CouplerEffect.CHECKS
     if fx.dem:
         flags |= _core.CouplerEffect.DEM

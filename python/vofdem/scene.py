@@ -400,6 +400,13 @@ class Numerics(_Section):
     wet_fraction_tolerance: float = _p(1e-6, None, 0.0, 0.5, "a stone measured this close to wet (dry) is taken "
                                        "as under water (in the air) [-]; 1e-6 (the VOF's traces of air under "
                                        "water); 0: every measured wet fraction is followed", "[]")
+    coupling_mapping: str = _choice("cell", ("cell", "kernel"),
+                                    "what the stones and the flow exchange: each stone's footprint over the raw "
+                                    "cells ('cell', the paper's) or footprints and flow smoothed by a Gaussian "
+                                    "exp(-r^2/b^2) of the physical width coupling_bandwidth ('kernel'; docs/coupler.md)")
+    coupling_bandwidth: Optional[float] = _p(None, "length", 0.0, 1.0, "coupling_mapping = 'kernel': the Gaussian's "
+                                             "width b [m] (sigma = b / sqrt 2); unset: 1.0 x the stones' mean diameter",
+                                             "(]")
     fidelity: Optional[str] = _choice(None, ("draft", "standard", "fine"),
                                       "a preset of the grid, CFL and porosity method (fidelity.py; the scene must "
                                       "hold its values); unset: the scene's own values")

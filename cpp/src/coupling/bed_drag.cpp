@@ -35,4 +35,20 @@ DragForce bed_drag(int count, const int* cells, const double* areas, const doubl
   return {scale * fx, scale * fz};
 }
 
+BedDragDensity bed_drag_density(double F, double n, double D, double U, double W, double up, double wp,
+                                const BedDragParams& p) {
+  BedDragDensity d;
+  // no porous medium, a wall, no stone size, or dry: nothing (as bed_drag)
+  if (n <= 0.0 || n >= 1.0 || D <= 0.0 || F <= 0.0) return d;
+  const PorousCoefficients k = bed_coefficients_unchecked(n, D, p.nu_w, p.k1, p.k2);
+  const double lin = p.linear ? k.linear : 0.0, quad = p.quadratic ? k.quadratic : 0.0;
+  const double ur = n * (U - (p.relative ? up : 0.0)), wr = n * (W - (p.relative ? wp : 0.0));
+  const double mag = std::hypot(ur, wr);
+  const double coef = F * (lin + quad * mag);
+  d.fx = coef * ur;
+  d.fz = coef * wr;
+  if (p.relative) d.slope = F * n * (lin + 2.0 * quad * mag);
+  return d;
+}
+
 }  // namespace vofdem

@@ -39,6 +39,13 @@ void CouplerParams::validate() const {
   if (max_snapshot_interval < 1 || max_snapshot_interval > 4096)
     throw std::invalid_argument("max_snapshot_interval = " + std::to_string(max_snapshot_interval) +
                                 " is outside the allowed range [1, 4096]");
+  const int map = static_cast<int>(mapping);
+  if (map < 0 || map > 1)
+    throw std::invalid_argument("mapping = " + std::to_string(map) +
+                                " is outside the allowed values {0 (kCell), 1 (kKernel)}");
+  if (!(std::isfinite(bandwidth) && bandwidth >= 0.0 && bandwidth <= 1.0))
+    throw std::invalid_argument("bandwidth = " + format_value(bandwidth) +
+                                " m is outside the allowed range (0, 1] m (0: unset, 1.0 x the stones' mean diameter)");
   const int model = static_cast<int>(stone_drag);
   if (model < 0 || model > 1)
     throw std::invalid_argument("stone_drag = " + std::to_string(model) +
@@ -75,6 +82,7 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     cell_diam_sum_.assign(nc, 0.0);
     redistribution_ = std::make_unique<WaterRedistribution>(g);
     make_mapper();
+    make_kernel();
   }
   time_ = fluid_ ? fluid_->time() : (stones_ ? stones_->time() : 0.0);
   st_snapshot_ = profile_.add_stage("snapshot");
@@ -119,6 +127,35 @@ void Coupler::make_mapper() {
   csr_current_ = false;
 }
 
+// the kernel of CouplerParams::mapping = kKernel on the flow grid, its solid cells the base porosity's
+// walls (n = 0); the width unset (0): the stones' mean nominal diameter
+void Coupler::make_kernel() {
+  kernel_.reset();
+  kernel_solid_current_ = false;
+  floored_solid_area_ = 0.0;
+  if (params_.mapping != CouplingMapping::kKernel || !fluid_ || !mapper_) return;
+  KernelParams kp;
+  kp.bandwidth = params_.bandwidth;
+  if (!(kp.bandwidth > 0.0)) {
+    double sum = 0.0;
+    int count = 0;
+    for (int j = 0; j < n_; ++j)
+      if (stones_->disc_radius[j] > 0.0) sum += stones_->nominal_diameter(j), ++count;
+    kp.bandwidth = sum / count;  // count > 0: the mapper exists
+  }
+  const Grid2D& g = fluid_->grid();
+  const std::size_t nc = static_cast<std::size_t>(g.ncell());
+  std::vector<std::uint8_t> solid(nc, 0);
+  for (std::size_t c = 0; c < nc; ++c) solid[c] = cell_base_porosity[c] <= 0.0;
+  kernel_ = std::make_unique<KernelSmoother>(g, kp, &solid);
+  cell_kernel_porosity_.assign(nc, 1.0);
+  cell_kernel_F_.assign(nc, 0.0);
+  cell_bed_x_.assign(nc, 0.0);
+  cell_bed_z_.assign(nc, 0.0);
+  cell_bed_slope_.assign(nc, 0.0);
+  if (st_kernel_ < 0) st_kernel_ = profile_.add_stage("kernel");
+}
+
 // the parameters' limits that depend on the scene (checked before anything changes)
 void Coupler::check_params(const CouplerParams& p) const {
   p.validate();
@@ -133,8 +170,18 @@ void Coupler::set_params(const CouplerParams& params) {
   check_params(params);
   const bool remap = (params.flags ^ params_.flags) & kCoupleLookupPorosity || params.n_exp != params_.n_exp ||
                      params.lookup_m != params_.lookup_m || params.lookup_dr != params_.lookup_dr;
+  const bool rekernel = params.mapping != params_.mapping || params.bandwidth != params_.bandwidth;
+  const CouplerParams old = params_;
   params_ = params;
-  if (fluid_ && remap) make_mapper();
+  try {
+    if (fluid_ && remap) make_mapper();
+    if (fluid_ && (remap || rekernel)) make_kernel();
+  } catch (...) {  // a width the stones' diameters put out of range: nothing changes
+    params_ = old;
+    if (fluid_ && remap) make_mapper();
+    if (fluid_) make_kernel();
+    throw;
+  }
   mapped_ = false;
 }
 
@@ -165,11 +212,8 @@ void Coupler::update_porosity(bool keep_water_volume) {
   stage_porosity(keep_water_volume);
 }
 
-void Coupler::stage_porosity(bool keep_water_volume) {
-  ScopedStage timer(profile_, st_porosity_);
-  map_stones();
-  const Grid2D& g = fluid_->grid();
-  const int nc = g.ncell();
+// each stone's exact footprint summed per cell: solid area, area x diameter, area x velocity [m^2, m^3, m^3/s]
+void Coupler::deposit_stones() {
   std::fill(cell_solid_sum_.begin(), cell_solid_sum_.end(), 0.0);
   std::fill(cell_diam_sum_.begin(), cell_diam_sum_.end(), 0.0);
   std::fill(cell_solid_u_.begin(), cell_solid_u_.end(), 0.0);
@@ -188,9 +232,59 @@ void Coupler::stage_porosity(bool keep_water_volume) {
       cell_solid_w_[c] += area[p] * w;
     }
   }
-  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins. Written
+}
+
+// a per-cell area field [m^2 x q] smoothed as the density q per unit cell area (what the kernel conserves)
+void Coupler::smooth_area_field(std::vector<double>& v) {
+  const Grid2D& g = fluid_->grid();
+  for (int k = 0; k < g.nz(); ++k) {
+    const double inv = 1.0 / g.cell_area(k);
+    for (int i = 0; i < g.nx(); ++i) v[g.cell(i, k)] *= inv;
+  }
+  kernel_->smooth(v);
+  for (int k = 0; k < g.nz(); ++k) {
+    const double a = g.cell_area(k);
+    for (int i = 0; i < g.nx(); ++i) v[g.cell(i, k)] *= a;
+  }
+}
+
+// kernel mapping: the deposit smoothed, then eq. (11) on the smoothed solid fraction phi with the floor
+// n >= n_exp (phi <= 1: a cell holds no more stone than a packing of the stones does), before the
+// resistance law; the solid area the floor removes is counted, never clipped silently
+void Coupler::smooth_solid() {
+  ScopedStage timer(profile_, st_kernel_);
+  smooth_area_field(cell_solid_sum_);
+  smooth_area_field(cell_diam_sum_);
+  if (fluid_->params().flags & kFlowRelativeVelocity) {
+    smooth_area_field(cell_solid_u_);
+    smooth_area_field(cell_solid_w_);
+  }
+  const Grid2D& g = fluid_->grid();
+  const double ne = params_.n_exp;
+  double floored = 0.0;
+  for (int k = 0; k < g.nz(); ++k) {
+    const double a = g.cell_area(k);
+    for (int i = 0; i < g.nx(); ++i) {
+      const int c = g.cell(i, k);
+      const double phi = cell_solid_sum_[c] / a, s = phi < 1.0 ? phi : 1.0;
+      floored += (phi - s) * a * (1.0 - ne);
+      const double n = 1.0 - (1.0 - ne) * s;
+      cell_kernel_porosity_[c] = n < ne ? ne : n;  // the round-off of 1 - (1 - n_exp) at s = 1
+    }
+  }
+  floored_solid_area_ = floored;
+  kernel_solid_current_ = true;
+}
+
+void Coupler::stage_porosity(bool keep_water_volume) {
+  ScopedStage timer(profile_, st_porosity_);
+  map_stones();
+  const Grid2D& g = fluid_->grid();
+  const int nc = g.ncell();
+  deposit_stones();
+  if (kernel_) smooth_solid();  // the stones' porosity against the base one (walls, fixed porous zones): the tighter wins. Written
   // into the flow's own array (its numpy views stay live), the old values kept in n_old_
-  const std::vector<double>& nm = mapper_->cell_porosity();
+  const std::vector<double>& nm = kernel_ ? cell_kernel_porosity_ : mapper_->cell_porosity();
   std::vector<double>& n_new = fluid_->cell_porosity;
   for (int c = 0; c < nc; ++c) {
     n_old_[c] = n_new[c];
@@ -237,6 +331,7 @@ void Coupler::solid_velocity_at_faces() {
 void Coupler::update_fluid_forces() {
   if (!fluid_ || !mapper_) return;
   csr_current_ = false;
+  kernel_solid_current_ = false;
   stage_fluid_forces();
 }
 
@@ -263,13 +358,6 @@ void Coupler::stage_fluid_forces() {
   const FlowParams& fp = fluid_->params();
   const std::vector<int>& off = mapper_->disc_cell_offsets();
   const std::vector<int>& idx = mapper_->disc_cell_index();
-  // the flow is sampled in the stones' cells only (the other entries are not read)
-  const int ncs = off[n_];
-  fluid_->pore_velocity_at_cells(ncs, idx.data(), cell_U_, cell_W_);
-  // without the pressure-gradient effect the sample's gradient is unused: zeros
-  if (fl & kCouplePressureGradient) fluid_->pressure_gradient_at_cells(ncs, idx.data(), cell_dpdx_, cell_dpdz_);
-  else std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
-  const std::vector<double>& area = mapper_->disc_cell_area();
   const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
   const bool bed = params_.stone_drag == StoneDragModel::kBed;
   BedDragParams bp;
@@ -280,6 +368,19 @@ void Coupler::stage_fluid_forces() {
     bp.quadratic = fp.flags & kFlowPorousForchheimer;
     bp.relative = fp.flags & kFlowRelativeVelocity;
   }
+  if (kernel_) {
+    smooth_flow(bed && (fl & kCoupleDrag), bp);
+  } else {
+    // the flow is sampled in the stones' cells only (the other entries are not read)
+    const int ncs = off[n_];
+    fluid_->pore_velocity_at_cells(ncs, idx.data(), cell_U_, cell_W_);
+    // without the pressure-gradient effect the sample's gradient is unused: zeros
+    if (fl & kCouplePressureGradient) fluid_->pressure_gradient_at_cells(ncs, idx.data(), cell_dpdx_, cell_dpdz_);
+    else std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
+  }
+  // the water fraction the stones see: the flow's, or smoothed with the kernel
+  const double* cell_F = kernel_ ? cell_kernel_F_.data() : fluid_->cell_F.data();
+  const std::vector<double>& area = mapper_->disc_cell_area();
   for (int j = 0; j < n_; ++j) {
     double* fd = &disc_force_drag[2 * j];
     double* fs = &disc_force_pressure[2 * j];
@@ -288,13 +389,16 @@ void Coupler::stage_fluid_forces() {
     disc_drag_slope_[j] = 0.0;
     if (!stones_->disc_active[j]) continue;
     const StoneFlowSample s = sample_flow_at_stone(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j],
-                                                   fluid_->cell_F.data(), cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
+                                                   cell_F, cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
                                                    cell_dpdz_.data(), rho, fp.medium.gravity[0], fp.medium.gravity[1]);
     const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
     disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
     if ((fl & kCoupleDrag) && !bed) {
       const DragForce f = stones_->model().drag(*stones_, j, s, up, wp, rho, nu, params_.drag_law,
                                                 params_.implicit_drag ? &disc_drag_slope_[j] : nullptr);
+      fd[0] = f.fx, fd[1] = f.fz;
+    } else if ((fl & kCoupleDrag) && kernel_) {
+      const DragForce f = kernel_bed_drag(j, &disc_drag_slope_[j]);
       fd[0] = f.fx, fd[1] = f.fz;
     } else if (fl & kCoupleDrag) {
       const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
@@ -333,6 +437,78 @@ void Coupler::stage_fluid_forces() {
           water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);
     }
   }
+}
+
+// kernel mapping, what the stones see: on every cell the bed drag's densities (from the raw flow and the
+// stones' smoothed velocity, as the flow's resistance uses them), then F, F U, F W and the pressure
+// gradient smoothed; U = S(F U) / S(F), so the F-weighted average over a footprint is that of S(F U).
+// By self-adjointness this equals each stone's smoothed footprint over the raw fields
+void Coupler::smooth_flow(bool bed, const BedDragParams& bp) {
+  // the stones' velocity per cell for the bed drag: this step's smoothed deposit (one-way coupling: made here)
+  if (bed && bp.relative && !kernel_solid_current_) {
+    map_stones();
+    deposit_stones();
+    smooth_solid();
+  }
+  ScopedStage timer(profile_, st_kernel_);
+  const int nc = fluid_->grid().ncell();
+  const std::vector<double>& F = fluid_->cell_F;
+  fluid_->pore_velocity_at_cells(cell_U_, cell_W_);
+  if (params_.flags & kCouplePressureGradient) {
+    fluid_->pressure_gradient_at_cells(cell_dpdx_, cell_dpdz_);
+    kernel_->smooth(cell_dpdx_);
+    kernel_->smooth(cell_dpdz_);
+  } else {
+    std::fill(cell_dpdx_.begin(), cell_dpdx_.end(), 0.0), std::fill(cell_dpdz_.begin(), cell_dpdz_.end(), 0.0);
+  }
+  if (bed) {
+    const std::vector<double>& n = fluid_->cell_porosity;
+    const std::vector<double>& D = fluid_->cell_stone_diameter;
+    for (int c = 0; c < nc; ++c) {
+      const double s = cell_solid_sum_[c];
+      const double up = s > 0.0 ? cell_solid_u_[c] / s : 0.0, wp = s > 0.0 ? cell_solid_w_[c] / s : 0.0;
+      const BedDragDensity d = bed_drag_density(F[c], n[c], D[c], cell_U_[c], cell_W_[c], up, wp, bp);
+      cell_bed_x_[c] = d.fx, cell_bed_z_[c] = d.fz, cell_bed_slope_[c] = d.slope;
+    }
+    kernel_->smooth(cell_bed_x_);
+    kernel_->smooth(cell_bed_z_);
+    kernel_->smooth(cell_bed_slope_);
+  }
+  for (int c = 0; c < nc; ++c) {
+    cell_kernel_F_[c] = F[c];
+    cell_U_[c] *= F[c];
+    cell_W_[c] *= F[c];
+  }
+  kernel_->smooth(cell_kernel_F_);
+  kernel_->smooth(cell_U_);
+  kernel_->smooth(cell_W_);
+  for (int c = 0; c < nc; ++c) {
+    const double f = cell_kernel_F_[c];
+    cell_U_[c] = f > 0.0 ? cell_U_[c] / f : 0.0;
+    cell_W_[c] = f > 0.0 ? cell_W_[c] / f : 0.0;
+  }
+}
+
+// kernel mapping, bed drag: V rho_w times the smoothed densities averaged over the stone's footprint.
+// Summed over the stones this is the flow's cell-wise removal integrated against the smoothed stone
+// volume per cell: the transpose of deposit-then-smooth (Newton's third law to round-off)
+DragForce Coupler::kernel_bed_drag(int j, double* slope) const {
+  const std::vector<int>& off = mapper_->disc_cell_offsets();
+  const std::vector<int>& idx = mapper_->disc_cell_index();
+  const std::vector<double>& area = mapper_->disc_cell_area();
+  double a_sum = 0.0, fx = 0.0, fz = 0.0, s = 0.0;
+  for (int p = off[j]; p < off[j + 1]; ++p) {
+    const int c = idx[p];
+    a_sum += area[p];
+    fx += area[p] * cell_bed_x_[c];
+    fz += area[p] * cell_bed_z_[c];
+    s += area[p] * cell_bed_slope_[c];
+  }
+  *slope = 0.0;
+  if (a_sum <= 0.0) return {0.0, 0.0};  // outside the grid
+  const double scale = stones_->volume(j) * fluid_->params().medium.rho_water / a_sum;
+  *slope = scale * s;
+  return {scale * fx, scale * fz};
 }
 
 void Coupler::clear_fluid_forces() {
@@ -534,6 +710,7 @@ void Coupler::run_stages(double dt) {
   const unsigned fl = params_.flags;
   const bool stones_move = has_stones() && (fl & kCoupleDEM);
   csr_current_ = false;
+  kernel_solid_current_ = false;
   // the force stage skipped: the stones must not keep the last fluid force it wrote
   if (forces_applied_ && !(fl & kCoupleForces) && stones_) clear_fluid_forces();
   if (fluid_ && mapper_ && (fl & kCouplePorosity) && (stones_move || !mapped_)) stage_porosity();
@@ -542,6 +719,7 @@ void Coupler::run_stages(double dt) {
   if (fluid_ && (fl & kCoupleFluid)) stage_fluid(dt);
   if (has_stones() && (fl & kCoupleChecks)) stage_checks();
   csr_current_ = false;
+  kernel_solid_current_ = false;
   time_ += dt;
   ++steps_;
 }

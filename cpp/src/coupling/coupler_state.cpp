@@ -61,6 +61,7 @@ void Coupler::import_state(const CouplerState& s, bool with_base) {
     if (with_base) {
       state::copy_into(cell_base_porosity, s.cell_base_porosity);
       state::copy_into(cell_base_diameter, s.cell_base_diameter);
+      if (kernel_) make_kernel();  // its solid cells are the base porosity's
     }
     fluid_->import_state(s.fluid);
   }

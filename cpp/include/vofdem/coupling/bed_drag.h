@@ -61,4 +61,14 @@ DragForce bed_drag(int count, const int* cells, const double* areas, const doubl
                    const double* D, const double* U, const double* W, double up, double wp, double volume,
                    const BedDragParams& p, double* slope = nullptr);
 
+// the summand of (*) in one cell, per unit stone volume and water density: F_c (A_c + B_c |u_r,c|) u_r,c
+// (fx, fz) [m/s^2], and |d / du_p| of it (slope) [1/s], the stones' velocity (up, wp) [m/s] there.
+// The kernel mapping smooths these cell fields and averages them over each stone's footprint
+// (coupler.h, CouplingMapping::kKernel); bed_drag above is the same sum over the raw cells.
+struct BedDragDensity {
+  double fx = 0.0, fz = 0.0, slope = 0.0;
+};
+BedDragDensity bed_drag_density(double F, double n, double D, double U, double W, double up, double wp,
+                                const BedDragParams& p);
+
 }  // namespace vofdem

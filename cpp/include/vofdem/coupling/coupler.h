@@ -19,6 +19,8 @@
 //   3. "dem"           the stones advance by dt in substeps of their own step (DEMParams::dt, 1e-4 s)
 //   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
 //   5. "checks"        non-finite forces or stone state -> std::runtime_error
+// With CouplerParams::mapping = kKernel, "kernel" times the smoothing (kernel_smoothing.h) inside stages 1
+// and 2 (their times include it); with kCell (the default) it does not run and is not in the profile.
 // and before them "snapshot", the copy of the state that a failing stage restores (coupled scenes only);
 // "stable_dt" times each call of stable_dt() (every module's limits, before each step of advance()).
 // The pressure-gradient force is held over the DEM substeps of a step (exchange once per fluid step);
@@ -52,7 +54,9 @@
 #include <vector>
 
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/coupling/bed_drag.h"
 #include "vofdem/coupling/drag.h"
+#include "vofdem/coupling/kernel_smoothing.h"
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/common/profile.h"
 #include "vofdem/flow/vof_grid.h"
@@ -88,6 +92,12 @@ enum class StoneDragModel {
   kBed = 1,     // reaction of the flow's porous resistance, rho n R per bulk volume (bed_drag.h)
 };
 
+// how the stones and the flow exchange cell fields (CouplerParams::mapping), validated in validate()
+enum class CouplingMapping {
+  kCell = 0,    // each stone's exact footprint over the raw cells (the paper's; the default)
+  kKernel = 1,  // the footprints and the flow smoothed by a Gaussian of physical width (kernel_smoothing.h)
+};
+
 // parameters of the coupling, constant while stepping (SI units)
 struct CouplerParams {
   unsigned flags = kCoupleDefault;        // CouplerEffect bits
@@ -110,6 +120,13 @@ struct CouplerParams {
   // within advance(), the guard's snapshot is taken at most this many steps apart [steps], [1, 4096];
   // 32 (1: every step). A copy costs about 5 % of a flow step on the weir scenes; a failure replays up to this many
   int max_snapshot_interval = 32;
+  // kKernel: the solid fraction the flow sees is the smoothed sum of the stones' footprints, n = 1 -
+  // (1 - n_exp) S(a_s / A) floored at n_exp; a stone sees the smoothed flow over its footprint; the bed
+  // drag is the smoothed reaction of the flow's resistance. kCell (default): the paper's cell-wise mapping
+  CouplingMapping mapping = CouplingMapping::kCell;
+  // kKernel: the Gaussian's width b in exp(-r^2/b^2) [m], (0, 1], sigma = b / sqrt(2); 0 = unset: 1.0 x
+  // the stones' mean nominal diameter
+  double bandwidth = 0.0;
 
   // throws std::invalid_argument naming the first bad parameter
   void validate() const;
@@ -198,6 +215,14 @@ class Coupler {
 
   StageProfile& profile() { return profile_; }
 
+  // ---- kernel mapping (CouplerParams::mapping = kKernel) ----
+  // the smoothing operator (null with kCell or without fluid or stones) and its width b [m]
+  const KernelSmoother* kernel() const { return kernel_.get(); }
+  double kernel_bandwidth() const { return kernel_ ? kernel_->params().bandwidth : 0.0; }
+  // the solid area [m^2 per unit width] the porosity floor n >= n_exp removed at the last mapping (0 when
+  // the smoothed solid fraction never exceeds the packing's): the solid volume the flow does not see
+  double floored_solid_area() const { return floored_solid_area_; }
+
   // ---- state arrays ----
   std::vector<double> disc_force_drag;      // drag on each stone (sphere or bed drag) [N], 2n (x, z)
   std::vector<double> disc_force_pressure;  // pressure-gradient force on each stone [N], 2n
@@ -212,6 +237,12 @@ class Coupler {
   void count_limit(const char* term, int cell);
   int stone_cell(int j) const;  // the cell of stone j's centre (-1 outside the grid)
   void make_mapper();
+  void make_kernel();
+  void deposit_stones();
+  void smooth_solid();
+  void smooth_flow(bool bed, const BedDragParams& bp);
+  void smooth_area_field(std::vector<double>& v);
+  DragForce kernel_bed_drag(int j, double* slope) const;
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
   std::string non_finite_cell(int count, const int* cells) const;
@@ -278,12 +309,19 @@ class Coupler {
   std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
   std::vector<double> disc_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]
   std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
+  // kernel mapping: the operator, its porosity, the smoothed water fraction, the bed drag's smoothed
+  // densities (x, z, slope per unit stone volume and water density), sized by make_kernel()
+  std::unique_ptr<KernelSmoother> kernel_;
+  bool kernel_solid_current_ = false;  // cell_solid_* hold this step's smoothed deposit
+  double floored_solid_area_ = 0.0;
+  std::vector<double> cell_kernel_porosity_, cell_kernel_F_, cell_bed_x_, cell_bed_z_, cell_bed_slope_;
 
   std::map<std::string, long long> limit_steps_;
   std::map<std::string, std::vector<long long>> limit_cells_;
 
   StageProfile profile_;
   int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_, st_stable_dt_;
+  int st_kernel_ = -1;  // added with the first kernel
 };
 
 }  // namespace vofdem
