@@ -306,6 +306,9 @@ void bind_vof(py::module_& m) {
       .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)
       .def_property_readonly("pressure_fallbacks", &VOFGrid::pressure_fallbacks,
                              "multigrid-CG solves redone by the direct solver (no convergence)")
+      .def_property_readonly("pressure_iterations", &VOFGrid::pressure_iterations,
+                             "CG iterations of every pressure solve since construction (a fallback counts "
+                             "max_iterations); per solve: over the 'pressure' stage's calls in profile")
       .def("__repr__", [](const VOFGrid& f) {
         return "VOFGrid(nx=" + std::to_string(f.grid().nx()) + ", nz=" + std::to_string(f.grid().nz()) +
                ", t=" + std::to_string(f.time()) + ")";

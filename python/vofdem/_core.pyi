@@ -2264,6 +2264,11 @@ class VOFGrid:
         multigrid-CG solves redone by the direct solver (no convergence)
         """
     @property
+    def pressure_iterations(self) -> int:
+        """
+        CG iterations of every pressure solve since construction (a fallback counts max_iterations); per solve: over the 'pressure' stage's calls in profile
+        """
+    @property
     def prev_dt(self) -> float:
         """
         the last step [s] of the Adams-Bashforth history (0: none, the next step is Euler)
