@@ -97,7 +97,10 @@ void bind_vof(py::module_& m) {
       .value("POINT_IMPLICIT", KEpsilonTimeScheme::kPointImplicit,
              "predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces")
       .value("VERTICAL_LINES", KEpsilonTimeScheme::kVerticalLines,
-             "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only");
+             "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only")
+      .value("ALTERNATING_LINES", KEpsilonTimeScheme::kAlternatingLines,
+             "rows then columns backward Euler by tridiagonal solves; the step bounded by the horizontal "
+             "advection only");
   py::enum_<MomentumTimeScheme>(m, "MomentumTimeScheme", "Time integration of the convective term (FlowParams.time_scheme).")
       .value("EULER", MomentumTimeScheme::kEuler, "forward Euler of the explicit momentum terms (first order)")
       .value("ADAMS_BASHFORTH2", MomentumTimeScheme::kAdamsBashforth2,

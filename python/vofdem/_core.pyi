@@ -1608,7 +1608,10 @@ class KEpsilonTimeScheme:
       POINT_IMPLICIT : predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces
     
       VERTICAL_LINES : columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only
+    
+      ALTERNATING_LINES : rows then columns backward Euler by tridiagonal solves; the step bounded by the horizontal advection only
     """
+    ALTERNATING_LINES: typing.ClassVar[KEpsilonTimeScheme]
     POINT_IMPLICIT: typing.ClassVar[KEpsilonTimeScheme]
     VERTICAL_LINES: typing.ClassVar[KEpsilonTimeScheme]
     __members__: typing.ClassVar[dict[str, KEpsilonTimeScheme]]
