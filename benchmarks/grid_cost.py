@@ -6,8 +6,9 @@ and advanced from rest to --seconds of simulated time on one thread. Reported pe
 the CPU time (getrusage, user + system: this process alone), the CPU per cell-step of each stage (the
 profiles of the coupler, the flow and the k-epsilon model; stages nest: the flow's are parts of the
 coupler's `fluid`, k-epsilon's of the flow's `turbulence`), the steps each time-step limit set
-(Coupler.step_limits), the pressure solve's CG iterations per solve, and the held stones' loads at the
-end (the sum of the drag and pressure forces on them). Ratios are to the first grid of the run (the
+(Coupler.step_limits), the pressure solve's CG iterations per solve, and the answers at the end: the
+held stones' loads (the sum of the drag and pressure forces on them), the upstream water level at
+x = 0.49 m and the eddy viscosity's mean over the water. Ratios are to the first grid of the run (the
 paper's). The aim of the grid study: twice as fine at most 9 times the paper grid's CPU (4 times the
 cells, 2 times the steps), four times as fine at most 70 times.
 
@@ -69,6 +70,21 @@ def held_loads(sim) -> dict:
                 largest=float(mag.max()) if len(mag) else 0.0, forces=f)
 
 
+UPSTREAM_X = 0.49  # m: where the upstream water level is read (docs/k_epsilon.md's measure)
+
+
+def flow_answers(sim) -> dict:
+    """The flow's state the grids should agree on: the upstream water level [m] at UPSTREAM_X (the water
+    fraction summed over its column) and the eddy viscosity's mean over the water cells (F >= 0.5) [m^2/s]."""
+    g = sim.fluid.grid
+    F, nut = np.asarray(sim.fluid.cell_F, float), np.asarray(sim.fluid.cell_nut, float)
+    zf = np.asarray(g.z_faces, float)
+    i = min(int((UPSTREAM_X - g.x0) / g.dx), g.nx - 1)
+    water = F >= 0.5
+    return dict(level=float(zf[0] + np.sum(F[:, i] * np.diff(zf))),
+                nut_mean=float(nut[water].mean()) if water.any() else 0.0)
+
+
 def run_grid(factor: float, seconds: float, settings=(), small: bool = False, keep=None) -> dict:
     """The spin-up (stones held) from rest to `seconds` on the grid `factor` times as fine as the paper's
     (--small: as the draft grid, on the quick scene): cost, steps, limits, pressure iterations, loads.
@@ -93,7 +109,7 @@ def run_grid(factor: float, seconds: float, settings=(), small: bool = False, ke
     res = dict(factor=factor, dx=scene.grid.dx, dz=scene.grid.dz, nx=g.nx, nz=g.nz, cells=g.nx * g.nz, seconds=seconds,
                steps=steps, cpu=cpu, stages=stages, limits={k: int(v) for k, v in dict(sim.step_limits()).items()},
                iterations=sim.fluid.pressure_iterations - it0, solves=int(solves), loads=held_loads(sim),
-               time=float(sim.time))
+               time=float(sim.time), **flow_answers(sim))
     return keep(sim, res) if keep else res
 
 
@@ -111,13 +127,14 @@ def per_solve(res) -> float:
 def summary_rows(results) -> list:
     base = results[0]
     rows = ["| grid dx [cm] | cells | steps | steps / paper's | CPU [s] | CPU / paper's | CPU per cell-step [us] | "
-            "CG iterations per pressure solve | held stones' load sum x, z [N] |",
-            "|---|---|---|---|---|---|---|---|---|"]
+            "CG iterations per pressure solve | held stones' load sum x, z [N] | upstream level [m] | "
+            "mean nu_t in the water [m2/s] |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in results:
         rows.append(f"| {100 * r['dx']:.4g} | {r['nx']} x {r['nz']} = {r['cells']} | {r['steps']} | "
                     f"{r['steps'] / base['steps']:.2f} | {r['cpu']:.3g} | {ratio(r['cpu'], base['cpu']):.2f} | "
                     f"{1e6 * r['cpu'] / (r['cells'] * r['steps']):.3f} | {per_solve(r):.2f} | "
-                    f"{r['loads']['fx']:.4f}, {r['loads']['fz']:.4f} |")
+                    f"{r['loads']['fx']:.4f}, {r['loads']['fz']:.4f} | {r['level']:.4f} | {r['nut_mean']:.3e} |")
     return rows
 
 
