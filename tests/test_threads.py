@@ -23,9 +23,12 @@ def restore_threads():
     _core.set_thread_min_cells(before[1])
 
 
-def flume(turbulence=True):
-    """Water fed through the inlet over a porous block into a free overfall, stones dropped on it."""
+def flume(turbulence=True, scheme=None):
+    """Water fed through the inlet over a porous block into a free overfall, stones dropped on it
+    (scheme: the k-epsilon transport's KEpsilonTimeScheme, None: the default)."""
     fp = vofdem.FlowParams()
+    if scheme is not None:
+        fp.turbulence_time_scheme = scheme
     fp.inlet = _core.InletBoundary.DISCHARGE
     fp.outlet = _core.OutletBoundary.FREE_OVERFALL
     fp.flume_width = 0.5
@@ -46,10 +49,10 @@ def flume(turbulence=True):
     return sim
 
 
-def state_after(threads, seconds=0.15):
+def state_after(threads, seconds=0.15, scheme=None):
     _core.set_threads(threads)
     _core.set_thread_min_cells(1)  # every loop split, on this small grid too
-    sim = flume()
+    sim = flume(scheme=scheme)
     sim.advance(seconds)
     return {k: np.array(v, copy=True) for k, v in sim.export_state().items()}
 
@@ -72,6 +75,17 @@ def test_a_coupled_flume_is_the_same_bits_on_one_and_two_threads(restore_threads
         assert one[k].tobytes() == two[k].tobytes(), k
     start = np.asarray(flume().export_state()["dem/disc_pos"])
     assert start.shape == one["dem/disc_pos"].shape and not np.array_equal(one["dem/disc_pos"], start)  # they moved
+
+
+@needs_two
+def test_the_alternating_lines_are_the_same_bits_on_one_and_two_threads(restore_threads):
+    # the k-epsilon transport's row systems, then its column systems, on the threads
+    scheme = _core.KEpsilonTimeScheme.ALTERNATING_LINES
+    one, two = state_after(1, scheme=scheme), state_after(2, scheme=scheme)
+    for k in one:
+        assert one[k].tobytes() == two[k].tobytes(), k
+    default = state_after(1)
+    assert any(one[k].tobytes() != default[k].tobytes() for k in one)  # the scheme is in play
 
 
 @needs_two

@@ -97,7 +97,10 @@ void bind_vof(py::module_& m) {
       .value("POINT_IMPLICIT", KEpsilonTimeScheme::kPointImplicit,
              "predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces")
       .value("VERTICAL_LINES", KEpsilonTimeScheme::kVerticalLines,
-             "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only");
+             "columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only")
+      .value("ALTERNATING_LINES", KEpsilonTimeScheme::kAlternatingLines,
+             "rows then columns backward Euler by tridiagonal solves; the step bounded by the horizontal "
+             "advection only");
   py::enum_<MomentumTimeScheme>(m, "MomentumTimeScheme", "Time integration of the convective term (FlowParams.time_scheme).")
       .value("EULER", MomentumTimeScheme::kEuler, "forward Euler of the explicit momentum terms (first order)")
       .value("ADAMS_BASHFORTH2", MomentumTimeScheme::kAdamsBashforth2,
@@ -306,6 +309,9 @@ void bind_vof(py::module_& m) {
       .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)
       .def_property_readonly("pressure_fallbacks", &VOFGrid::pressure_fallbacks,
                              "multigrid-CG solves redone by the direct solver (no convergence)")
+      .def_property_readonly("pressure_iterations", &VOFGrid::pressure_iterations,
+                             "CG iterations of every pressure solve since construction (a fallback counts "
+                             "max_iterations); per solve: over the 'pressure' stage's calls in profile")
       .def("__repr__", [](const VOFGrid& f) {
         return "VOFGrid(nx=" + std::to_string(f.grid().nx()) + ", nz=" + std::to_string(f.grid().nz()) +
                ", t=" + std::to_string(f.time()) + ")";

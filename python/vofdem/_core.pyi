@@ -1778,7 +1778,10 @@ class KEpsilonTimeScheme:
       POINT_IMPLICIT : predictor and Jacobi sweeps; the step bounded by the explicit limit of all faces
     
       VERTICAL_LINES : columns backward Euler by tridiagonal solves; the step bounded by the horizontal faces only
+    
+      ALTERNATING_LINES : rows then columns backward Euler by tridiagonal solves; the step bounded by the horizontal advection only
     """
+    ALTERNATING_LINES: typing.ClassVar[KEpsilonTimeScheme]
     POINT_IMPLICIT: typing.ClassVar[KEpsilonTimeScheme]
     VERTICAL_LINES: typing.ClassVar[KEpsilonTimeScheme]
     __members__: typing.ClassVar[dict[str, KEpsilonTimeScheme]]
@@ -2434,6 +2437,11 @@ class VOFGrid:
     def pressure_fallbacks(self) -> int:
         """
         multigrid-CG solves redone by the direct solver (no convergence)
+        """
+    @property
+    def pressure_iterations(self) -> int:
+        """
+        CG iterations of every pressure solve since construction (a fallback counts max_iterations); per solve: over the 'pressure' stage's calls in profile
         """
     @property
     def prev_dt(self) -> float:

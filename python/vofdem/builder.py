@@ -223,7 +223,8 @@ def flow_params(scene: Scene):
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
-                                "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT}[n.turbulence_scheme]
+                                "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT,
+                                "alternating_lines": _core.KEpsilonTimeScheme.ALTERNATING_LINES}[n.turbulence_scheme]
     p.turbulence_limit_step = n.turbulence_step_limit
     p.turbulence_cfl = n.turbulence_cfl
     p.turbulence_production = {"strain": _core.KEpsilonProduction.STRAIN,

@@ -357,9 +357,10 @@ class Numerics(_Section):
                                    "(water volume drift about 1e-11 per step)", "(]")
     time_scheme: str = _choice("adams_bashforth2", ("adams_bashforth2", "euler"),
                                "momentum convection: Adams-Bashforth 2 (second order) or forward Euler")
-    turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit"),
+    turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit", "alternating_lines"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
-                                     "faces) or point-implicit (bounded by all faces)")
+                                     "faces), point-implicit (bounded by all faces), or rows then columns "
+                                     "implicit (bounded by the horizontal advection alone: no diffusion limit)")
     turbulence_cfl: float = _p(0.5, None, 0.0, 1.0, "k-epsilon: the safety factor of its step limit [-]; 0.5 (1: "
                                "the explicit faces' positivity limit itself)", "(]")
     turbulence_production: str = _choice("strain", ("strain", "kato_launder"),

@@ -60,12 +60,13 @@ void check_k_epsilon_params(const KEpsilonParams& p) {
     throw std::invalid_argument("pore_filter_length = " + format_value(p.pore_filter_length) +
                                 " is outside the allowed range (0, inf) with pore_strain kFiltered");
   const int scheme = static_cast<int>(p.time_scheme);
-  if (scheme < 0 || scheme > 1)
+  if (scheme < 0 || scheme > 2)
     throw std::invalid_argument("time_scheme = " + std::to_string(scheme) +
-                                " is outside the allowed values {0 (kPointImplicit), 1 (kVerticalLines)}");
-  if (!p.limit_step && p.time_scheme != KEpsilonTimeScheme::kVerticalLines)
-    throw std::invalid_argument("limit_step = false needs time_scheme kVerticalLines: the point-implicit "
-                                "scheme's step is bounded by all four faces");
+                                " is outside the allowed values {0 (kPointImplicit), 1 (kVerticalLines), "
+                                "2 (kAlternatingLines)}");
+  if (!p.limit_step && p.time_scheme == KEpsilonTimeScheme::kPointImplicit)
+    throw std::invalid_argument("limit_step = false needs time_scheme kVerticalLines or kAlternatingLines: the "
+                                "point-implicit scheme's step is bounded by all four faces");
 }
 
 double wall_shear_velocity(double u_t, double y, double nu, double ks, double kappa, double log_law_e) {
@@ -617,6 +618,8 @@ void KEpsilonModel::step(double dt, const std::vector<double>& face_u, const std
     ScopedStage timer(profile_, stage_transport_);
     if (params_.time_scheme == KEpsilonTimeScheme::kVerticalLines)
       solve_transport_lines(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
+    else if (params_.time_scheme == KEpsilonTimeScheme::kAlternatingLines)
+      solve_transport_alternating(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
     else
       solve_transport(dt, face_u, face_w, cell_porosity, cell_F, cell_nu);
   }
@@ -636,10 +639,19 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
                                 const std::vector<double>& cell_nu, int* cell) const {
   check_sizes(face_u, face_w, cell_porosity, cell_F, cell_nu);
   // the column solves take the vertical faces (and the boundary inflow) implicitly
-  const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines;
-  if (lines && !params_.limit_step) {  // no bound (KEpsilonParams::limit_step), nothing computed
+  const bool alternating = params_.time_scheme == KEpsilonTimeScheme::kAlternatingLines;
+  const bool lines = params_.time_scheme == KEpsilonTimeScheme::kVerticalLines || alternating;
+  // no bound (KEpsilonParams::limit_step; the alternating lines without advection), nothing computed
+  if (lines && (!params_.limit_step || (alternating && !has(params_.flags, kKEpsAdvection)))) {
     if (cell) *cell = -1;
     return std::numeric_limits<double>::infinity();
+  }
+  // the alternating lines take every diffusion implicitly: the horizontal advection's limit alone
+  if (alternating) {
+    int worst = -1;
+    const double rate = lines_stable_rate(face_u, cell_porosity, cell_F, worst, false);
+    if (cell) *cell = worst;
+    return rate > 0.0 ? params_.cfl / rate : std::numeric_limits<double>::infinity();
   }
   const int nfaces = lines ? 2 : 4;
   half_cell_resistances(cell_porosity, cell_F, cell_nu, lines);

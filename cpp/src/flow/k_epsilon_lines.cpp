@@ -66,9 +66,10 @@ void lines_row_rates(int nx, double dx, const double* u, const double* n, const 
 
 // row by row (vectorised), the rows' largest taken in order: the first cell at the largest rate
 double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const std::vector<double>& cell_porosity,
-                                        const std::vector<double>& cell_F, int& cell) const {
+                                        const std::vector<double>& cell_F, int& cell, bool diffusion) const {
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
-  const bool adv = (params_.flags & kKEpsAdvection) != 0u, dif = (params_.flags & kKEpsDiffusion) != 0u;
+  const bool adv = (params_.flags & kKEpsAdvection) != 0u;
+  const bool dif = diffusion && (params_.flags & kKEpsDiffusion) != 0u;
   auto row_rates = adv ? (dif ? lines_row_rates<true, true> : lines_row_rates<true, false>)
                        : (dif ? lines_row_rates<false, true> : lines_row_rates<false, false>);
   const double dx = grid_.dx(), fmin = params_.water_fraction_min;
@@ -178,6 +179,119 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
     detail::parallel_range(ncell, [&, floor_e](long long c0, long long c1) {
       for (long long c = c0; c < c1; ++c) dst[c] = std::max(row[3][c], floor_e);
     });
+  }
+}
+
+}  // namespace vofdem
+
+namespace vofdem {
+
+// kAlternatingLines: backward Euler of (K) and (E) with every face implicit, (M + A_x + A_z) x = b,
+// approximately factored in delta form (Douglas & Gunn 1964; Beam & Warming 1978): with x = x0 + d and
+// the residual of the step's start r = b - (M + A_x + A_z) x0,
+//   (M + A_x) y = r             one tridiagonal system per row (horizontal faces)
+//   (M + A_z) d = M y           one per column (vertical faces)
+// M = n/dt + n D (the diagonal: storage and the linearised sink), A_x, A_z: the horizontal and vertical
+// faces' coefficients of face_coefficients() (upwind inflow + diffusion; a boundary inflow face or a
+// face to a wall cell on the diagonal alone, its value known). The factorisation adds A_x M^-1 A_z d,
+// of order dt^2 for small dt and proportional to d for any dt: a steady state is kept exactly (r = 0,
+// d = 0) and so is a uniform decaying field (A_x, A_z annihilate it: the backward-Euler value); where
+// A_x is small (the paper's grid, below the horizontal limit) the scheme is the column solves of
+// kVerticalLines with their horizontal faces explicit. Both systems are M-matrices, stable for any dt;
+// d is not sign-bound, so k and eps are kept at their floors (k_min, eps_min) as every scheme's are.
+void KEpsilonModel::solve_transport_alternating(double dt, const std::vector<double>& face_u,
+                                                const std::vector<double>& face_w,
+                                                const std::vector<double>& cell_porosity,
+                                                const std::vector<double>& cell_F, const std::vector<double>& cell_nu) {
+  const KEpsilonParams& p = params_;
+  const bool prod_on = (p.flags & kKEpsProduction) != 0u;
+  const int nx = grid_.nx(), nz = grid_.nz(), ncell = grid_.ncell();
+  std::vector<double>* target[2] = {&cell_k, &cell_eps};
+  const double floor[2] = {p.k_min, p.eps_min};
+  for (int e = 0; e < 2; ++e) {
+    for (std::vector<double>& t : tri_[e]) t.resize(static_cast<std::size_t>(ncell));
+    row_pass_[e].resize(static_cast<std::size_t>(ncell));
+  }
+  detail::parallel_range(ncell, [&](long long c0, long long c1) {
+    for (long long c = c0; c < c1; ++c) {
+      const std::uint8_t role = cell_role_[c];
+      scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
+      scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
+    }
+  });
+  const std::vector<double>* start[2] = {&scratch_, &scratch_eps_};
+  half_cell_resistances(cell_porosity, cell_F, cell_nu);
+  // pass 0: the rows' systems for y (sub/super-diagonal: west/east); pass 1: the columns' for d
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool rows = pass == 0;
+    detail::parallel_for(nz, nx, [&, dt, rows](int k0, int k1) {
+      FaceCoef fc[4];
+      for (int k = k0; k < k1; ++k) {
+        for (int i = 0; i < nx; ++i) {
+          const int c = grid_.cell(i, k);
+          for (int e = 0; e < 2; ++e) {
+            std::vector<double>* row = tri_[e];
+            row[0][c] = row[2][c] = 0.0;
+            row[1][c] = 1.0;
+            row[3][c] = 0.0;  // no change unless solved
+          }
+          if (cell_role_[c] != kSolved) continue;
+          face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
+          const double n = cell_porosity[c];
+          const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
+          const double prod = prod_on ? cell_prod_[c] : 0.0;
+          const double source[2] = {prod, p.c1 * rate * prod};
+          const double sink[2] = {rate, p.c2 * rate};
+          for (int e = 0; e < 2; ++e) {
+            const std::vector<double>& x0 = *start[e];
+            std::vector<double>* row = tri_[e];
+            const double m = n / dt + n * sink[e];
+            double diag = m;
+            double rhs = rows ? n * (source[e] - sink[e] * x0[c]) : m * row_pass_[e][c];
+            for (int f = 0; f < 4; ++f) {
+              const double a = fc[f].a[e];
+              if (a == 0.0) continue;
+              const int nb = fc[f].nb;
+              // the residual: every face at the step's start (rows pass only)
+              if (rows) {
+                const double x_nb = nb < 0 ? (e == 0 ? inflow_k(fc[f].inflow_u) : inflow_eps(fc[f].inflow_u))
+                                           : x0[nb];
+                rhs += a * (x_nb - x0[c]);
+              }
+              if ((f < 2) != rows) continue;  // the other direction's faces: not in this pass's operator
+              diag += a;
+              if (nb >= 0 && cell_role_[nb] == kSolved) row[(f == 0 || f == 2) ? 0 : 2][c] = -a;
+            }
+            row[1][c] = diag;
+            row[3][c] = rhs;
+          }
+        }
+      }
+    });
+    for (int e = 0; e < 2; ++e) {
+      std::vector<double>* row = tri_[e];
+      if (rows) {
+        // each row a contiguous system of nx cells
+        detail::parallel_for(nz, nx, [&](int k0, int k1) {
+          for (int k = k0; k < k1; ++k) {
+            const std::size_t o = static_cast<std::size_t>(nx) * k;
+            solve_tridiagonal(nx, row[0].data() + o, row[1].data() + o, row[2].data() + o, row[3].data() + o);
+          }
+        });
+        std::vector<double>& y = row_pass_[e];
+        detail::parallel_range(ncell, [&](long long c0, long long c1) {
+          for (long long c = c0; c < c1; ++c) y[c] = row[3][c];
+        });
+      } else {
+        solve_tridiagonal_rows(nz, 0, nx, nx, row[0].data(), row[1].data(), row[2].data(), row[3].data());
+        std::vector<double>& dst = *target[e];
+        const std::vector<double>& x0 = *start[e];
+        const double floor_e = floor[e];
+        detail::parallel_range(ncell, [&, floor_e](long long c0, long long c1) {
+          for (long long c = c0; c < c1; ++c) dst[c] = std::max(x0[c] + row[3][c], floor_e);
+        });
+      }
+    }
   }
 }
 

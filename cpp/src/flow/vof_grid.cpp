@@ -701,6 +701,7 @@ void VOFGrid::stage_pressure(double dt) {
     if (solver_->kind() != PressureSolverKind::kMultigridCG) fail("pressure", e.what(), 0, -1);
     solve_pressure_directly(e.what());
   }
+  pressure_iterations_ += pressure_stats_.iterations;
   check_finite("pressure", "pressure", cell_p, 0);
 }
 

@@ -99,6 +99,12 @@ enum class KEpsilonTimeScheme {
   // per column, the horizontal faces explicit (lagged-implicit in a cell above their own limit);
   // stable_dt() is the explicit limit of the horizontal faces only (k_epsilon_lines.cpp)
   kVerticalLines = 1,
+  // backward Euler of the whole system approximately factored into alternating lines, in delta form:
+  // each row's tridiagonal system (horizontal faces), then each column's (vertical faces); stable for
+  // any dt, a steady state and a uniform decay kept exactly, k and eps kept at their floors.
+  // stable_dt() is the horizontal advection's limit alone: no diffusion limit, which grows as 1/dx^2
+  // with the grid and with nu_t (k_epsilon_lines.cpp)
+  kAlternatingLines = 2,
 };
 
 // which velocity's cross derivatives dU/dz, dW/dx enter the strain S of the production
@@ -146,7 +152,8 @@ struct KEpsilonParams {
   int sweeps = 1;                   // [-] Jacobi sweeps after the predictor, in [0, 1000], usual 0-4
   double cfl = 0.5;                 // [-] safety factor of stable_dt(), in (0, 1], usual 0.5
   KEpsilonTimeScheme time_scheme = KEpsilonTimeScheme::kPointImplicit;  // kVerticalLines: columns implicit
-  // kVerticalLines: stable_dt() returns the horizontal faces' explicit limit (true) or none (false:
+  // kVerticalLines, kAlternatingLines: stable_dt() returns the horizontal faces' explicit limit (the
+  // advection's alone with kAlternatingLines) (true) or none (false:
   // above that limit a cell's horizontal faces are lagged-implicit, k and eps stay positive and bounded
   // for any step, first order in time there); kPointImplicit always limits the step. False is not
   // accurate in the weir: nu_t runs to its cap and the upstream level rises (docs/k_epsilon.md)
@@ -274,10 +281,15 @@ class KEpsilonModel {
   void solve_transport_lines(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                              const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                              const std::vector<double>& cell_nu);
+  // kAlternatingLines: the row systems, then the column systems of k and eps
+  void solve_transport_alternating(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
+                                   const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
+                                   const std::vector<double>& cell_nu);
   // kVerticalLines: stable_dt()'s largest rate [1/s] (cfl / dt) and its first cell (-1: none), from the
   // half-cell resistances of this call
+  // (diffusion false: the advection's rates alone, kAlternatingLines)
   double lines_stable_rate(const std::vector<double>& face_u, const std::vector<double>& cell_porosity,
-                           const std::vector<double>& cell_F, int& cell) const;
+                           const std::vector<double>& cell_F, int& cell, bool diffusion = true) const;
   // passes 1..sweeps of the Jacobi iteration; the last pass writes target
   void jacobi_sweeps(const std::vector<JacobiRow>& rows, double floor, std::vector<double>& target,
                      std::vector<double>& scratch) const;
@@ -299,6 +311,7 @@ class KEpsilonModel {
   std::vector<double> scratch_, scratch_eps_;  // Jacobi buffers of k and eps
   std::vector<JacobiRow> rows_k_, rows_eps_;   // the systems of the solved cells, reused by the sweeps
   std::vector<double> tri_[2][4];              // kVerticalLines: sub, diagonal, super, rhs of k and eps
+  std::vector<double> row_pass_[2];            // kAlternatingLines: the row systems' solutions y of k and eps
   // half a cell over its conductance n (nu + nu_t / sigma) [s/m], along x and along z, for k and for eps
   mutable std::vector<double> half_res_x_[2], half_res_z_[2];
   // the rows' largest rates, then per thread one row's rates, active cells and faces' conductances of k

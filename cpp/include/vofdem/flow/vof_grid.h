@@ -339,6 +339,9 @@ class VOFGrid {
   const PressureSolveStats& last_pressure_stats() const { return pressure_stats_; }
   // multigrid-CG solves that did not converge and were redone by the direct solver, since construction
   long long pressure_fallbacks() const { return pressure_fallbacks_; }
+  // CG iterations of every pressure solve since construction (a fallback counts max_iterations); over the
+  // pressure stage's calls (profile) the iterations per solve, which should not grow with the grid
+  long long pressure_iterations() const { return pressure_iterations_; }
 
  private:
   struct Snapshot;
@@ -405,6 +408,7 @@ class VOFGrid {
   PressureProblem problem_;
   std::unique_ptr<PressureSolver> solver_;
   PressureSolveStats pressure_stats_;
+  long long pressure_iterations_ = 0;
   std::unique_ptr<PressureSolver> fallback_solver_;  // the direct solver, made on the first fallback
   long long pressure_fallbacks_ = 0;
   VofBoundaryInflow vof_inflow_;
