@@ -85,16 +85,22 @@ void bind_coupler(py::module_& m) {
            }),
            py::arg("fluid"), py::arg("stones"),
            py::arg("params") = CouplerParams(), py::keep_alive<1, 2>(), py::keep_alive<1, 3>())
-      .def_property_readonly("fluid", py::overload_cast<>(&Coupler::fluid), py::return_value_policy::reference_internal)
-      .def_property_readonly("stones", py::overload_cast<>(&Coupler::stones), py::return_value_policy::reference_internal)
+      .def_property_readonly("fluid", py::overload_cast<>(&Coupler::fluid), py::return_value_policy::reference_internal,
+           "the flow (VOFGrid) this coupler steps")
+      .def_property_readonly("stones", py::overload_cast<>(&Coupler::stones), py::return_value_policy::reference_internal,
+           "the stones (DEMSystem) this coupler steps")
       .def_property(
           "params", [](const Coupler& c) { return c.params(); }, &Coupler::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked, with the porosity "
           "mapper following them")
-      .def_property_readonly("n", &Coupler::n)
-      .def_property_readonly("time", &Coupler::time)
-      .def_property_readonly("step_count", &Coupler::step_count)
-      .def("stable_dt", &Coupler::stable_dt, py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("n", &Coupler::n,
+           "number of stones")
+      .def_property_readonly("time", &Coupler::time,
+           "simulated time [s]")
+      .def_property_readonly("step_count", &Coupler::step_count,
+           "coupled steps taken")
+      .def("stable_dt", &Coupler::stable_dt, py::call_guard<py::gil_scoped_release>(),
+           "the coupled step [s]: the flow's stable step and the stones' exchange bounds; the GIL is released")
       .def("step_limits", &Coupler::step_limits,
            "steps of advance() bound by each limit, {term: steps} (a diagnostic, not checkpointed)")
       .def(
@@ -106,18 +112,25 @@ void bind_coupler(py::module_& m) {
             return d;
           },
           "{term: steps bound in each cell (ncell counts, a copy)}")
-      .def("clear_step_limits", &Coupler::clear_step_limits)
+      .def("clear_step_limits", &Coupler::clear_step_limits,
+           "forgets the counts of which limit bound each step (step_limits)")
       .def_property_readonly("replayed_steps", &Coupler::replayed_steps,
                              "steps taken again from the guard's snapshot after a failure (a diagnostic)")
       .def("step", py::overload_cast<>(&Coupler::step), py::call_guard<py::gil_scoped_release>())
       .def("step", py::overload_cast<double>(&Coupler::step), py::arg("dt"), py::call_guard<py::gil_scoped_release>())
       .def("advance", [](Coupler& c, double t_end) { return c.advance(t_end); }, py::arg("t_end"),
-           py::call_guard<py::gil_scoped_release>())
-      .def("set_inflow_table", &Coupler::set_inflow_table, py::arg("times"), py::arg("discharge"))
-      .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true)
-      .def("update_fluid_forces", &Coupler::update_fluid_forces)
-      .def("water_volume", &Coupler::water_volume)
-      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume)
+           py::call_guard<py::gil_scoped_release>(),
+           "coupled steps of stable_dt() until time reaches t_end [s]; returns the steps; the GIL is released")
+      .def("set_inflow_table", &Coupler::set_inflow_table, py::arg("times"), py::arg("discharge"),
+           "inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the flow)")
+      .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true,
+           "maps the stones onto the porosity now; keep_water_volume: True keeps n F V per cell (displaced water moves to neighbours), False keeps F (scene set-up)")
+      .def("update_fluid_forces", &Coupler::update_fluid_forces,
+           "recomputes the fluid forces on the stones now (disc_force_drag, disc_force_pressure, the stones' wet fractions and external forces)")
+      .def("water_volume", &Coupler::water_volume,
+           "the flow's water volume sum(n F V) per unit width [m^2]")
+      .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume,
+           "water moved between cells by the redistribution, accumulated [m^2 per unit width]")
       .def_property_readonly("kernel_bandwidth", &Coupler::kernel_bandwidth,
                              "the kernel's width b [m] in use (0 with the CELL mapping)")
       .def_property_readonly("floored_solid_area", &Coupler::floored_solid_area,
@@ -128,15 +141,20 @@ void bind_coupler(py::module_& m) {
                                "a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) "
                                "continues from it bit for bit",
                                "returns to a copy_state() copy (every part checked first; written into the arrays in place)");
-  cls.def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal)
+  cls.def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal,
+           "CPU seconds per coupled stage (StageProfile)")
       .def_property_readonly("disc_force_drag",
-                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); })
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); },
+           "drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view")
       .def_property_readonly("disc_force_pressure",
-                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_pressure, self); })
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_pressure, self); },
+           "pressure-gradient force on each stone (n, 2) [N], zero-copy view")
       .def_property_readonly("cell_base_porosity",
-                             [](py::object self) { return view(self.cast<Coupler&>().cell_base_porosity, self); })
+                             [](py::object self) { return view(self.cast<Coupler&>().cell_base_porosity, self); },
+           "porosity without the stones per cell (ncell) [-] (from the flow at construction), zero-copy view")
       .def_property_readonly("cell_base_diameter",
-                             [](py::object self) { return view(self.cast<Coupler&>().cell_base_diameter, self); });
+                             [](py::object self) { return view(self.cast<Coupler&>().cell_base_diameter, self); },
+           "stone diameter of the base porosity per cell (ncell) [m], zero-copy view");
 }
 
 }  // namespace vofdem::bind

@@ -182,27 +182,36 @@ void bind_vof(py::module_& m) {
              return d;
            }),
            py::arg("times"), py::arg("discharge"))
-      .def_readonly("times", &DischargeTable::times)
-      .def_readonly("discharge", &DischargeTable::discharge)
+      .def_readonly("times", &DischargeTable::times,
+           "times [s], strictly increasing")
+      .def_readonly("discharge", &DischargeTable::discharge,
+           "discharge Q at each time [m^3/s], >= 0")
       .def("at", &DischargeTable::at, py::arg("t"), "Q [m^3/s] at time t [s]")
       .def_static("ramp", &DischargeTable::ramp, py::arg("q0"), py::arg("q1"), py::arg("t0"), py::arg("t1"),
                   "linear ramp from q0 to q1 [m^3/s] over [t0, t1] [s]")
       .def_static("constant", &DischargeTable::constant, py::arg("q"));
 
   py::class_<FlowStableDt>(m, "FlowStableDt", "Largest stable time step [s] of each term (inf: no limit).")
-      .def_readonly("advective", &FlowStableDt::advective)
-      .def_readonly("viscous", &FlowStableDt::viscous)
-      .def_readonly("gravity", &FlowStableDt::gravity)
-      .def_readonly("turbulence", &FlowStableDt::turbulence)
-      .def_readonly("max_dt", &FlowStableDt::max_dt)
-      .def_readonly("growth", &FlowStableDt::growth)
+      .def_readonly("advective", &FlowStableDt::advective,
+           "cfl times the smallest h / |u / n| over the faces (pore velocity) [s]")
+      .def_readonly("viscous", &FlowStableDt::viscous,
+           "the explicit viscous stresses' bound times viscous_substeps [s] (inf with the implicit scheme)")
+      .def_readonly("gravity", &FlowStableDt::gravity,
+           "cfl times sqrt(2 h_min / |g|): a cell crossed by a fall from rest [s]")
+      .def_readonly("turbulence", &FlowStableDt::turbulence,
+           "the k-epsilon model's limit [s] (inf when off)")
+      .def_readonly("max_dt", &FlowStableDt::max_dt,
+           "FlowParams.max_dt [s]")
+      .def_readonly("growth", &FlowStableDt::growth,
+           "initial_dt before the first step, then max_dt_growth times the last step [s]")
       .def_readonly("advective_cell", &FlowStableDt::advective_cell,
                     "the cell beside the face that binds the advective limit (-1: none)")
       .def_readonly("turbulence_cell", &FlowStableDt::turbulence_cell,
                     "the cell that binds the k-epsilon limit (-1: none)")
       .def_readonly("viscous_cell", &FlowStableDt::viscous_cell,
                     "the cell beside the face that binds the viscous limit (-1: none)")
-      .def("min", &FlowStableDt::min);
+      .def("min", &FlowStableDt::min,
+           "the smallest of the terms: the stable step [s]");
 
   bind_state_class<FlowState>(m, "FlowState",
                                "A copy of a VOFGrid's whole state (VOFGrid.copy_state); set_state() returns to it.",
@@ -212,7 +221,8 @@ void bind_vof(py::module_& m) {
                           "2D vertical free-surface flow through porous media (seed eqs. 1-4). State arrays are "
                           "zero-copy numpy views: cells (nz, nx), x-faces (nz, nx+1), z-faces (nz+1, nx).");
   cls.def(py::init<const Grid2D&, const FlowParams&>(), py::arg("grid"), py::arg("params") = FlowParams())
-      .def_property_readonly("grid", &VOFGrid::grid, py::return_value_policy::reference_internal)
+      .def_property_readonly("grid", &VOFGrid::grid, py::return_value_policy::reference_internal,
+           "the grid (Grid2D), owned by this flow")
       .def_property(
           "params", [](const VOFGrid& f) { return f.params(); }, &VOFGrid::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked, with the pressure "
@@ -228,9 +238,11 @@ void bind_vof(py::module_& m) {
       .def_property_readonly("cell_porosity", [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_porosity); },
                              "porosity [-] (0 = solid); call update_face_porosity() after writing")
       .def_property_readonly("face_x_porosity",
-                             [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_x_porosity); })
+                             [](py::object s) { return xfaces(s, s.cast<VOFGrid&>().face_x_porosity); },
+           "porosity n_f on the x-faces (nz, nx + 1) [-] (derived: the smaller of the two cells'), zero-copy view")
       .def_property_readonly("face_z_porosity",
-                             [](py::object s) { return zfaces(s, s.cast<VOFGrid&>().face_z_porosity); })
+                             [](py::object s) { return zfaces(s, s.cast<VOFGrid&>().face_z_porosity); },
+           "porosity n_f on the z-faces (nz + 1, nx) [-] (derived), zero-copy view")
       .def_property_readonly("cell_stone_diameter",
                              [](py::object s) { return cells(s, s.cast<VOFGrid&>().cell_stone_diameter); },
                              "stone diameter D_sp [m]")
@@ -254,14 +266,19 @@ void bind_vof(py::module_& m) {
           "is a source of the next step's continuity (dn/dt + div u = 0), so displaced water flows away")
       .def("update_face_porosity", &VOFGrid::update_face_porosity, py::arg("displace") = false,
            "recomputes the face porosities after writing cell_porosity / cell_stone_diameter")
-      .def("fill_water_below", &VOFGrid::fill_water_below, py::arg("level"))
+      .def("fill_water_below", &VOFGrid::fill_water_below, py::arg("level"),
+           "water fraction F = 1 below level [m] (a partial fraction in the cut row), 0 above")
       .def("fill_water_box", &VOFGrid::fill_water_box, py::arg("x0"), py::arg("x1"), py::arg("z0"), py::arg("z1"),
-           py::arg("value") = 1.0)
+           py::arg("value") = 1.0,
+           "F = value in the cells whose centre lies in [x0, x1] x [z0, z1] [m], untouched elsewhere")
       .def("set_porosity_box", &VOFGrid::set_porosity_box, py::arg("x0"), py::arg("x1"), py::arg("z0"), py::arg("z1"),
-           py::arg("n"), py::arg("d"))
-      .def("set_hydrostatic_pressure", &VOFGrid::set_hydrostatic_pressure)
+           py::arg("n"), py::arg("d"),
+           "porosity n [-] and stone diameter d [m] in the cells whose centre lies in [x0, x1] x [z0, z1] [m]; n = 0 makes solid cells")
+      .def("set_hydrostatic_pressure", &VOFGrid::set_hydrostatic_pressure,
+           "hydrostatic pressure [Pa] from the water fraction, p = 0 at the top")
       .def_property("time", &VOFGrid::time, &VOFGrid::set_time, "simulated time [s]")
-      .def_property_readonly("step_count", &VOFGrid::step_count)
+      .def_property_readonly("step_count", &VOFGrid::step_count,
+           "flow steps taken")
       .def_property("last_dt", &VOFGrid::last_dt, &VOFGrid::set_last_dt,
                     "the last step [s] the growth limit starts from (0: none yet, initial_dt applies)")
       .def_property_readonly("retried_steps", &VOFGrid::retried_steps,
@@ -270,25 +287,31 @@ void bind_vof(py::module_& m) {
                              "the last step [s] of the Adams-Bashforth history (0: none, the next step is Euler)")
       .def("clear_step_history", &VOFGrid::clear_step_history,
            "forget the last step (the next one is forward Euler): after velocities were set by hand")
-      .def("stable_dt", &VOFGrid::stable_dt)
-      .def("stable_dt_terms", &VOFGrid::stable_dt_terms);
+      .def("stable_dt", &VOFGrid::stable_dt,
+           "the stable step [s]: the smallest of stable_dt_terms()")
+      .def("stable_dt_terms", &VOFGrid::stable_dt_terms,
+           "the stable step's terms (FlowStableDt) [s], with the cells that bind them");
   def_copy_state<FlowState>(cls, "a copy of the whole state (FlowState): set_state(copy) continues from it bit for bit",
                             "returns to a copy_state() copy (checked first; written into the arrays in place: views "
                             "stay valid)");
-  cls.def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>())
-      .def("advance", &VOFGrid::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>())
+  cls.def("step", &VOFGrid::step, py::arg("dt"), py::call_guard<py::gil_scoped_release>(),
+           "one flow step of dt [s]; RuntimeError naming the stage, cell and time after restoring the step's start; the GIL is released")
+      .def("advance", &VOFGrid::advance, py::arg("t_end"), py::call_guard<py::gil_scoped_release>(),
+           "steps of stable_dt() until time reaches t_end [s] (a step that breaches the CFL taken again shorter); returns the steps; the GIL is released")
       .def("pore_velocity_at_cells",
            [](const VOFGrid& f) {
              std::vector<double> U, W;
              f.pore_velocity_at_cells(U, W);
              return py::make_tuple(cell_copy(f.grid(), U), cell_copy(f.grid(), W));
-           })
+           },
+           "(U, W) = (u / n, w / n) at the cell centres (nz, nx) [m/s], 0 in solid cells, copied")
       .def("pressure_gradient_at_cells",
            [](const VOFGrid& f) {
              std::vector<double> gx, gz;
              f.pressure_gradient_at_cells(gx, gz);
              return py::make_tuple(cell_copy(f.grid(), gx), cell_copy(f.grid(), gz));
-           })
+           },
+           "(dp/dx, dp/dz) at the cell centres (nz, nx) [Pa/m] (central, one-sided at walls and solids), copied")
       .def("water_volume", &VOFGrid::water_volume, "sum(n F V) per metre of width [m^2]")
       .def("discharge_through", &VOFGrid::discharge_through, py::arg("i"), "water discharge per width [m^2/s]")
       .def("inlet_discharge_per_width", &VOFGrid::inlet_discharge_per_width, "q = Q(t) / B now [m^2/s]")
@@ -301,12 +324,14 @@ void bind_vof(py::module_& m) {
                              "water volume per width [m^2] made by the advection's divergence correction where "
                              "the velocity is not divergence-free (the pressure solve's residual), since construction")
       .def_property_readonly("profile", py::overload_cast<>(&VOFGrid::profile),
-                             py::return_value_policy::reference_internal)
+                             py::return_value_policy::reference_internal,
+           "CPU seconds per flow stage (StageProfile)")
       .def_property_readonly("turbulence_profile", [](VOFGrid& f) -> StageProfile& { return f.turbulence().profile(); },
                              py::return_value_policy::reference_internal,
                              "the k-epsilon model's own stages (setup, wall functions, production, transport, eddy "
                              "viscosity, checks): the parts of the 'turbulence' stage")
-      .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats)
+      .def_property_readonly("last_pressure_stats", &VOFGrid::last_pressure_stats,
+           "the last pressure solve's outcome (PressureSolveStats: iterations, residual)")
       .def_property_readonly("pressure_fallbacks", &VOFGrid::pressure_fallbacks,
                              "multigrid-CG solves redone by the direct solver (no convergence)")
       .def_property_readonly("pressure_iterations", &VOFGrid::pressure_iterations,

@@ -2210,19 +2210,27 @@ class DischargeTable:
         """
     @property
     def discharge(self) -> list[float]:
-        ...
+        """
+        discharge Q at each time [m^3/s], >= 0
+        """
     @property
     def times(self) -> list[float]:
-        ...
+        """
+        times [s], strictly increasing
+        """
 class FlowStableDt:
     """
     Largest stable time step [s] of each term (inf: no limit).
     """
     def min(self) -> float:
-        ...
+        """
+        the smallest of the terms: the stable step [s]
+        """
     @property
     def advective(self) -> float:
-        ...
+        """
+        cfl times the smallest h / |u / n| over the faces (pore velocity) [s]
+        """
     @property
     def advective_cell(self) -> int:
         """
@@ -2230,16 +2238,24 @@ class FlowStableDt:
         """
     @property
     def gravity(self) -> float:
-        ...
+        """
+        cfl times sqrt(2 h_min / |g|): a cell crossed by a fall from rest [s]
+        """
     @property
     def growth(self) -> float:
-        ...
+        """
+        initial_dt before the first step, then max_dt_growth times the last step [s]
+        """
     @property
     def max_dt(self) -> float:
-        ...
+        """
+        FlowParams.max_dt [s]
+        """
     @property
     def turbulence(self) -> float:
-        ...
+        """
+        the k-epsilon model's limit [s] (inf when off)
+        """
     @property
     def turbulence_cell(self) -> int:
         """
@@ -2247,7 +2263,9 @@ class FlowStableDt:
         """
     @property
     def viscous(self) -> float:
-        ...
+        """
+        the explicit viscous stresses' bound times viscous_substeps [s] (inf with the implicit scheme)
+        """
     @property
     def viscous_cell(self) -> int:
         """
@@ -2276,7 +2294,9 @@ class VOFGrid:
     def __repr__(self) -> str:
         ...
     def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
-        ...
+        """
+        steps of stable_dt() until time reaches t_end [s] (a step that breaches the CFL taken again shorter); returns the steps; the GIL is released
+        """
     def clear_step_history(self) -> None:
         """
         forget the last step (the next one is forward Euler): after velocities were set by hand
@@ -2290,35 +2310,53 @@ class VOFGrid:
         water discharge per width [m^2/s]
         """
     def fill_water_below(self, level: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+        """
+        water fraction F = 1 below level [m] (a partial fraction in the cut row), 0 above
+        """
     def fill_water_box(self, x0: typing.SupportsFloat | typing.SupportsIndex, x1: typing.SupportsFloat | typing.SupportsIndex, z0: typing.SupportsFloat | typing.SupportsIndex, z1: typing.SupportsFloat | typing.SupportsIndex, value: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
-        ...
+        """
+        F = value in the cells whose centre lies in [x0, x1] x [z0, z1] [m], untouched elsewhere
+        """
     def inlet_discharge_per_width(self) -> float:
         """
         q = Q(t) / B now [m^2/s]
         """
     def pore_velocity_at_cells(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
-        ...
+        """
+        (U, W) = (u / n, w / n) at the cell centres (nz, nx) [m/s], 0 in solid cells, copied
+        """
     def pressure_gradient_at_cells(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
-        ...
+        """
+        (dp/dx, dp/dz) at the cell centres (nz, nx) [Pa/m] (central, one-sided at walls and solids), copied
+        """
     def set_hydrostatic_pressure(self) -> None:
-        ...
+        """
+        hydrostatic pressure [Pa] from the water fraction, p = 0 at the top
+        """
     def set_porosity(self, porosity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], displace: bool = False) -> None:
         """
         sets the cell porosity (ncell values in [0, 1]) and the face porosities; displace=True: the change is a source of the next step's continuity (dn/dt + div u = 0), so displaced water flows away
         """
     def set_porosity_box(self, x0: typing.SupportsFloat | typing.SupportsIndex, x1: typing.SupportsFloat | typing.SupportsIndex, z0: typing.SupportsFloat | typing.SupportsIndex, z1: typing.SupportsFloat | typing.SupportsIndex, n: typing.SupportsFloat | typing.SupportsIndex, d: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+        """
+        porosity n [-] and stone diameter d [m] in the cells whose centre lies in [x0, x1] x [z0, z1] [m]; n = 0 makes solid cells
+        """
     def set_state(self, state: FlowState) -> None:
         """
         returns to a copy_state() copy (checked first; written into the arrays in place: views stay valid)
         """
     def stable_dt(self) -> float:
-        ...
+        """
+        the stable step [s]: the smallest of stable_dt_terms()
+        """
     def stable_dt_terms(self) -> FlowStableDt:
-        ...
+        """
+        the stable step's terms (FlowStableDt) [s], with the cells that bind them
+        """
     def step(self, dt: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+        """
+        one flow step of dt [s]; RuntimeError naming the stage, cell and time after restoring the step's start; the GIL is released
+        """
     def update_face_porosity(self, displace: bool = False) -> None:
         """
         recomputes the face porosities after writing cell_porosity / cell_stone_diameter
@@ -2387,7 +2425,9 @@ class VOFGrid:
         """
     @property
     def face_x_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        porosity n_f on the x-faces (nz, nx + 1) [-] (derived: the smaller of the two cells'), zero-copy view
+        """
     @property
     def face_x_solid_u(self) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -2395,7 +2435,9 @@ class VOFGrid:
         """
     @property
     def face_z_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        porosity n_f on the z-faces (nz + 1, nx) [-] (derived), zero-copy view
+        """
     @property
     def face_z_solid_w(self) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -2403,7 +2445,9 @@ class VOFGrid:
         """
     @property
     def grid(self) -> Grid2D:
-        ...
+        """
+        the grid (Grid2D), owned by this flow
+        """
     @property
     def inlet_volume(self) -> float:
         """
@@ -2419,7 +2463,9 @@ class VOFGrid:
         ...
     @property
     def last_pressure_stats(self) -> PressureSolveStats:
-        ...
+        """
+        the last pressure solve's outcome (PressureSolveStats: iterations, residual)
+        """
     @property
     def net_inflow_volume(self) -> float:
         """
@@ -2450,7 +2496,9 @@ class VOFGrid:
         """
     @property
     def profile(self) -> StageProfile:
-        ...
+        """
+        CPU seconds per flow stage (StageProfile)
+        """
     @property
     def retried_steps(self) -> int:
         """
@@ -2458,7 +2506,9 @@ class VOFGrid:
         """
     @property
     def step_count(self) -> int:
-        ...
+        """
+        flow steps taken
+        """
     @property
     def time(self) -> float:
         """
@@ -2751,9 +2801,13 @@ class Coupler:
     def __init__(self, fluid: typing.Any, stones: typing.Any, params: CouplerParams = ...) -> None:
         ...
     def advance(self, t_end: typing.SupportsFloat | typing.SupportsIndex) -> int:
-        ...
+        """
+        coupled steps of stable_dt() until time reaches t_end [s]; returns the steps; the GIL is released
+        """
     def clear_step_limits(self) -> None:
-        ...
+        """
+        forgets the counts of which limit bound each step (step_limits)
+        """
     def copy_state(self) -> CouplerState:
         """
         a copy of the whole coupled state (CouplerState), to branch from: set_state(copy) continues from it bit for bit
@@ -2767,13 +2821,17 @@ class Coupler:
         restores export_state() exactly (every part checked first; written into the arrays in place)
         """
     def set_inflow_table(self, times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], discharge: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
-        ...
+        """
+        inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the flow)
+        """
     def set_state(self, state: CouplerState) -> None:
         """
         returns to a copy_state() copy (every part checked first; written into the arrays in place)
         """
     def stable_dt(self) -> float:
-        ...
+        """
+        the coupled step [s]: the flow's stable step and the stones' exchange bounds; the GIL is released
+        """
     @typing.overload
     def step(self) -> None:
         ...
@@ -2789,23 +2847,37 @@ class Coupler:
         steps of advance() bound by each limit, {term: steps} (a diagnostic, not checkpointed)
         """
     def update_fluid_forces(self) -> None:
-        ...
+        """
+        recomputes the fluid forces on the stones now (disc_force_drag, disc_force_pressure, the stones' wet fractions and external forces)
+        """
     def update_porosity(self, keep_water_volume: bool = True) -> None:
-        ...
+        """
+        maps the stones onto the porosity now; keep_water_volume: True keeps n F V per cell (displaced water moves to neighbours), False keeps F (scene set-up)
+        """
     def water_volume(self) -> float:
-        ...
+        """
+        the flow's water volume sum(n F V) per unit width [m^2]
+        """
     @property
     def cell_base_diameter(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        stone diameter of the base porosity per cell (ncell) [m], zero-copy view
+        """
     @property
     def cell_base_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        porosity without the stones per cell (ncell) [-] (from the flow at construction), zero-copy view
+        """
     @property
     def disc_force_drag(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view
+        """
     @property
     def disc_force_pressure(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        pressure-gradient force on each stone (n, 2) [N], zero-copy view
+        """
     @property
     def floored_solid_area(self) -> float:
         """
@@ -2813,7 +2885,9 @@ class Coupler:
         """
     @property
     def fluid(self) -> VOFGrid:
-        ...
+        """
+        the flow (VOFGrid) this coupler steps
+        """
     @property
     def kernel_bandwidth(self) -> float:
         """
@@ -2821,7 +2895,9 @@ class Coupler:
         """
     @property
     def n(self) -> int:
-        ...
+        """
+        number of stones
+        """
     @property
     def params(self) -> CouplerParams:
         """
@@ -2832,10 +2908,14 @@ class Coupler:
         ...
     @property
     def profile(self) -> StageProfile:
-        ...
+        """
+        CPU seconds per coupled stage (StageProfile)
+        """
     @property
     def redistributed_volume(self) -> float:
-        ...
+        """
+        water moved between cells by the redistribution, accumulated [m^2 per unit width]
+        """
     @property
     def replayed_steps(self) -> int:
         """
@@ -2843,13 +2923,19 @@ class Coupler:
         """
     @property
     def step_count(self) -> int:
-        ...
+        """
+        coupled steps taken
+        """
     @property
     def stones(self) -> DEMSystem:
-        ...
+        """
+        the stones (DEMSystem) this coupler steps
+        """
     @property
     def time(self) -> float:
-        ...
+        """
+        simulated time [s]
+        """
 def _drag_force_x(arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg7: DragLaw) -> typing.Any:
     ...
 def _drag_force_z(arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg5: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg6: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg7: DragLaw) -> typing.Any:
