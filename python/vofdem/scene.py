@@ -376,9 +376,10 @@ class Numerics(_Section):
                                        "the averaging box's side [m]; 0 = the stones' median diameter", "[]")
     turbulence_production_limit: float = _p(0.0, None, 0.0, 1e3, "k-epsilon: P <= this x eps, 0 = off [-]; Menter "
                                             "(1994): 10")
-    turbulence_step_limit: bool = _flag(True, "k-epsilon vertical_lines: the horizontal faces' explicit limit "
-                                        "bounds the fluid step (true), or not (false: k and eps stay positive, but "
-                                        "in the weir nu_t runs to its cap and the upstream level rises)")
+    turbulence_step_limit: bool = _flag(True, "k-epsilon vertical_lines and alternating_lines: the explicit part's "
+                                        "limit (the horizontal faces', or the horizontal advection's) bounds the fluid "
+                                        "step (true), or not (false: k and eps stay positive, but in the weir nu_t "
+                                        "runs to its cap and the upstream level rises)")
     viscous_scheme: str = _choice("implicit_vertical", ("implicit_vertical", "implicit_vertical_from_start",
                                                         "explicit", "implicit"),
                                   "viscous stresses: vertical diffusion by column solves after the explicit "
