@@ -161,7 +161,8 @@ def test_the_python_example_runs(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
     first = out.stdout.splitlines()[0]
-    assert re.match(r"80 stones, the furthest moved \d+\.\d{3} m; \d+ cells of water after \d+ flow steps", first)
+    assert re.match(r"80 stones carry \d+\.\d{2} N downstream \(the most loaded \d+\.\d{2} N\); \d+ cells of water "
+                    r"after \d+ flow steps", first)
     assert "fluid" in out.stdout.splitlines()[1]
 
 
