@@ -193,11 +193,11 @@ void bind_vof(py::module_& m) {
 
   py::class_<FlowStableDt>(m, "FlowStableDt", "Largest stable time step [s] of each term (inf: no limit).")
       .def_readonly("advective", &FlowStableDt::advective,
-           "cfl times the smallest h / |u / n| over the faces (pore velocity) [s]")
+           "cfl times the smallest h / abs(u / n) over the faces (pore velocity) [s]")
       .def_readonly("viscous", &FlowStableDt::viscous,
            "the explicit viscous stresses' bound times viscous_substeps [s] (inf with the implicit scheme)")
       .def_readonly("gravity", &FlowStableDt::gravity,
-           "cfl times sqrt(2 h_min / |g|): a cell crossed by a fall from rest [s]")
+           "cfl times sqrt(2 h_min / abs(g)): a cell crossed by a fall from rest [s]")
       .def_readonly("turbulence", &FlowStableDt::turbulence,
            "the k-epsilon model's limit [s] (inf when off)")
       .def_readonly("max_dt", &FlowStableDt::max_dt,

@@ -2229,7 +2229,7 @@ class FlowStableDt:
     @property
     def advective(self) -> float:
         """
-        cfl times the smallest h / |u / n| over the faces (pore velocity) [s]
+        cfl times the smallest h / abs(u / n) over the faces (pore velocity) [s]
         """
     @property
     def advective_cell(self) -> int:
@@ -2239,7 +2239,7 @@ class FlowStableDt:
     @property
     def gravity(self) -> float:
         """
-        cfl times sqrt(2 h_min / |g|): a cell crossed by a fall from rest [s]
+        cfl times sqrt(2 h_min / abs(g)): a cell crossed by a fall from rest [s]
         """
     @property
     def growth(self) -> float:
