@@ -70,7 +70,7 @@ def measure(n, steps, rounds):
     settle0 = {k: v.copy() for k, v in start.export_state().items()}
     start.advance(3.0)  # a heap at rest: every stone on its neighbours
     heap0 = {k: v.copy() for k, v in start.export_state().items()}
-    vmax = float(np.hypot(*np.asarray(start.disc_vel).T).max())
+    vmax = float(np.hypot(*np.asarray(start.stone_vel).T).max())
     out = {}
     for case, state in (("settle", settle0), ("heap", heap0)):
         times = {name: [] for name, _, _ in VARIANTS}

@@ -72,10 +72,10 @@ def run_vofdem(n, steps, dt=1e-4, kn_lammps=5e6, e=0.5, mu=0.577, seed=12345):
     t0, c0 = time.perf_counter(), time.process_time()
     s.advance(steps * dt)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    r = s.disc_radius
-    zmax = float(np.max(s.disc_pos[:, 1]))
-    vmax = float(np.max(np.hypot(s.disc_vel[:, 0], s.disc_vel[:, 1])))
-    ov = [((r[i] + r[j]) - np.hypot(*(s.disc_pos[i] - s.disc_pos[j]))) / D_MEAN for i, j in s.overlapping_pairs()]
+    r = s.stone_radius
+    zmax = float(np.max(s.stone_pos[:, 1]))
+    vmax = float(np.max(np.hypot(s.stone_vel[:, 0], s.stone_vel[:, 1])))
+    ov = [((r[i] + r[j]) - np.hypot(*(s.stone_pos[i] - s.stone_pos[j]))) / D_MEAN for i, j in s.overlapping_pairs()]
     prof = s.profile
     stages = {name: sec for name, sec in zip(prof.names, prof.seconds)}
     return {"wall": wall, "ns": wall / (n * steps) * 1e9, "ns_cpu": cpu / (n * steps) * 1e9, "zmax": zmax, "vmax": vmax,

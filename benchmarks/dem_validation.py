@@ -25,7 +25,7 @@ def wall_impact(vx, vz, e, mu=0.3, kn=1e5, steps_per_contact=400):
     p.tangential_damping_factor = 0.0
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=mu)]
     s = vofdem.DEMSystem(p, pos=np.array([[0.5, R + 0.001]]), radius=np.array([R]))
-    s.disc_vel[0] = [vx, vz]
+    s.stone_vel[0] = [vx, vz]
     zeta = vofdem.damping_ratio_from_restitution(e)
     tc = vofdem.contact_duration(kn, M, zeta)
     dt = tc / steps_per_contact
@@ -37,7 +37,7 @@ def wall_impact(vx, vz, e, mu=0.3, kn=1e5, steps_per_contact=400):
             duration += dt
         elif touched:
             break
-    return s.disc_vel[0].copy(), s.disc_omega[0], duration, tc
+    return s.stone_vel[0].copy(), s.stone_omega[0], duration, tc
 
 
 def incline(theta, mu, rotation=True, f=0.4, mu_r=0.0, hold=False):
@@ -53,11 +53,11 @@ def incline(theta, mu, rotation=True, f=0.4, mu_r=0.0, hold=False):
     s = vofdem.DEMSystem(p, pos=np.array([[0.0, R - delta]]), radius=np.array([R]))
     if hold:
         s.advance(2.0)
-        return s.disc_vel[0, 0], s.disc_pos[0, 0]
+        return s.stone_vel[0, 0], s.stone_pos[0, 0]
     s.advance(0.5)
-    v0 = s.disc_vel[0, 0]
+    v0 = s.stone_vel[0, 0]
     s.advance(0.5)
-    return (s.disc_vel[0, 0] - v0) / 0.5
+    return (s.stone_vel[0, 0] - v0) / 0.5
 
 
 def rolling_box(frac, mu_r=0.3):

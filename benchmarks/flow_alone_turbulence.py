@@ -32,7 +32,7 @@ from vofdem.scene import load_scene  # noqa: E402
 def run_variant(scene, settings, times, x):
     """The rows of one variant: (t, steps, nu_t mean, p99, max, depth at x, step limits)."""
     sim = build_simulation(with_settings(scene, settings))
-    sim.stones.disc_fixed[:] = True
+    sim.stones.stone_fixed[:] = True
     fl, g = sim.fluid, sim.fluid.grid
     dz = np.diff(np.asarray(g.z_faces))
     col = min(int(np.floor(x / g.dx + 1e-9)), g.nx - 1)  # the column holding x (x on a face: the one after)

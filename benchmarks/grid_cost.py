@@ -62,8 +62,8 @@ def profiles(sim):
 
 def held_loads(sim) -> dict:
     """The drag + pressure forces [N] on the held (fixed) stones: their sum and the largest on one."""
-    fixed = np.asarray(sim.stones.disc_fixed, bool)
-    f = np.asarray(sim.disc_force_drag, float) + np.asarray(sim.disc_force_pressure, float)
+    fixed = np.asarray(sim.stones.stone_fixed, bool)
+    f = np.asarray(sim.stone_force_drag, float) + np.asarray(sim.stone_force_pressure, float)
     f = f[fixed] if fixed.any() else f[:0]
     mag = np.hypot(f[:, 0], f[:, 1]) if len(f) else np.zeros(0)
     return dict(fx=float(f[:, 0].sum()) if len(f) else 0.0, fz=float(f[:, 1].sum()) if len(f) else 0.0,
@@ -95,7 +95,7 @@ def run_grid(factor: float, seconds: float, settings=(), small: bool = False, ke
         factor = factor * DRAFT_SCALE
     scene = with_settings(scene, [*grid_settings(factor), *settings])
     sim = build_simulation(scene)
-    sim.stones.disc_fixed[:] = True  # held, as in a run's spin-up
+    sim.stones.stone_fixed[:] = True  # held, as in a run's spin-up
     for _, p in profiles(sim):
         p.reset()
     sim.clear_step_limits()

@@ -79,7 +79,7 @@ def main(argv=None):
     if args.seed is not None:
         scene = scene.replace(seed=args.seed)
     sim = build_simulation(with_settings(scene, args.set))
-    sim.stones.disc_fixed[:] = True
+    sim.stones.stone_fixed[:] = True
     rows, tops = [], []
     for t in args.times:
         sim.advance(t)

@@ -149,14 +149,14 @@ def run_variant(name: str, dt_snap: float = 0.5) -> dict:
     scene, info = variant_scene(name)
     sim = build_simulation(scene)
     st = sim.stones
-    fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
-    r = np.asarray(st.disc_radius, float)
-    rho_s = np.asarray(st.disc_density, float)
+    fixed0 = np.asarray(st.stone_fixed).astype(bool).copy()
+    r = np.asarray(st.stone_radius, float)
+    rho_s = np.asarray(st.stone_density, float)
     w_sub = (rho_s - RHO_W) * (4.0 / 3.0) * np.pi * r ** 3 * G
     loose = ~fixed0
-    pos0 = np.asarray(st.disc_pos, float).reshape(-1, 2).copy()
+    pos0 = np.asarray(st.stone_pos, float).reshape(-1, 2).copy()
     ramp = scene.hydrograph.ramp_start
-    st.disc_fixed[:] = True  # held during the spin-up, as run_scene does
+    st.stone_fixed[:] = True  # held during the spin-up, as run_scene does
     times, pos, active, rows = [], [], [], []
     wall0 = time.perf_counter()
     t_end = scene.duration
@@ -165,16 +165,16 @@ def run_variant(name: str, dt_snap: float = 0.5) -> dict:
     for t in targets:
         sim.advance(float(t))
         if held and float(sim.time) >= ramp - 1e-9:
-            st.disc_fixed[:] = fixed0
+            st.stone_fixed[:] = fixed0
             held = False
-        p = np.asarray(st.disc_pos, float).reshape(-1, 2).copy()
-        fd = np.asarray(sim.disc_force_drag, float).reshape(-1, 2)
-        fs = np.asarray(sim.disc_force_pressure, float).reshape(-1, 2)
+        p = np.asarray(st.stone_pos, float).reshape(-1, 2).copy()
+        fd = np.asarray(sim.stone_force_drag, float).reshape(-1, 2)
+        fs = np.asarray(sim.stone_force_pressure, float).reshape(-1, 2)
         tot = np.linalg.norm(fd + fs, axis=1) / w_sub
         q = float(scene.hydrograph.discharge_lps_at(float(sim.time)))
         times.append(float(sim.time))
         pos.append(p)
-        active.append(np.asarray(st.disc_active).astype(bool).copy())
+        active.append(np.asarray(st.stone_active).astype(bool).copy())
         disp = np.linalg.norm(p - pos0, axis=1)
         rows.append(dict(t=float(sim.time), q=q,
                          moved=int(np.sum(loose & (disp > 2.0 * r))),

@@ -73,10 +73,10 @@ def snapshot_values(sim, nx, nz):
     u, w = cell_velocities(fl.face_u, fl.face_w, nx, nz)
     fields = {"F": fl.cell_F, "p": fl.cell_p, "porosity": fl.cell_porosity, "u": u, "w": w}
     fields = {k: np.asarray(v).reshape(nz, nx) for k, v in fields.items()}
-    stones = {"pos": st.disc_pos, "vel": st.disc_vel, "force_drag": sim.disc_force_drag,
-              "force_pressure": sim.disc_force_pressure}
+    stones = {"pos": st.stone_pos, "vel": st.stone_vel, "force_drag": sim.stone_force_drag,
+              "force_pressure": sim.stone_force_pressure}
     stones = {k: np.asarray(v).reshape(-1, 2) for k, v in stones.items()}
-    stones["active"] = np.asarray(st.disc_active).astype(bool)
+    stones["active"] = np.asarray(st.stone_active).astype(bool)
     return fields, stones
 
 
@@ -85,7 +85,7 @@ def main():
     sim = build_simulation(scene)
     sim.advance(1.0)  # fields with flow in them (gzip compresses still water too well)
     g = sim.fluid.grid
-    nx, nz, n = g.nx, g.nz, sim.stones.disc_pos.shape[0]
+    nx, nz, n = g.nx, g.nz, sim.stones.stone_pos.shape[0]
     T = 281
     x = g.x0 + g.dx * np.arange(nx + 1)
     fields, stones = snapshot_values(sim, nx, nz)

@@ -59,7 +59,7 @@ d85 = 0.06
 
 
 def _arrays(stones):
-    return np.asarray(stones.disc_pos).reshape(-1, 2), 2.0 * np.asarray(stones.disc_radius)
+    return np.asarray(stones.stone_pos).reshape(-1, 2), 2.0 * np.asarray(stones.stone_radius)
 
 
 def sampler_rows(n_seeds: int = 20, n: int = 320):

@@ -47,16 +47,16 @@ def build(n, shape, seed=12345):
     s = vofdem.DEMSystem(p, pos=pos, radius=0.5 * d, density=np.array([RHO]))
     if shape == "polygon":
         vertex, offset = vofdem.random_polygons(d, seed=seed)
-        s.disc_angle[:] = angle
+        s.stone_angle[:] = angle
         s.set_polygons(vertex, offset)
     assert DT <= s.stable_dt(), (shape, s.stable_dt())
     return s
 
 
 def summary(s):
-    v = np.hypot(s.disc_vel[:, 0], s.disc_vel[:, 1])
+    v = np.hypot(s.stone_vel[:, 0], s.stone_vel[:, 1])
     return {"contacts": s.contact_count, "walls": s.wall_contact_count, "vmax": float(v.max()),
-            "zmax": float(s.disc_pos[:, 1].max()), "builds": s.neighbour_builds,
+            "zmax": float(s.stone_pos[:, 1].max()), "builds": s.neighbour_builds,
             "stages": dict(zip(s.profile.names, s.profile.seconds)), "stable_dt": s.stable_dt(),
             "kn": s.stiffness_normal}
 

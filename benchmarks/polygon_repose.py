@@ -80,7 +80,7 @@ def build(shape, n, seed):
     if shape == "polygon":
         p.dt, p.contact_steps = 4e-5, 50.0
     s = vofdem.DEMSystem(p, np.array(pos), 0.5 * d[keep], np.array([RHO]), fixed)
-    s.disc_angle[:] = angle
+    s.stone_angle[:] = angle
     if shape == "polygon":
         v = np.concatenate([vertex[offset[i]:offset[i + 1]] for i in keep])
         off = np.concatenate([[0], np.cumsum([offset[i + 1] - offset[i] for i in keep])])
@@ -92,12 +92,12 @@ def surface(s, shape, bin_w=D):
     """(x bin centres, highest point of a free stone in each bin)."""
     if shape == "polygon":
         v, off = np.asarray(s.poly_vertex), np.asarray(s.poly_offset)
-        pts = np.concatenate([rotate(v[off[i]:off[i + 1]], s.disc_angle[i]) + s.disc_pos[i] for i in range(s.n)
-                              if s.disc_active[i] and not s.disc_fixed[i]])
+        pts = np.concatenate([rotate(v[off[i]:off[i + 1]], s.stone_angle[i]) + s.stone_pos[i] for i in range(s.n)
+                              if s.stone_active[i] and not s.stone_fixed[i]])
     else:
         t = np.linspace(0, 2 * math.pi, 24, endpoint=False)
-        pts = np.concatenate([s.disc_pos[i] + s.disc_radius[i] * np.stack([np.cos(t), np.sin(t)], 1)
-                              for i in range(s.n) if s.disc_active[i] and not s.disc_fixed[i]])
+        pts = np.concatenate([s.stone_pos[i] + s.stone_radius[i] * np.stack([np.cos(t), np.sin(t)], 1)
+                              for i in range(s.n) if s.stone_active[i] and not s.stone_fixed[i]])
     edges = np.arange(X0, X1 + bin_w, bin_w)
     idx = np.digitize(pts[:, 0], edges) - 1
     top = np.full(edges.size - 1, np.nan)
@@ -134,20 +134,20 @@ def pour(s, nb, seed, interval=0.05, batch=2):
     stones at the heap's middle. Returns the simulated time used [s]."""
     rng = np.random.default_rng(seed + 1000)
     free = np.arange(nb, s.n)
-    s.disc_pos[free, 0] += X1 + 2.0  # held beside the base, out of reach
-    s.disc_fixed[free] = 1
+    s.stone_pos[free, 0] += X1 + 2.0  # held beside the base, out of reach
+    s.stone_fixed[free] = 1
     t = 0.0
     for k in range(0, free.size, batch):
         # the top of the heap: the settled stones near the middle (those still falling do not count)
         released = free[:k]
-        speed = np.hypot(s.disc_vel[released, 0], s.disc_vel[released, 1])
-        near = released[(np.abs(s.disc_pos[released, 0]) < 2 * D) & (speed < 0.05)]
-        top = max([s.disc_pos[i, 1] + s.disc_radius[i] for i in near] + [D])
+        speed = np.hypot(s.stone_vel[released, 0], s.stone_vel[released, 1])
+        near = released[(np.abs(s.stone_pos[released, 0]) < 2 * D) & (speed < 0.05)]
+        top = max([s.stone_pos[i, 1] + s.stone_radius[i] for i in near] + [D])
         for q, i in enumerate(free[k:k + batch]):
-            s.disc_pos[i] = [(q - 0.5 * (batch - 1)) * 1.5 * D + rng.uniform(-0.005, 0.005), top + 1.5 * D]
-            s.disc_vel[i] = [0.0, 0.0]
-            s.disc_omega[i] = 0.0
-            s.disc_fixed[i] = 0
+            s.stone_pos[i] = [(q - 0.5 * (batch - 1)) * 1.5 * D + rng.uniform(-0.005, 0.005), top + 1.5 * D]
+            s.stone_vel[i] = [0.0, 0.0]
+            s.stone_omega[i] = 0.0
+            s.stone_fixed[i] = 0
         s.advance(interval)
         t += interval
     return t
@@ -161,8 +161,8 @@ def run(shape, n, seed, t_max, poured=False):
     while t < t_max:
         s.advance(0.1)
         t += 0.1
-        free = np.asarray(s.disc_fixed) == 0
-        v = np.hypot(s.disc_vel[free, 0], s.disc_vel[free, 1])
+        free = np.asarray(s.stone_fixed) == 0
+        v = np.hypot(s.stone_vel[free, 0], s.stone_vel[free, 1])
         if t > 0.5 and v.max() < 1e-3:
             break
     x, top = surface(s, shape)
@@ -173,7 +173,7 @@ def run(shape, n, seed, t_max, poured=False):
 
 def off_base(s, nb):
     """Free stones that ran off the base's ends."""
-    x = s.disc_pos[nb:, 0]
+    x = s.stone_pos[nb:, 0]
     return np.sum((x < X0) | (x > X1))
 
 

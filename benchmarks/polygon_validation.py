@@ -49,9 +49,9 @@ def flat_impact(e, steps_per_contact):
         tc = vofdem.contact_duration(2e5, s.mass(0), zeta)
         p.dt = tc / steps_per_contact
         s.params = p
-    s.disc_vel[0, 1] = -0.5
+    s.stone_vel[0, 1] = -0.5
     s.advance(5e-4 / 0.5 + 2.0 * tc)
-    return s.disc_vel[0, 1] / 0.5, p.dt
+    return s.stone_vel[0, 1] / 0.5, p.dt
 
 
 def incline(ratio, mu=0.5):
@@ -63,10 +63,10 @@ def incline(ratio, mu=0.5):
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=mu)]
     s = box_system(p, 0.0, B)
     s.advance(0.5)
-    v0 = s.disc_vel[0, 0]
+    v0 = s.stone_vel[0, 0]
     s.advance(0.5)
-    acc = (s.disc_vel[0, 0] - v0) / 0.5
-    return math.degrees(th), acc, max(0.0, G * (math.sin(th) - mu * math.cos(th))), s.disc_pos[0, 0], s.disc_angle[0]
+    acc = (s.stone_vel[0, 0] - v0) / 0.5
+    return math.degrees(th), acc, max(0.0, G * (math.sin(th) - mu * math.cos(th))), s.stone_pos[0, 0], s.stone_angle[0]
 
 
 def pack(seed, shape):
@@ -83,9 +83,9 @@ def outlines(s):
         return None
     v, off, out = np.asarray(s.poly_vertex), np.asarray(s.poly_offset), []
     for i in range(s.n):
-        a = s.disc_angle[i]
+        a = s.stone_angle[i]
         rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-        out.append(v[off[i]:off[i + 1]] @ rot.T + s.disc_pos[i])
+        out.append(v[off[i]:off[i + 1]] @ rot.T + s.stone_pos[i])
     return out
 
 
@@ -98,12 +98,12 @@ def figure(disc, poly, spec, path):
           spec.x_end() - spec.height / math.tan(math.radians(spec.slope_down_deg)), spec.x_end()]
     for k, (s, title) in enumerate(((disc, "discs"), (poly, "polygons"))):
         ax = fig.add_subplot(2, 1, k + 1)
-        face = np.where(np.asarray(s.disc_fixed) > 0, "0.5", "tan")
+        face = np.where(np.asarray(s.stone_fixed) > 0, "0.5", "tan")
         if s.shape == "polygon":
             ax.add_collection(PolyCollection(outlines(s), facecolors=face, edgecolors="0.2", linewidths=0.4))
         else:
-            d = 2 * np.asarray(s.disc_radius)
-            ax.add_collection(EllipseCollection(d, d, np.zeros(s.n), units="xy", offsets=np.asarray(s.disc_pos),
+            d = 2 * np.asarray(s.stone_radius)
+            ax.add_collection(EllipseCollection(d, d, np.zeros(s.n), units="xy", offsets=np.asarray(s.stone_pos),
                                                 offset_transform=ax.transData, facecolors=face, edgecolors="0.2",
                                                 linewidths=0.4))
         ax.plot(xs, [0, spec.height, spec.height, 0], color="tab:orange", lw=1.2)

@@ -52,7 +52,7 @@ def weir(tols, t_end: float) -> dict:
     sims = {}
     for tol in tols:
         sim = build_simulation(base.replace(numerics=dataclasses.replace(base.numerics, pressure_tolerance=tol)))
-        sim.stones.disc_fixed[:] = True
+        sim.stones.stone_fixed[:] = True
         sims[tol] = dict(sim=sim, cpu=0.0, iters=[])
     for t in np.arange(0.5, t_end + 1e-9, 0.5):
         for tol, s in sims.items():

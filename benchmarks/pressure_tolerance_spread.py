@@ -118,7 +118,7 @@ def flow_alone_run(scene, t_end):
     centres [m], and the water the pressure solve's residual divergence made per step, relative to the
     water volume"""
     sim = build_simulation(scene)
-    sim.stones.disc_fixed[:] = True
+    sim.stones.stone_fixed[:] = True
     sim.advance(t_end)
     f = sim.fluid
     g = f.grid

@@ -31,7 +31,7 @@ from vofdem.scene import load_scene  # noqa: E402
 def profiles(sim):
     """(label, profile, work units per call, unit) of each timer"""
     cells = sim.fluid.grid.nx * sim.fluid.grid.nz
-    stones = int(np.sum(np.asarray(sim.stones.disc_active) & ~np.asarray(sim.stones.disc_fixed).astype(bool)))
+    stones = int(np.sum(np.asarray(sim.stones.stone_active) & ~np.asarray(sim.stones.stone_fixed).astype(bool)))
     return [("coupler", sim.profile, None, ""), ("flow", sim.fluid.profile, cells, "cell"),
             ("k-epsilon", sim.fluid.turbulence_profile, cells, "cell"),
             ("stones", sim.stones.profile, stones, "mobile stone")]

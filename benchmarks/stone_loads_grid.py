@@ -40,16 +40,16 @@ def loads(scene, settings, times):
     pressure-gradient force's F_x [N])."""
     sim = build_simulation(with_settings(scene, settings))
     st = sim.stones
-    mobile = np.asarray(st.disc_fixed) == 0
-    st.disc_fixed[:] = True
-    d = 2.0 * np.asarray(st.disc_radius)[mobile]
+    mobile = np.asarray(st.stone_fixed) == 0
+    st.stone_fixed[:] = True
+    d = 2.0 * np.asarray(st.stone_radius)[mobile]
     water = sim.fluid.params
-    weight = (np.asarray(st.disc_density)[mobile] - water.rho_water) * abs(water.gravity_z) * math.pi * d ** 3 / 6.0
+    weight = (np.asarray(st.stone_density)[mobile] - water.rho_water) * abs(water.gravity_z) * math.pi * d ** 3 / 6.0
     out = []
     for t in times:
         sim.advance(t)
-        drag, pressure = (np.asarray(f)[mobile, 0].copy() for f in (sim.disc_force_drag, sim.disc_force_pressure))
-        out.append((t, int(sim.step_count), np.asarray(st.disc_pos)[mobile, 0].copy(), (drag + pressure) / weight,
+        drag, pressure = (np.asarray(f)[mobile, 0].copy() for f in (sim.stone_force_drag, sim.stone_force_pressure))
+        out.append((t, int(sim.step_count), np.asarray(st.stone_pos)[mobile, 0].copy(), (drag + pressure) / weight,
                     (drag, pressure)))
     return out
 

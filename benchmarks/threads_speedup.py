@@ -69,7 +69,7 @@ def one_run(sim, start, seconds: float, threads: int) -> dict:
     the stage timers and the end state's hash."""
     _core.set_threads(threads)
     sim.import_state(start)
-    sim.stones.disc_fixed[:] = True  # held, as in a run's spin-up
+    sim.stones.stone_fixed[:] = True  # held, as in a run's spin-up
     for _, p in profiles(sim):
         p.reset()
     load0 = os.getloadavg()[0]

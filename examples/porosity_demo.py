@@ -58,8 +58,8 @@ def main(argv=None):
     spec = vofdem.WeirSpec()
     spec.x_toe, spec.seed = 0.20, args.seed  # the paper's trapezoid and stones are the spec's defaults
     stones, _ = vofdem.pack_weir(spec)
-    pos = np.asarray(stones.disc_pos)
-    x, z, r = pos[:, 0].copy(), pos[:, 1].copy(), np.asarray(stones.disc_radius).copy()
+    pos = np.asarray(stones.stone_pos)
+    x, z, r = pos[:, 0].copy(), pos[:, 1].copy(), np.asarray(stones.stone_radius).copy()
     d = 2.0 * r
     grid = vofdem.Grid2D.graded(nx=64, length_x=1.60, height_z=0.35, dz=0.01, dz_bed=0.005, z_bed_top=0.02)
     n_exact, as_exact = map_porosity(grid, x, z, r, "exact", args.m)

@@ -33,17 +33,17 @@ class FakeSimulation:
         pos = np.stack([xs, np.maximum(w.surface(xs) - d / 2, d / 2)], axis=1)
         n = len(pos)
         self.params = SimpleNamespace(n_exp=scene.stones.n_exp)  # as the Coupler's CouplerParams
-        self.stones = SimpleNamespace(shape="disc", disc_pos=pos, disc_vel=np.zeros((n, 2)),
-                                      disc_radius=np.full(n, d / 2), disc_active=np.ones(n, bool),
-                                      disc_fixed=pos[:, 1] <= d / 2 + 1e-12)
-        self.disc_force_drag = np.zeros((n, 2))
-        self.disc_force_pressure = np.zeros((n, 2))
+        self.stones = SimpleNamespace(shape="disc", stone_pos=pos, stone_vel=np.zeros((n, 2)),
+                                      stone_radius=np.full(n, d / 2), stone_active=np.ones(n, bool),
+                                      stone_fixed=pos[:, 1] <= d / 2 + 1e-12)
+        self.stone_force_drag = np.zeros((n, 2))
+        self.stone_force_pressure = np.zeros((n, 2))
         self.profile = FakeProfile()
         self.time = 0.0
         self.fail_at = fail_at
         self.table = None
         # stones of the downstream face go at given discharges (default 15, 15.2, 18, 18.1, 18.3 l/s)
-        down = [i for i in np.argsort(-pos[:, 0]) if pos[i, 0] > w.x_crest_down and not self.stones.disc_fixed[i]]
+        down = [i for i in np.argsort(-pos[:, 0]) if pos[i, 0] > w.x_crest_down and not self.stones.stone_fixed[i]]
         self.thresholds = dict(zip(down, thresholds_lps or [15.0, 15.2, 18.0, 18.1, 18.3]))
 
     def set_inflow_table(self, times, q):
@@ -65,12 +65,12 @@ class FakeSimulation:
         self.fluid.face_u[:] = q / self.scene.flume.width / max(level, 1e-3)
         st = self.stones
         for i, thr in self.thresholds.items():
-            if q * 1e3 >= thr and not st.disc_fixed[i]:
-                st.disc_vel[i] = (0.3, -0.05)
-                st.disc_pos[i] += dt * st.disc_vel[i]
-                self.disc_force_drag[i] = (1.0, 0.1)
-                self.disc_force_pressure[i] = (0.5, 1.0)
-        st.disc_active[:] = st.disc_pos[:, 0] < self.scene.flume.length
+            if q * 1e3 >= thr and not st.stone_fixed[i]:
+                st.stone_vel[i] = (0.3, -0.05)
+                st.stone_pos[i] += dt * st.stone_vel[i]
+                self.stone_force_drag[i] = (1.0, 0.1)
+                self.stone_force_pressure[i] = (0.5, 1.0)
+        st.stone_active[:] = st.stone_pos[:, 0] < self.scene.flume.length
         self.profile.seconds = [s + 1e-3 for s in self.profile.seconds]
         self.profile.calls = [c + 1 for c in self.profile.calls]
         self.time = float(t_end)
@@ -84,18 +84,18 @@ class FakeSimulation:
 
     def export_state(self):
         st, fl = self.stones, self.fluid
-        return {"time": np.array([self.time]), "pos": st.disc_pos.copy(), "vel": st.disc_vel.copy(),
-                "active": st.disc_active.astype(float), "fixed": st.disc_fixed.astype(float),
-                "drag": self.disc_force_drag.copy(), "pressure": self.disc_force_pressure.copy(),
+        return {"time": np.array([self.time]), "pos": st.stone_pos.copy(), "vel": st.stone_vel.copy(),
+                "active": st.stone_active.astype(float), "fixed": st.stone_fixed.astype(float),
+                "drag": self.stone_force_drag.copy(), "pressure": self.stone_force_pressure.copy(),
                 "F": fl.cell_F.copy(), "p": fl.cell_p.copy(), "u": fl.face_u.copy()}
 
     def import_state(self, s):
         st, fl = self.stones, self.fluid
         self.time = float(s["time"][0])
         # a checkpoint holds each array flat
-        st.disc_pos[...], st.disc_vel[...] = (np.reshape(s[k], (-1, 2)) for k in ("pos", "vel"))
-        st.disc_active[...], st.disc_fixed[...] = s["active"] != 0, s["fixed"] != 0
-        self.disc_force_drag[...], self.disc_force_pressure[...] = (np.reshape(s[k], (-1, 2)) for k in ("drag", "pressure"))
+        st.stone_pos[...], st.stone_vel[...] = (np.reshape(s[k], (-1, 2)) for k in ("pos", "vel"))
+        st.stone_active[...], st.stone_fixed[...] = s["active"] != 0, s["fixed"] != 0
+        self.stone_force_drag[...], self.stone_force_pressure[...] = (np.reshape(s[k], (-1, 2)) for k in ("drag", "pressure"))
         fl.cell_F[...], fl.cell_p[...], fl.face_u[...] = s["F"], s["p"], s["u"]
 
 

@@ -11,8 +11,8 @@ def test_packed_weir_fits_the_scene_and_is_reproducible():
     s = Scene.maeno2008()
     a, rep = build_stones(s)
     b, _ = build_stones(s)
-    assert np.array_equal(a.disc_pos, b.disc_pos)  # same seed, same weir
-    pos, r = np.asarray(a.disc_pos), np.asarray(a.disc_radius)
+    assert np.array_equal(a.stone_pos, b.stone_pos)  # same seed, same weir
+    pos, r = np.asarray(a.stone_pos), np.asarray(a.stone_radius)
     # within one stone diameter of the requested trapezoid (the packing generator's own guarantee)
     assert rep.outline_error < s.stones.diameter
     assert np.all(pos[:, 1] + r <= s.weir.surface(pos[:, 0]) + s.stones.diameter)
@@ -20,10 +20,10 @@ def test_packed_weir_fits_the_scene_and_is_reproducible():
     # diameters within the scene's spread, bottom layer fixed on the bed
     d = 2 * r
     assert np.all(np.abs(d / s.stones.diameter - 1) <= s.stones.diameter_spread + 1e-12)
-    fixed = np.asarray(a.disc_fixed).astype(bool)
+    fixed = np.asarray(a.stone_fixed).astype(bool)
     assert fixed.sum() == rep.n_fixed > 0 and np.allclose(pos[fixed, 1], r[fixed], atol=1e-9)
     c, _ = build_stones(s.replace(seed=1))
-    assert not np.array_equal(np.asarray(c.disc_pos)[:10], pos[:10])
+    assert not np.array_equal(np.asarray(c.stone_pos)[:10], pos[:10])
 
 
 def test_explicit_stones_and_effect_flags():
@@ -33,7 +33,7 @@ def test_explicit_stones_and_effect_flags():
     s.effects.added_mass = False
     s.validate()
     sys_, rep = build_stones(s)
-    assert rep is None and np.asarray(sys_.disc_fixed).tolist() == [1, 0]
+    assert rep is None and np.asarray(sys_.stone_fixed).tolist() == [1, 0]
     flags = dem_params(s).flags
     assert not flags & vofdem.DEM_ROTATION and not flags & vofdem.DEM_ADDED_MASS
     assert flags & vofdem.DEM_FRICTION and flags & vofdem.DEM_EXTERNAL_FORCE

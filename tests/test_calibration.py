@@ -96,10 +96,10 @@ def test_slope_stones_are_surface_stones_of_the_downstream_slope():
     w = s.weir
     a = math.radians(w.downstream_slope_deg)
     n = np.array([math.sin(a), math.cos(a)])
-    P, R = np.asarray(sys_.disc_pos), np.asarray(sys_.disc_radius)
+    P, R = np.asarray(sys_.stone_pos), np.asarray(sys_.stone_radius)
     for i in cand:
         assert 0.2 * w.height <= P[i, 1] <= 0.8 * w.height and P[i, 0] > w.x_crest_up
-        assert not sys_.disc_fixed[i]
+        assert not sys_.stone_fixed[i]
         # nothing lies farther out along the slope's normal right above it
         out = (P - P[i]) @ n
         along = np.abs((P - P[i]) @ np.array([-n[1], n[0]]))
@@ -145,9 +145,9 @@ def test_polygon_stones_are_measured_by_their_vertices():
     s = polygon_scene()
     box = (np.array([[-0.03, -0.01], [0.03, -0.01], [0.03, 0.01], [-0.03, 0.01]]), np.array([0, 4]))
     sys_ = builder.stone_system(s, builder.dem_params(s, 0.0), [[0.5, 0.2]], [0.04], [0], shapes=box)
-    assert sys_.shape == "polygon" and sys_.disc_radius[0] == pytest.approx(math.hypot(0.03, 0.01))
+    assert sys_.shape == "polygon" and sys_.stone_radius[0] == pytest.approx(math.hypot(0.03, 0.01))
     assert cal.stone_tops(sys_)[0] == pytest.approx(0.21, abs=1e-15)
-    sys_.disc_angle[0] = math.pi / 2
+    sys_.stone_angle[0] = math.pi / 2
     assert cal.stone_tops(sys_)[0] == pytest.approx(0.23, abs=1e-15)
     assert np.allclose(cal.stone_outlines(sys_)[0], [[0.51, 0.17], [0.51, 0.23], [0.49, 0.23], [0.49, 0.17]])
 

@@ -34,8 +34,8 @@ def test_run_loop_names_and_zero_copy_views():
     sim.set_inflow_table(np.array([0.0, 10.0]), np.array([0.0, 0.0]))
     sim.advance(0.05)
     assert sim.time == pytest.approx(0.05, abs=1e-12)
-    assert sim.disc_force_drag.shape == (3, 2) and sim.disc_force_pressure.shape == (3, 2)
-    assert sim.stones.disc_pos.shape == (3, 2)
+    assert sim.stone_force_drag.shape == (3, 2) and sim.stone_force_pressure.shape == (3, 2)
+    assert sim.stones.stone_pos.shape == (3, 2)
     assert sim.fluid.cell_F.shape == (40, 20)
     assert list(sim.profile.names) == ["snapshot", "porosity", "fluid_forces", "dem", "fluid", "checks", "stable_dt"]
     calls = dict(zip(sim.profile.names, sim.profile.calls))
@@ -43,7 +43,7 @@ def test_run_loop_names_and_zero_copy_views():
     assert 1 <= calls.pop("snapshot") < sim.step_count
     assert all(c == sim.step_count for c in calls.values())
     # the views write through and keep their owners alive after the coupler is gone
-    drag, F, pos = sim.disc_force_drag, sim.fluid.cell_F, sim.stones.disc_pos
+    drag, F, pos = sim.stone_force_drag, sim.fluid.cell_F, sim.stones.stone_pos
     fluid = sim.fluid
     assert fluid is sim.fluid  # the same Python object every time
     del sim, fluid
@@ -85,7 +85,7 @@ def test_guards_and_bad_input():
     sim = scene()
     sim.advance(0.02)
     t = sim.time
-    sim.stones.disc_vel[0, 1] = np.nan
+    sim.stones.stone_vel[0, 1] = np.nan
     with pytest.raises(RuntimeError, match="fluid_forces.*stone 0"):
         sim.step(1e-3)
     assert sim.time == t
@@ -118,7 +118,7 @@ def test_scenes_with_one_module():
     sim = _core.Coupler(None, stones)
     assert sim.fluid is None
     sim.advance(0.2)
-    assert stones.disc_pos[0, 1] == pytest.approx(0.024, abs=1e-3)  # landed on the bed
+    assert stones.stone_pos[0, 1] == pytest.approx(0.024, abs=1e-3)  # landed on the bed
     fluid = vofdem.VOFGrid(vofdem.Grid2D.uniform(8, 8, 0.2, 0.2), vofdem.FlowParams())
     fluid.fill_water_below(0.1)
     sim = _core.Coupler(fluid, None)
@@ -130,7 +130,7 @@ def test_initial_mapping_can_keep_the_water_fraction():
     # stones placed into a filled scene: keep F (pores full of water) or keep the volume (water displaced up)
     for keep, expect_same_F in ((False, True), (True, False)):
         sim = scene(flags=_core.COUPLE_TWO_WAY)
-        sim.stones.disc_pos[:] = [[0.05, 0.05], [0.1, 0.05], [0.15, 0.05]]
+        sim.stones.stone_pos[:] = [[0.05, 0.05], [0.1, 0.05], [0.15, 0.05]]
         F0 = np.array(sim.fluid.cell_F)
         v0 = sim.water_volume()
         sim.update_porosity(keep_water_volume=keep)

@@ -41,15 +41,15 @@ def test_a_kernel_scene_runs_coupled_steps_and_the_flow_sees_every_stone():
     s = _scene(coupling_mapping="kernel")
     sim = build_simulation(s)
     st = sim.stones
-    d = 2.0 * np.asarray(st.disc_radius, float)
+    d = 2.0 * np.asarray(st.stone_radius, float)
     # unset: the stones' mean diameter
     assert sim.kernel_bandwidth == pytest.approx(d.mean(), rel=1e-12)
     assert sim.floored_solid_area == 0.0
     # the stones' areas inside the domain (a bed stone pressed into the bed by its contact loses a sliver)
     g = sim.fluid.grid
     zf = np.asarray(g.z_faces, float)
-    pos = np.asarray(st.disc_pos, float)
-    inside = _core.disc_cell_area(pos[:, 0], pos[:, 1], d / 2.0, 0.0, g.nx * g.dx, zf[0], zf[-1])
+    pos = np.asarray(st.stone_pos, float)
+    inside = _core.stone_cell_area(pos[:, 0], pos[:, 1], d / 2.0, 0.0, g.nx * g.dx, zf[0], zf[-1])
     assert inside.sum() == pytest.approx(float((math.pi * d ** 2 / 4.0).sum()), rel=1e-6)
     stones = (1.0 - sim.params.n_exp) * float(inside.sum())
     assert _seen_solid_area(sim) == pytest.approx(stones, rel=1e-10)
@@ -58,10 +58,10 @@ def test_a_kernel_scene_runs_coupled_steps_and_the_flow_sees_every_stone():
     assert sim.time == pytest.approx(t0 + 0.05)
     names = list(sim.profile.names)
     assert sim.profile.calls[names.index("kernel")] >= 2 * sim.step_count - 2
-    for f in (sim.disc_force_drag, sim.disc_force_pressure):
+    for f in (sim.stone_force_drag, sim.stone_force_pressure):
         assert np.isfinite(np.asarray(f)).all()
     # the weir's stones in the overflow feel a drag downstream
-    assert float(np.asarray(sim.disc_force_drag)[:, 0].sum()) > 0.0
+    assert float(np.asarray(sim.stone_force_drag)[:, 0].sum()) > 0.0
 
 
 def test_an_explicit_bandwidth_is_used():

@@ -26,11 +26,11 @@ def state_hash(s):
 
 def test_views_are_zero_copy_and_keep_the_owner_alive():
     s = falling_pair()
-    pos = s.disc_pos
-    assert pos.shape == (2, 2) and s.disc_radius.shape == (2,)
-    assert s.disc_fixed.dtype == np.uint8 and s.disc_active.dtype == np.uint8
+    pos = s.stone_pos
+    assert pos.shape == (2, 2) and s.stone_radius.shape == (2,)
+    assert s.stone_fixed.dtype == np.uint8 and s.stone_active.dtype == np.uint8
     pos[0, 0] = 0.5  # writes through
-    assert s.disc_pos[0, 0] == 0.5
+    assert s.stone_pos[0, 0] == 0.5
     s.advance(0.01)
     assert pos[1, 1] < 0.2  # sees the C++ update
     del s
@@ -42,7 +42,7 @@ def test_wet_defaults_and_sphere_properties():
     p = vofdem.DEMParams()
     p.fluid_density = 1000.0
     s = vofdem.DEMSystem(p, pos=np.zeros((1, 2)), radius=np.array([0.024]))
-    assert s.disc_wet[0] == 1.0
+    assert s.stone_wet[0] == 1.0
     assert s.volume(0) == pytest.approx(np.pi * D**3 / 6)
     assert s.mass(0) == pytest.approx(2650 * np.pi * D**3 / 6)
     assert s.projected_area(0) == pytest.approx(np.pi * D**2 / 4)
@@ -61,7 +61,7 @@ def test_bad_input_is_a_value_error_naming_the_parameter():
     with pytest.raises(ValueError, match="friction_stone = -1"):
         s.params = p
     assert s.params.friction_stone == pytest.approx(0.577)
-    with pytest.raises(ValueError, match="disc_radius"):
+    with pytest.raises(ValueError, match="stone_radius"):
         vofdem.DEMSystem(vofdem.DEMParams(), pos=np.zeros((1, 2)), radius=np.array([0.0]))
 
 
@@ -77,7 +77,7 @@ def test_checkpoint_restart_is_bit_for_bit():
     c.import_state(chk)
     c.advance(0.3)
     assert state_hash(a) == state_hash(c)
-    assert set(chk) >= {"disc_pos", "disc_vel", "contact_i", "contact_xi", "wall_xi", "disc_acc"}
+    assert set(chk) >= {"stone_pos", "stone_vel", "contact_i", "contact_xi", "wall_xi", "stone_acc"}
 
 
 def test_profile_and_energy_are_readable():
@@ -111,9 +111,9 @@ def heap(n_free=300, seed=1):
 
 def surface_angles(s):
     """Angles [deg] of the heap's two flanks: line fits to the highest stone top per diameter-wide bin."""
-    free = s.disc_fixed == 0
-    x, z = s.disc_pos[free].T
-    top = z + s.disc_radius[free]
+    free = s.stone_fixed == 0
+    x, z = s.stone_pos[free].T
+    top = z + s.stone_radius[free]
     pts = []
     for b0 in np.arange(-2.5, 2.5, D):
         m = (x >= b0) & (x < b0 + D)
@@ -133,17 +133,17 @@ def test_pile_reaches_a_stable_angle_of_repose():
     s = heap()
     for _ in range(40):
         s.advance(0.25)
-        if np.hypot(*s.disc_vel.T).max() < 1e-3:
+        if np.hypot(*s.stone_vel.T).max() < 1e-3:
             break
-    assert np.hypot(*s.disc_vel.T).max() < 1e-3, "heap not at rest after 10 s"
+    assert np.hypot(*s.stone_vel.T).max() < 1e-3, "heap not at rest after 10 s"
     left, right = surface_angles(s)
     # frictional discs without rolling resistance (mu = 0.577): a low heap; measured 15.6 and 16.8 degrees
     assert 10.0 < left < 30.0 and 10.0 < right < 30.0
     assert abs(left - right) < 5.0
     # stable: one more second moves no stone by more than 1 mm
-    before = s.disc_pos.copy()
+    before = s.stone_pos.copy()
     s.advance(1.0)
-    assert np.abs(s.disc_pos - before).max() < 1e-3
+    assert np.abs(s.stone_pos - before).max() < 1e-3
     assert s.removed_count == 0
 
 

@@ -12,27 +12,27 @@ def weir():
 
 def test_weir_matches_the_trapezoid_within_one_diameter(weir):
     s, report, spec = weir
-    assert report.n_stones == s.n and report.n_fixed == int(s.disc_fixed.sum())
+    assert report.n_stones == s.n and report.n_fixed == int(s.stone_fixed.sum())
     assert spec.x_end() == pytest.approx(1.0 + 2 * 0.25 / np.tan(np.radians(27)) + 0.2)
     assert spec.top(spec.x_toe + 0.1) == pytest.approx(0.1 * np.tan(np.radians(27)))
     # bottom layer fixed on the bed
-    assert np.allclose(s.disc_pos[s.disc_fixed == 1, 1], s.disc_radius[s.disc_fixed == 1])
+    assert np.allclose(s.stone_pos[s.stone_fixed == 1, 1], s.stone_radius[s.stone_fixed == 1])
     assert report.outline_error == pytest.approx(vofdem.weir_outline_error(s, spec))
     # one (mean) stone diameter; seeds 0-7 give 3.6-4.6 cm
     assert report.outline_error < spec.d_mean
-    free = s.disc_fixed == 0
-    assert s.disc_pos[free, 1].max() < spec.z_bed + spec.height + spec.d_mean / 2
+    free = s.stone_fixed == 0
+    assert s.stone_pos[free, 1].max() < spec.z_bed + spec.height + spec.d_mean / 2
 
 
 def test_weir_is_at_rest_and_stays_at_rest_for_ten_seconds(weir):
     s, report, _ = weir
     assert report.max_speed < 1e-3
-    speed = np.hypot(*s.disc_vel.T)
+    speed = np.hypot(*s.stone_vel.T)
     assert speed.max() < 1e-3
-    before = s.disc_pos.copy()
+    before = s.stone_pos.copy()
     s.advance(10.0)
-    assert np.hypot(*s.disc_vel.T).max() < 1e-3
-    assert np.abs(s.disc_pos - before).max() < 2e-3
+    assert np.hypot(*s.stone_vel.T).max() < 1e-3
+    assert np.abs(s.stone_pos - before).max() < 2e-3
     assert s.removed_count == 0
 
 
@@ -48,9 +48,9 @@ def test_weir_is_reproducible_from_its_seed():
     b, rb, _ = vofdem.pack_weir(seed=3, height=0.15, crest=0.1)
     c, _, _ = vofdem.pack_weir(seed=4, height=0.15, crest=0.1)
     assert ra.n_stones == rb.n_stones
-    assert np.array_equal(a.disc_pos, b.disc_pos) and np.array_equal(a.disc_radius, b.disc_radius)
-    assert a.n != c.n or not np.array_equal(a.disc_radius, c.disc_radius)
-    d = a.disc_radius * 2
+    assert np.array_equal(a.stone_pos, b.stone_pos) and np.array_equal(a.stone_radius, b.stone_radius)
+    assert a.n != c.n or not np.array_equal(a.stone_radius, c.stone_radius)
+    d = a.stone_radius * 2
     assert 0.9 * 0.048 <= d.min() and d.max() <= 1.1 * 0.048
 
 

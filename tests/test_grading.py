@@ -86,7 +86,7 @@ def test_a_packed_weir_of_300_stones_has_the_requested_grading():
     s = Scene.from_toml(GRADED)
     assert is_graded(s)
     stones, rep = build_stones(s)
-    d = 2.0 * np.asarray(stones.disc_radius)
+    d = 2.0 * np.asarray(stones.stone_radius)
     g = s.stones.grading()
     assert d.size >= 300 and rep.n_stones == d.size
     assert grading_deviation(g, d) <= 0.08
@@ -97,5 +97,5 @@ def test_a_packed_weir_of_300_stones_has_the_requested_grading():
     m50 = 2650.0 * math.pi * 0.025 ** 3 / 6
     assert p.stiffness_normal == pytest.approx(0.5 * m50 * (math.pi / (20 * 1e-4)) ** 2, rel=1e-12)
     assert p.dt < 1e-4 and stones.stable_dt() >= p.dt
-    md, fig = packed_report(s, np.asarray(stones.disc_pos).reshape(-1, 2), d)
+    md, fig = packed_report(s, np.asarray(stones.stone_pos).reshape(-1, 2), d)
     assert "| requested | 18.0 | 25.0 | 36.0 |" in md and "DEM step" in md and fig is not None

@@ -99,8 +99,8 @@ def test_the_trapezoid_as_a_one_line_outline_is_packed_bit_for_bit_as_by_its_key
     assert packing_route(keys) == packing_route(line) == "trapezoid"
     a, _ = build_stones(keys)
     b, _ = build_stones(line)
-    assert np.array_equal(np.asarray(a.disc_pos), np.asarray(b.disc_pos))
-    assert np.array_equal(np.asarray(a.disc_radius), np.asarray(b.disc_radius))
+    assert np.array_equal(np.asarray(a.stone_pos), np.asarray(b.stone_pos))
+    assert np.array_equal(np.asarray(a.stone_radius), np.asarray(b.stone_radius))
     # the existing scenes keep the trapezoid generator (pack_weir)
     assert packing_route(Scene.maeno2008()) == "trapezoid"
 
@@ -118,13 +118,13 @@ def test_a_weir_with_a_berm_and_an_armour_layer_is_packed_inside_its_outline_and
     assert packing_route(s) == "outline"
     stones, rep = build_stones(s)
     body = s.weir.body()
-    pos, d = np.asarray(stones.disc_pos).reshape(-1, 2), 2.0 * np.asarray(stones.disc_radius)
+    pos, d = np.asarray(stones.stone_pos).reshape(-1, 2), 2.0 * np.asarray(stones.stone_radius)
     zone = rep.zone
     d50 = np.where(zone == 0, 0.05, 0.03)
     out = reach_outside(body, pos, np.zeros(d.size))
     assert rep.n_stones == d.size > 150 and rep.n_fixed > 20
     assert np.all(out < d50) and np.mean(out > 0.5 * d50) <= 0.05
-    fixed = np.asarray(stones.disc_fixed, bool)
+    fixed = np.asarray(stones.stone_fixed, bool)
     assert np.allclose(pos[fixed, 1], 0.5 * d[fixed])  # the bottom row lies on the bed
     depth = body.depth(pos[:, 0], pos[:, 1])
     arm, core = zone == 0, zone == -1

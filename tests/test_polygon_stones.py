@@ -85,7 +85,7 @@ def test_packed_polygon_weir_is_at_rest_inside_the_outline_and_reproducible():
     a, rep = build_stones(s)
     b, _ = build_stones(s)
     assert a.shape == "polygon" and a.n == rep.n_stones > rep.n_fixed > 3
-    assert np.array_equal(a.disc_pos, b.disc_pos) and np.array_equal(a.poly_vertex, b.poly_vertex)
+    assert np.array_equal(a.stone_pos, b.stone_pos) and np.array_equal(a.poly_vertex, b.poly_vertex)
     assert rep.max_speed < 1e-3 and rep.outline_error < s.stones.diameter
     d = np.array([a.nominal_diameter(i) for i in range(a.n)])
     assert np.all(np.abs(d / s.stones.diameter - 1) <= s.stones.diameter_spread + 1e-12)
@@ -106,7 +106,7 @@ def test_explicit_polygon_stones_and_views_tied_to_the_owner():
     assert rep is None and st.shape == "polygon"
     vertex = np.asarray(st.poly_vertex)
     low = 0.03 + vertex[st.poly_offset[0]:st.poly_offset[1], 1].min()
-    assert np.asarray(st.disc_fixed).tolist() == [int(low <= 1e-9), 0]
+    assert np.asarray(st.stone_fixed).tolist() == [int(low <= 1e-9), 0]
     view = st.poly_vertex
     first = float(view[0, 0])
     del st
@@ -174,7 +174,7 @@ def test_the_outline_packer_refuses_polygons_naming_the_key():
                                                         w.downstream_slope_deg)]
     a, _ = build_stones(s)
     b, _ = build_stones(t.validate())
-    assert np.array_equal(a.disc_pos, b.disc_pos) and np.array_equal(a.poly_vertex, b.poly_vertex)
+    assert np.array_equal(a.stone_pos, b.stone_pos) and np.array_equal(a.poly_vertex, b.poly_vertex)
 
 
 def test_packed_polygon_weir_at_rest_keeps_its_energy_at_the_stable_step():

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import vofdem
-from vofdem import disc_cell_area
+from vofdem import stone_cell_area
 
 
 def reference_area(cx, cz, r, x0, x1, z0, z1, n=200_000):
@@ -26,7 +26,7 @@ def cell_areas(grid, x, z, r):
     """Areas of one disc in every cell of `grid` with the closed form, shape (nz, nx)."""
     xf = grid.x0 + grid.dx * np.arange(grid.nx + 1)
     zf = np.asarray(grid.z_faces)
-    return disc_cell_area(x, z, r, xf[None, :-1], xf[None, 1:], zf[:-1, None], zf[1:, None])
+    return stone_cell_area(x, z, r, xf[None, :-1], xf[None, 1:], zf[:-1, None], zf[1:, None])
 
 
 def mapper(grid, r_min, r_max, method="exact", m=8, **kw):
@@ -42,17 +42,17 @@ def paper_grid(nx=40, length=1.0, height=0.3):
 def test_hand_computed_areas():
     r = 0.024
     full = math.pi * r * r
-    assert disc_cell_area(0.5, 0.5, r, 0, 1, 0, 1) == pytest.approx(full, rel=1e-15)
-    assert disc_cell_area(0.0, 0.0, r, 0, 1, 0, 1) == pytest.approx(full / 4, rel=1e-15)
-    assert disc_cell_area(0.0, 0.5, r, 0, 1, 0, 1) == pytest.approx(full / 2, rel=1e-15)
+    assert stone_cell_area(0.5, 0.5, r, 0, 1, 0, 1) == pytest.approx(full, rel=1e-15)
+    assert stone_cell_area(0.0, 0.0, r, 0, 1, 0, 1) == pytest.approx(full / 4, rel=1e-15)
+    assert stone_cell_area(0.0, 0.5, r, 0, 1, 0, 1) == pytest.approx(full / 2, rel=1e-15)
     # a rectangle inside the disc is covered entirely
-    assert disc_cell_area(0.0, 0.0, r, -0.01, 0.005, -0.002, 0.003) == pytest.approx(0.015 * 0.005, rel=1e-14)
+    assert stone_cell_area(0.0, 0.0, r, -0.01, 0.005, -0.002, 0.003) == pytest.approx(0.015 * 0.005, rel=1e-14)
     # a disc far away, or merely touching
-    assert disc_cell_area(0.0, 0.0, r, 0.03, 0.04, 0, 1) == 0.0
-    assert disc_cell_area(0.0, 0.0, r, r, 0.04, -1, 1) == 0.0
+    assert stone_cell_area(0.0, 0.0, r, 0.03, 0.04, 0, 1) == 0.0
+    assert stone_cell_area(0.0, 0.0, r, r, 0.04, -1, 1) == 0.0
     # circular segment cut at distance r/2 from the centre: r^2 (theta - sin theta) / 2, theta = 2 pi / 3
     theta = 2 * math.pi / 3
-    assert disc_cell_area(0.0, 0.0, r, r / 2, 1, -1, 1) == pytest.approx(r * r * (theta - math.sin(theta)) / 2,
+    assert stone_cell_area(0.0, 0.0, r, r / 2, 1, -1, 1) == pytest.approx(r * r * (theta - math.sin(theta)) / 2,
                                                                          rel=1e-13)
 
 
@@ -63,7 +63,7 @@ def test_hand_computed_areas():
 def test_closed_form_matches_the_slow_reference_on_a_papers_cell(cx, cz):
     # a 4.8 cm stone against a 2.5 cm x 1.0 cm cell [0, 0.025] x [0, 0.01]: every relative position
     r = 0.024
-    got = disc_cell_area(cx, cz, r, 0.0, 0.025, 0.0, 0.01)
+    got = stone_cell_area(cx, cz, r, 0.0, 0.025, 0.0, 0.01)
     assert got == pytest.approx(reference_area(cx, cz, r, 0.0, 0.025, 0.0, 0.01), abs=1e-6 * r * r)
 
 
@@ -73,7 +73,7 @@ def test_closed_form_matches_the_slow_reference_on_a_papers_cell(cx, cz):
     x0=st.floats(-0.04, 0.04), w=st.floats(1e-4, 0.06), z0=st.floats(-0.04, 0.04), h=st.floats(1e-4, 0.06),
 )
 def test_closed_form_matches_the_slow_reference_everywhere(cx, cz, r, x0, w, z0, h):
-    got = disc_cell_area(cx, cz, r, x0, x0 + w, z0, z0 + h)
+    got = stone_cell_area(cx, cz, r, x0, x0 + w, z0, z0 + h)
     rect = ((x0 + w) - x0) * ((z0 + h) - z0)  # the rectangle as represented
     assert 0.0 <= got <= rect
     assert got <= math.pi * r * r * (1 + 1e-14)
@@ -82,11 +82,11 @@ def test_closed_form_matches_the_slow_reference_everywhere(cx, cz, r, x0, w, z0,
 
 def test_area_refuses_bad_input():
     with pytest.raises(ValueError, match=r"r = -0.01 is outside the allowed range \[0, inf\)"):
-        disc_cell_area(0, 0, -0.01, 0, 1, 0, 1)
+        stone_cell_area(0, 0, -0.01, 0, 1, 0, 1)
     with pytest.raises(ValueError, match=r"x1 = -1 is outside the allowed range \[0, inf\]"):
-        disc_cell_area(0, 0, 0.01, 0, -1, 0, 1)
+        stone_cell_area(0, 0, 0.01, 0, -1, 0, 1)
     with pytest.raises(ValueError, match=r"cz = nan is outside"):
-        disc_cell_area(0, float("nan"), 0.01, 0, 1, 0, 1)
+        stone_cell_area(0, float("nan"), 0.01, 0, 1, 0, 1)
 
 
 # ---------------------------------------------------------------- the mapper, exact method
@@ -100,8 +100,8 @@ def test_disc_inside_one_cell():
     np.testing.assert_allclose(mp.cell_solid_area, expected, rtol=1e-14, atol=0)
     assert mp.cell_porosity[2, 1] == pytest.approx(1 - 0.59 * area / 0.01, rel=1e-14)
     assert mp.cell_porosity.sum() - mp.cell_porosity[2, 1] == 15.0
-    assert list(mp.disc_cell_offsets) == [0, 1]
-    assert list(mp.disc_cell_index) == [1 + 4 * 2]
+    assert list(mp.stone_cell_offsets) == [0, 1]
+    assert list(mp.stone_cell_index) == [1 + 4 * 2]
 
 
 def test_disc_over_many_cells_sums_to_pi_r_squared():
@@ -109,12 +109,12 @@ def test_disc_over_many_cells_sums_to_pi_r_squared():
     r = 0.024
     mp = mapper(g, r, r, max_discs=2)
     mp.map([0.1234567], [0.1111111], [r])
-    assert mp.disc_cell_area.size > 80
-    assert mp.disc_cell_area.sum() == pytest.approx(math.pi * r * r, rel=1e-12, abs=0)
+    assert mp.stone_cell_area.size > 80
+    assert mp.stone_cell_area.sum() == pytest.approx(math.pi * r * r, rel=1e-12, abs=0)
     assert mp.cell_solid_area.sum() == pytest.approx(math.pi * r * r, rel=1e-12, abs=0)
     # every (disc, cell) area is the closed form for that cell
     ref = cell_areas(g, 0.1234567, 0.1111111, r).ravel()
-    np.testing.assert_allclose(mp.disc_cell_area, ref[mp.disc_cell_index], rtol=1e-12, atol=1e-18)
+    np.testing.assert_allclose(mp.stone_cell_area, ref[mp.stone_cell_index], rtol=1e-12, atol=1e-18)
 
 
 def test_symmetric_placements_give_symmetric_areas():
@@ -142,9 +142,9 @@ def test_overlapping_discs_are_capped_at_the_cell_area():
     assert mp.cell_solid_area[4, 4] == ac[4, 0]
     assert mp.cell_porosity[4, 4] == 0.41
     # the per-disc lists keep the uncapped areas
-    off = mp.disc_cell_offsets
+    off = mp.stone_cell_offsets
     for j in range(3):
-        assert mp.disc_cell_area[off[j]:off[j + 1]].sum() == pytest.approx(math.pi * 0.024**2, rel=1e-12)
+        assert mp.stone_cell_area[off[j]:off[j + 1]].sum() == pytest.approx(math.pi * 0.024**2, rel=1e-12)
 
 
 def test_porosity_stays_in_n_exp_1_for_a_dense_random_packing():
@@ -176,7 +176,7 @@ def test_active_mask_skips_discs():
     g = paper_grid()
     mp = mapper(g, 0.024, 0.024, max_discs=3)
     mp.map([0.2, 0.5, 0.8], [0.1, 0.1, 0.1], [0.024] * 3, active=np.array([1, 0, 1], dtype=np.uint8))
-    off = mp.disc_cell_offsets
+    off = mp.stone_cell_offsets
     assert off[1] == off[2]  # the inactive disc covers nothing
     assert mp.cell_solid_area[:, 18:22].sum() == 0.0
     assert mp.cell_solid_area.sum() == pytest.approx(2 * math.pi * 0.024**2, rel=1e-12)
@@ -190,11 +190,11 @@ def test_map_is_deterministic_and_allocates_nothing():
         mp = mapper(g, 0.0216, 0.0264, method=method, max_discs=200)
         por = mp.cell_porosity
         mp.map(x, z, r)
-        first = np.array(por), np.array(mp.disc_cell_area)
+        first = np.array(por), np.array(mp.stone_cell_area)
         mp.map(x, z, r)
         # the same memory, the same bits
         assert np.shares_memory(por, mp.cell_porosity)
-        assert np.array_equal(first[0], mp.cell_porosity) and np.array_equal(first[1], mp.disc_cell_area)
+        assert np.array_equal(first[0], mp.cell_porosity) and np.array_equal(first[1], mp.stone_cell_area)
         assert list(mp.profile.names) == ["porosity_map"] and mp.profile.calls[0] == 2
 
 
@@ -203,7 +203,7 @@ def test_views_keep_the_mapper_alive():
     mp = mapper(g, 0.024, 0.024)
     mp.map([0.5], [0.1], [0.024])
     por = mp.cell_porosity
-    area = mp.disc_cell_area
+    area = mp.stone_cell_area
     expected = por.copy(), area.copy()
     del mp
     gc.collect()
@@ -265,15 +265,15 @@ def test_areas_sum_to_the_disc_part_inside_the_grid(nx, dx, x0, dz, discs, metho
         b = np.minimum(m - 1, np.floor((z - zf[kk]) / np.diff(zf)[kk] * m))
         cx = np.where(inner, x0 + dx * (i + (a + 0.5) / m), x)
         cz = np.where(inner, zf[kk] + np.diff(zf)[kk] * (b + 0.5) / m, z)
-    off = np.asarray(mp.disc_cell_offsets)
-    area = np.asarray(mp.disc_cell_area)
-    inside = disc_cell_area(cx, cz, r, x0, x0 + nx * dx, 0.0, zf[-1])
+    off = np.asarray(mp.stone_cell_offsets)
+    area = np.asarray(mp.stone_cell_area)
+    inside = stone_cell_area(cx, cz, r, x0, x0 + nx * dx, 0.0, zf[-1])
     for j in range(len(discs)):
         got = area[off[j]:off[j + 1]].sum()
         assert got == pytest.approx(inside[j], rel=1e-11, abs=1e-18)
     assert np.all(mp.cell_porosity >= 0.41) and np.all(mp.cell_porosity <= 1.0)
     # the cell totals are the capped sums of the lists
-    total = np.bincount(np.asarray(mp.disc_cell_index), weights=area, minlength=g.ncell).reshape(g.nz, g.nx)
+    total = np.bincount(np.asarray(mp.stone_cell_index), weights=area, minlength=g.ncell).reshape(g.nz, g.nx)
     ac = dx * np.diff(zf)[:, None]
     np.testing.assert_allclose(mp.cell_solid_area, np.minimum(total, ac), rtol=1e-12, atol=1e-18)
 

@@ -50,13 +50,13 @@ def test_incline_holds_below_mu_r_and_rolls_above_at_the_hand_rate():
     mu_r = 0.25
     s = incline(math.atan(0.9 * mu_r), mu_r)
     s.advance(1.0)
-    assert abs(s.disc_vel[0, 0]) < 1e-5 and abs(s.disc_pos[0, 0]) < 1e-4
+    assert abs(s.stone_vel[0, 0]) < 1e-5 and abs(s.stone_pos[0, 0]) < 1e-4
     th = math.atan(1.6 * mu_r)
     s = incline(th, mu_r)
     s.advance(0.5)
-    v0 = s.disc_vel[0, 0]
+    v0 = s.stone_vel[0, 0]
     s.advance(0.5)
-    a = (s.disc_vel[0, 0] - v0) / 0.5
+    a = (s.stone_vel[0, 0] - v0) / 0.5
     assert a == pytest.approx(9.81 * (math.sin(th) - mu_r * math.cos(th)) / 1.4, rel=5e-3)
     # the flag off: the coefficient is ignored and the stone rolls at 5/7 g sin
     s = incline(th, mu_r)
@@ -64,9 +64,9 @@ def test_incline_holds_below_mu_r_and_rolls_above_at_the_hand_rate():
     p.flags = p.flags & ~vofdem.DEM_ROLLING_RESISTANCE
     s.params = p
     s.advance(0.5)
-    v0 = s.disc_vel[0, 0]
+    v0 = s.stone_vel[0, 0]
     s.advance(0.5)
-    assert (s.disc_vel[0, 0] - v0) / 0.5 == pytest.approx(5 / 7 * 9.81 * math.sin(th), rel=5e-3)
+    assert (s.stone_vel[0, 0] - v0) / 0.5 == pytest.approx(5 / 7 * 9.81 * math.sin(th), rel=5e-3)
 
 
 def pile(mu_r):
@@ -135,7 +135,7 @@ def test_the_weir_is_packed_with_the_rolling_resistance():
     assert rolled.params.rolling_friction_stone == 0.4
     # the same seed packs differently: the packer used the rolling resistance
     n = min(plain.n, rolled.n)
-    assert not np.allclose(np.asarray(plain.disc_pos)[:n], np.asarray(rolled.disc_pos)[:n])
+    assert not np.allclose(np.asarray(plain.stone_pos)[:n], np.asarray(rolled.stone_pos)[:n])
 
 
 def test_params_command_lists_the_rolling_keys(capsys):

@@ -40,7 +40,7 @@ def test_a_coupled_run_branches_bit_for_bit(polygons):
     at_branch = sim.export_state()
     sim.advance(0.12)
     first = sim.export_state()
-    assert not np.array_equal(first["dem/disc_pos"], at_branch["dem/disc_pos"])
+    assert not np.array_equal(first["dem/stone_pos"], at_branch["dem/stone_pos"])
     sim.set_state(branch)
     same(sim.export_state(), at_branch)  # the typed copy is the checkpoint's state
     sim.advance(0.12)
@@ -55,13 +55,13 @@ def test_flow_and_stones_branch_alone():
     f0, s0 = fluid.copy_state(), stones.copy_state()
     fluid.advance(0.05)
     stones.advance(0.05)
-    u, pos = np.array(fluid.face_u), np.array(stones.disc_pos)
+    u, pos = np.array(fluid.face_u), np.array(stones.stone_pos)
     fluid.set_state(f0)
     stones.set_state(s0)
     assert fluid.time == 0.0 and stones.time == 0.0
     fluid.advance(0.05)
     stones.advance(0.05)
-    assert np.array_equal(fluid.face_u, u) and np.array_equal(stones.disc_pos, pos)
+    assert np.array_equal(fluid.face_u, u) and np.array_equal(stones.stone_pos, pos)
 
 
 def test_a_state_of_another_scene_is_refused_and_changes_nothing():
@@ -72,7 +72,7 @@ def test_a_state_of_another_scene_is_refused_and_changes_nothing():
     with pytest.raises(ValueError, match="cell_p"):
         sim.fluid.set_state(other.copy_state())
     few = vofdem.DEMSystem(vofdem.DEMParams(), 2)
-    with pytest.raises(ValueError, match="coupler/disc_force_drag"):
+    with pytest.raises(ValueError, match="coupler/stone_force_drag"):
         c = _core.Coupler(None, few, _core.CouplerParams())
         sim.set_state(c.copy_state())
     same(sim.export_state(), before)

@@ -73,8 +73,8 @@ def test_a_coupled_flume_is_the_same_bits_on_one_and_two_threads(restore_threads
     assert one.keys() == two.keys()
     for k in one:
         assert one[k].tobytes() == two[k].tobytes(), k
-    start = np.asarray(flume().export_state()["dem/disc_pos"])
-    assert start.shape == one["dem/disc_pos"].shape and not np.array_equal(one["dem/disc_pos"], start)  # they moved
+    start = np.asarray(flume().export_state()["dem/stone_pos"])
+    assert start.shape == one["dem/stone_pos"].shape and not np.array_equal(one["dem/stone_pos"], start)  # they moved
 
 
 @needs_two

@@ -13,11 +13,11 @@ from vofdem import _core
 
 FLUID_VIEWS = {"face_u", "face_w", "cell_p", "cell_F", "cell_porosity", "face_x_porosity", "face_z_porosity",
                "cell_stone_diameter", "cell_nut", "cell_k", "cell_eps", "face_x_solid_u", "face_z_solid_w"}
-STONE_VIEWS = {"disc_pos", "disc_vel", "disc_force_ext", "disc_drag_coef", "disc_drag_vel", "disc_force", "disc_acc",
-               "disc_angle", "disc_omega", "disc_radius", "disc_density", "disc_fixed", "disc_active", "disc_wet",
-               "disc_water_level", "disc_torque", "disc_alpha", "disc_asleep"}
+STONE_VIEWS = {"stone_pos", "stone_vel", "stone_force_ext", "stone_drag_coef", "stone_drag_vel", "stone_force", "stone_acc",
+               "stone_angle", "stone_omega", "stone_radius", "stone_density", "stone_fixed", "stone_active", "stone_wet",
+               "stone_water_level", "stone_torque", "stone_alpha", "stone_asleep"}
 POLYGON_VIEWS = STONE_VIEWS | {"poly_vertex", "poly_offset"}  # empty (no view) for disc stones
-COUPLER_VIEWS = {"disc_force_drag", "disc_force_pressure", "cell_base_porosity", "cell_base_diameter"}
+COUPLER_VIEWS = {"stone_force_drag", "stone_force_pressure", "cell_base_porosity", "cell_base_diameter"}
 
 
 def views_of(obj):
@@ -164,4 +164,4 @@ def test_the_reallocating_calls_say_so():
         assert "invalidates" in method.__doc__.lower(), method.__name__
     dem = stones(2)
     dem.resize(5)
-    assert dem.disc_pos.shape == (5, 2)
+    assert dem.stone_pos.shape == (5, 2)

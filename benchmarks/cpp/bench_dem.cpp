@@ -38,7 +38,7 @@ static void BM_DEMSettle(benchmark::State& state) {
     vofdem::DEMSystem s = settling(n);
     state.ResumeTiming();
     s.advance(steps * 1e-4);
-    benchmark::DoNotOptimize(s.disc_pos.data());
+    benchmark::DoNotOptimize(s.stone_pos.data());
   }
   state.counters["ns_per_particle_step"] = benchmark::Counter(
       static_cast<double>(n) * steps * state.iterations() * 1e-9,

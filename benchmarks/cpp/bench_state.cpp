@@ -65,7 +65,7 @@ static void BM_SnapshotTyped(benchmark::State& state) {
     s.sim->export_state(coupled);
     s.stones->export_state(stones);
     benchmark::DoNotOptimize(coupled.fluid.cell_F.data());
-    benchmark::DoNotOptimize(stones.disc_pos.data());
+    benchmark::DoNotOptimize(stones.stone_pos.data());
   }
 }
 

@@ -24,7 +24,7 @@ void bind_coupler(py::module_& m) {
       .value("POROSITY", kCouplePorosity, "two-way: the flow's porosity follows the stones")
       .value("DRAG", kCoupleDrag, "drag on the stones, eqs. (16)-(18)")
       .value("PRESSURE_GRADIENT", kCouplePressureGradient, "F_S = -V (grad p - rho_w F g) on the stones")
-      .value("WET_FRACTION", kCoupleWetFraction, "disc_wet from the water fraction")
+      .value("WET_FRACTION", kCoupleWetFraction, "stone_wet from the water fraction")
       .value("CHECKS", kCoupleChecks, "non-finite forces and stone states checked every step")
       .value("LOOKUP_POROSITY", kCoupleLookupPorosity, "the paper's lookup table instead of exact areas")
       .value("DISPLACE_FLOW", kCoupleDisplaceFlow, "porosity changes drive the flow (dn/dt + div u = 0)")
@@ -126,7 +126,7 @@ void bind_coupler(py::module_& m) {
       .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true,
            "maps the stones onto the porosity now; keep_water_volume: True keeps n F V per cell (displaced water moves to neighbours), False keeps F (scene set-up)")
       .def("update_fluid_forces", &Coupler::update_fluid_forces,
-           "recomputes the fluid forces on the stones now (disc_force_drag, disc_force_pressure, the stones' wet fractions and external forces)")
+           "recomputes the fluid forces on the stones now (stone_force_drag, stone_force_pressure, the stones' wet fractions and external forces)")
       .def("water_volume", &Coupler::water_volume,
            "the flow's water volume sum(n F V) per unit width [m^2]")
       .def_property_readonly("redistributed_volume", &Coupler::redistributed_volume,
@@ -143,11 +143,11 @@ void bind_coupler(py::module_& m) {
                                "returns to a copy_state() copy (every part checked first; written into the arrays in place)");
   cls.def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal,
            "CPU seconds per coupled stage (StageProfile)")
-      .def_property_readonly("disc_force_drag",
-                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_drag, self); },
+      .def_property_readonly("stone_force_drag",
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().stone_force_drag, self); },
            "drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view")
-      .def_property_readonly("disc_force_pressure",
-                             [](py::object self) { return view_pairs(self.cast<Coupler&>().disc_force_pressure, self); },
+      .def_property_readonly("stone_force_pressure",
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().stone_force_pressure, self); },
            "pressure-gradient force on each stone (n, 2) [N], zero-copy view")
       .def_property_readonly("cell_base_porosity",
                              [](py::object self) { return view(self.cast<Coupler&>().cell_base_porosity, self); },

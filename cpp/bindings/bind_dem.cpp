@@ -88,7 +88,7 @@ void bind_params(py::module_& m) {
       .value("BUOYANCY", kDEMBuoyancy, "rho_w V w g")
       .value("SLEEPING", kDEMSleeping, "stones at rest under small forces are not integrated")
       .value("DAMPING", kDEMDamping, "contact dashpots")
-      .value("EXTERNAL_FORCE", kDEMExternalForce, "disc_force_ext (the fluid's forces)")
+      .value("EXTERNAL_FORCE", kDEMExternalForce, "stone_force_ext (the fluid's forces)")
       .value("REMOVAL", kDEMRemoval, "stones leaving the domain box are deactivated")
       .value("ROLLING_RESISTANCE", kDEMRollingResistance, "rolling moment (rolling_resistance.h)")
       .value("ALL_EFFECTS", kDEMAllEffects, "everything but sleeping")
@@ -105,7 +105,7 @@ void bind_params(py::module_& m) {
       .def_readonly("dissipated", &DEMEnergy::dissipated,
            "dashpots, Coulomb and rolling slip and sleeping, accumulated [J]")
       .def_readonly("work_external", &DEMEnergy::work_external,
-           "work of the external (fluid) forces disc_force_ext, accumulated [J]")
+           "work of the external (fluid) forces stone_force_ext, accumulated [J]")
       .def_property_readonly("total", &DEMEnergy::total,
            "kinetic + potential + elastic + dissipated - work_external [J]: constant but for round-off and the step's error");
 
@@ -135,7 +135,7 @@ void bind_system(py::module_& m) {
            py::arg("params"), py::arg("pos"), py::arg("radius"), py::arg("density") = A(py::cast(2650.0)),
            py::arg("fixed") = std::vector<std::uint8_t>{})
       .def_property_readonly("n", &DEMSystem::n,
-           "number of stones (removed ones included; see disc_active)")
+           "number of stones (removed ones included; see stone_active)")
       .def_property(
           "params", [](const DEMSystem& s) { return s.params(); }, &DEMSystem::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked")
@@ -158,7 +158,7 @@ void bind_system(py::module_& m) {
       .def_property_readonly("steps", &DEMSystem::steps,
            "DEM steps taken")
       .def_property_readonly("removed_count", &DEMSystem::removed_count,
-           "stones that left the domain (disc_active = 0)")
+           "stones that left the domain (stone_active = 0)")
       .def_property_readonly("contact_count", &DEMSystem::contact_count,
            "touching stone-stone contacts at the last force evaluation")
       .def_property_readonly("wall_contact_count", &DEMSystem::wall_contact_count,
@@ -210,50 +210,50 @@ void bind_system(py::module_& m) {
                            "vertex count differs, which invalidates earlier views)");
   cls.def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal,
            "CPU seconds per DEM stage (StageProfile)")
-      .def_property_readonly("disc_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_pos, self); },
+      .def_property_readonly("stone_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_pos, self); },
            "centres (x along the flume, z up) (n, 2) [m], zero-copy view")
-      .def_property_readonly("disc_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_vel, self); },
+      .def_property_readonly("stone_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_vel, self); },
            "velocities (n, 2) [m/s], zero-copy view")
-      .def_property_readonly("disc_force_ext",
-                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force_ext, self); },
+      .def_property_readonly("stone_force_ext",
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_force_ext, self); },
            "external (fluid) forces (n, 2) [N], held until changed; zero-copy view")
-      .def_property_readonly("disc_drag_coef",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_drag_coef, self); },
+      .def_property_readonly("stone_drag_coef",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_drag_coef, self); },
            "linear drag coefficient c >= 0 per stone (n) [N s/m], zero-copy view")
-      .def_property_readonly("disc_drag_vel",
-                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_drag_vel, self); },
+      .def_property_readonly("stone_drag_vel",
+                             [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_drag_vel, self); },
            "velocity U the linear drag c (U - v) pulls towards (n, 2) [m/s], zero-copy view")
-      .def_property_readonly("disc_force", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_force, self); },
+      .def_property_readonly("stone_force", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_force, self); },
            "total force of the last evaluation (n, 2) [N], zero-copy view")
-      .def_property_readonly("disc_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().disc_acc, self); },
+      .def_property_readonly("stone_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_acc, self); },
            "acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view")
-      .def_property_readonly("disc_angle", [](py::object self) { return view(self.cast<DEMSystem&>().disc_angle, self); },
+      .def_property_readonly("stone_angle", [](py::object self) { return view(self.cast<DEMSystem&>().stone_angle, self); },
            "rotation angle, counter-clockwise in (x, z) (n) [rad], zero-copy view")
-      .def_property_readonly("disc_omega", [](py::object self) { return view(self.cast<DEMSystem&>().disc_omega, self); },
+      .def_property_readonly("stone_omega", [](py::object self) { return view(self.cast<DEMSystem&>().stone_omega, self); },
            "angular velocity (n) [rad/s], zero-copy view")
-      .def_property_readonly("disc_radius",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_radius, self); },
+      .def_property_readonly("stone_radius",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_radius, self); },
            "radius (n) [m] (a disc's d / 2, a polygon's nominal one), zero-copy view")
-      .def_property_readonly("disc_density",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_density, self); },
+      .def_property_readonly("stone_density",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_density, self); },
            "stone density rho_s (n) [kg/m^3], zero-copy view")
-      .def_property_readonly("disc_fixed", [](py::object self) { return view(self.cast<DEMSystem&>().disc_fixed, self); },
+      .def_property_readonly("stone_fixed", [](py::object self) { return view(self.cast<DEMSystem&>().stone_fixed, self); },
            "1: the stone never moves (bed layer) (n), zero-copy view")
-      .def_property_readonly("disc_active",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_active, self); },
+      .def_property_readonly("stone_active",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_active, self); },
            "0: the stone left the domain (kept, not integrated) (n), zero-copy view")
-      .def_property_readonly("disc_wet", [](py::object self) { return view(self.cast<DEMSystem&>().disc_wet, self); },
+      .def_property_readonly("stone_wet", [](py::object self) { return view(self.cast<DEMSystem&>().stone_wet, self); },
            "wet fraction in [0, 1] (n) [-], zero-copy view")
-      .def_property_readonly("disc_water_level",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_water_level, self); },
-                             "free-surface level at each stone [m]; NaN: disc_wet held as set")
-      .def_property_readonly("disc_torque",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_torque, self); },
+      .def_property_readonly("stone_water_level",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_water_level, self); },
+                             "free-surface level at each stone [m]; NaN: stone_wet held as set")
+      .def_property_readonly("stone_torque",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_torque, self); },
            "total torque of the last evaluation (n) [N m], zero-copy view")
-      .def_property_readonly("disc_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().disc_alpha, self); },
+      .def_property_readonly("stone_alpha", [](py::object self) { return view(self.cast<DEMSystem&>().stone_alpha, self); },
            "angular acceleration of the last evaluation (n) [rad/s^2], zero-copy view")
-      .def_property_readonly("disc_asleep",
-                             [](py::object self) { return view(self.cast<DEMSystem&>().disc_asleep, self); },
+      .def_property_readonly("stone_asleep",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_asleep, self); },
            "1: the stone sleeps (not integrated) (n), zero-copy view");
 }
 

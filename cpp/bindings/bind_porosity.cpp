@@ -31,7 +31,7 @@ void map_discs(PorosityMapper& self, const InArray& x, const InArray& z, const I
 }  // namespace
 
 void bind_porosity(py::module_& m) {
-  m.def("disc_cell_area", py::vectorize(&disc_rect_area), py::arg("cx"), py::arg("cz"), py::arg("r"), py::arg("x0"),
+  m.def("stone_cell_area", py::vectorize(&disc_rect_area), py::arg("cx"), py::arg("cz"), py::arg("r"), py::arg("x0"),
         py::arg("x1"), py::arg("z0"), py::arg("z1"),
         "Exact area [m^2] of the disc of centre (cx, cz) [m] and radius r [m] inside [x0, x1] x [z0, z1] [m].");
   m.def("porosity_eq11", py::vectorize(&porosity_eq11), py::arg("a_s"), py::arg("a_c"), py::arg("n_exp") = 0.41,
@@ -83,24 +83,24 @@ void bind_porosity(py::module_& m) {
           },
           "porosity n of each cell [-]; (nz, nx) view")
       .def_property_readonly(
-          "disc_cell_offsets",
+          "stone_cell_offsets",
           [](py::object self) {
             auto& p = self.cast<PorosityMapper&>();
-            return view(p.disc_cell_offsets().data(), p.ndisc() + 1, self);
+            return view(p.stone_cell_offsets().data(), p.ndisc() + 1, self);
           },
           "CSR offsets (ndisc + 1) of the cells each disc covers")
       .def_property_readonly(
-          "disc_cell_index",
+          "stone_cell_index",
           [](py::object self) {
             auto& p = self.cast<PorosityMapper&>();
-            return view(p.disc_cell_index().data(), p.disc_cell_offsets()[p.ndisc()], self);
+            return view(p.stone_cell_index().data(), p.stone_cell_offsets()[p.ndisc()], self);
           },
           "flat cell index i + nx k of each (disc, cell) pair")
       .def_property_readonly(
-          "disc_cell_area",
+          "stone_cell_area",
           [](py::object self) {
             auto& p = self.cast<PorosityMapper&>();
-            return view(p.disc_cell_area().data(), p.disc_cell_offsets()[p.ndisc()], self);
+            return view(p.stone_cell_area().data(), p.stone_cell_offsets()[p.ndisc()], self);
           },
           "area [m^2] of each (disc, cell) pair, uncapped")
       .def_property_readonly("profile", [](PorosityMapper& p) -> StageProfile& { return p.profile(); },

@@ -39,9 +39,9 @@ int main() {
     sim.advance(0.1 * q, [&steps](double) { ++steps; });  // progress callback after every step
     int low = 0;
     for (int j = 1; j < stones.n(); ++j)
-      if (stones.disc_pos[2 * j + 1] < stones.disc_pos[2 * low + 1]) low = j;
+      if (stones.stone_pos[2 * j + 1] < stones.stone_pos[2 * low + 1]) low = j;
     std::printf("%8.3f   %18.2e   %18.4f   %10.4f   %14.4f\n", sim.time(), (sim.water_volume() - v0) / v0,
-                stones.disc_pos[2 * low + 1], sim.disc_force_drag[2 * low + 1], sim.disc_force_pressure[2 * low + 1]);
+                stones.stone_pos[2 * low + 1], sim.stone_force_drag[2 * low + 1], sim.stone_force_pressure[2 * low + 1]);
   }
   std::printf("\n%lld coupling steps\nstage          seconds      calls\n", steps);
   const StageProfile& p = sim.profile();

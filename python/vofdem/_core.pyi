@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'disc_cell_area', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_cell_area', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -317,21 +317,6 @@ class PorosityMapper:
         stone area A_s of each cell [m^2], capped at the cell area; (nz, nx) view
         """
     @property
-    def disc_cell_area(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        area [m^2] of each (disc, cell) pair, uncapped
-        """
-    @property
-    def disc_cell_index(self) -> numpy.typing.NDArray[numpy.int32]:
-        """
-        flat cell index i + nx k of each (disc, cell) pair
-        """
-    @property
-    def disc_cell_offsets(self) -> numpy.typing.NDArray[numpy.int32]:
-        """
-        CSR offsets (ndisc + 1) of the cells each disc covers
-        """
-    @property
     def grid(self) -> Grid2D:
         """
         the flow grid the mapper maps onto (Grid2D)
@@ -355,6 +340,21 @@ class PorosityMapper:
     def row_class(self) -> list[int]:
         """
         row class of each grid row for the lookup tables (rows with equal z-faces within reach share one)
+        """
+    @property
+    def stone_cell_area(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        area [m^2] of each (disc, cell) pair, uncapped
+        """
+    @property
+    def stone_cell_index(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        flat cell index i + nx k of each (disc, cell) pair
+        """
+    @property
+    def stone_cell_offsets(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        CSR offsets (ndisc + 1) of the cells each disc covers
         """
     @property
     def table_bytes(self) -> int:
@@ -627,7 +627,7 @@ class DEMEnergy:
     @property
     def work_external(self) -> float:
         """
-        work of the external (fluid) forces disc_force_ext, accumulated [J]
+        work of the external (fluid) forces stone_force_ext, accumulated [J]
         """
 class DEMState:
     """
@@ -746,99 +746,9 @@ class DEMSystem:
         normal damping ratio zeta [-] from params.restitution
         """
     @property
-    def disc_acc(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view
-        """
-    @property
-    def disc_active(self) -> numpy.typing.NDArray[numpy.uint8]:
-        """
-        0: the stone left the domain (kept, not integrated) (n), zero-copy view
-        """
-    @property
-    def disc_alpha(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        angular acceleration of the last evaluation (n) [rad/s^2], zero-copy view
-        """
-    @property
-    def disc_angle(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        rotation angle, counter-clockwise in (x, z) (n) [rad], zero-copy view
-        """
-    @property
-    def disc_asleep(self) -> numpy.typing.NDArray[numpy.uint8]:
-        """
-        1: the stone sleeps (not integrated) (n), zero-copy view
-        """
-    @property
-    def disc_density(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        stone density rho_s (n) [kg/m^3], zero-copy view
-        """
-    @property
-    def disc_drag_coef(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        linear drag coefficient c >= 0 per stone (n) [N s/m], zero-copy view
-        """
-    @property
-    def disc_drag_vel(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        velocity U the linear drag c (U - v) pulls towards (n, 2) [m/s], zero-copy view
-        """
-    @property
-    def disc_fixed(self) -> numpy.typing.NDArray[numpy.uint8]:
-        """
-        1: the stone never moves (bed layer) (n), zero-copy view
-        """
-    @property
-    def disc_force(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        total force of the last evaluation (n, 2) [N], zero-copy view
-        """
-    @property
-    def disc_force_ext(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        external (fluid) forces (n, 2) [N], held until changed; zero-copy view
-        """
-    @property
-    def disc_omega(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        angular velocity (n) [rad/s], zero-copy view
-        """
-    @property
-    def disc_pos(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        centres (x along the flume, z up) (n, 2) [m], zero-copy view
-        """
-    @property
-    def disc_radius(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        radius (n) [m] (a disc's d / 2, a polygon's nominal one), zero-copy view
-        """
-    @property
-    def disc_torque(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        total torque of the last evaluation (n) [N m], zero-copy view
-        """
-    @property
-    def disc_vel(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        velocities (n, 2) [m/s], zero-copy view
-        """
-    @property
-    def disc_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        free-surface level at each stone [m]; NaN: disc_wet held as set
-        """
-    @property
-    def disc_wet(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        wet fraction in [0, 1] (n) [-], zero-copy view
-        """
-    @property
     def n(self) -> int:
         """
-        number of stones (removed ones included; see disc_active)
+        number of stones (removed ones included; see stone_active)
         """
     @property
     def neighbour_builds(self) -> int:
@@ -871,7 +781,7 @@ class DEMSystem:
     @property
     def removed_count(self) -> int:
         """
-        stones that left the domain (disc_active = 0)
+        stones that left the domain (stone_active = 0)
         """
     @property
     def shape(self) -> str:
@@ -892,6 +802,96 @@ class DEMSystem:
     def stiffness_tangential(self) -> float:
         """
         tangential contact stiffness k_t = stiffness_ratio k_n [N/m]
+        """
+    @property
+    def stone_acc(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view
+        """
+    @property
+    def stone_active(self) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        0: the stone left the domain (kept, not integrated) (n), zero-copy view
+        """
+    @property
+    def stone_alpha(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        angular acceleration of the last evaluation (n) [rad/s^2], zero-copy view
+        """
+    @property
+    def stone_angle(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        rotation angle, counter-clockwise in (x, z) (n) [rad], zero-copy view
+        """
+    @property
+    def stone_asleep(self) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        1: the stone sleeps (not integrated) (n), zero-copy view
+        """
+    @property
+    def stone_density(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        stone density rho_s (n) [kg/m^3], zero-copy view
+        """
+    @property
+    def stone_drag_coef(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        linear drag coefficient c >= 0 per stone (n) [N s/m], zero-copy view
+        """
+    @property
+    def stone_drag_vel(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        velocity U the linear drag c (U - v) pulls towards (n, 2) [m/s], zero-copy view
+        """
+    @property
+    def stone_fixed(self) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        1: the stone never moves (bed layer) (n), zero-copy view
+        """
+    @property
+    def stone_force(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        total force of the last evaluation (n, 2) [N], zero-copy view
+        """
+    @property
+    def stone_force_ext(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        external (fluid) forces (n, 2) [N], held until changed; zero-copy view
+        """
+    @property
+    def stone_omega(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        angular velocity (n) [rad/s], zero-copy view
+        """
+    @property
+    def stone_pos(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        centres (x along the flume, z up) (n, 2) [m], zero-copy view
+        """
+    @property
+    def stone_radius(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        radius (n) [m] (a disc's d / 2, a polygon's nominal one), zero-copy view
+        """
+    @property
+    def stone_torque(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        total torque of the last evaluation (n) [N m], zero-copy view
+        """
+    @property
+    def stone_vel(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        velocities (n, 2) [m/s], zero-copy view
+        """
+    @property
+    def stone_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        free-surface level at each stone [m]; NaN: stone_wet held as set
+        """
+    @property
+    def stone_wet(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        wet fraction in [0, 1] (n) [-], zero-copy view
         """
     @property
     def time(self) -> float:
@@ -2848,7 +2848,7 @@ class Coupler:
         """
     def update_fluid_forces(self) -> None:
         """
-        recomputes the fluid forces on the stones now (disc_force_drag, disc_force_pressure, the stones' wet fractions and external forces)
+        recomputes the fluid forces on the stones now (stone_force_drag, stone_force_pressure, the stones' wet fractions and external forces)
         """
     def update_porosity(self, keep_water_volume: bool = True) -> None:
         """
@@ -2867,16 +2867,6 @@ class Coupler:
     def cell_base_porosity(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         porosity without the stones per cell (ncell) [-] (from the flow at construction), zero-copy view
-        """
-    @property
-    def disc_force_drag(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view
-        """
-    @property
-    def disc_force_pressure(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        pressure-gradient force on each stone (n, 2) [N], zero-copy view
         """
     @property
     def floored_solid_area(self) -> float:
@@ -2927,6 +2917,16 @@ class Coupler:
         coupled steps taken
         """
     @property
+    def stone_force_drag(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view
+        """
+    @property
+    def stone_force_pressure(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        pressure-gradient force on each stone (n, 2) [N], zero-copy view
+        """
+    @property
     def stones(self) -> DEMSystem:
         """
         the stones (DEMSystem) this coupler steps
@@ -2959,10 +2959,6 @@ def contact_duration(k: typing.SupportsFloat | typing.SupportsIndex, m_reduced: 
 def damping_ratio_from_restitution(e: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     Damping ratio zeta [-] of a linear spring-dashpot that gives the restitution coefficient e [-] (e = 0: zeta = 1).
-    """
-def disc_cell_area(cx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
-    """
-    Exact area [m^2] of the disc of centre (cx, cz) [m] and radius r [m] inside [x0, x1] x [z0, z1] [m].
     """
 def drag_coefficient(re: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], law: DragLaw = ...) -> typing.Any:
     """
@@ -3021,6 +3017,10 @@ def set_thread_min_cells(n: typing.SupportsInt | typing.SupportsIndex) -> None:
 def set_threads(n: typing.SupportsInt | typing.SupportsIndex) -> None:
     """
     Threads of the next steps of every solver in this process [-], in [1, max_threads()]; the results are the same bits for any count (docs/threads.md). ValueError outside the range.
+    """
+def stone_cell_area(cx: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], cz: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], r: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], z1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    Exact area [m^2] of the disc of centre (cx, cz) [m] and radius r [m] inside [x0, x1] x [z0, z1] [m].
     """
 def stone_model_names() -> list[str]:
     """

@@ -196,7 +196,7 @@ def build_stones(scene: Scene):
         raise ValueError(dem_step_hint(str(e))) from None
     sys_.params = dem_params(scene)
     if not st.fix_bottom_layer:
-        sys_.disc_fixed[:] = 0
+        sys_.stone_fixed[:] = 0
     return sys_, report
 
 
@@ -341,9 +341,9 @@ def solid_fraction(scene: Scene, stones) -> float:
     if scene.weir.outline and front(scene.stones.shape).outline_packer:
         from .outline_packing import body_porosity
 
-        act = np.asarray(stones.disc_active, bool)
-        pos = np.asarray(stones.disc_pos, float).reshape(-1, 2)[act]
-        return 1.0 - body_porosity(scene.weir.body(), pos, np.asarray(stones.disc_radius, float)[act])
+        act = np.asarray(stones.stone_active, bool)
+        pos = np.asarray(stones.stone_pos, float).reshape(-1, 2)[act]
+        return 1.0 - body_porosity(scene.weir.body(), pos, np.asarray(stones.stone_radius, float)[act])
     return 1.0 - float(_core.weir_porosity(stones, weir_spec(scene)))
 
 

@@ -125,8 +125,8 @@ def stone_outlines(system) -> Optional[List[np.ndarray]]:
 
 
 def _speeds(system) -> np.ndarray:
-    v = np.hypot(*np.asarray(system.disc_vel).T)
-    return np.maximum(v, np.abs(np.asarray(system.disc_omega)) * np.asarray(system.disc_radius))
+    v = np.hypot(*np.asarray(system.stone_vel).T)
+    return np.maximum(v, np.abs(np.asarray(system.stone_omega)) * np.asarray(system.stone_radius))
 
 
 def fit_flanks(x, top, base_top: float, d: float, setup: ReposeSetup):
@@ -233,13 +233,13 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
     sys_ = builder.stone_system(scene, repose_params(scene, submerged, xb[-1] + db[-1]), pos, diam, fixed, shapes)
     # stones whose orientation shows take a random one from the heap's seed; the base stones at once
     turn = front_of(sys_).turn_base(sys_, seed, nb)
-    sys_.disc_active[nb:] = 0
+    sys_.stone_active[nb:] = 0
     base_top = float(stone_tops(sys_)[:nb].max())
     dt_release = setup.release_interval
     for k in range(nb, nb + setup.n_stones):
         x = setup.funnel_jitter * d * rng.uniform(-1.0, 1.0)
         while True:
-            P, R, A = np.asarray(sys_.disc_pos), np.asarray(sys_.disc_radius), np.asarray(sys_.disc_active)
+            P, R, A = np.asarray(sys_.stone_pos), np.asarray(sys_.stone_radius), np.asarray(sys_.stone_active)
             # the heap's top under the funnel: stones at rest there (not those still falling)
             near = A.astype(bool) & (np.abs(P[:, 0]) < 1.5 * d) & (_speeds(sys_) < 0.2)
             top = max(base_top, float(stone_tops(sys_)[near].max()) if near.any() else base_top)
@@ -247,12 +247,12 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
             if _free_spot(P, R, A, x, z, R[k]):
                 break
             sys_.advance(0.01)  # the previous stone is still in the way
-        sys_.disc_pos[k] = (x, z)
-        sys_.disc_vel[k] = (0.0, 0.0)
-        sys_.disc_omega[k] = 0.0
+        sys_.stone_pos[k] = (x, z)
+        sys_.stone_vel[k] = (0.0, 0.0)
+        sys_.stone_omega[k] = 0.0
         if turn is not None:
-            sys_.disc_angle[k] = turn[k]
-        sys_.disc_active[k] = 1
+            sys_.stone_angle[k] = turn[k]
+        sys_.stone_active[k] = 1
         sys_.advance(dt_release)
         if log and (k - nb + 1) % 100 == 0:
             log(f"  poured {k - nb + 1} stones, t = {sys_.time:.1f} s")
@@ -263,11 +263,11 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
             settled = True
             break
     free = ~fixed
-    P = np.asarray(sys_.disc_pos)
+    P = np.asarray(sys_.stone_pos)
     left, right, env, height = fit_flanks(P[free, 0], stone_tops(sys_)[free], base_top, d, setup)
     return ReposeResult(seed=seed, submerged=submerged, left=left, right=right, height=float(height),
                         base_top=base_top, settled=settled, max_speed=float(_speeds(sys_)[nb:].max()),
-                        time=float(sys_.time), pos=P.copy(), radius=np.asarray(sys_.disc_radius).copy(),
+                        time=float(sys_.time), pos=P.copy(), radius=np.asarray(sys_.stone_radius).copy(),
                         fixed=fixed, envelope=env, outlines=stone_outlines(sys_))
 
 
@@ -367,9 +367,9 @@ def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None
     a = math.radians(w.downstream_slope_deg)
     n = np.array([math.sin(a), math.cos(a)])   # outward normal of the downstream slope
     t = np.array([-math.cos(a), math.sin(a)])  # up the slope
-    P, R = np.asarray(system.disc_pos), 0.5 * stone_diameters(system)  # polygons: nominal radii
-    on = np.asarray(system.disc_active).astype(bool)
-    free = on & (np.asarray(system.disc_fixed) == 0)
+    P, R = np.asarray(system.stone_pos), 0.5 * stone_diameters(system)  # polygons: nominal radii
+    on = np.asarray(system.stone_active).astype(bool)
+    free = on & (np.asarray(system.stone_fixed) == 0)
     s = (P - [w.x_toe_down, 0.0]) @ n
     u = (P - [w.x_toe_down, 0.0]) @ t
     x_mid = 0.5 * (w.x_crest_up + w.x_crest_down)
@@ -399,7 +399,7 @@ def pull_weir(scene: Scene, seed: int):
     p = builder.dem_params(scene, submerged=False)
     p.flags = int(p.flags | _core.DEM_EXTERNAL_FORCE)
     sys_.params = p
-    sys_.disc_wet[:] = 0.0
+    sys_.stone_wet[:] = 0.0
     return sys_, sys_.export_state()
 
 
@@ -409,7 +409,7 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
     setup = (setup or PullSetup()).validate()
     system.import_state(state)
     e = np.asarray(direction, float) / np.linalg.norm(direction)
-    x0 = np.array(system.disc_pos[stone])
+    x0 = np.array(system.stone_pos[stone])
     d = float(system.nominal_diameter(stone))
     weight = float(system.mass(stone)) * builder.GRAVITY
     steps = int(round(setup.max_travel / setup.speed / setup.update))
@@ -419,15 +419,15 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
     for k in range(steps):
         # the force held over the next `update` is the spring's at its middle (anchor and stone moved on
         # by half of it): holding the force of its start would lag and pump energy into the stone
-        x, v = np.asarray(system.disc_pos[stone]), np.asarray(system.disc_vel[stone])
+        x, v = np.asarray(system.stone_pos[stone]), np.asarray(system.stone_vel[stone])
         f = setup.spring * (x0 + e * setup.speed * h * (k + 0.5) - (x + 0.5 * h * v))
-        system.disc_force_ext[stone] = f
+        system.stone_force_ext[stone] = f
         travel[k], force[k] = setup.speed * h * k, float(np.hypot(*(setup.spring * (x0 + e * setup.speed * h * k - x))))
         if float(np.hypot(*(x - x0))) > setup.pulled_out * d:
             k_end = k + 1
             break
         system.advance(setup.update)
-    system.disc_force_ext[stone] = (0.0, 0.0)
+    system.stone_force_ext[stone] = (0.0, 0.0)
     travel, force = travel[:k_end], force[:k_end]
     kp = int(np.argmax(force))
     return PullResult(seed=seed, stone=int(stone), direction=name, peak=float(force[kp]),
@@ -455,7 +455,7 @@ def pull_test(scene: Scene, seeds: Sequence[int] = (0, 1, 2, 3, 4), per_seed: in
             for name in directions:
                 r = pull_stone(sys_, state, i, dirs[name], setup, seed=seed, name=name)
                 if log:
-                    log(f"seed {seed}, stone {i} (z = {state['disc_pos'][2 * i + 1]:.3f} m), {name}: "
+                    log(f"seed {seed}, stone {i} (z = {state['stone_pos'][2 * i + 1]:.3f} m), {name}: "
                         f"peak {r.peak:.2f} N ({r.peak / r.weight:.2f} of its weight)")
                 out.append(r)
     return out

@@ -98,17 +98,17 @@ class _Pile:
 
     def take(self, sys_) -> None:
         """Positions of the settled system; stones that left the domain are dropped."""
-        self.pos = np.asarray(sys_.disc_pos, float).reshape(-1, 2).copy()
-        self.keep(np.asarray(sys_.disc_active, bool))
+        self.pos = np.asarray(sys_.stone_pos, float).reshape(-1, 2).copy()
+        self.keep(np.asarray(sys_.stone_active, bool))
 
 
 def max_speed(sys_) -> float:
     """The largest speed [m/s] of the moving stones of a DEMSystem, translation or rim speed of rotation."""
-    moving = np.asarray(sys_.disc_active, bool) & ~np.asarray(sys_.disc_fixed, bool)
+    moving = np.asarray(sys_.stone_active, bool) & ~np.asarray(sys_.stone_fixed, bool)
     if not moving.any():
         return 0.0
-    v = np.asarray(sys_.disc_vel).reshape(-1, 2)[moving]
-    w = np.abs(np.asarray(sys_.disc_omega)[moving] * np.asarray(sys_.disc_radius)[moving])
+    v = np.asarray(sys_.stone_vel).reshape(-1, 2)[moving]
+    w = np.abs(np.asarray(sys_.stone_omega)[moving] * np.asarray(sys_.stone_radius)[moving])
     return float(max(np.hypot(v[:, 0], v[:, 1]).max(), w.max()))
 
 

@@ -3,8 +3,8 @@
 The loop talks to the coupled simulation only through these names:
 ``sim.time`` [s]; ``sim.advance(t_end)``; ``sim.set_inflow_table(times [s], Q [m3/s])``;
 ``sim.fluid`` with ``grid``, ``cell_F``, ``cell_p``, ``cell_porosity``, ``face_u``, ``face_w``;
-``sim.stones`` with ``disc_pos`` (n, 2), ``disc_vel`` (n, 2), ``disc_radius``, ``disc_active``,
-``disc_fixed``; ``sim.disc_force_drag``, ``sim.disc_force_pressure`` (n, 2) [N]; ``sim.profile`` with
+``sim.stones`` with ``stone_pos`` (n, 2), ``stone_vel`` (n, 2), ``stone_radius``, ``stone_active``,
+``stone_fixed``; ``sim.stone_force_drag``, ``sim.stone_force_pressure`` (n, 2) [N]; ``sim.profile`` with
 ``names``, ``seconds``, ``calls``; ``sim.export_state()`` / ``sim.import_state(dict)`` (checkpoints).
 
 A solver failure (RuntimeError while stepping) closes the output with everything written so far,
@@ -119,7 +119,7 @@ class _Recorder:
         self.nx, self.nz = g.nx, g.nz
         self.x_faces, self.z_faces = grid_faces(g)
         self.gauge_i = int(np.clip(np.searchsorted(self.x_faces, scene.gauge_x) - 1, 0, self.nx - 1))
-        start = sim.stones.disc_pos if pos0 is None else pos0
+        start = sim.stones.stone_pos if pos0 is None else pos0
         self.pos0 = np.array(start, float).reshape(-1, 2).copy()
         self.diameter = stone_diameters(sim.stones)
         self.polygons = front_of(sim.stones).output_shapes(sim.stones) is not None
@@ -135,13 +135,13 @@ class _Recorder:
         u, w = cell_velocities(fl.face_u, fl.face_w, self.nx, self.nz)
         fields = {"F": F, "p": np.asarray(fl.cell_p).reshape(shape),
                   "porosity": np.asarray(fl.cell_porosity).reshape(shape), "u": u, "w": w}
-        pos = np.asarray(st.disc_pos, float).reshape(-1, 2)
-        stones = {"pos": pos, "vel": np.asarray(st.disc_vel).reshape(-1, 2),
-                  "force_drag": np.asarray(sim.disc_force_drag).reshape(-1, 2),
-                  "force_pressure": np.asarray(sim.disc_force_pressure).reshape(-1, 2),
-                  "active": np.asarray(st.disc_active).astype(bool)}
+        pos = np.asarray(st.stone_pos, float).reshape(-1, 2)
+        stones = {"pos": pos, "vel": np.asarray(st.stone_vel).reshape(-1, 2),
+                  "force_drag": np.asarray(sim.stone_force_drag).reshape(-1, 2),
+                  "force_pressure": np.asarray(sim.stone_force_pressure).reshape(-1, 2),
+                  "active": np.asarray(st.stone_active).astype(bool)}
         if self.polygons:
-            stones["angle"] = np.array(st.disc_angle, float)
+            stones["angle"] = np.array(st.stone_angle, float)
         t = float(sim.time)
         self.check_top_row(F[-1], t)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
@@ -287,7 +287,7 @@ class _Loop:
         self.wall0 = _time.perf_counter()
         self.checkpoint_seconds, self.last_checkpoint = checkpoint_seconds, None
         if ck is None:
-            self.fixed0 = np.asarray(st.disc_fixed).astype(bool).copy()
+            self.fixed0 = np.asarray(st.stone_fixed).astype(bool).copy()
             ramp = scene.hydrograph.ramp_start
             self.hold = scene.hydrograph.hold_stones_during_spin_up and ramp > float(sim.time) and len(self.fixed0) > 0
             self.t_start = float(sim.time)
@@ -298,7 +298,7 @@ class _Loop:
                                     capacity=1 + len(self.targets), scene_toml=scene.to_toml(), seed=scene.seed,
                                     version=version, polygons=front_of(st).output_shapes(st), xdmf_seconds=xdmf_seconds)
             if self.hold:
-                st.disc_fixed[:] = True
+                st.stone_fixed[:] = True
             self.base_profile, self.base_wall, pos0 = {}, 0.0, None
         else:
             sim.import_state(ck.state)
@@ -333,7 +333,7 @@ class _Loop:
     def after_advance(self) -> None:
         """Releases the held stones once the ramp starts."""
         if self.hold and float(self.sim.time) >= self.scene.hydrograph.ramp_start - 1e-9:
-            self.sim.stones.disc_fixed[:] = self.fixed0
+            self.sim.stones.stone_fixed[:] = self.fixed0
             self.hold = False
 
     def snapshot(self) -> None:
@@ -431,8 +431,8 @@ def _write_grading(out: Path, scene: Scene, stones, zone, figures: bool) -> None
     was drawn for (reports.packed_report)."""
     from .reports import packed_report
 
-    pos = np.asarray(stones.disc_pos, float).reshape(-1, 2)
-    md, fig = packed_report(scene, pos, 2.0 * np.asarray(stones.disc_radius, float), zone)
+    pos = np.asarray(stones.stone_pos, float).reshape(-1, 2)
+    md, fig = packed_report(scene, pos, 2.0 * np.asarray(stones.stone_radius, float), zone)
     if md is None:
         return
     (out / "grading.md").write_text(md, encoding="utf-8")

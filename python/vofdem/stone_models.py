@@ -55,11 +55,11 @@ class StoneFront:
 
     def diameters(self, system) -> np.ndarray:
         """The stones' (nominal) diameters [m]."""
-        return 2.0 * np.asarray(system.disc_radius, float)
+        return 2.0 * np.asarray(system.stone_radius, float)
 
     def tops(self, system) -> np.ndarray:
         """Height of each stone's highest point [m]."""
-        return np.asarray(system.disc_pos)[:, 1] + np.asarray(system.disc_radius)
+        return np.asarray(system.stone_pos)[:, 1] + np.asarray(system.stone_radius)
 
     def outlines(self, system) -> Optional[List[np.ndarray]]:
         """The world outline (v, 2) [m] of every stone for plots; None: draw circles of the radii."""
@@ -123,12 +123,12 @@ class PolygonFront(StoneFront):
 
     def tops(self, system) -> np.ndarray:
         offset = np.asarray(system.poly_offset)
-        w = _poly.world_polygon_vertices(system.poly_vertex, offset, system.disc_pos, system.disc_angle)
+        w = _poly.world_polygon_vertices(system.poly_vertex, offset, system.stone_pos, system.stone_angle)
         return np.maximum.reduceat(w[:, 1], offset[:-1])
 
     def outlines(self, system) -> Optional[List[np.ndarray]]:
-        return _poly.outlines(np.asarray(system.poly_vertex), np.asarray(system.poly_offset), system.disc_pos,
-                              system.disc_angle)
+        return _poly.outlines(np.asarray(system.poly_vertex), np.asarray(system.poly_offset), system.stone_pos,
+                              system.stone_angle)
 
     def turn_base(self, system, seed: int, nb: int) -> Optional[np.ndarray]:
         # a generator of its own, so that the discs' draws stay as they were
@@ -136,8 +136,8 @@ class PolygonFront(StoneFront):
         offset = np.asarray(system.poly_offset)
         low = np.minimum.reduceat(
             _poly.world_polygon_vertices(system.poly_vertex, offset, np.zeros((system.n, 2)), turn)[:, 1], offset[:-1])
-        system.disc_angle[:nb] = turn[:nb]
-        system.disc_pos[:nb, 1] = -low[:nb]
+        system.stone_angle[:nb] = turn[:nb]
+        system.stone_pos[:nb, 1] = -low[:nb]
         return turn
 
     def output_shapes(self, system) -> Optional[Tuple[np.ndarray, np.ndarray]]:

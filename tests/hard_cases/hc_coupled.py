@@ -57,8 +57,8 @@ def released_float(t_end=8.0):
     dz, wets = [], []
     while sim.time < t_end - 1e-9:
         sim.advance(sim.time + 0.05)
-        dz.append(float(sim.stones.disc_pos[0, 1]) - 0.3)
-        wets.append(float(sim.stones.disc_wet[0]))
+        dz.append(float(sim.stones.stone_pos[0, 1]) - 0.3)
+        wets.append(float(sim.stones.stone_wet[0]))
     return sim, max(dz), min(dz), float(np.mean(wets)), abs(sim.water_volume() - v0) / v0
 
 
@@ -86,10 +86,10 @@ def floating_stone():
             "Judged at the instant 8 s alone it passed once by chance (1.7 cm/s there)")
 def floating_at_rest():
     sim, *_ = released_float()
-    speeds = [float(np.hypot(*sim.stones.disc_vel[0]))]
+    speeds = [float(np.hypot(*sim.stones.stone_vel[0]))]
     while sim.time < 9.0 - 1e-9:
         sim.advance(sim.time + 0.05)
-        speeds.append(float(np.hypot(*sim.stones.disc_vel[0])))
+        speeds.append(float(np.hypot(*sim.stones.stone_vel[0])))
     top = max(speeds)
     assert top < 0.02, f"speed up to {top:.3f} m/s over 8-9 s (at 8 s {speeds[0]:.3f} m/s)"
     return {"largest speed 8-9 s": f"{fmt(top, 2)} m/s"}
@@ -111,10 +111,10 @@ def stone_across_surface():
     v0 = sim.water_volume()
     sim.advance(3.0)
     st = sim.stones
-    moved = float(np.hypot(*(np.asarray(st.disc_pos[0]) - [0.2, 0.5 * D])))
+    moved = float(np.hypot(*(np.asarray(st.stone_pos[0]) - [0.2, 0.5 * D])))
     s = (level - 0.5 * D) / (0.5 * D)
     geometric = (math.acos(-s) + s * math.sqrt(1 - s * s)) / math.pi
-    wet = float(st.disc_wet[0])
+    wet = float(st.stone_wet[0])
     out = fields_bounded(sim.fluid, 0.05)
     err = abs(sim.water_volume() - v0) / v0
     assert moved < 5e-4, f"moved {moved} m"
@@ -132,7 +132,7 @@ def neutral_stone():
     sim = wet_tank_with_stone(0.15, RHO_W)
     v0 = sim.water_volume()
     sim.advance(2.0)
-    moved = float(np.hypot(*(np.asarray(sim.stones.disc_pos[0]) - [0.2, 0.15])))
+    moved = float(np.hypot(*(np.asarray(sim.stones.stone_pos[0]) - [0.2, 0.15])))
     out = fields_bounded(sim.fluid, 1e-3)
     err = abs(sim.water_volume() - v0) / v0
     assert moved < 1e-3, f"drifted {moved} m"
@@ -159,7 +159,7 @@ def washed_out():
     err = assert_budget(sim.fluid, v0, 1e-9)
     stones_accounted(sim.stones, (0.0, 1.6), (0.0, 1.2))
     assert t_all is not None and t_all < 6.0, f"removed {sim.stones.removed_count} of 12 by 6 s"
-    assert np.all(np.asarray(sim.stones.disc_pos)[:, 0] > 1.6), "a stone left elsewhere than the outflow end"
+    assert np.all(np.asarray(sim.stones.stone_pos)[:, 0] > 1.6), "a stone left elsewhere than the outflow end"
     return {"all out at": f"{fmt(t_all, 2)} s", "max speed": f"{fmt(out['umax'])} m/s",
             "budget error": budget_text(err)}
 
@@ -168,7 +168,7 @@ def one_stone_in_flow(pos, vel, duration):
     """A stone of 3 cm with velocity vel [m/s] in the small weir's flume (no weir stones), 10 l/s."""
     s = small_weir(10.0, duration, stones={"positions": [list(pos)], "fix_bottom_layer": False})
     sim = build(s)
-    sim.stones.disc_vel[0] = vel
+    sim.stones.stone_vel[0] = vel
     v0 = sim.fluid.water_volume()
     sim.advance(duration)
     fields_bounded(sim.fluid, 5.0)
@@ -193,7 +193,7 @@ def leaves_outflow():
       "budget to 1e-9")
 def thrown_upstream():
     sim, err, counts = one_stone_in_flow((0.1, 0.05), (-10.0, 0.0), 0.3)
-    x = float(sim.stones.disc_pos[0, 0])
+    x = float(sim.stones.stone_pos[0, 0])
     assert counts["removed"] == 0 and x > 0.015, f"x = {x}"
     return {"x after": f"{fmt(x)} m", "budget error": budget_text(err)}
 
@@ -217,12 +217,12 @@ def thrown_up():
 def into_bed():
     s = small_weir(10.0, 0.3, stones={"positions": [[0.8, 0.05]], "fix_bottom_layer": False})
     sim = build(s)
-    sim.stones.disc_vel[0] = [0.0, -10.0]
+    sim.stones.stone_vel[0] = [0.0, -10.0]
     v0 = sim.fluid.water_volume()
     lowest = 1.0
     while sim.time < 0.3 - 1e-9:
         sim.advance(sim.time + 0.002)
-        lowest = min(lowest, float(sim.stones.disc_pos[0, 1]))
+        lowest = min(lowest, float(sim.stones.stone_pos[0, 1]))
     err = assert_budget(sim.fluid, v0, 1e-9)
     assert lowest > 0.25 * 0.015, f"centre reached z = {lowest}"
     assert sim.stones.removed_count == 0
@@ -260,7 +260,7 @@ def large_stones():
                            "fix_bottom_layer": True},
                    grid={"dx": 0.025, "dz": 0.01, "dz_bed": 0.005, "bed_layer_height": 0.005})
     sim, out = run_weir(s, 0.5, 2.0, 3.0)
-    out["top stone moved"] = f"{fmt(float(np.hypot(*(sim.stones.disc_pos[2] - [0.61, 0.28]))), 2)} m"
+    out["top stone moved"] = f"{fmt(float(np.hypot(*(sim.stones.stone_pos[2] - [0.61, 0.28]))), 2)} m"
     return out
 
 
@@ -308,7 +308,7 @@ def consistent_coupling():
 def dam_break_weir():
     s = small_weir(0.1, 2.0)
     sim = build(s)
-    pos0 = np.array(sim.stones.disc_pos)
+    pos0 = np.array(sim.stones.stone_pos)
     sim.fluid.cell_F[...] = 0.0
     sim.fluid.fill_water_box(0.0, 0.25, 0.0, 0.25)
     sim.fluid.set_hydrostatic_pressure()
@@ -317,7 +317,7 @@ def dam_break_weir():
     out = fields_bounded(sim.fluid, 4.0)
     err = assert_budget(sim.fluid, v0, 1e-9)
     counts = stones_accounted(sim.stones, (-0.8, 1.6), (-0.15, 1.2), margin=0.03)
-    moved = float(np.hypot(*(np.asarray(sim.stones.disc_pos) - pos0).T).max())
+    moved = float(np.hypot(*(np.asarray(sim.stones.stone_pos) - pos0).T).max())
     return {"max speed": f"{fmt(out['umax'])} m/s", "budget error": budget_text(err),
             "largest stone move": f"{fmt(moved)} m", "removed": str(counts["removed"])}
 

@@ -30,7 +30,7 @@ def same_state(a, b) -> bool:
       "as before the step")
 def nan_stone():
     sim = coupled_tank()
-    sim.stones.disc_vel[1, 0] = np.nan
+    sim.stones.stone_vel[1, 0] = np.nan
     before = state_of(sim)
     with pytest.raises(RuntimeError, match=r"fluid_forces.*stone 1.*t = ") as e:
         sim.step(1e-3)
@@ -95,7 +95,7 @@ def stone_outside():
     dem = stones(p, [[0.2, -2.0], [10.4, 0.1], [0.2, 0.1]])
     sim = couple(fluid, dem)
     sim.advance(0.05)
-    assert dem.removed_count == 2 and list(dem.disc_active) == [0, 0, 1]
+    assert dem.removed_count == 2 and list(dem.stone_active) == [0, 0, 1]
     assert np.isfinite(np.asarray(sim.fluid.cell_F)).all()
     return {"removed": str(dem.removed_count)}
 
@@ -133,7 +133,7 @@ def bad_parameters():
     with pytest.raises(ValueError, match=r"restitution = 2 .*\[0, 1\]"):
         stones(dp, [[0.1, 0.05]])
     checks += 1
-    with pytest.raises(ValueError, match="disc_radius"):
+    with pytest.raises(ValueError, match="stone_radius"):
         vofdem.DEMSystem(dem_params(0.0, 0.2), pos=np.array([[0.1, 0.05]]), radius=np.array([0.0]))
     checks += 1
     cp = _core.CouplerParams()
@@ -153,7 +153,7 @@ def no_water():
     dem = stones(dem_params(0.0, 0.3), [[0.15, 0.1]])
     sim = couple(fluid, dem)
     sim.advance(1.0)
-    z = float(dem.disc_pos[0, 1])
-    assert abs(z - 0.5 * D) < 1e-3 and float(dem.disc_wet[0]) == 0.0
-    assert np.isfinite(np.asarray(sim.disc_force_pressure)).all()
+    z = float(dem.stone_pos[0, 1])
+    assert abs(z - 0.5 * D) < 1e-3 and float(dem.stone_wet[0]) == 0.0
+    assert np.isfinite(np.asarray(sim.stone_force_pressure)).all()
     return {"rest height - r": f"{z - 0.5 * D:.1e} m", "steps": str(sim.step_count)}

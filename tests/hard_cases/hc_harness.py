@@ -117,10 +117,10 @@ def build(scene):
 
 def release_after(sim, t_hold: float):
     """Holds every stone for t_hold [s] of flow (the run loop's spin-up), then releases the loose ones."""
-    fixed0 = np.array(sim.stones.disc_fixed, copy=True)
-    sim.stones.disc_fixed[:] = 1
+    fixed0 = np.array(sim.stones.stone_fixed, copy=True)
+    sim.stones.stone_fixed[:] = 1
     sim.advance(sim.time + t_hold)
-    sim.stones.disc_fixed[:] = fixed0
+    sim.stones.stone_fixed[:] = fixed0
 
 
 # ---------------------------------------------------------------------------------------- checks
@@ -182,13 +182,13 @@ def budget_text(err: Budget) -> str:
 
 def stones_accounted(dem, x_range, z_range, margin: float = 0.0) -> Dict[str, int]:
     """Every stone is active and inside the box (with margin [m]) or deactivated and counted."""
-    pos = np.asarray(dem.disc_pos)
-    active = np.asarray(dem.disc_active).astype(bool)
+    pos = np.asarray(dem.stone_pos)
+    active = np.asarray(dem.stone_active).astype(bool)
     assert np.isfinite(pos).all(), "a stone position is not finite"
     assert int((~active).sum()) == dem.removed_count, \
         f"{int((~active).sum())} stones inactive but removed_count = {dem.removed_count}"
     x, z = pos[active].T
-    r = np.asarray(dem.disc_radius)[active]
+    r = np.asarray(dem.stone_radius)[active]
     inside = (x >= x_range[0] - margin) & (x <= x_range[1] + margin) & (z >= z_range[0] - margin) \
         & (z <= z_range[1] + margin)
     assert inside.all(), f"active stones outside the domain: {np.flatnonzero(~inside).tolist()}"

@@ -21,7 +21,7 @@ def wall_impact(e: float, gravity: bool, v0: float = 1.0, kn: float = 1e5, steps
     p.restitution = e
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=0.3)]
     s = stones(p, [[0.5, R + 1e-4]])
-    s.disc_vel[0] = [0.0, -v0]
+    s.stone_vel[0] = [0.0, -v0]
     tc = vofdem.contact_duration(kn, M, vofdem.damping_ratio_from_restitution(e))
     dt = tc / steps_per_contact
     touched = False
@@ -31,7 +31,7 @@ def wall_impact(e: float, gravity: bool, v0: float = 1.0, kn: float = 1e5, steps
             touched = True
         elif touched:
             break
-    return float(s.disc_vel[0, 1])
+    return float(s.stone_vel[0, 1])
 
 
 def rebound_with_gravity(e: float, v0: float, kn: float, m: float, g: float = G) -> float:
@@ -126,7 +126,7 @@ def overlapping_start():
     vmax = 0.0
     for _ in range(200):
         s.advance(0.01)
-        vmax = max(vmax, float(np.hypot(*np.asarray(s.disc_vel).T).max()))
+        vmax = max(vmax, float(np.hypot(*np.asarray(s.stone_vel).T).max()))
     counts = stones_accounted(s, (0.0, 1.0), (0.0, 1.0))
     assert vmax <= vmax_bound, f"speed {vmax} above the energy bound {vmax_bound}"
     left = s.energy().kinetic / spring
@@ -144,7 +144,7 @@ def dry_weir(seed=0, **params):
 
 def max_overlap(s) -> float:
     """Largest stone-stone overlap now, relative to the smaller radius."""
-    pos, r = np.asarray(s.disc_pos), np.asarray(s.disc_radius)
+    pos, r = np.asarray(s.stone_pos), np.asarray(s.stone_radius)
     worst = 0.0
     for i, j in s.overlapping_pairs_reference():
         d = np.hypot(*(pos[i] - pos[j]))
@@ -161,12 +161,12 @@ def max_overlap(s) -> float:
 def thrown_stone():
     s = dry_weir()
     n0 = s.n
-    pos = np.vstack([np.asarray(s.disc_pos), [[0.15, 0.1]]])
-    rad = np.r_[np.asarray(s.disc_radius), R]
-    fixed = list(np.asarray(s.disc_fixed)) + [0]
+    pos = np.vstack([np.asarray(s.stone_pos), [[0.15, 0.1]]])
+    rad = np.r_[np.asarray(s.stone_radius), R]
+    fixed = list(np.asarray(s.stone_fixed)) + [0]
     p = s.params
     t = vofdem.DEMSystem(p, pos=pos, radius=rad, density=np.full(n0 + 1, 2650.0), fixed=[int(f) for f in fixed])
-    t.disc_vel[n0] = [10.0, 0.0]
+    t.stone_vel[n0] = [10.0, 0.0]
     t.advance(1e-4)
     e0 = t.energy().total
     worst, drift, vmax = 0.0, 0.0, 0.0
@@ -174,7 +174,7 @@ def thrown_stone():
         t.advance(1e-3)
         worst = max(worst, max_overlap(t))
         drift = max(drift, abs(t.energy().total - e0) / abs(e0))
-        vmax = max(vmax, float(np.hypot(*np.asarray(t.disc_vel).T).max()))
+        vmax = max(vmax, float(np.hypot(*np.asarray(t.stone_vel).T).max()))
     assert worst < 0.5, f"overlap {worst:.2f} of a radius"
     assert drift < 0.1, f"energy changed by {drift:.2e} of its start"
     vfall = math.sqrt(10.0**2 + 2 * G * 0.1)  # thrown at 10 m/s from 0.1 m above the bed
@@ -203,13 +203,13 @@ def dem_scene_step():
     frac = s.params.dt / s.stable_dt()
     growth = energy_growth(s, s.params.dt)
     assert growth < 1e-9, f"energy grew by {growth:.2e}"
-    before = np.array(s.disc_pos)
+    before = np.array(s.stone_pos)
     try:
         s.step(1.01 * s.stable_dt())
         raise AssertionError("a step above stable_dt() was accepted")
     except ValueError as e:
         assert "stable" in str(e), str(e)
-    assert np.array_equal(before, s.disc_pos)
+    assert np.array_equal(before, s.stone_pos)
     return {"dt / stable_dt": fmt(frac, 3), "energy change over 1 s": fmt(growth, 2)}
 
 

@@ -26,6 +26,20 @@ inline const std::vector<double>& entry(const StateMap& s, const std::string& ke
   return it->second;
 }
 
+// a checkpoint written before the stones' arrays were named for what they hold ("disc_pos" for every
+// stone shape, now "stone_pos"), with its keys renamed; `prefix` is the module's ("", "dem/", "coupler/").
+// Returns s itself when it holds no such key (no copy)
+inline const StateMap& with_stone_keys(const StateMap& s, const std::string& prefix, StateMap& renamed) {
+  const std::string old = prefix + "disc_";
+  bool legacy = false;
+  for (const auto& kv : s) legacy = legacy || kv.first.rfind(old, 0) == 0;
+  if (!legacy) return s;
+  renamed.clear();
+  for (const auto& kv : s)
+    renamed[kv.first.rfind(old, 0) == 0 ? prefix + "stone_" + kv.first.substr(old.size()) : kv.first] = kv.second;
+  return renamed;
+}
+
 // same size: written in place, so the numpy views of dst stay valid; another size reallocates
 template <class T>
 void copy_into(std::vector<T>& dst, const std::vector<T>& src) {

@@ -60,12 +60,12 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
   n_ = stones_ ? stones_->n() : 0;
   check_params(params_);
   share_medium();
-  disc_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
-  disc_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
-  disc_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
-  disc_drag_slope_.assign(static_cast<std::size_t>(n_), 0.0);
-  disc_x_.assign(static_cast<std::size_t>(n_), 0.0);
-  disc_z_.assign(static_cast<std::size_t>(n_), 0.0);
+  stone_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  stone_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  stone_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
+  stone_drag_slope_.assign(static_cast<std::size_t>(n_), 0.0);
+  stone_x_.assign(static_cast<std::size_t>(n_), 0.0);
+  stone_z_.assign(static_cast<std::size_t>(n_), 0.0);
   if (fluid_) {
     const Grid2D& g = fluid_->grid();
     const std::size_t nc = static_cast<std::size_t>(g.ncell());
@@ -111,7 +111,7 @@ void Coupler::make_mapper() {
   if (!fluid_ || n_ == 0) return;
   double rmin = INFINITY, rmax = 0.0;
   for (int j = 0; j < n_; ++j) {
-    const double r = stones_->disc_radius[j];
+    const double r = stones_->stone_radius[j];
     if (r > 0.0) rmin = std::min(rmin, r), rmax = std::max(rmax, r);
   }
   if (!(rmax > 0.0)) return;
@@ -140,7 +140,7 @@ void Coupler::make_kernel() {
     double sum = 0.0;
     int count = 0;
     for (int j = 0; j < n_; ++j)
-      if (stones_->disc_radius[j] > 0.0) sum += stones_->nominal_diameter(j), ++count;
+      if (stones_->stone_radius[j] > 0.0) sum += stones_->nominal_diameter(j), ++count;
     kp.bandwidth = sum / count;  // count > 0: the mapper exists
   }
   const Grid2D& g = fluid_->grid();
@@ -200,10 +200,10 @@ double Coupler::water_volume() const { return fluid_ ? fluid_->water_volume() : 
 
 void Coupler::map_stones() {
   for (int j = 0; j < n_; ++j) {
-    disc_x_[j] = stones_->disc_pos[2 * j];
-    disc_z_[j] = stones_->disc_pos[2 * j + 1];
+    stone_x_[j] = stones_->stone_pos[2 * j];
+    stone_z_[j] = stones_->stone_pos[2 * j + 1];
   }
-  stones_->model().map_footprint(*stones_, *mapper_, disc_x_.data(), disc_z_.data());
+  stones_->model().map_footprint(*stones_, *mapper_, stone_x_.data(), stone_z_.data());
   csr_current_ = true;
 }
 
@@ -218,12 +218,12 @@ void Coupler::deposit_stones() {
   std::fill(cell_diam_sum_.begin(), cell_diam_sum_.end(), 0.0);
   std::fill(cell_solid_u_.begin(), cell_solid_u_.end(), 0.0);
   std::fill(cell_solid_w_.begin(), cell_solid_w_.end(), 0.0);
-  const std::vector<int>& off = mapper_->disc_cell_offsets();
-  const std::vector<int>& idx = mapper_->disc_cell_index();
-  const std::vector<double>& area = mapper_->disc_cell_area();
+  const std::vector<int>& off = mapper_->stone_cell_offsets();
+  const std::vector<int>& idx = mapper_->stone_cell_index();
+  const std::vector<double>& area = mapper_->stone_cell_area();
   for (int j = 0; j < n_; ++j) {
     const double d = stones_->nominal_diameter(j);
-    const double u = stones_->disc_vel[2 * j], w = stones_->disc_vel[2 * j + 1];
+    const double u = stones_->stone_vel[2 * j], w = stones_->stone_vel[2 * j + 1];
     for (int p = off[j]; p < off[j + 1]; ++p) {
       const int c = idx[p];
       cell_solid_sum_[c] += area[p];
@@ -356,8 +356,8 @@ void Coupler::stage_fluid_forces() {
   if (!csr_current_) map_stones();
   const unsigned fl = params_.flags;
   const FlowParams& fp = fluid_->params();
-  const std::vector<int>& off = mapper_->disc_cell_offsets();
-  const std::vector<int>& idx = mapper_->disc_cell_index();
+  const std::vector<int>& off = mapper_->stone_cell_offsets();
+  const std::vector<int>& idx = mapper_->stone_cell_index();
   const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
   const bool bed = params_.stone_drag == StoneDragModel::kBed;
   BedDragParams bp;
@@ -380,30 +380,30 @@ void Coupler::stage_fluid_forces() {
   }
   // the water fraction the stones see: the flow's, or smoothed with the kernel
   const double* cell_F = kernel_ ? cell_kernel_F_.data() : fluid_->cell_F.data();
-  const std::vector<double>& area = mapper_->disc_cell_area();
+  const std::vector<double>& area = mapper_->stone_cell_area();
   for (int j = 0; j < n_; ++j) {
-    double* fd = &disc_force_drag[2 * j];
-    double* fs = &disc_force_pressure[2 * j];
+    double* fd = &stone_force_drag[2 * j];
+    double* fs = &stone_force_pressure[2 * j];
     fd[0] = fd[1] = fs[0] = fs[1] = 0.0;
-    disc_vrel_[j] = 0.0;
-    disc_drag_slope_[j] = 0.0;
-    if (!stones_->disc_active[j]) continue;
+    stone_vrel_[j] = 0.0;
+    stone_drag_slope_[j] = 0.0;
+    if (!stones_->stone_active[j]) continue;
     const StoneFlowSample s = sample_flow_at_stone(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j],
                                                    cell_F, cell_U_.data(), cell_W_.data(), cell_dpdx_.data(),
                                                    cell_dpdz_.data(), rho, fp.medium.gravity[0], fp.medium.gravity[1]);
-    const double up = stones_->disc_vel[2 * j], wp = stones_->disc_vel[2 * j + 1];
-    disc_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
+    const double up = stones_->stone_vel[2 * j], wp = stones_->stone_vel[2 * j + 1];
+    stone_vrel_[j] = s.wet > 0.0 ? std::hypot(s.u - up, s.w_vel - wp) : 0.0;
     if ((fl & kCoupleDrag) && !bed) {
       const DragForce f = stones_->model().drag(*stones_, j, s, up, wp, rho, nu, params_.drag_law,
-                                                params_.implicit_drag ? &disc_drag_slope_[j] : nullptr);
+                                                params_.implicit_drag ? &stone_drag_slope_[j] : nullptr);
       fd[0] = f.fx, fd[1] = f.fz;
     } else if ((fl & kCoupleDrag) && kernel_) {
-      const DragForce f = kernel_bed_drag(j, &disc_drag_slope_[j]);
+      const DragForce f = kernel_bed_drag(j, &stone_drag_slope_[j]);
       fd[0] = f.fx, fd[1] = f.fz;
     } else if (fl & kCoupleDrag) {
       const DragForce f = bed_drag(off[j + 1] - off[j], idx.data() + off[j], area.data() + off[j], fluid_->cell_F.data(),
                                    fluid_->cell_porosity.data(), fluid_->cell_stone_diameter.data(), cell_U_.data(),
-                                   cell_W_.data(), up, wp, stones_->volume(j), bp, &disc_drag_slope_[j]);
+                                   cell_W_.data(), up, wp, stones_->volume(j), bp, &stone_drag_slope_[j]);
       fd[0] = f.fx, fd[1] = f.fz;
     }
     if (fl & kCouplePressureGradient) {
@@ -413,28 +413,28 @@ void Coupler::stage_fluid_forces() {
     if (fl & kCoupleForces) {
       forces_applied_ = true;
       // the drag linearised in the stone's velocity (implicit in the DEM), or held over the step
-      const LinearDrag ld = params_.implicit_drag ? linearise_drag({fd[0], fd[1]}, disc_drag_slope_[j], up, wp)
+      const LinearDrag ld = params_.implicit_drag ? linearise_drag({fd[0], fd[1]}, stone_drag_slope_[j], up, wp)
                                                   : LinearDrag();
       const bool held = ld.coef == 0.0;
-      stones_->disc_force_ext[2 * j] = (held ? fd[0] : 0.0) + fs[0];
-      stones_->disc_force_ext[2 * j + 1] = (held ? fd[1] : 0.0) + fs[1];
-      stones_->disc_drag_coef[j] = ld.coef;
-      stones_->disc_drag_vel[2 * j] = ld.vel_x;
-      stones_->disc_drag_vel[2 * j + 1] = ld.vel_z;
+      stones_->stone_force_ext[2 * j] = (held ? fd[0] : 0.0) + fs[0];
+      stones_->stone_force_ext[2 * j + 1] = (held ? fd[1] : 0.0) + fs[1];
+      stones_->stone_drag_coef[j] = ld.coef;
+      stones_->stone_drag_vel[2 * j] = ld.vel_x;
+      stones_->stone_drag_vel[2 * j + 1] = ld.vel_z;
     }
     if (!std::isfinite(fd[0] + fd[1] + fs[0] + fs[1] + s.wet))
       fail("fluid_forces", "non-finite fluid force on stone " + std::to_string(j) + " (drag " + format_value(fd[0]) +
                                ", " + format_value(fd[1]) + " N; pressure " + format_value(fs[0]) + ", " +
                                format_value(fs[1]) + " N; wet fraction " + format_value(s.wet) + ") at x = " +
-                               format_value(stones_->disc_pos[2 * j]) + " m, z = " +
-                               format_value(stones_->disc_pos[2 * j + 1]) + " m" +
+                               format_value(stones_->stone_pos[2 * j]) + " m, z = " +
+                               format_value(stones_->stone_pos[2 * j + 1]) + " m" +
                                non_finite_cell(off[j + 1] - off[j], idx.data() + off[j]));
     if (fl & kCoupleWetFraction) {
       // w now, and the level that gives it, so that w follows the stone over the DEM's substeps
       const double w = snapped_wet_fraction(std::clamp(s.wet, 0.0, 1.0), params_.wet_fraction_tolerance);
       stones_->set_wet_fraction(j, w);
-      stones_->disc_water_level[j] =
-          water_level_of_wet_fraction(stones_->disc_pos[2 * j + 1], stones_->disc_radius[j], w);
+      stones_->stone_water_level[j] =
+          water_level_of_wet_fraction(stones_->stone_pos[2 * j + 1], stones_->stone_radius[j], w);
     }
   }
 }
@@ -493,9 +493,9 @@ void Coupler::smooth_flow(bool bed, const BedDragParams& bp) {
 // Summed over the stones this is the flow's cell-wise removal integrated against the smoothed stone
 // volume per cell: the transpose of deposit-then-smooth (Newton's third law to round-off)
 DragForce Coupler::kernel_bed_drag(int j, double* slope) const {
-  const std::vector<int>& off = mapper_->disc_cell_offsets();
-  const std::vector<int>& idx = mapper_->disc_cell_index();
-  const std::vector<double>& area = mapper_->disc_cell_area();
+  const std::vector<int>& off = mapper_->stone_cell_offsets();
+  const std::vector<int>& idx = mapper_->stone_cell_index();
+  const std::vector<double>& area = mapper_->stone_cell_area();
   double a_sum = 0.0, fx = 0.0, fz = 0.0, s = 0.0;
   for (int p = off[j]; p < off[j + 1]; ++p) {
     const int c = idx[p];
@@ -512,11 +512,11 @@ DragForce Coupler::kernel_bed_drag(int j, double* slope) const {
 }
 
 void Coupler::clear_fluid_forces() {
-  std::fill(disc_force_drag.begin(), disc_force_drag.end(), 0.0);
-  std::fill(disc_force_pressure.begin(), disc_force_pressure.end(), 0.0);
-  std::fill(stones_->disc_force_ext.begin(), stones_->disc_force_ext.end(), 0.0);
-  std::fill(stones_->disc_drag_coef.begin(), stones_->disc_drag_coef.end(), 0.0);
-  std::fill(stones_->disc_drag_vel.begin(), stones_->disc_drag_vel.end(), 0.0);
+  std::fill(stone_force_drag.begin(), stone_force_drag.end(), 0.0);
+  std::fill(stone_force_pressure.begin(), stone_force_pressure.end(), 0.0);
+  std::fill(stones_->stone_force_ext.begin(), stones_->stone_force_ext.end(), 0.0);
+  std::fill(stones_->stone_drag_coef.begin(), stones_->stone_drag_coef.end(), 0.0);
+  std::fill(stones_->stone_drag_vel.begin(), stones_->stone_drag_vel.end(), 0.0);
   forces_applied_ = false;
 }
 
@@ -545,9 +545,9 @@ void Coupler::stage_fluid(double dt) {
 void Coupler::stage_checks() {
   ScopedStage timer(profile_, st_checks_);
   for (int j = 0; j < n_; ++j) {
-    if (!stones_->disc_active[j]) continue;
-    const double* x = &stones_->disc_pos[2 * j];
-    const double* v = &stones_->disc_vel[2 * j];
+    if (!stones_->stone_active[j]) continue;
+    const double* x = &stones_->stone_pos[2 * j];
+    const double* v = &stones_->stone_vel[2 * j];
     if (!std::isfinite(x[0] + x[1] + v[0] + v[1]))
       fail("checks", "non-finite state of stone " + std::to_string(j) + " (x = " + format_value(x[0]) + ", " +
                          format_value(x[1]) + " m; v = " + format_value(v[0]) + ", " + format_value(v[1]) + " m/s)");
@@ -579,21 +579,21 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
     // below drag_relaxation of that (the slope of eq. 18', drag.h); the implicit exchange needs no such
     // bound (drag_exchange.h)
     auto relaxation_dt = [&](int j) {
-      const double w = stones_->disc_wet[j];
+      const double w = stones_->stone_wet[j];
       const double mass = stones_->mass(j) + (added ? rho * dp.added_mass_coefficient * stones_->volume(j) * w : 0.0);
       if (params_.stone_drag == StoneDragModel::kBed) {
         // bed drag: its slope in the stone's velocity from the last exchange
-        const double slope = disc_drag_slope_[j];
+        const double slope = stone_drag_slope_[j];
         return slope > 0.0 ? params_.drag_relaxation * mass / slope : kInf;
       }
       if (!(w > 0.0)) return kInf;
-      return stones_->model().drag_relaxation_dt(*stones_, j, params_.drag_relaxation, mass, disc_vrel_[j], w, rho, nu);
+      return stones_->model().drag_relaxation_dt(*stones_, j, params_.drag_relaxation, mass, stone_vrel_[j], w, rho, nu);
     };
     for (int j = 0; j < n_; ++j) {
-      if (!stones_->disc_active[j] || stones_->disc_fixed[j]) continue;
+      if (!stones_->stone_active[j] || stones_->stone_fixed[j]) continue;
       // a stone crosses at most stone_cfl of a cell per exchange in each direction (smooth porosity changes)
       const double rate =
-          std::max(std::abs(stones_->disc_vel[2 * j]) * inv_hx, std::abs(stones_->disc_vel[2 * j + 1]) * inv_hz);
+          std::max(std::abs(stones_->stone_vel[2 * j]) * inv_hx, std::abs(stones_->stone_vel[2 * j + 1]) * inv_hz);
       if (rate * dt > params_.stone_cfl) dt = params_.stone_cfl / rate, why = "stone_cfl", where = stone_cell(j);
       if (params_.implicit_drag || !(fl & kCoupleDrag)) continue;
       const double relax = relaxation_dt(j);
@@ -607,7 +607,7 @@ double Coupler::stable_dt_limits(const char** term, int* cell) {
 
 int Coupler::stone_cell(int j) const {
   const Grid2D& g = fluid_->grid();
-  const int i = g.locate_x(stones_->disc_pos[2 * j]), k = g.locate_z(stones_->disc_pos[2 * j + 1]);
+  const int i = g.locate_x(stones_->stone_pos[2 * j]), k = g.locate_z(stones_->stone_pos[2 * j + 1]);
   return i >= 0 && k >= 0 ? g.cell(i, k) : -1;
 }
 

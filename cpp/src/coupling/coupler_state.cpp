@@ -26,11 +26,11 @@ void Coupler::export_state(CouplerState& s, bool with_base) const {
   s.steps = steps_;
   s.mapped = mapped_;
   s.redistributed = redistributed_;
-  s.disc_force_drag = disc_force_drag;
-  s.disc_force_pressure = disc_force_pressure;
-  s.disc_relative_speed = disc_vrel_;
+  s.stone_force_drag = stone_force_drag;
+  s.stone_force_pressure = stone_force_pressure;
+  s.stone_relative_speed = stone_vrel_;
   s.has_drag_slope = params_.stone_drag == StoneDragModel::kBed;
-  if (s.has_drag_slope) s.disc_drag_slope = disc_drag_slope_;
+  if (s.has_drag_slope) s.stone_drag_slope = stone_drag_slope_;
   if (fluid_) {
     if (with_base) {
       s.cell_base_porosity = cell_base_porosity;
@@ -44,10 +44,10 @@ void Coupler::export_state(CouplerState& s, bool with_base) const {
 void Coupler::import_state(const CouplerState& s, bool with_base) {
   const std::size_t n = static_cast<std::size_t>(n_);
   // check every part before writing anything
-  require_size("coupler/disc_force_drag", s.disc_force_drag, 2 * n);
-  require_size("coupler/disc_force_pressure", s.disc_force_pressure, 2 * n);
-  require_size("coupler/disc_relative_speed", s.disc_relative_speed, n);
-  if (s.has_drag_slope) require_size("coupler/disc_drag_slope", s.disc_drag_slope, n);
+  require_size("coupler/stone_force_drag", s.stone_force_drag, 2 * n);
+  require_size("coupler/stone_force_pressure", s.stone_force_pressure, 2 * n);
+  require_size("coupler/stone_relative_speed", s.stone_relative_speed, n);
+  if (s.has_drag_slope) require_size("coupler/stone_drag_slope", s.stone_drag_slope, n);
   if (fluid_) {
     const std::size_t nc = static_cast<std::size_t>(fluid_->grid().ncell());
     if (with_base) {
@@ -70,15 +70,15 @@ void Coupler::import_state(const CouplerState& s, bool with_base) {
   steps_ = s.steps;
   mapped_ = s.mapped;
   redistributed_ = s.redistributed;
-  state::copy_into(disc_force_drag, s.disc_force_drag);
-  state::copy_into(disc_force_pressure, s.disc_force_pressure);
-  state::copy_into(disc_vrel_, s.disc_relative_speed);
+  state::copy_into(stone_force_drag, s.stone_force_drag);
+  state::copy_into(stone_force_pressure, s.stone_force_pressure);
+  state::copy_into(stone_vrel_, s.stone_relative_speed);
   forces_applied_ = false;
-  for (std::size_t i = 0; i < disc_force_drag.size(); ++i)
-    if (disc_force_drag[i] != 0.0 || disc_force_pressure[i] != 0.0) forces_applied_ = true;
+  for (std::size_t i = 0; i < stone_force_drag.size(); ++i)
+    if (stone_force_drag[i] != 0.0 || stone_force_pressure[i] != 0.0) forces_applied_ = true;
   // written with the bed drag only (older states and the sphere drag: none)
-  if (s.has_drag_slope) state::copy_into(disc_drag_slope_, s.disc_drag_slope);
-  else std::fill(disc_drag_slope_.begin(), disc_drag_slope_.end(), 0.0);
+  if (s.has_drag_slope) state::copy_into(stone_drag_slope_, s.stone_drag_slope);
+  else std::fill(stone_drag_slope_.begin(), stone_drag_slope_.end(), 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -92,10 +92,10 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
   s["coupler/steps"] = {static_cast<double>(t.steps)};
   s["coupler/mapped"] = {t.mapped ? 1.0 : 0.0};
   s["coupler/redistributed"] = {t.redistributed};
-  s["coupler/disc_force_drag"] = std::move(t.disc_force_drag);
-  s["coupler/disc_force_pressure"] = std::move(t.disc_force_pressure);
-  s["coupler/disc_relative_speed"] = std::move(t.disc_relative_speed);
-  if (t.has_drag_slope) s["coupler/disc_drag_slope"] = std::move(t.disc_drag_slope);
+  s["coupler/stone_force_drag"] = std::move(t.stone_force_drag);
+  s["coupler/stone_force_pressure"] = std::move(t.stone_force_pressure);
+  s["coupler/stone_relative_speed"] = std::move(t.stone_relative_speed);
+  if (t.has_drag_slope) s["coupler/stone_drag_slope"] = std::move(t.stone_drag_slope);
   if (fluid_) {
     s["coupler/cell_base_porosity"] = std::move(t.cell_base_porosity);
     s["coupler/cell_base_diameter"] = std::move(t.cell_base_diameter);
@@ -106,15 +106,17 @@ std::map<std::string, std::vector<double>> Coupler::export_state() const {
   return s;
 }
 
-void Coupler::import_state(const std::map<std::string, std::vector<double>>& s) {
+void Coupler::import_state(const std::map<std::string, std::vector<double>>& checkpoint) {
+  StateMap renamed;
+  const StateMap& s = state::with_stone_keys(checkpoint, "coupler/", renamed);
   const std::size_t n = static_cast<std::size_t>(n_);
   CouplerState t;
   t.time = entry(s, "coupler/time", 1)[0];
-  t.disc_force_drag = entry(s, "coupler/disc_force_drag", 2 * n);
-  t.disc_force_pressure = entry(s, "coupler/disc_force_pressure", 2 * n);
-  t.disc_relative_speed = entry(s, "coupler/disc_relative_speed", n);
-  t.has_drag_slope = s.count("coupler/disc_drag_slope") > 0;
-  if (t.has_drag_slope) t.disc_drag_slope = entry(s, "coupler/disc_drag_slope", n);
+  t.stone_force_drag = entry(s, "coupler/stone_force_drag", 2 * n);
+  t.stone_force_pressure = entry(s, "coupler/stone_force_pressure", 2 * n);
+  t.stone_relative_speed = entry(s, "coupler/stone_relative_speed", n);
+  t.has_drag_slope = s.count("coupler/stone_drag_slope") > 0;
+  if (t.has_drag_slope) t.stone_drag_slope = entry(s, "coupler/stone_drag_slope", n);
   if (stones_) {
     StateMap dem;
     for (const auto& kv : s)

@@ -92,9 +92,9 @@ PorosityMapper::PorosityMapper(const Grid2D& grid, const PorosityParams& params)
 
   cell_solid_area_.assign(grid_.ncell(), 0.0);
   cell_porosity_.assign(grid_.ncell(), 1.0);
-  disc_cell_offsets_.assign(static_cast<std::size_t>(params_.max_discs) + 1, 0);
-  disc_cell_index_.assign(static_cast<std::size_t>(params_.max_discs) * max_cells_per_disc_, 0);
-  disc_cell_area_.assign(disc_cell_index_.size(), 0.0);
+  stone_cell_offsets_.assign(static_cast<std::size_t>(params_.max_discs) + 1, 0);
+  stone_cell_index_.assign(static_cast<std::size_t>(params_.max_discs) * max_cells_per_disc_, 0);
+  stone_cell_area_.assign(stone_cell_index_.size(), 0.0);
   poly_scratch_.assign(16 * kPolygonMaxVertices + 64, 0.0);
   stage_map_ = profile_.add_stage("porosity_map");
 }
@@ -248,10 +248,10 @@ int PorosityMapper::add_lookup(int j, double x, double z, double r, int p) {
 }
 
 void PorosityMapper::map(int n, const double* disc_x, const double* disc_z, const double* disc_r,
-                         const std::uint8_t* disc_active) {
+                         const std::uint8_t* stone_active) {
   const bool lookup = params_.method == PorosityMethod::kLookup;
   map_each(
-      n, disc_active,
+      n, stone_active,
       [&](int j) {
         require_finite("disc_x", disc_x[j]);
         require_finite("disc_z", disc_z[j]);

@@ -12,12 +12,12 @@
 namespace vofdem {
 
 bool DEMSystem::neighbours_stale() const {
-  if (build_pos_.size() != disc_pos.size()) return true;
+  if (build_pos_.size() != stone_pos.size()) return true;
   const double lim2 = 0.25 * skin_ * skin_;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0) continue;
-    const double dx = disc_pos[2 * i] - build_pos_[2 * i];
-    const double dz = disc_pos[2 * i + 1] - build_pos_[2 * i + 1];
+    const double dx = stone_pos[2 * i] - build_pos_[2 * i];
+    const double dz = stone_pos[2 * i + 1] - build_pos_[2 * i + 1];
     if (dx * dx + dz * dz > lim2) return true;
   }
   return false;
@@ -32,9 +32,9 @@ void DEMSystem::build_wall_candidates() {
     const DEMWall& wall = params_.walls[w];
     const auto [wx, wz] = wall_unit_normal(wall);
     for (int i = 0; i < n_; ++i) {
-      if (!disc_active[i] || disc_fixed[i]) continue;
-      const double s = (disc_pos[2 * i] - wall.point[0]) * wx + (disc_pos[2 * i + 1] - wall.point[1]) * wz;
-      if (s < disc_radius[i] + skin_) {
+      if (!stone_active[i] || stone_fixed[i]) continue;
+      const double s = (stone_pos[2 * i] - wall.point[0]) * wx + (stone_pos[2 * i + 1] - wall.point[1]) * wz;
+      if (s < stone_radius[i] + skin_) {
         wall_cand_.push_back(i);
       } else {
         wall_xi_[static_cast<std::size_t>(i) * nw + w] = wall_mr_[static_cast<std::size_t>(i) * nw + w] = 0.0;
@@ -48,19 +48,19 @@ void DEMSystem::build_wall_candidates() {
 void DEMSystem::build_neighbours() {
   ++nbuilds_;
   rebuild_ = false;
-  build_pos_ = disc_pos;
+  build_pos_ = stone_pos;
   build_wall_candidates();
   new_pairs_.clear();
   double rmax = 0.0, xmin = INFINITY, xmax = -INFINITY, zmin = INFINITY, zmax = -INFINITY;
   int nact = 0;
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i]) continue;
+    if (!stone_active[i]) continue;
     ++nact;
-    rmax = std::max(rmax, disc_radius[i]);
-    xmin = std::min(xmin, disc_pos[2 * i]);
-    xmax = std::max(xmax, disc_pos[2 * i]);
-    zmin = std::min(zmin, disc_pos[2 * i + 1]);
-    zmax = std::max(zmax, disc_pos[2 * i + 1]);
+    rmax = std::max(rmax, stone_radius[i]);
+    xmin = std::min(xmin, stone_pos[2 * i]);
+    xmax = std::max(xmax, stone_pos[2 * i]);
+    zmin = std::min(zmin, stone_pos[2 * i + 1]);
+    zmax = std::max(zmax, stone_pos[2 * i + 1]);
   }
   if (nact < 2) {
     pairs_.swap(new_pairs_);
@@ -78,9 +78,9 @@ void DEMSystem::build_neighbours() {
   cell_start_.assign(ncell + 1, 0);
   cell_next_.assign(static_cast<std::size_t>(n_), -1);  // here: the cell of each active stone
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i]) continue;
-    const int cx = std::min(ncx - 1, static_cast<int>((disc_pos[2 * i] - xmin) / h));
-    const int cz = std::min(ncz - 1, static_cast<int>((disc_pos[2 * i + 1] - zmin) / h));
+    if (!stone_active[i]) continue;
+    const int cx = std::min(ncx - 1, static_cast<int>((stone_pos[2 * i] - xmin) / h));
+    const int cz = std::min(ncz - 1, static_cast<int>((stone_pos[2 * i + 1] - zmin) / h));
     cell_next_[i] = cx + ncx * cz;
     ++cell_start_[static_cast<std::size_t>(cell_next_[i]) + 1];
   }
@@ -90,17 +90,17 @@ void DEMSystem::build_neighbours() {
     std::vector<int>& fill = cell_fill_;
     fill.assign(cell_start_.begin(), cell_start_.end() - 1);
     for (int i = 0; i < n_; ++i) {
-      if (!disc_active[i]) continue;
+      if (!stone_active[i]) continue;
       sorted_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_next_[i])]++)] = {
-          disc_pos[2 * i], disc_pos[2 * i + 1], disc_radius[i], i, disc_fixed[i] != 0};
+          stone_pos[2 * i], stone_pos[2 * i + 1], stone_radius[i], i, stone_fixed[i] != 0};
     }
   }
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i]) continue;
+    if (!stone_active[i]) continue;
     const int cx = cell_next_[i] % ncx, cz = cell_next_[i] / ncx;
     const std::size_t first = new_pairs_.size();
-    const double xi = disc_pos[2 * i], zi = disc_pos[2 * i + 1], ri = disc_radius[i] + skin_;
-    const bool fi = disc_fixed[i] != 0;
+    const double xi = stone_pos[2 * i], zi = stone_pos[2 * i + 1], ri = stone_radius[i] + skin_;
+    const bool fi = stone_fixed[i] != 0;
     const int kx0 = std::max(0, cx - 1), kx1 = std::min(ncx - 1, cx + 1);
     for (int kz = std::max(0, cz - 1); kz <= std::min(ncz - 1, cz + 1); ++kz) {
       // the three cells of a row are one contiguous range
@@ -142,11 +142,11 @@ std::vector<std::array<int, 2>> DEMSystem::neighbour_pairs() const {
 std::vector<std::array<int, 2>> DEMSystem::overlapping_pairs_reference() const {
   std::vector<std::array<int, 2>> out;
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i]) continue;
+    if (!stone_active[i]) continue;
     for (int j = i + 1; j < n_; ++j) {
-      if (!disc_active[j] || (disc_fixed[i] && disc_fixed[j])) continue;
-      const double dx = disc_pos[2 * j] - disc_pos[2 * i], dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
-      const double rs = disc_radius[i] + disc_radius[j];
+      if (!stone_active[j] || (stone_fixed[i] && stone_fixed[j])) continue;
+      const double dx = stone_pos[2 * j] - stone_pos[2 * i], dz = stone_pos[2 * j + 1] - stone_pos[2 * i + 1];
+      const double rs = stone_radius[i] + stone_radius[j];
       if (dx * dx + dz * dz < rs * rs) out.push_back({i, j});
     }
   }
@@ -159,8 +159,8 @@ std::vector<std::array<int, 2>> DEMSystem::overlapping_pairs() {
   std::vector<std::array<int, 2>> out;
   for (const Pair& p : pairs_) {
     const int i = p.i, j = p.j;
-    const double dx = disc_pos[2 * j] - disc_pos[2 * i], dz = disc_pos[2 * j + 1] - disc_pos[2 * i + 1];
-    const double rs = disc_radius[i] + disc_radius[j];
+    const double dx = stone_pos[2 * j] - stone_pos[2 * i], dz = stone_pos[2 * j + 1] - stone_pos[2 * i + 1];
+    const double rs = stone_radius[i] + stone_radius[j];
     if (dx * dx + dz * dz < rs * rs) out.push_back({i, j});
   }
   return out;

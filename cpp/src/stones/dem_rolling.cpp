@@ -42,7 +42,7 @@ void DEMSystem::update_rolling_inertia() {
   if (!(rolling_stones() || rolling_walls())) return;
   for (int i = 0; i < n_; ++i) {
     if (inv_inertia_[i] == 0.0) continue;  // fixed, inactive, or rotation off
-    const double r = disc_radius[i];
+    const double r = stone_radius[i];
     inv_roll_inertia_[i] = 1.0 / (1.0 / inv_inertia_[i] + mass_eff_[i] * r * r);
     wall_roll_c_[i] = 2.0 * r / std::sqrt(inv_roll_inertia_[i]);
   }
@@ -53,7 +53,7 @@ void DEMSystem::update_pair_rolling() {
   if (!rolling_stones()) return;
   for (Pair& c : pairs_) {
     const double inv = inv_roll_inertia_[c.i] + inv_roll_inertia_[c.j];
-    c.roll_r = rolling_radius(disc_radius[c.i], disc_radius[c.j]);
+    c.roll_r = rolling_radius(stone_radius[c.i], stone_radius[c.j]);
     c.roll_c = inv > 0.0 ? 2.0 * c.roll_r / std::sqrt(inv) : 0.0;
   }
 }
@@ -64,19 +64,19 @@ DEMSystem::RollingEnergy DEMSystem::rolling_contact(Pair& c, double fn, double d
   const double kr = rolling_stiffness(kt_, reff);
   const double cr = roll_eta_sqrt_kt_ * c.roll_c;
   const double cap = params_.rolling_friction_stone * reff * std::max(fn, 0.0);
-  const RollingMoment m = rolling_resistance(disc_omega[i] - disc_omega[j], c.mr, dt, kr, cr, cap);
-  disc_torque[i] += m.moment;
-  disc_torque[j] -= m.moment;
+  const RollingMoment m = rolling_resistance(stone_omega[i] - stone_omega[j], c.mr, dt, kr, cr, cap);
+  stone_torque[i] += m.moment;
+  stone_torque[j] -= m.moment;
   return {m.energy_spring, m.power_damp * dt + m.energy_slip};
 }
 
 DEMSystem::RollingEnergy DEMSystem::rolling_wall(int i, double& mr, double fn, double dt) {
-  const double r = disc_radius[i];
+  const double r = stone_radius[i];
   const double kr = rolling_stiffness(kt_, r);
   const double cr = roll_eta_sqrt_kt_ * wall_roll_c_[i];
   const double cap = params_.rolling_friction_wall * r * std::max(fn, 0.0);
-  const RollingMoment m = rolling_resistance(disc_omega[i], mr, dt, kr, cr, cap);
-  disc_torque[i] += m.moment;
+  const RollingMoment m = rolling_resistance(stone_omega[i], mr, dt, kr, cr, cap);
+  stone_torque[i] += m.moment;
   return {m.energy_spring, m.power_damp * dt + m.energy_slip};
 }
 

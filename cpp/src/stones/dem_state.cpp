@@ -26,29 +26,29 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 template <class T>
 using DiscField = state::Field<DEMState, DEMSystem, T>;
 const DiscField<double> kDiscReals[] = {
-    {"disc_pos", &DEMState::disc_pos, &DEMSystem::disc_pos, 0, 2, false, 0.0},
-    {"disc_vel", &DEMState::disc_vel, &DEMSystem::disc_vel, 0, 2, false, 0.0},
-    {"disc_angle", &DEMState::disc_angle, &DEMSystem::disc_angle, 0, 1, false, 0.0},
-    {"disc_omega", &DEMState::disc_omega, &DEMSystem::disc_omega, 0, 1, false, 0.0},
-    {"disc_radius", &DEMState::disc_radius, &DEMSystem::disc_radius, 0, 1, false, 0.0},
-    {"disc_density", &DEMState::disc_density, &DEMSystem::disc_density, 0, 1, false, 0.0},
-    {"disc_force_ext", &DEMState::disc_force_ext, &DEMSystem::disc_force_ext, 0, 2, false, 0.0},
+    {"stone_pos", &DEMState::stone_pos, &DEMSystem::stone_pos, 0, 2, false, 0.0},
+    {"stone_vel", &DEMState::stone_vel, &DEMSystem::stone_vel, 0, 2, false, 0.0},
+    {"stone_angle", &DEMState::stone_angle, &DEMSystem::stone_angle, 0, 1, false, 0.0},
+    {"stone_omega", &DEMState::stone_omega, &DEMSystem::stone_omega, 0, 1, false, 0.0},
+    {"stone_radius", &DEMState::stone_radius, &DEMSystem::stone_radius, 0, 1, false, 0.0},
+    {"stone_density", &DEMState::stone_density, &DEMSystem::stone_density, 0, 1, false, 0.0},
+    {"stone_force_ext", &DEMState::stone_force_ext, &DEMSystem::stone_force_ext, 0, 2, false, 0.0},
     // older states hold no linear drag
-    {"disc_drag_coef", &DEMState::disc_drag_coef, &DEMSystem::disc_drag_coef, 0, 1, true, 0.0},
-    {"disc_drag_vel", &DEMState::disc_drag_vel, &DEMSystem::disc_drag_vel, 0, 2, true, 0.0},
-    {"disc_wet", &DEMState::disc_wet, &DEMSystem::disc_wet, 0, 1, false, 0.0},
+    {"stone_drag_coef", &DEMState::stone_drag_coef, &DEMSystem::stone_drag_coef, 0, 1, true, 0.0},
+    {"stone_drag_vel", &DEMState::stone_drag_vel, &DEMSystem::stone_drag_vel, 0, 2, true, 0.0},
+    {"stone_wet", &DEMState::stone_wet, &DEMSystem::stone_wet, 0, 1, false, 0.0},
     // older states hold no water levels: the wet fractions are then held as set
-    {"disc_water_level", &DEMState::disc_water_level, &DEMSystem::disc_water_level, 0, 1, true, kNaN},
-    {"disc_force", &DEMState::disc_force, &DEMSystem::disc_force, 0, 2, false, 0.0},
-    {"disc_torque", &DEMState::disc_torque, &DEMSystem::disc_torque, 0, 1, false, 0.0},
-    {"disc_acc", &DEMState::disc_acc, &DEMSystem::disc_acc, 0, 2, false, 0.0},
-    {"disc_alpha", &DEMState::disc_alpha, &DEMSystem::disc_alpha, 0, 1, false, 0.0},
-    {"disc_sleep_timer", &DEMState::disc_sleep_timer, &DEMSystem::disc_sleep_timer, 0, 1, false, 0.0},
+    {"stone_water_level", &DEMState::stone_water_level, &DEMSystem::stone_water_level, 0, 1, true, kNaN},
+    {"stone_force", &DEMState::stone_force, &DEMSystem::stone_force, 0, 2, false, 0.0},
+    {"stone_torque", &DEMState::stone_torque, &DEMSystem::stone_torque, 0, 1, false, 0.0},
+    {"stone_acc", &DEMState::stone_acc, &DEMSystem::stone_acc, 0, 2, false, 0.0},
+    {"stone_alpha", &DEMState::stone_alpha, &DEMSystem::stone_alpha, 0, 1, false, 0.0},
+    {"stone_sleep_timer", &DEMState::stone_sleep_timer, &DEMSystem::stone_sleep_timer, 0, 1, false, 0.0},
 };
 const DiscField<std::uint8_t> kDiscFlags[] = {
-    {"disc_fixed", &DEMState::disc_fixed, &DEMSystem::disc_fixed, 0, 1, false, 0.0},
-    {"disc_active", &DEMState::disc_active, &DEMSystem::disc_active, 0, 1, false, 0.0},
-    {"disc_asleep", &DEMState::disc_asleep, &DEMSystem::disc_asleep, 0, 1, false, 0.0},
+    {"stone_fixed", &DEMState::stone_fixed, &DEMSystem::stone_fixed, 0, 1, false, 0.0},
+    {"stone_active", &DEMState::stone_active, &DEMSystem::stone_active, 0, 1, false, 0.0},
+    {"stone_asleep", &DEMState::stone_asleep, &DEMSystem::stone_asleep, 0, 1, false, 0.0},
 };
 
 // op(field) for every per-stone array, of either element type
@@ -93,7 +93,7 @@ void DEMState::clear_model_part() {
 }
 
 void DEMSystem::check_state(const DEMState& s) const {
-  const std::size_t n = s.disc_radius.size(), nw = n * params_.walls.size();
+  const std::size_t n = s.stone_radius.size(), nw = n * params_.walls.size();
   each_disc_field([&](const auto& f) { require_size(f.key, s.*f.state, f.per * n); });
   const std::size_t nc = s.contact_i.size();
   require_size("contact_j", s.contact_j, nc);
@@ -115,7 +115,7 @@ void DEMSystem::check_state(const DEMState& s) const {
 
 void DEMSystem::import_state(const DEMState& s) {
   check_state(s);
-  const std::size_t n = s.disc_radius.size();
+  const std::size_t n = s.stone_radius.size();
   if (n != static_cast<std::size_t>(n_)) resize(static_cast<int>(n));
   each_disc_field([&](const auto& f) { state::copy_into(this->*f.live, s.*f.state); });
   pairs_.clear();
@@ -167,9 +167,11 @@ std::map<std::string, std::vector<double>> dem_state_to_map(DEMState t) {
   return s;
 }
 
-DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& s, std::size_t nwalls) {
+DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& checkpoint, std::size_t nwalls) {
+  StateMap renamed;
+  const StateMap& s = state::with_stone_keys(checkpoint, "", renamed);
   DEMState t;
-  const std::size_t n = entry(s, "disc_radius", state::kAnySize).size();
+  const std::size_t n = entry(s, "stone_radius", state::kAnySize).size();
   for (const auto& f : kDiscReals)
     t.*f.state = f.optional && !s.count(f.key) ? std::vector<double>(f.per * n, f.missing) : entry(s, f.key, f.per * n);
   for (const auto& f : kDiscFlags) from_double(t.*f.state, entry(s, f.key, f.per * n));

@@ -53,10 +53,10 @@ DEMSystem::DEMSystem(const DEMParams& params, const std::vector<double>& pos, co
     require_in_closed("density size", static_cast<double>(density.size()), 1.0, 1.0 * radius.size());
   if (!fixed.empty() && fixed.size() != radius.size())
     require_in_closed("fixed size", static_cast<double>(fixed.size()), 0.0, 1.0 * radius.size());
-  disc_pos = pos;
-  disc_radius = radius;
-  for (int i = 0; i < n_; ++i) disc_density[i] = density.size() == 1 ? density[0] : density[i];
-  if (!fixed.empty()) disc_fixed = fixed;
+  stone_pos = pos;
+  stone_radius = radius;
+  for (int i = 0; i < n_; ++i) stone_density[i] = density.size() == 1 ? density[0] : density[i];
+  if (!fixed.empty()) stone_fixed = fixed;
   check_stones();
 }
 
@@ -65,25 +65,25 @@ void DEMSystem::resize(int n) {
   n_ = n;
   const std::size_t un = static_cast<std::size_t>(n);
   const double wet = params_.submerged ? 1.0 : 0.0;
-  disc_pos.assign(2 * un, 0.0);
-  disc_vel.assign(2 * un, 0.0);
-  disc_angle.assign(un, 0.0);
-  disc_omega.assign(un, 0.0);
-  disc_radius.assign(un, 0.0);
-  disc_density.assign(un, 2650.0);
-  disc_fixed.assign(un, 0);
-  disc_active.assign(un, 1);
-  disc_force_ext.assign(2 * un, 0.0);
-  disc_drag_coef.assign(un, 0.0);
-  disc_drag_vel.assign(2 * un, 0.0);
-  disc_wet.assign(un, wet);
-  disc_water_level.assign(un, std::numeric_limits<double>::quiet_NaN());
-  disc_force.assign(2 * un, 0.0);
-  disc_torque.assign(un, 0.0);
-  disc_acc.assign(2 * un, 0.0);
-  disc_alpha.assign(un, 0.0);
-  disc_asleep.assign(un, 0);
-  disc_sleep_timer.assign(un, 0.0);
+  stone_pos.assign(2 * un, 0.0);
+  stone_vel.assign(2 * un, 0.0);
+  stone_angle.assign(un, 0.0);
+  stone_omega.assign(un, 0.0);
+  stone_radius.assign(un, 0.0);
+  stone_density.assign(un, 2650.0);
+  stone_fixed.assign(un, 0);
+  stone_active.assign(un, 1);
+  stone_force_ext.assign(2 * un, 0.0);
+  stone_drag_coef.assign(un, 0.0);
+  stone_drag_vel.assign(2 * un, 0.0);
+  stone_wet.assign(un, wet);
+  stone_water_level.assign(un, std::numeric_limits<double>::quiet_NaN());
+  stone_force.assign(2 * un, 0.0);
+  stone_torque.assign(un, 0.0);
+  stone_acc.assign(2 * un, 0.0);
+  stone_alpha.assign(un, 0.0);
+  stone_asleep.assign(un, 0);
+  stone_sleep_timer.assign(un, 0.0);
   // back to the default model: a model with shapes is made again (set_polygons(), set_model())
   model_ = make_stone_model(kDefaultStoneModel);
   poly_vertex.clear();
@@ -175,18 +175,18 @@ void DEMSystem::shapes_changed() {
 
 void DEMSystem::check_stones() const {
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i]) continue;
-    require_positive("disc_radius", disc_radius[i]);
-    require_positive("disc_density", disc_density[i]);
-    require_in_closed("disc_wet", disc_wet[i], 0.0, 1.0);
-    require_finite("disc_pos", disc_pos[2 * i]);
-    require_finite("disc_pos", disc_pos[2 * i + 1]);
-    require_finite("disc_force_ext", disc_force_ext[2 * i]);
-    require_finite("disc_force_ext", disc_force_ext[2 * i + 1]);
-    require_non_negative("disc_drag_coef", disc_drag_coef[i]);
-    require_finite("disc_drag_coef", disc_drag_coef[i]);
-    require_finite("disc_drag_vel", disc_drag_vel[2 * i]);
-    require_finite("disc_drag_vel", disc_drag_vel[2 * i + 1]);
+    if (!stone_active[i]) continue;
+    require_positive("stone_radius", stone_radius[i]);
+    require_positive("stone_density", stone_density[i]);
+    require_in_closed("stone_wet", stone_wet[i], 0.0, 1.0);
+    require_finite("stone_pos", stone_pos[2 * i]);
+    require_finite("stone_pos", stone_pos[2 * i + 1]);
+    require_finite("stone_force_ext", stone_force_ext[2 * i]);
+    require_finite("stone_force_ext", stone_force_ext[2 * i + 1]);
+    require_non_negative("stone_drag_coef", stone_drag_coef[i]);
+    require_finite("stone_drag_coef", stone_drag_coef[i]);
+    require_finite("stone_drag_vel", stone_drag_vel[2 * i]);
+    require_finite("stone_drag_vel", stone_drag_vel[2 * i + 1]);
   }
 }
 
@@ -204,7 +204,7 @@ void DEMSystem::update_properties() {
 void DEMSystem::update_stone_properties(int i) {
   const double m = update_stone_masses(i);
   const DEMParams& p = params_;
-  const bool mobile = disc_active[i] && !disc_fixed[i];
+  const bool mobile = stone_active[i] && !stone_fixed[i];
   const double inertia = model_->inertia(*this, i, m);
   inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
 }
@@ -216,38 +216,38 @@ double DEMSystem::update_stone_masses(int i) {
   const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
   const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
   const double v = volume(i);
-  const double m = disc_density[i] * v;
-  const double wv = v * disc_wet[i];
+  const double m = stone_density[i] * v;
+  const double wv = v * stone_wet[i];
   mass_eff_[i] = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
   weight_[i] = m - (buoy ? p.water_density() * wv : 0.0);
-  const bool mobile = disc_active[i] && !disc_fixed[i];
+  const bool mobile = stone_active[i] && !stone_fixed[i];
   inv_mass_[i] = mobile ? 1.0 / mass_eff_[i] : 0.0;
   return m;
 }
 
 void DEMSystem::set_wet_fraction(int i, double w) {
   if (i < 0 || i >= n_) require_in_closed("i", i, 0, n_ - 1);
-  require_in_closed("disc_wet", w, 0.0, 1.0);
+  require_in_closed("stone_wet", w, 0.0, 1.0);
   change_wet_fraction(i, w);
 }
 
 // set_wet_fraction without its checks (w in [0, 1] from disc_wet_fraction)
 void DEMSystem::change_wet_fraction(int i, double w) {
-  const double w_old = disc_wet[i];
+  const double w_old = stone_wet[i];
   if (w == w_old) return;
   const DEMParams& p = params_;
   const bool added = (p.flags & kDEMAddedMass) && p.water_density() > 0.0;
-  if (added && w > w_old && disc_active[i] && !disc_fixed[i]) {
+  if (added && w > w_old && stone_active[i] && !stone_fixed[i]) {
     // the water taken on starts at rest: (M + M') v kept, the kinetic energy that costs dissipated
-    const double v_i = volume(i), m = disc_density[i] * v_i;
+    const double v_i = volume(i), m = stone_density[i] * v_i;
     const double c = p.water_density() * p.added_mass_coefficient * v_i;
     const double m_old = m + c * w_old, r = m_old / (m + c * w);
-    double* v = &disc_vel[2 * i];
+    double* v = &stone_vel[2 * i];
     dissipated_ += 0.5 * m_old * (1.0 - r) * (v[0] * v[0] + v[1] * v[1]);
     v[0] *= r;
     v[1] *= r;
   }
-  disc_wet[i] = w;
+  stone_wet[i] = w;
   // masses derived already (within a step): refreshed now; else the next step derives them
   if (mass_eff_.size() == static_cast<std::size_t>(n_)) update_stone_masses(i);
 }
@@ -256,8 +256,8 @@ void DEMSystem::change_wet_fraction(int i, double w) {
 // the drag's kick scale follows its new mass, so that the next half kicks integrate the linear drag
 // exactly with the added mass the stone now has (set_wet_fraction has kept its momentum)
 void DEMSystem::follow_water_level(int i) {
-  const double w = disc_wet_fraction((disc_water_level[i] - disc_pos[2 * i + 1]) / disc_radius[i]);
-  if (w == disc_wet[i]) return;
+  const double w = disc_wet_fraction((stone_water_level[i] - stone_pos[2 * i + 1]) / stone_radius[i]);
+  if (w == stone_wet[i]) return;
   change_wet_fraction(i, w);
   if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);
 }
@@ -267,7 +267,7 @@ double DEMSystem::reduced_stiffness_mass() const {
   double sum = 0.0;
   int count = 0;
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i] || disc_fixed[i]) continue;
+    if (!stone_active[i] || stone_fixed[i]) continue;
     sum += mass(i);
     ++count;
   }
@@ -292,7 +292,7 @@ void DEMSystem::prepare() {
   zeta_ = damping_ratio_from_restitution(p.restitution);
   double rmax = 0.0;
   for (int i = 0; i < n_; ++i)
-    if (disc_active[i]) rmax = std::max(rmax, disc_radius[i]);
+    if (stone_active[i]) rmax = std::max(rmax, stone_radius[i]);
   const double skin = p.neighbour_skin > 0.0 ? p.neighbour_skin : 0.2 * rmax;
   if (skin != skin_) rebuild_ = true;
   skin_ = skin;
@@ -300,15 +300,15 @@ void DEMSystem::prepare() {
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
   if (wall_mr_.size() != wall_xi_.size()) wall_mr_.assign(wall_xi_.size(), 0.0);
   if (wall_points_.size() != wall_xi_.size()) wall_points_.assign(wall_xi_.size(), PointSprings{});
-  if (!(p.flags & kDEMSleeping)) std::fill(disc_asleep.begin(), disc_asleep.end(), 0);
+  if (!(p.flags & kDEMSleeping)) std::fill(stone_asleep.begin(), stone_asleep.end(), 0);
   update_properties();
   update_rolling_inertia();
   // radii, activity or fixing may have been changed through the views: the list is rebuilt; else only
   // the pairs' reduced masses are refreshed (wet fractions may have changed)
-  if (cached_radius_ != disc_radius || cached_active_ != disc_active || cached_fixed_ != disc_fixed) {
-    cached_radius_ = disc_radius;
-    cached_active_ = disc_active;
-    cached_fixed_ = disc_fixed;
+  if (cached_radius_ != stone_radius || cached_active_ != stone_active || cached_fixed_ != stone_fixed) {
+    cached_radius_ = stone_radius;
+    cached_active_ = stone_active;
+    cached_fixed_ = stone_fixed;
     rebuild_ = true;
   }
   // the contacts' dashpots use the masses of the step's start: a wet fraction that follows a water
@@ -362,7 +362,7 @@ void DEMSystem::update_kick_scale(double dt) {
 // phi(h c / (M + M')) of stone i for a half kick h = dt / 2, with its present mass
 double DEMSystem::drag_kick_scale(int i, double dt) const {
   if (!(params_.flags & kDEMExternalForce)) return 1.0;
-  const double x = 0.5 * dt * disc_drag_coef[i] * inv_mass_[i];
+  const double x = 0.5 * dt * stone_drag_coef[i] * inv_mass_[i];
   if (x > 1e-8) return -std::expm1(-x) / x;
   return x > 0.0 ? 1.0 - 0.5 * x : 1.0;
 }
@@ -400,9 +400,9 @@ void DEMSystem::substep(double dt, StageLaps& laps) {
     }
     evaluate_forces(0.0, true, laps);
     for (int i = 0; i < n_; ++i) {
-      disc_acc[2 * i] = disc_force[2 * i] * inv_mass_[i];
-      disc_acc[2 * i + 1] = disc_force[2 * i + 1] * inv_mass_[i];
-      disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
+      stone_acc[2 * i] = stone_force[2 * i] * inv_mass_[i];
+      stone_acc[2 * i + 1] = stone_force[2 * i + 1] * inv_mass_[i];
+      stone_alpha[i] = stone_torque[i] * inv_inertia_[i];
     }
     forces_valid_ = true;
   }
@@ -439,25 +439,25 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
   const double gx = p.medium.gravity[0], gz = p.medium.gravity[1];
   const double lim2 = 0.25 * skin_ * skin_;
   FirstHalf out;
-  out.stale = build_pos_.size() != disc_pos.size();
+  out.stale = build_pos_.size() != stone_pos.size();
   double work = 0.0;
   for (int i = 0; i < n_; ++i) {
-    double* f = &disc_force[2 * i];
+    double* f = &stone_force[2 * i];
     f[0] = f[1] = 0.0;
-    disc_torque[i] = 0.0;
+    stone_torque[i] = 0.0;
     if (inv_mass_[i] == 0.0) continue;
-    double* v = &disc_vel[2 * i];
-    double* x = &disc_pos[2 * i];
-    if (!disc_asleep[i]) {
-      const double* a = &disc_acc[2 * i];
+    double* v = &stone_vel[2 * i];
+    double* x = &stone_pos[2 * i];
+    if (!stone_asleep[i]) {
+      const double* a = &stone_acc[2 * i];
       const double s = kick_scale_[i];
       v[0] += h * a[0] * s;
       v[1] += h * a[1] * s;
       x[0] += dt * v[0];
       x[1] += dt * v[1];
-      disc_omega[i] += h * disc_alpha[i];
-      disc_angle[i] += dt * disc_omega[i];
-      if (!std::isnan(disc_water_level[i])) follow_water_level(i);
+      stone_omega[i] += h * stone_alpha[i];
+      stone_angle[i] += dt * stone_omega[i];
+      if (!std::isnan(stone_water_level[i])) follow_water_level(i);
     }
     if (removal) {
       out.escaped |= x[0] < p.domain_min[0] || x[0] > p.domain_max[0] || x[1] < p.domain_min[1] ||
@@ -472,10 +472,10 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
       f[1] += weight_[i] * gz;
     }
     if (ext) {
-      const double* fe = &disc_force_ext[2 * i];
+      const double* fe = &stone_force_ext[2 * i];
       double fx = fe[0], fz = fe[1];
-      const double c = disc_drag_coef[i];
-      if (c > 0.0) fx += c * (disc_drag_vel[2 * i] - v[0]), fz += c * (disc_drag_vel[2 * i + 1] - v[1]);
+      const double c = stone_drag_coef[i];
+      if (c > 0.0) fx += c * (stone_drag_vel[2 * i] - v[0]), fz += c * (stone_drag_vel[2 * i + 1] - v[1]);
       f[0] += fx;
       f[1] += fz;
       work += fx * v[0] + fz * v[1];
@@ -491,25 +491,25 @@ void DEMSystem::integrate_second_half(double dt) {
   const bool ext = params_.flags & kDEMExternalForce;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0) continue;
-    double* a = &disc_acc[2 * i];
-    a[0] = disc_force[2 * i] * inv_mass_[i];
-    a[1] = disc_force[2 * i + 1] * inv_mass_[i];
-    disc_alpha[i] = disc_torque[i] * inv_inertia_[i];
-    if (disc_asleep[i]) continue;
-    double* v = &disc_vel[2 * i];
+    double* a = &stone_acc[2 * i];
+    a[0] = stone_force[2 * i] * inv_mass_[i];
+    a[1] = stone_force[2 * i + 1] * inv_mass_[i];
+    stone_alpha[i] = stone_torque[i] * inv_inertia_[i];
+    if (stone_asleep[i]) continue;
+    double* v = &stone_vel[2 * i];
     const double s = kick_scale_[i];
     const double vx = v[0], vz = v[1];
     v[0] += h * a[0] * s;
     v[1] += h * a[1] * s;
-    disc_omega[i] += h * disc_alpha[i];
+    stone_omega[i] += h * stone_alpha[i];
     // the linear drag of the force evaluation is that of the half-step velocity: brought to the new one
-    const double c = disc_drag_coef[i];
+    const double c = stone_drag_coef[i];
     if (c > 0.0 && ext) {
       const double dvx = v[0] - vx, dvz = v[1] - vz;
-      disc_force[2 * i] -= c * dvx, disc_force[2 * i + 1] -= c * dvz;
+      stone_force[2 * i] -= c * dvx, stone_force[2 * i + 1] -= c * dvz;
       a[0] -= c * inv_mass_[i] * dvx, a[1] -= c * inv_mass_[i] * dvz;
     }
-    if (!std::isfinite(v[0] + v[1] + disc_omega[i] + disc_pos[2 * i] + disc_pos[2 * i + 1]))
+    if (!std::isfinite(v[0] + v[1] + stone_omega[i] + stone_pos[2 * i] + stone_pos[2 * i + 1]))
       fail("integrate", i, time_, "non-finite position or velocity");
   }
 }
@@ -518,17 +518,17 @@ void DEMSystem::remove_escaped() {
   const DEMParams& p = params_;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0) continue;
-    const double x = disc_pos[2 * i], z = disc_pos[2 * i + 1];
+    const double x = stone_pos[2 * i], z = stone_pos[2 * i + 1];
     if (x >= p.domain_min[0] && x <= p.domain_max[0] && z >= p.domain_min[1] && z <= p.domain_max[1]) continue;
     // kept in the arrays (indices stay stable), no longer simulated
-    disc_active[i] = 0;
+    stone_active[i] = 0;
     inv_mass_[i] = 0.0;
     inv_inertia_[i] = 0.0;
-    disc_vel[2 * i] = disc_vel[2 * i + 1] = 0.0;
-    disc_omega[i] = 0.0;
-    disc_acc[2 * i] = disc_acc[2 * i + 1] = 0.0;
-    disc_alpha[i] = 0.0;
-    disc_force[2 * i] = disc_force[2 * i + 1] = 0.0;
+    stone_vel[2 * i] = stone_vel[2 * i + 1] = 0.0;
+    stone_omega[i] = 0.0;
+    stone_acc[2 * i] = stone_acc[2 * i + 1] = 0.0;
+    stone_alpha[i] = 0.0;
+    stone_force[2 * i] = stone_force[2 * i + 1] = 0.0;
     for (std::size_t w = 0; w < p.walls.size(); ++w) {
       wall_xi_[i * p.walls.size() + w] = 0.0;
       wall_mr_[i * p.walls.size() + w] = 0.0;
@@ -544,19 +544,19 @@ void DEMSystem::body_forces(double dt) {
   const bool grav = p.flags & kDEMGravity;
   const bool ext = p.flags & kDEMExternalForce;
   for (int i = 0; i < n_; ++i) {
-    double* f = &disc_force[2 * i];
+    double* f = &stone_force[2 * i];
     f[0] = f[1] = 0.0;
-    disc_torque[i] = 0.0;
+    stone_torque[i] = 0.0;
     if (inv_mass_[i] == 0.0) continue;
     if (grav) {
       f[0] += weight_[i] * p.medium.gravity[0];
       f[1] += weight_[i] * p.medium.gravity[1];
     }
     if (ext) {
-      const double* fe = &disc_force_ext[2 * i];
-      const double* v = &disc_vel[2 * i];
-      const double c = disc_drag_coef[i];
-      const double fx = fe[0] + c * (disc_drag_vel[2 * i] - v[0]), fz = fe[1] + c * (disc_drag_vel[2 * i + 1] - v[1]);
+      const double* fe = &stone_force_ext[2 * i];
+      const double* v = &stone_vel[2 * i];
+      const double c = stone_drag_coef[i];
+      const double fx = fe[0] + c * (stone_drag_vel[2 * i] - v[0]), fz = fe[1] + c * (stone_drag_vel[2 * i + 1] - v[1]);
       f[0] += fx;
       f[1] += fz;
       work_external_ += (fx * v[0] + fz * v[1]) * dt;
@@ -571,29 +571,29 @@ void DEMSystem::sleep_update(double dt) {
   const double a2 = p.wake_acceleration * p.wake_acceleration;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0) continue;
-    const double* a = &disc_acc[2 * i];
-    const double r = disc_radius[i];
-    if (disc_asleep[i]) {
-      const double ar = disc_alpha[i] * r;
+    const double* a = &stone_acc[2 * i];
+    const double r = stone_radius[i];
+    if (stone_asleep[i]) {
+      const double ar = stone_alpha[i] * r;
       if (a[0] * a[0] + a[1] * a[1] + ar * ar > a2) {
-        disc_asleep[i] = 0;
-        disc_sleep_timer[i] = 0.0;
+        stone_asleep[i] = 0;
+        stone_sleep_timer[i] = 0.0;
       }
       continue;
     }
-    double* v = &disc_vel[2 * i];
-    const double wr = disc_omega[i] * r;
+    double* v = &stone_vel[2 * i];
+    const double wr = stone_omega[i] * r;
     if (v[0] * v[0] + v[1] * v[1] < v2 && wr * wr < v2) {
-      disc_sleep_timer[i] += dt;
-      if (disc_sleep_timer[i] >= p.sleep_time) {
+      stone_sleep_timer[i] += dt;
+      if (stone_sleep_timer[i] >= p.sleep_time) {
         dissipated_ += 0.5 * mass_eff_[i] * (v[0] * v[0] + v[1] * v[1]) +
-                       (inv_inertia_[i] > 0.0 ? 0.5 * disc_omega[i] * disc_omega[i] / inv_inertia_[i] : 0.0);
-        disc_asleep[i] = 1;
+                       (inv_inertia_[i] > 0.0 ? 0.5 * stone_omega[i] * stone_omega[i] / inv_inertia_[i] : 0.0);
+        stone_asleep[i] = 1;
         v[0] = v[1] = 0.0;
-        disc_omega[i] = 0.0;
+        stone_omega[i] = 0.0;
       }
     } else {
-      disc_sleep_timer[i] = 0.0;
+      stone_sleep_timer[i] = 0.0;
     }
   }
 }
@@ -605,16 +605,16 @@ DEMEnergy DEMSystem::energy() const {
   const bool buoy = (p.flags & kDEMBuoyancy) && p.water_density() > 0.0;
   const bool grav = p.flags & kDEMGravity;
   for (int i = 0; i < n_; ++i) {
-    if (!disc_active[i] || disc_fixed[i]) continue;
+    if (!stone_active[i] || stone_fixed[i]) continue;
     const double v = volume(i);
-    const double m = disc_density[i] * v;
-    const double wv = v * disc_wet[i];
+    const double m = stone_density[i] * v;
+    const double wv = v * stone_wet[i];
     const double me = m + (added ? p.water_density() * p.added_mass_coefficient * wv : 0.0);
     const double mw = m - (buoy ? p.water_density() * wv : 0.0);
     const double inertia = model_->inertia(*this, i, m);
-    const double* u = &disc_vel[2 * i];
-    e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * disc_omega[i] * disc_omega[i];
-    if (grav) e.potential -= mw * (p.medium.gravity[0] * disc_pos[2 * i] + p.medium.gravity[1] * disc_pos[2 * i + 1]);
+    const double* u = &stone_vel[2 * i];
+    e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * stone_omega[i] * stone_omega[i];
+    if (grav) e.potential -= mw * (p.medium.gravity[0] * stone_pos[2 * i] + p.medium.gravity[1] * stone_pos[2 * i + 1]);
   }
   e.elastic = elastic_;
   e.dissipated = dissipated_;

@@ -20,18 +20,18 @@ constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 double DiscModel::volume(const DEMSystem& s, int i) const {
-  const double r = s.disc_radius[i];
+  const double r = s.stone_radius[i];
   return 4.0 / 3.0 * kPi * r * r * r;
 }
 
 double DiscModel::inertia(const DEMSystem& s, int i, double mass) const {
-  return s.params().inertia_factor * mass * s.disc_radius[i] * s.disc_radius[i];
+  return s.params().inertia_factor * mass * s.stone_radius[i] * s.stone_radius[i];
 }
 
-double DiscModel::nominal_diameter(const DEMSystem& s, int i) const { return 2.0 * s.disc_radius[i]; }
+double DiscModel::nominal_diameter(const DEMSystem& s, int i) const { return 2.0 * s.stone_radius[i]; }
 
 double DiscModel::projected_area(const DEMSystem& s, int i) const {
-  return kPi * s.disc_radius[i] * s.disc_radius[i];
+  return kPi * s.stone_radius[i] * s.stone_radius[i];
 }
 
 double DiscModel::projected_area(const DEMSystem& s, int i, double, double) const { return projected_area(s, i); }
@@ -40,7 +40,7 @@ double DiscModel::stable_dt(const DEMSystem& s) const {
   const DEMParams& p = s.params();
   double m_min = INFINITY;
   for (int i = 0; i < s.n(); ++i)
-    if (s.disc_active[i] && !s.disc_fixed[i]) m_min = std::min(m_min, s.mass(i));
+    if (s.stone_active[i] && !s.stone_fixed[i]) m_min = std::min(m_min, s.mass(i));
   const double kn = s.stiffness_normal(), kt = s.stiffness_tangential();
   if (!std::isfinite(m_min) || kn <= 0.0) return INFINITY;
   // two of the lightest stones: normal mode and the tangential mode that includes their spin
@@ -65,12 +65,12 @@ ContactTally DiscModel::contact_forces(DEMSystem& s, double dt) {
   const double kn = s.stiffness_normal();
   const double ct_factor = p.tangential_damping_factor;
   const bool rolling = rolling_stones(s);
-  const double* pos = s.disc_pos.data();
-  const double* vel = s.disc_vel.data();
-  const double* omega = s.disc_omega.data();
-  const double* radius = s.disc_radius.data();
-  double* force = s.disc_force.data();
-  double* torque = s.disc_torque.data();
+  const double* pos = s.stone_pos.data();
+  const double* vel = s.stone_vel.data();
+  const double* omega = s.stone_omega.data();
+  const double* radius = s.stone_radius.data();
+  double* force = s.stone_force.data();
+  double* torque = s.stone_torque.data();
   ContactTally t;
   for (ContactPair& c : pairs(s)) {
     const int i = c.i, j = c.j;
@@ -133,24 +133,24 @@ ContactTally DiscModel::wall_forces(DEMSystem& s, double dt) {
       const int i = cand.index[c];
       if (inv_m[i] == 0.0) continue;
       double& xi = wall_xi[static_cast<std::size_t>(i) * nw + w];
-      const double r = s.disc_radius[i];
-      const double d = (s.disc_pos[2 * i] - wall.point[0]) * wx + (s.disc_pos[2 * i + 1] - wall.point[1]) * wz;
+      const double r = s.stone_radius[i];
+      const double d = (s.stone_pos[2 * i] - wall.point[0]) * wx + (s.stone_pos[2 * i + 1] - wall.point[1]) * wz;
       if (d >= r) {
         xi = 0.0;
         wall_mr[static_cast<std::size_t>(i) * nw + w] = 0.0;
         continue;
       }
       ++t.count;
-      const double vx = s.disc_vel[2 * i], vz = s.disc_vel[2 * i + 1];
+      const double vx = s.stone_vel[2 * i], vz = s.stone_vel[2 * i + 1];
       const double vn = vx * nx + vz * nz;
-      const double vt = -vx * nz + vz * nx + s.disc_omega[i] * r;
+      const double vt = -vx * nz + vz * nx + s.stone_omega[i] * r;
       const double cn = damp * std::sqrt(m_eff[i]);
       const ContactForce f = friction ? linear_contact(r - d, vn, vt, xi, dt, kn, kt, cn,
                                                        p.tangential_damping_factor * cn, wall.friction, true)
                                       : linear_contact(r - d, vn, 0.0, xi, dt, kn, 0.0, cn, 0.0, 0.0, false);
-      s.disc_force[2 * i] += -f.fn * nx - f.ft * nz;
-      s.disc_force[2 * i + 1] += -f.fn * nz + f.ft * nx;
-      s.disc_torque[i] += r * f.ft;
+      s.stone_force[2 * i] += -f.fn * nx - f.ft * nz;
+      s.stone_force[2 * i + 1] += -f.fn * nz + f.ft * nx;
+      s.stone_torque[i] += r * f.ft;
       t.elastic += f.energy_spring;
       t.dissipated += f.power_damp * dt + f.energy_slip;
       if (rolling) rolling_wall(s, i, wall_mr[static_cast<std::size_t>(i) * nw + w], f.fn, dt, t);
@@ -160,35 +160,35 @@ ContactTally DiscModel::wall_forces(DEMSystem& s, double dt) {
 }
 
 void DiscModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const {
-  m.map(s.n(), x, z, s.disc_radius.data(), s.disc_active.data());
+  m.map(s.n(), x, z, s.stone_radius.data(), s.stone_active.data());
 }
 
 DragForce DiscModel::drag(const DEMSystem& s, int i, const StoneFlowSample& f, double up, double wp, double rho,
                           double nu, DragLaw law, double* slope) const {
-  const double d = 2.0 * s.disc_radius[i];
+  const double d = 2.0 * s.stone_radius[i];
   if (slope) *slope = sphere_drag_slope(f, up, wp, d, rho, nu, law);
   return stone_drag(f, up, wp, d, rho, nu, law);
 }
 
 double DiscModel::drag_relaxation_dt(const DEMSystem& s, int i, double relaxation, double mass, double vrel, double w,
                                      double rho, double nu) const {
-  const double r = s.disc_radius[i];
+  const double r = s.stone_radius[i];
   const double slope = drag_slope(vrel, 2.0 * r, w * 0.5 * rho * kPi * r * r, nu, DragLaw::kPaper);
   return relaxation * (mass / slope);
 }
 
 double DiscModel::gap(const DEMSystem& s, int i, double x, double z) const {
-  return std::max(std::hypot(x - s.disc_pos[2 * i], z - s.disc_pos[2 * i + 1]) - s.disc_radius[i], 0.0);
+  return std::max(std::hypot(x - s.stone_pos[2 * i], z - s.stone_pos[2 * i + 1]) - s.stone_radius[i], 0.0);
 }
 
 bool DiscModel::covers(const DEMSystem& s, int i, double x, double z) const {
-  const double dx = x - s.disc_pos[2 * i], dz = z - s.disc_pos[2 * i + 1];
-  const double r = s.disc_radius[i];
+  const double dx = x - s.stone_pos[2 * i], dz = z - s.stone_pos[2 * i + 1];
+  const double r = s.stone_radius[i];
   return dx * dx + dz * dz < r * r;
 }
 
 double DiscModel::outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const {
-  return f(s.disc_pos[2 * i], s.disc_pos[2 * i + 1]) + s.disc_radius[i];
+  return f(s.stone_pos[2 * i], s.stone_pos[2 * i + 1]) + s.stone_radius[i];
 }
 
 }  // namespace vofdem

@@ -93,7 +93,7 @@ void PolygonModel::update_properties(DEMSystem& s) {
     const PolygonProperties q = polygon_properties(&vertex[2 * o], c);
     area_[i] = q.area;
     jratio_[i] = q.polar_moment / q.area;
-    s.disc_radius[i] = q.bounding_radius;
+    s.stone_radius[i] = q.bounding_radius;
     polygon_edge_normals(&vertex[2 * o], c, &normal_[2 * o]);
   }
   cached_vertex_ = vertex;
@@ -135,7 +135,7 @@ double PolygonModel::projected_area(const DEMSystem& s, int i) const {
 double PolygonModel::projected_area(const DEMSystem& s, int i, double ux, double uz) const {
   if (ux == 0.0 && uz == 0.0) return projected_area(s, i);
   const int o = s.poly_offset[i];
-  const double w = polygon_width_across(&s.poly_vertex[2 * o], s.poly_offset[i + 1] - o, s.disc_angle[i], ux, uz);
+  const double w = polygon_width_across(&s.poly_vertex[2 * o], s.poly_offset[i + 1] - o, s.stone_angle[i], ux, uz);
   return 0.25 * kPi * polygon_nominal_diameter(area_[i]) * w;
 }
 
@@ -143,8 +143,8 @@ double PolygonModel::stable_dt(const DEMSystem& s) const {
   const bool rot = s.params().flags & kDEMRotation;
   double lam = 0.0;
   for (int i = 0; i < s.n(); ++i) {
-    if (!s.disc_active[i] || s.disc_fixed[i]) continue;
-    const double m = s.mass(i), r = s.disc_radius[i];
+    if (!s.stone_active[i] || s.stone_fixed[i]) continue;
+    const double m = s.mass(i), r = s.stone_radius[i];
     lam = std::max(lam, 1.0 / m + (rot ? r * r / inertia(s, i, m) : 0.0));
   }
   const double kn = s.stiffness_normal(), kt = s.stiffness_tangential();
@@ -326,8 +326,8 @@ std::size_t PolygonModel::touching(DEMSystem& s) {
     sat_builds_ = s.neighbour_builds();
   }
   PolygonFrame f{s.poly_offset.data(), s.poly_vertex.data(), normal_.data(),       world_.data(),
-                 world_normal_.data(), world_stamp_.data(),  eval_,                s.disc_pos.data(),
-                 s.disc_angle.data(),  inv_mass(s).data(),   s.disc_asleep.data()};
+                 world_normal_.data(), world_stamp_.data(),  eval_,                s.stone_pos.data(),
+                 s.stone_angle.data(),  inv_mass(s).data(),   s.stone_asleep.data()};
   // the stones that needed their world geometry at the last evaluation need it now, most likely: made
   // first (the pair loop then finds them made), their cosines and sines in one pass (the calls back to
   // back) and their vertices and normals in another
@@ -343,13 +343,13 @@ std::size_t PolygonModel::touching(DEMSystem& s) {
     todo[ntodo++] = i;
   }
   for (int k = 0; k < ntodo; ++k) {
-    const double a = s.disc_angle[todo[k]];
+    const double a = s.stone_angle[todo[k]];
     cs[2 * k] = std::cos(a);
     cs[2 * k + 1] = std::sin(a);
   }
   for (int k = 0; k < ntodo; ++k) f.make(todo[k], cs[2 * k], cs[2 * k + 1]);
-  const double* pos = s.disc_pos.data();
-  const double* radius = s.disc_radius.data();
+  const double* pos = s.stone_pos.data();
+  const double* radius = s.stone_radius.data();
   PairCache* caches = sat_cache_.data();
   const std::size_t npairs = list.size();
   if (contacts_.size() < npairs) contacts_.resize(npairs);
@@ -390,8 +390,8 @@ ContactTally PolygonModel::contact_forces(DEMSystem& s, double dt) {
   const double ct_factor = p.tangential_damping_factor;
   const double kn = s.stiffness_normal(), mu = p.friction_stone;
   ContactTally tally;
-  const double *pos = s.disc_pos.data(), *vel = s.disc_vel.data(), *omega = s.disc_omega.data();
-  double *force = s.disc_force.data(), *torque = s.disc_torque.data();
+  const double *pos = s.stone_pos.data(), *vel = s.stone_vel.data(), *omega = s.stone_omega.data();
+  double *force = s.stone_force.data(), *torque = s.stone_torque.data();
   std::vector<ContactPair>& list = pairs(s);
   const detail::PolygonContact* contacts = contacts_.data();
   for (std::size_t t = 0; t < ntouch; ++t) {
@@ -442,8 +442,8 @@ ContactTally PolygonModel::wall_forces(DEMSystem& s, double dt) {
   const std::vector<double>& m_eff = mass_eff(s);
   std::vector<PointSprings>& springs = wall_point_springs(s);
   PolygonFrame f{s.poly_offset.data(), s.poly_vertex.data(), normal_.data(),       world_.data(),
-                 world_normal_.data(), world_stamp_.data(),  eval_,                s.disc_pos.data(),
-                 s.disc_angle.data(),  inv_m.data(),         s.disc_asleep.data()};
+                 world_normal_.data(), world_stamp_.data(),  eval_,                s.stone_pos.data(),
+                 s.stone_angle.data(),  inv_m.data(),         s.stone_asleep.data()};
   ContactTally tally;
   for (std::size_t w = 0; w < nw; ++w) {
     const DEMWall& wall = p.walls[w];
@@ -452,12 +452,12 @@ ContactTally PolygonModel::wall_forces(DEMSystem& s, double dt) {
       const int i = cand.index[c];
       if (inv_m[i] == 0.0) continue;
       PointSprings& hist = springs[static_cast<std::size_t>(i) * nw + w];
-      const double x0 = s.disc_pos[2 * i], z0 = s.disc_pos[2 * i + 1];
+      const double x0 = s.stone_pos[2 * i], z0 = s.stone_pos[2 * i + 1];
       const double d = (x0 - wall.point[0]) * wx + (z0 - wall.point[1]) * wz;
       const int o = s.poly_offset[i];
-      if (d < s.disc_radius[i]) f.update(i);
+      if (d < s.stone_radius[i]) f.update(i);
       const ContactManifold m =
-          d >= s.disc_radius[i] ? ContactManifold{}
+          d >= s.stone_radius[i] ? ContactManifold{}
                                 : collide_polygon_wall(&world_[2 * o], &world_normal_[2 * o], s.poly_offset[i + 1] - o,
                                                        wall.point[0], wall.point[1], wx, wz);
       const PointSprings prev = hist;
@@ -468,7 +468,7 @@ ContactTally PolygonModel::wall_forces(DEMSystem& s, double dt) {
       for (int k = 0; k < m.count; ++k) {
         const ContactManifold::Point& q = m.point[k];
         const double rx = q.x - x0, rz = q.z - z0;
-        const double vx = s.disc_vel[2 * i] - s.disc_omega[i] * rz, vz = s.disc_vel[2 * i + 1] + s.disc_omega[i] * rx;
+        const double vx = s.stone_vel[2 * i] - s.stone_omega[i] * rz, vz = s.stone_vel[2 * i + 1] + s.stone_omega[i] * rx;
         const double vn = vx * nx + vz * nz;
         const double vt = -vx * nz + vz * nx;
         double xi = prev.spring(q.id);
@@ -476,9 +476,9 @@ ContactTally PolygonModel::wall_forces(DEMSystem& s, double dt) {
                                                           p.tangential_damping_factor * cn, wall.friction, true)
                                          : linear_contact(q.depth, vn, 0.0, xi, dt, kn, 0.0, cn, 0.0, 0.0, false);
         const double fx = -fc.fn * nx - fc.ft * nz, fz = -fc.fn * nz + fc.ft * nx;
-        s.disc_force[2 * i] += fx;
-        s.disc_force[2 * i + 1] += fz;
-        s.disc_torque[i] += cross(rx, rz, fx, fz);
+        s.stone_force[2 * i] += fx;
+        s.stone_force[2 * i + 1] += fz;
+        s.stone_torque[i] += cross(rx, rz, fx, fz);
         hist.id[k] = q.id;
         hist.xi[k] = xi;
         tally.elastic += fc.energy_spring;
@@ -506,7 +506,7 @@ void PolygonModel::export_state(const DEMSystem& s, DEMState& t) const {
 
 // checked before anything is written
 void PolygonModel::check_state(const DEMSystem& s, const DEMState& t) const {
-  const std::size_t n = t.disc_radius.size(), nw = n * s.params().walls.size(), np = t.poly_contact_i.size();
+  const std::size_t n = t.stone_radius.size(), nw = n * s.params().walls.size(), np = t.poly_contact_i.size();
   require_size("poly_offset", t.poly_offset, n + 1);
   check_polygons(t.poly_vertex, t.poly_offset, static_cast<int>(n));
   check_params(s.params());
@@ -568,7 +568,7 @@ void PolygonModel::state_from_map(const StateMap& m, std::size_t n, std::size_t 
 // ---- the flow's view
 
 void PolygonModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const {
-  m.map_polygons(s.n(), x, z, s.disc_angle.data(), s.poly_vertex.data(), s.poly_offset.data(), s.disc_active.data());
+  m.map_polygons(s.n(), x, z, s.stone_angle.data(), s.poly_vertex.data(), s.poly_offset.data(), s.stone_active.data());
 }
 
 // the 3D stone's projected area across the relative velocity
@@ -590,12 +590,12 @@ double PolygonModel::drag_relaxation_dt(const DEMSystem& s, int i, double relaxa
 
 int PolygonModel::world_vertices(const DEMSystem& s, int i, double* out) const {
   const int o = s.poly_offset[i], count = s.poly_offset[i + 1] - o;
-  polygon_to_world(&s.poly_vertex[2 * o], count, s.disc_pos[2 * i], s.disc_pos[2 * i + 1], s.disc_angle[i], out);
+  polygon_to_world(&s.poly_vertex[2 * o], count, s.stone_pos[2 * i], s.stone_pos[2 * i + 1], s.stone_angle[i], out);
   return count;
 }
 
 double PolygonModel::gap(const DEMSystem& s, int i, double x, double z) const {
-  const double g = std::hypot(x - s.disc_pos[2 * i], z - s.disc_pos[2 * i + 1]) - s.disc_radius[i];
+  const double g = std::hypot(x - s.stone_pos[2 * i], z - s.stone_pos[2 * i + 1]) - s.stone_radius[i];
   if (g > 0.0) return g;  // a polygon lies inside its bounding disc
   double w[2 * kPolygonMaxVertices];
   const int count = world_vertices(s, i, w);
@@ -603,8 +603,8 @@ double PolygonModel::gap(const DEMSystem& s, int i, double x, double z) const {
 }
 
 bool PolygonModel::covers(const DEMSystem& s, int i, double x, double z) const {
-  const double dx = x - s.disc_pos[2 * i], dz = z - s.disc_pos[2 * i + 1];
-  const double r = s.disc_radius[i];
+  const double dx = x - s.stone_pos[2 * i], dz = z - s.stone_pos[2 * i + 1];
+  const double r = s.stone_radius[i];
   if (!(dx * dx + dz * dz < r * r)) return false;
   double w[2 * kPolygonMaxVertices];
   const int count = world_vertices(s, i, w);

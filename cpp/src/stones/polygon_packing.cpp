@@ -85,7 +85,7 @@ class PolygonPacking final : public StonePacking {
       v.insert(v.end(), w.begin(), w.end());
       off.push_back(off.back() + static_cast<int>(w.size() / 2));
     }
-    sys.disc_angle = pile.angle;
+    sys.stone_angle = pile.angle;
     sys.set_polygons(v, off);
     return sys;
   }

@@ -44,9 +44,9 @@ void check_spec(const WeirSpec& s) {
 double max_speed(const DEMSystem& sys) {
   double v2 = 0.0;
   for (int i = 0; i < sys.n(); ++i) {
-    if (!sys.disc_active[i] || sys.disc_fixed[i]) continue;
-    const double vx = sys.disc_vel[2 * i], vz = sys.disc_vel[2 * i + 1];
-    const double wr = sys.disc_omega[i] * sys.disc_radius[i];
+    if (!sys.stone_active[i] || sys.stone_fixed[i]) continue;
+    const double vx = sys.stone_vel[2 * i], vz = sys.stone_vel[2 * i + 1];
+    const double wr = sys.stone_omega[i] * sys.stone_radius[i];
     v2 = std::max(v2, std::max(vx * vx + vz * vz, wr * wr));
   }
   return std::sqrt(v2);
@@ -77,17 +77,17 @@ void PackedStones::add(double x, double z, const PackedStone& s, std::uint8_t fi
 }
 
 void PackedStones::copy_stone(const DEMSystem& sys, const PackedStones& from, int i) {
-  pos.push_back(sys.disc_pos[2 * i]);
-  pos.push_back(sys.disc_pos[2 * i + 1]);
-  radius.push_back(sys.disc_radius[i]);
-  angle.push_back(sys.disc_angle[i]);
-  fixed.push_back(sys.disc_fixed[i]);
+  pos.push_back(sys.stone_pos[2 * i]);
+  pos.push_back(sys.stone_pos[2 * i + 1]);
+  radius.push_back(sys.stone_radius[i]);
+  angle.push_back(sys.stone_angle[i]);
+  fixed.push_back(sys.stone_fixed[i]);
   shape.push_back(from.shape[static_cast<std::size_t>(i)]);
 }
 
 void PackedStones::take(const DEMSystem& sys) {
-  pos = sys.disc_pos;
-  angle = sys.disc_angle;
+  pos = sys.stone_pos;
+  angle = sys.stone_angle;
 }
 
 namespace {
@@ -224,8 +224,8 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   const double z_crest = spec.z_bed + spec.height;
   PackedStones kept;
   for (int i = 0; i < box.n(); ++i) {
-    if (!box.disc_active[i]) continue;
-    if (!box.disc_fixed[i] && box.disc_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
+    if (!box.stone_active[i]) continue;
+    if (!box.stone_fixed[i] && box.stone_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
     kept.copy_stone(box, pile, i);
   }
   pile = kept;
@@ -270,7 +270,7 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
     const Trapezoid trap(spec);
     PackedStones kept_on;
     for (int i = 0; i < weir.n(); ++i)
-      if (weir.disc_fixed[i] || trap.distance(weir.disc_pos[2 * i], weir.disc_pos[2 * i + 1]) < 0.5 * spec.d_mean)
+      if (weir.stone_fixed[i] || trap.distance(weir.stone_pos[2 * i], weir.stone_pos[2 * i + 1]) < 0.5 * spec.d_mean)
         kept_on.copy_stone(weir, pile, i);
     if (kept_on.size() < static_cast<std::size_t>(weir.n())) {
       pile = kept_on;
@@ -306,7 +306,7 @@ double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, doubl
       const double z = trap.pz[a] + t * (trap.pz[b] - trap.pz[a]);
       double gap = INFINITY;
       for (int i = 0; i < sys.n(); ++i) {
-        if (!sys.disc_active[i]) continue;
+        if (!sys.stone_active[i]) continue;
         gap = std::min(gap, model.gap(sys, i, x, z));
       }
       if (gap > worst) {
@@ -326,7 +326,7 @@ double weir_outline_error(const DEMSystem& sys, const WeirSpec& spec) {
   double err = 0.0;
   // (a) stones reaching outside
   for (int i = 0; i < sys.n(); ++i) {
-    if (!sys.disc_active[i]) continue;
+    if (!sys.stone_active[i]) continue;
     err = std::max(err, sys.model().outline_max(sys, i, distance));
   }
   // (b) points of the slopes and crest far from every disc
@@ -345,7 +345,7 @@ double weir_porosity(const DEMSystem& sys, const WeirSpec& spec, double h) {
       if (!trap.inside(x, z)) continue;
       ++inside;
       for (int i = 0; i < sys.n(); ++i) {
-        if (!sys.disc_active[i]) continue;
+        if (!sys.stone_active[i]) continue;
         if (model.covers(sys, i, x, z)) {
           ++covered;
           break;

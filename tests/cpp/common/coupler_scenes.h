@@ -77,10 +77,10 @@ inline double hold_the_drag_of_a_moving_stone(Scene& s) {
   cp.implicit_drag = false;
   cp.drag_relaxation = 1e-3;
   s.sim->set_params(cp);
-  s.stones->disc_vel[0] = 0.3;
+  s.stones->stone_vel[0] = 0.3;
   s.sim->update_fluid_forces();
   const DEMParams& dp = s.stones->params();
-  const double rho = s.fluid->params().medium.rho_water, w = s.stones->disc_wet[0];
+  const double rho = s.fluid->params().medium.rho_water, w = s.stones->stone_wet[0];
   const bool added = (dp.flags & kDEMAddedMass) && dp.water_density() > 0.0;
   return s.stones->mass(0) + (added ? rho * dp.added_mass_coefficient * s.stones->volume(0) * w : 0.0);
 }

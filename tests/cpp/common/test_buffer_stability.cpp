@@ -35,15 +35,15 @@ Buffers fluid_buffers(VOFGrid& f) {
 }
 
 Buffers stone_buffers(DEMSystem& s) {
-  return {{"disc_pos", s.disc_pos.data()},         {"disc_vel", s.disc_vel.data()},
-          {"disc_angle", s.disc_angle.data()},     {"disc_omega", s.disc_omega.data()},
-          {"disc_radius", s.disc_radius.data()},   {"disc_density", s.disc_density.data()},
-          {"disc_fixed", s.disc_fixed.data()},     {"disc_active", s.disc_active.data()},
-          {"disc_force_ext", s.disc_force_ext.data()}, {"disc_drag_coef", s.disc_drag_coef.data()},
-          {"disc_drag_vel", s.disc_drag_vel.data()},   {"disc_wet", s.disc_wet.data()},
-          {"disc_water_level", s.disc_water_level.data()}, {"disc_force", s.disc_force.data()},
-          {"disc_torque", s.disc_torque.data()},   {"disc_acc", s.disc_acc.data()},
-          {"disc_alpha", s.disc_alpha.data()},     {"disc_asleep", s.disc_asleep.data()}};
+  return {{"stone_pos", s.stone_pos.data()},         {"stone_vel", s.stone_vel.data()},
+          {"stone_angle", s.stone_angle.data()},     {"stone_omega", s.stone_omega.data()},
+          {"stone_radius", s.stone_radius.data()},   {"stone_density", s.stone_density.data()},
+          {"stone_fixed", s.stone_fixed.data()},     {"stone_active", s.stone_active.data()},
+          {"stone_force_ext", s.stone_force_ext.data()}, {"stone_drag_coef", s.stone_drag_coef.data()},
+          {"stone_drag_vel", s.stone_drag_vel.data()},   {"stone_wet", s.stone_wet.data()},
+          {"stone_water_level", s.stone_water_level.data()}, {"stone_force", s.stone_force.data()},
+          {"stone_torque", s.stone_torque.data()},   {"stone_acc", s.stone_acc.data()},
+          {"stone_alpha", s.stone_alpha.data()},     {"stone_asleep", s.stone_asleep.data()}};
 }
 
 // the names of the held pointers that are no longer the owner's ("" when none)

@@ -22,7 +22,7 @@ TEST(StateCopy, CoupledRunBranchesBitForBit) {
   EXPECT_EQ(test::state_hash(s.sim->export_state()), test::state_hash(at_branch));
   s.sim->advance(0.1);
   EXPECT_EQ(test::state_hash(s.sim->export_state()), test::state_hash(first));
-  EXPECT_NE(first.at("dem/disc_pos"), at_branch.at("dem/disc_pos"));
+  EXPECT_NE(first.at("dem/stone_pos"), at_branch.at("dem/stone_pos"));
 }
 
 TEST(StateCopy, AStepFailingLateInTheFlowRestoresTheCoupledStateAndGoesOnAsIfNeverTaken) {
@@ -59,7 +59,7 @@ TEST(StateCopy, RefusedStateChangesNothing) {
   s.sim->advance(0.02);
   CouplerState bad;
   s.sim->export_state(bad);
-  bad.stones.disc_vel.pop_back();
+  bad.stones.stone_vel.pop_back();
   const auto before = s.sim->export_state();
   EXPECT_THROW(s.sim->import_state(bad), std::invalid_argument);
   EXPECT_EQ(test::state_hash(s.sim->export_state()), test::state_hash(before));

@@ -109,7 +109,7 @@ TEST(Threads, ACoupledRunIsTheSameBitsOnOneAndTwoThreads) {
   std::string diff;
   EXPECT_TRUE(test::same_bits(one, two, &diff)) << "first difference: " << diff;
   EXPECT_EQ(test::state_hash(one), test::state_hash(two));
-  EXPECT_NE(one.at("dem/disc_pos"), run_steps(0).at("dem/disc_pos"));  // the stones moved
+  EXPECT_NE(one.at("dem/stone_pos"), run_steps(0).at("dem/stone_pos"));  // the stones moved
 }
 
 TEST(Threads, AFlumeFlowIsTheSameBitsOnOneAndTwoThreads) {

@@ -107,23 +107,23 @@ TEST(Coupler, BedDragAndPressureGradientCarryThePressureDropOfTheBulk) {
   EXPECT_NEAR(V, 4.18879e-6, 1e-11);
   double sum = 0.0;
   for (int j = 0; j < 3; ++j) {
-    EXPECT_NEAR(sim.disc_force_drag[2 * j], 0.037373, 0.01 * 0.037373) << "stone " << j;
-    EXPECT_NEAR(sim.disc_force_drag[2 * j] + sim.disc_force_pressure[2 * j], 0.093433, 0.01 * 0.093433) << "stone " << j;
-    sum += sim.disc_force_drag[2 * j] + sim.disc_force_pressure[2 * j];
+    EXPECT_NEAR(sim.stone_force_drag[2 * j], 0.037373, 0.01 * 0.037373) << "stone " << j;
+    EXPECT_NEAR(sim.stone_force_drag[2 * j] + sim.stone_force_pressure[2 * j], 0.093433, 0.01 * 0.093433) << "stone " << j;
+    sum += sim.stone_force_drag[2 * j] + sim.stone_force_pressure[2 * j];
   }
   // the sum over the stones against -dp/dx measured in the flow times their bulk volume
   const int k = 2;
   const double dpdx = (flow.cell_p[g.cell(25, k)] - flow.cell_p[g.cell(14, k)]) / (11 * g.dx());
   EXPECT_NEAR(sum, -dpdx * 3.0 * V / (1.0 - n), 0.01 * sum);
   std::printf("bed drag %.6f N per stone, F_bed + F_S %.6f N; sum %.6f N vs -dp/dx V_bulk %.6f N\n",
-              sim.disc_force_drag[0], sim.disc_force_drag[0] + sim.disc_force_pressure[0], sum,
+              sim.stone_force_drag[0], sim.stone_force_drag[0] + sim.stone_force_pressure[0], sum,
               -dpdx * 3.0 * V / (1.0 - n));
   // the sphere drag of eqs. (16)-(18) in the same flow, for scale: the pore velocity 0.25 m/s gives
   // 1/2 rho A (0.4 U + 24 nu / d) U = 0.15680 x 0.10120 x 0.25 = 3.967e-3 N, 9.4 times smaller
   cp.stone_drag = StoneDragModel::kSphere;
   sim.set_params(cp);
   sim.update_fluid_forces();
-  EXPECT_NEAR(sim.disc_force_drag[0], 3.967e-3, 0.01 * 3.967e-3);
+  EXPECT_NEAR(sim.stone_force_drag[0], 3.967e-3, 0.01 * 3.967e-3);
 }
 
 TEST(Coupler, SphereDragIsTheDefaultAndTheBedDragChangesTheRun) {
@@ -137,7 +137,7 @@ TEST(Coupler, SphereDragIsTheDefaultAndTheBedDragChangesTheRun) {
     }
     s.sim->advance(0.1);
     auto st = s.sim->export_state();
-    st.erase("coupler/disc_drag_slope");
+    st.erase("coupler/stone_drag_slope");
     return st;
   };
   const auto a = run(false, StoneDragModel::kSphere), b = run(true, StoneDragModel::kSphere);
@@ -148,5 +148,5 @@ TEST(Coupler, SphereDragIsTheDefaultAndTheBedDragChangesTheRun) {
     EXPECT_TRUE(v.empty() || std::memcmp(v.data(), kv.second.data(), v.size() * sizeof(double)) == 0) << kv.first;
   }
   const auto c = run(true, StoneDragModel::kBed);
-  EXPECT_NE(c.at("dem/disc_pos"), a.at("dem/disc_pos"));
+  EXPECT_NE(c.at("dem/stone_pos"), a.at("dem/stone_pos"));
 }

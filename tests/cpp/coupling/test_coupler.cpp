@@ -41,18 +41,18 @@ void check_terminal_velocity(double d, double h, double width, double height, do
   for (int q = 1; q <= 10; ++q) {
     const double t = t_end * q / 10;
     s.sim->advance(t);
-    const double v = -s.stones->disc_vel[1];
+    const double v = -s.stones->stone_vel[1];
     ode_dev = std::max(ode_dev, std::abs(v - ode_velocity(d, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 1.0, t)) / vt);
     // the fall follows the ODE of the force balance (explicit exchange every step): 2 %
     EXPECT_NEAR(v, ode_velocity(d, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 1.0, t), 0.02 * vt) << "t = " << t;
     // the excess pressure gradient of still water is zero: buoyancy is not counted twice
-    EXPECT_LT(std::abs(s.sim->disc_force_pressure[1]), 1e-9);
-    EXPECT_EQ(s.stones->disc_wet[0], 1.0);
+    EXPECT_LT(std::abs(s.sim->stone_force_pressure[1]), 1e-9);
+    EXPECT_EQ(s.stones->stone_wet[0], 1.0);
   }
   // the criterion: terminal velocity within 3 %
-  EXPECT_NEAR(-s.stones->disc_vel[1], vt, 0.03 * vt) << "v_t = " << vt;
+  EXPECT_NEAR(-s.stones->stone_vel[1], vt, 0.03 * vt) << "v_t = " << vt;
   std::printf("d = %.4f m on %.3f m cells: v(%.2f s) = %.4f m/s, v_t = %.4f m/s, ratio %.4f, largest gap to the ODE %.4f v_t\n",
-              d, h, t_end, -s.stones->disc_vel[1], vt, -s.stones->disc_vel[1] / vt, ode_dev);
+              d, h, t_end, -s.stones->stone_vel[1], vt, -s.stones->stone_vel[1] / vt, ode_dev);
 }
 
 }  // namespace
@@ -131,10 +131,10 @@ double pocket_stone_displacement(double U, double duration) {
   cp.flags = kCoupleDEM | kCoupleForces | kCoupleWetFraction | kCoupleChecks;  // frozen flow, porosity 1
   Coupler sim(&fluid, &stones, cp);
   sim.advance(0.2);  // settle into the pocket in still water
-  const double x0 = stones.disc_pos[6], z0 = stones.disc_pos[7];
+  const double x0 = stones.stone_pos[6], z0 = stones.stone_pos[7];
   std::fill(fluid.face_u.begin(), fluid.face_u.end(), U);
   sim.advance(0.2 + duration);
-  return std::hypot(stones.disc_pos[6] - x0, stones.disc_pos[7] - z0);
+  return std::hypot(stones.stone_pos[6] - x0, stones.stone_pos[7] - z0);
 }
 }  // namespace
 
@@ -176,13 +176,13 @@ TEST(Coupler, StoneColumnDroppedIntoATankConservesWater) {
   while (s.sim->time() < 0.6) {
     s.sim->step();
     worst = std::max(worst, std::abs(s.sim->water_volume() - v0) / v0);
-    fmax = std::max(fmax, std::abs(s.sim->disc_force_pressure[1]));
-    if (s.stones->disc_wet[0] == 1.0 && s.stones->disc_pos[1] > 0.072)
-      fz.push_back(s.sim->disc_force_drag[1] + s.sim->disc_force_pressure[1]);
+    fmax = std::max(fmax, std::abs(s.sim->stone_force_pressure[1]));
+    if (s.stones->stone_wet[0] == 1.0 && s.stones->stone_pos[1] > 0.072)
+      fz.push_back(s.sim->stone_force_drag[1] + s.sim->stone_force_pressure[1]);
   }
   EXPECT_LT(worst, 1e-9);
   EXPECT_GT(s.sim->redistributed_volume(), 0.0);  // the stones did displace water
-  EXPECT_LT(s.stones->disc_pos[1], 0.03);         // the lowest stone reached the bed
+  EXPECT_LT(s.stones->stone_pos[1], 0.03);         // the lowest stone reached the bed
   // Oscillation measure: the half second difference |F_k - (F_k-1 + F_k+1) / 2| of the vertical fluid
   // force, the step-to-step jitter left after removing the smooth trend. Criteria: it stays below 10 % of
   // the submerged weight, and its largest value in the second half of the fall is at most twice that of
@@ -223,9 +223,9 @@ TEST(Coupler, StoneWashedOutLeavesPorosityOne) {
   for (int k = 0; k < g.nz(); ++k)
     for (int i = 0; i <= g.nx(); ++i) fluid.face_u[g.face_x(i, k)] = 3.0;
   bool checked_wake = false;
-  while (stones.disc_active[0] && sim.time() < 2.0) {
+  while (stones.stone_active[0] && sim.time() < 2.0) {
     sim.step();
-    const double x = stones.disc_pos[0];
+    const double x = stones.stone_pos[0];
     if (!checked_wake && x > 0.25) {
       // behind the stone (cells entirely left of it), the porosity is exactly 1 again
       for (int k = 0; k < g.nz(); ++k)
@@ -234,7 +234,7 @@ TEST(Coupler, StoneWashedOutLeavesPorosityOne) {
     }
   }
   EXPECT_TRUE(checked_wake);
-  EXPECT_FALSE(stones.disc_active[0]);
+  EXPECT_FALSE(stones.stone_active[0]);
   sim.step();
   for (double n : fluid.cell_porosity) ASSERT_EQ(n, 1.0);
   EXPECT_NEAR(sim.water_volume(), v0, 1e-12 * v0);
@@ -322,7 +322,7 @@ TEST(Coupler, NonFiniteStoneStateIsCaughtAndTheStateKept) {
   Scene s = tank(0.2, 0.3, 0.01, 0.2, {0.1, 0.15}, 0.024, kCoupleTwoWay);
   s.sim->advance(0.05);
   const auto before = s.sim->export_state();
-  s.stones->disc_vel[1] = NAN;
+  s.stones->stone_vel[1] = NAN;
   try {
     s.sim->step(1e-3);
     FAIL() << "no exception";
@@ -359,8 +359,8 @@ TEST(Coupler, SceneWithoutWaterIsTheBareDEM) {
   Coupler sim(nullptr, &a, CouplerParams());
   sim.advance(0.3);
   for (int s = 0; s < 30; ++s) b.advance(0.01);
-  EXPECT_EQ(a.disc_pos, b.disc_pos);
-  EXPECT_EQ(a.disc_vel, b.disc_vel);
+  EXPECT_EQ(a.stone_pos, b.stone_pos);
+  EXPECT_EQ(a.stone_vel, b.stone_vel);
 }
 
 TEST(Coupler, BadInputIsRefused) {
@@ -407,11 +407,11 @@ TEST(Coupler, TwoWayFallingStoneBalancesItsSubmergedWeight) {
   Scene s = tank(0.2, 1.5, 0.01, 1.45, {0.1, 1.35}, 0.024, kCoupleTwoWay);
   s.sim->advance(1.0);
   const double W = s.stones->mass(0) * 9.81 * (1.0 - 998.2 / 2650.0);
-  const double f = s.sim->disc_force_drag[1] + s.sim->disc_force_pressure[1];
+  const double f = s.sim->stone_force_drag[1] + s.sim->stone_force_pressure[1];
   std::printf("two-way fall: v = %.4f m/s, drag %.4f N + pressure %.4f N = %.4f N, W' = %.4f N\n",
-              s.stones->disc_vel[1], s.sim->disc_force_drag[1], s.sim->disc_force_pressure[1], f, W);
+              s.stones->stone_vel[1], s.sim->stone_force_drag[1], s.sim->stone_force_pressure[1], f, W);
   EXPECT_NEAR(f, W, 0.03 * W);
-  EXPECT_GT(s.sim->disc_force_pressure[1], 0.0);
+  EXPECT_GT(s.sim->stone_force_pressure[1], 0.0);
 }
 
 TEST(Coupler, HeldDragBoundsTheStepByItsRelaxationTime) {
@@ -421,7 +421,7 @@ TEST(Coupler, HeldDragBoundsTheStepByItsRelaxationTime) {
   Scene s = tank(0.2, 0.2, 0.01, 0.15, {0.1, 0.08}, 0.01, kCoupleOneWay);
   const double mass = hold_the_drag_of_a_moving_stone(s);  // |U - u_p| = 0.3 m/s
   const Medium& m = s.fluid->params().medium;
-  const double r = 0.01, w = s.stones->disc_wet[0];
+  const double r = 0.01, w = s.stones->stone_wet[0];
   ASSERT_GT(w, 0.99);
   const double slope = w * 0.5 * m.rho_water * M_PI * r * r * (0.8 * 0.3 + 24.0 * m.nu_water / (2.0 * r));
   EXPECT_EQ(s.sim->stable_dt(), s.sim->params().drag_relaxation * (mass / slope));
@@ -470,7 +470,7 @@ TEST(Coupler, SwitchedOffEffectsAreNotEntered) {
   for (const char* s : {"porosity", "fluid_forces", "fluid", "checks"}) EXPECT_EQ(calls(*c.sim, s), 0) << s;
   EXPECT_EQ(calls(*c.sim, "dem"), c.sim->step_count());
   EXPECT_EQ(c.fluid->cell_F, F0);
-  EXPECT_EQ(c.stones->disc_force_ext[1], 0.0);
+  EXPECT_EQ(c.stones->stone_force_ext[1], 0.0);
 }
 
 TEST(Coupler, DisplacementFlowOptionStaysBounded) {
@@ -487,12 +487,12 @@ TEST(Coupler, DisplacementFlowOptionStaysBounded) {
   while (s.sim->time() < 0.6) {
     s.sim->step();
     worst = std::max(worst, std::abs(s.sim->water_volume() - v0) / v0);
-    fmax = std::max(fmax, std::abs(s.sim->disc_force_pressure[1]));
+    fmax = std::max(fmax, std::abs(s.sim->stone_force_pressure[1]));
   }
   std::printf("displacement flow: water volume error %.2e, largest |F_S,z| of stone 0 %.3f N\n", worst, fmax);
   EXPECT_EQ(s.sim->redistributed_volume(), 0.0);
   EXPECT_LT(worst, 1e-2);
-  EXPECT_LT(s.stones->disc_pos[1], 0.03);
+  EXPECT_LT(s.stones->stone_pos[1], 0.03);
 }
 
 TEST(Coupler, SwitchingBothFluidForcesOffMidRunLeavesNoStaleForce) {
@@ -502,30 +502,30 @@ TEST(Coupler, SwitchingBothFluidForcesOffMidRunLeavesNoStaleForce) {
   Scene r = tank(0.2, 0.5, 0.01, 0.45, {0.1, 0.35}, 0.024, kCoupleTwoWay);
   s.sim->advance(0.1);
   r.sim->advance(0.1);
-  ASSERT_NE(s.sim->disc_force_drag[1], 0.0);
-  ASSERT_NE(s.sim->disc_force_pressure[1], 0.0);
-  ASSERT_NE(s.stones->disc_force_ext[1], 0.0);
+  ASSERT_NE(s.sim->stone_force_drag[1], 0.0);
+  ASSERT_NE(s.sim->stone_force_pressure[1], 0.0);
+  ASSERT_NE(s.stones->stone_force_ext[1], 0.0);
   CouplerParams cp = s.sim->params();
   cp.flags &= ~static_cast<unsigned>(kCoupleForces);
   s.sim->set_params(cp);
-  const double v0 = s.stones->disc_vel[1], dt = 1e-3;
+  const double v0 = s.stones->stone_vel[1], dt = 1e-3;
   s.sim->step(dt);
-  for (double f : s.sim->disc_force_drag) EXPECT_EQ(f, 0.0);
-  for (double f : s.sim->disc_force_pressure) EXPECT_EQ(f, 0.0);
-  for (double f : s.stones->disc_force_ext) EXPECT_EQ(f, 0.0);
-  for (double c : s.stones->disc_drag_coef) EXPECT_EQ(c, 0.0);  // nor the implicit drag
+  for (double f : s.sim->stone_force_drag) EXPECT_EQ(f, 0.0);
+  for (double f : s.sim->stone_force_pressure) EXPECT_EQ(f, 0.0);
+  for (double f : s.stones->stone_force_ext) EXPECT_EQ(f, 0.0);
+  for (double c : s.stones->stone_drag_coef) EXPECT_EQ(c, 0.0);  // nor the implicit drag
   // reference: the same stone stepped by the DEM alone with no external force
-  r.stones->disc_wet = s.stones->disc_wet;
-  std::fill(r.stones->disc_force_ext.begin(), r.stones->disc_force_ext.end(), 0.0);
-  std::fill(r.stones->disc_drag_coef.begin(), r.stones->disc_drag_coef.end(), 0.0);
+  r.stones->stone_wet = s.stones->stone_wet;
+  std::fill(r.stones->stone_force_ext.begin(), r.stones->stone_force_ext.end(), 0.0);
+  std::fill(r.stones->stone_drag_coef.begin(), r.stones->stone_drag_coef.end(), 0.0);
   r.stones->advance(dt);
-  EXPECT_NEAR(s.stones->disc_vel[1], r.stones->disc_vel[1], 1e-12);
-  EXPECT_LT(s.stones->disc_vel[1], v0);  // it still sinks under its submerged weight
+  EXPECT_NEAR(s.stones->stone_vel[1], r.stones->stone_vel[1], 1e-12);
+  EXPECT_LT(s.stones->stone_vel[1], v0);  // it still sinks under its submerged weight
   // and back on: the forces return
   cp.flags |= kCoupleForces;
   s.sim->set_params(cp);
   s.sim->step(dt);
-  EXPECT_NE(s.stones->disc_force_ext[1], 0.0);
+  EXPECT_NE(s.stones->stone_force_ext[1], 0.0);
 }
 
 TEST(Coupler, TracesOfAirUnderWaterDoNotMakeAStoneFollowALevel) {
@@ -539,14 +539,14 @@ TEST(Coupler, TracesOfAirUnderWaterDoNotMakeAStoneFollowALevel) {
     for (double& f : s.fluid->cell_F)
       if (f == 1.0) f = 1.0 - 1e-7;
     s.sim->update_fluid_forces();
-    const double w = s.stones->disc_wet[0], level = s.stones->disc_water_level[0];
+    const double w = s.stones->stone_wet[0], level = s.stones->stone_water_level[0];
     if (tol > 0.0) {
       EXPECT_EQ(w, 1.0);
       EXPECT_EQ(level, std::numeric_limits<double>::infinity());
     } else {
       EXPECT_GT(w, 1.0 - 1e-6);
       EXPECT_LT(w, 1.0);
-      const double top = s.stones->disc_pos[1] + 0.024;
+      const double top = s.stones->stone_pos[1] + 0.024;
       EXPECT_LT(level, top);
       EXPECT_GT(level, top - 1e-4);
     }

@@ -94,9 +94,9 @@ TEST(CouplerKernel, AUniformPressureGradientReachesEveryStoneUnchanged) {
   s.sim->update_fluid_forces();
   for (int j = 0; j < s.stones->n(); ++j) {
     const double V = s.stones->volume(j);
-    EXPECT_NEAR(s.sim->disc_force_pressure[2 * j], 1500.0 * V, 1e-9 * 1500.0 * V) << "stone " << j;
-    EXPECT_NEAR(s.sim->disc_force_pressure[2 * j + 1], -400.0 * V, 1e-9 * 400.0 * V) << "stone " << j;
-    EXPECT_NEAR(s.stones->disc_wet[j], 1.0, 1e-12) << "stone " << j;
+    EXPECT_NEAR(s.sim->stone_force_pressure[2 * j], 1500.0 * V, 1e-9 * 1500.0 * V) << "stone " << j;
+    EXPECT_NEAR(s.sim->stone_force_pressure[2 * j + 1], -400.0 * V, 1e-9 * 400.0 * V) << "stone " << j;
+    EXPECT_NEAR(s.stones->stone_wet[j], 1.0, 1e-12) << "stone " << j;
   }
 }
 
@@ -122,7 +122,7 @@ TEST(CouplerKernel, AStoneSeesItsSmoothedFootprintOverTheRawField) {
     double area = 0.0;
     for (int kk = 0; kk < g.nz(); ++kk)
       for (int i = 0; i < g.nx(); ++i) {
-        const double a = disc_rect_area(s.stones->disc_pos[2 * j], s.stones->disc_pos[2 * j + 1], kR, g.x_face(i),
+        const double a = disc_rect_area(s.stones->stone_pos[2 * j], s.stones->stone_pos[2 * j + 1], kR, g.x_face(i),
                                         g.x_face(i + 1), g.z_face(kk), g.z_face(kk + 1));
         foot[g.cell(i, kk)] = a / g.cell_area(kk);
         area += a;
@@ -135,7 +135,7 @@ TEST(CouplerKernel, AStoneSeesItsSmoothedFootprintOverTheRawField) {
         sx += g.cell_area(kk) * foot[c] * (dpdx[c] - rho * s.fluid->cell_F[c] * gx);
       }
     const double expect = -s.stones->volume(j) * sx / area;
-    EXPECT_NEAR(s.sim->disc_force_pressure[2 * j], expect, 1e-10 * std::abs(expect) + 1e-15) << "stone " << j;
+    EXPECT_NEAR(s.sim->stone_force_pressure[2 * j], expect, 1e-10 * std::abs(expect) + 1e-15) << "stone " << j;
   }
 }
 
@@ -166,7 +166,7 @@ TEST(CouplerKernel, BedDragOnTheStonesIsWhatTheFlowLoses) {
     }
   const double width = (4.0 * kR / 3.0) / (1.0 - s.sim->params().n_exp);
   double got_x = 0.0, got_z = 0.0;
-  for (int j = 0; j < s.stones->n(); ++j) got_x += s.sim->disc_force_drag[2 * j], got_z += s.sim->disc_force_drag[2 * j + 1];
+  for (int j = 0; j < s.stones->n(); ++j) got_x += s.sim->stone_force_drag[2 * j], got_z += s.sim->stone_force_drag[2 * j + 1];
   ASSERT_GT(std::abs(lost_x), 0.0);
   EXPECT_EQ(s.sim->floored_solid_area(), 0.0);
   EXPECT_NEAR(got_x, width * lost_x, 1e-12 * std::abs(width * lost_x));
@@ -178,7 +178,7 @@ TEST(CouplerKernel, CoupledStepsAreDeterministicAndTheDefaultHasNoKernel) {
   std::map<std::string, std::vector<double>> first;
   for (int run = 0; run < 2; ++run) {
     Scene s = kernel_tank(0.0, kCoupleTwoWay, StoneDragModel::kBed);
-    s.stones->disc_vel[0] = 0.2;  // the loose stone moves through the water
+    s.stones->stone_vel[0] = 0.2;  // the loose stone moves through the water
     s.sim->update_porosity(false);
     for (int m = 0; m < 5; ++m) s.sim->step(2e-3);
     const StageProfile& p = s.sim->profile();

@@ -74,7 +74,7 @@ TEST(CouplerPolygon, HeldDragBoundsTheStepByItsRelaxationTime) {
   Scene s = box_tank(0.2, 0.2, 0.01, 0.15, {0.1, 0.08}, 0.01, 0.006, kCoupleOneWay);
   const double mass = hold_the_drag_of_a_moving_stone(s);  // |U - u_p| = 0.3 m/s
   const Medium& m = s.fluid->params().medium;
-  const double w = s.stones->disc_wet[0], d = s.stones->nominal_diameter(0);
+  const double w = s.stones->stone_wet[0], d = s.stones->nominal_diameter(0);
   ASSERT_GT(w, 0.99);
   const double slope = w * 0.5 * m.rho_water * s.stones->projected_area(0) * (0.8 * 0.3 + 24.0 * m.nu_water / d);
   EXPECT_EQ(s.sim->stable_dt(), s.sim->params().drag_relaxation * mass / slope);
@@ -93,18 +93,18 @@ TEST(CouplerPolygon, FlatStoneFallsAtTheTerminalVelocityOfItsProjectedArea) {
   const double A = 0.5 * fp.medium.rho_water * Ap * 0.4, B = 0.5 * fp.medium.rho_water * Ap * 24.0 * fp.medium.nu_water / d;
   const double vt = (-B + std::sqrt(B * B + 4 * A * W)) / (2 * A);
   s.sim->advance(1.0);
-  EXPECT_NEAR(-s.stones->disc_vel[1], vt, 0.03 * vt) << "v_t = " << vt;
-  EXPECT_LT(std::fabs(s.stones->disc_angle[0]), 1e-6);  // the fluid forces act at the centre: no spin
+  EXPECT_NEAR(-s.stones->stone_vel[1], vt, 0.03 * vt) << "v_t = " << vt;
+  EXPECT_LT(std::fabs(s.stones->stone_angle[0]), 1e-6);  // the fluid forces act at the centre: no spin
   // the drag on it is the formula's at its own velocity
-  const double v = -s.stones->disc_vel[1];
-  EXPECT_NEAR(s.sim->disc_force_drag[1], A * v * v + B * v, 0.02 * W);
-  EXPECT_LT(std::fabs(s.sim->disc_force_pressure[1]), 1e-9);  // still water: buoyancy only, counted in eq. (9)
+  const double v = -s.stones->stone_vel[1];
+  EXPECT_NEAR(s.sim->stone_force_drag[1], A * v * v + B * v, 0.02 * W);
+  EXPECT_LT(std::fabs(s.sim->stone_force_pressure[1]), 1e-9);  // still water: buoyancy only, counted in eq. (9)
 }
 
 TEST(CouplerPolygon, PorosityOfThePolygonAreas) {
   // a box inside the grid: the solid it maps is (1 - n_exp) times its area, and its cells are listed
   Scene s = box_tank(0.3, 0.3, 0.01, 0.25, {0.153, 0.117}, 0.03, 0.015, kCoupleTwoWay);
-  s.stones->disc_angle[0] = 0.4;
+  s.stones->stone_angle[0] = 0.4;
   s.sim->update_porosity(false);
   const Grid2D& g = s.fluid->grid();
   double solid = 0.0;

@@ -91,17 +91,17 @@ TEST(DEMSystem, LinearDragRelaxesExactlyAtAnyStep) {
     const double m = s.mass(0) + 998.2 * p.added_mass_coefficient * s.volume(0);
     const double gz = (s.mass(0) - 998.2 * s.volume(0)) * -9.81 / m;
     const double k = kdt / p.dt, c = k * m;
-    s.disc_drag_coef[0] = c;
-    s.disc_drag_vel[0] = 0.7, s.disc_drag_vel[1] = -0.1;
-    s.disc_vel[0] = -0.3, s.disc_vel[1] = 0.2;
+    s.stone_drag_coef[0] = c;
+    s.stone_drag_vel[0] = 0.7, s.stone_drag_vel[1] = -0.1;
+    s.stone_vel[0] = -0.3, s.stone_vel[1] = 0.2;
     const double t = 25 * p.dt;
     s.advance(t);
     const double e = std::exp(-k * t);
     const double ux = 0.7 + (-0.3 - 0.7) * e, veq = -0.1 + gz / k, uz = veq + (0.2 - veq) * e;
-    EXPECT_NEAR(s.disc_vel[0], ux, 1e-12) << "k dt = " << kdt;
-    EXPECT_NEAR(s.disc_vel[1], uz, 1e-12) << "k dt = " << kdt;
+    EXPECT_NEAR(s.stone_vel[0], ux, 1e-12) << "k dt = " << kdt;
+    EXPECT_NEAR(s.stone_vel[1], uz, 1e-12) << "k dt = " << kdt;
     // the force output is that of the final velocity (acceleration consistent with the state)
-    EXPECT_NEAR(s.disc_force[0], c * (0.7 - s.disc_vel[0]), 1e-9 * c);
+    EXPECT_NEAR(s.stone_force[0], c * (0.7 - s.stone_vel[0]), 1e-9 * c);
   }
 }
 
@@ -118,18 +118,18 @@ TEST(DEMSystem, LinearDragFollowsTheAddedMassAcrossALevel) {
   DEMSystem s(p, {0.5, 0.35}, {0.024}, {2650.0});
   const double U = -0.5, c = 50.0 / p.dt * s.mass(0);
   s.set_wet_fraction(0, 0.0);
-  s.disc_water_level[0] = 0.3;
-  s.disc_drag_coef[0] = c;
-  s.disc_drag_vel[1] = U;
-  s.disc_vel[1] = U;
+  s.stone_water_level[0] = 0.3;
+  s.stone_drag_coef[0] = c;
+  s.stone_drag_vel[1] = U;
+  s.stone_vel[1] = U;
   double gap = 0.0;
   for (int k = 0; k < 4; ++k) {
     s.advance(0.05);
-    gap = std::max(gap, std::abs(s.disc_vel[1] - U));
+    gap = std::max(gap, std::abs(s.stone_vel[1] - U));
   }
-  EXPECT_EQ(s.disc_wet[0], 1.0);  // 0.1 m below the level: it has crossed it
+  EXPECT_EQ(s.stone_wet[0], 1.0);  // 0.1 m below the level: it has crossed it
   EXPECT_LT(gap, 1e-12);
-  EXPECT_EQ(s.disc_vel[0], 0.0);
+  EXPECT_EQ(s.stone_vel[0], 0.0);
 }
 
 namespace {
@@ -170,10 +170,10 @@ Relaxation relax(double U, double steps_per_tau, double t_end_tau, bool implicit
     sim.step(dt);
     const double t = s * dt, e = std::exp(-a * t);
     const double r = a * U * e / (a + b * U * (1.0 - e));
-    const double v = stones.disc_vel[0];
+    const double v = stones.stone_vel[0];
     out.gap = std::max(out.gap, std::abs(v - (U - r)));
     out.vmax = std::max(out.vmax, v);
-    out.monotone = out.monotone && v >= v_last && std::abs(stones.disc_vel[1]) < 1e-12;
+    out.monotone = out.monotone && v >= v_last && std::abs(stones.stone_vel[1]) < 1e-12;
     v_last = v;
   }
   return out;

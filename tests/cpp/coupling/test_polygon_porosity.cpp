@@ -60,19 +60,19 @@ TEST(PolygonPorosity, AreasSumToThePolygonAndMatchASlowReference) {
     const int off[2] = {0, n};
     m.map_polygons(1, &x, &z, &angle, v.data(), off, nullptr);
     double sum = 0.0;
-    for (int p = m.disc_cell_offsets()[0]; p < m.disc_cell_offsets()[1]; ++p) sum += m.disc_cell_area()[p];
+    for (int p = m.stone_cell_offsets()[0]; p < m.stone_cell_offsets()[1]; ++p) sum += m.stone_cell_area()[p];
     EXPECT_NEAR(sum, q.area, 1e-14 * q.area) << trial;
-    EXPECT_GT(m.disc_cell_offsets()[1], 10);  // across many cells
+    EXPECT_GT(m.stone_cell_offsets()[1], 10);  // across many cells
     std::vector<double> w(v.size());
     polygon_to_world(v.data(), n, x, z, angle, w.data());
-    for (int p = m.disc_cell_offsets()[0]; p < m.disc_cell_offsets()[1]; ++p) {
-      const int c = m.disc_cell_index()[p], i = c % g.nx(), k = c / g.nx();
+    for (int p = m.stone_cell_offsets()[0]; p < m.stone_cell_offsets()[1]; ++p) {
+      const int c = m.stone_cell_index()[p], i = c % g.nx(), k = c / g.nx();
       const double ref = reference_area(w, g.x_face(i), g.x_face(i + 1), g.z_face(k), g.z_face(k + 1));
-      EXPECT_NEAR(m.disc_cell_area()[p], ref, 1e-7 * q.area) << trial << " cell " << c;
+      EXPECT_NEAR(m.stone_cell_area()[p], ref, 1e-7 * q.area) << trial << " cell " << c;
     }
     // eq. (11) on the mapped areas
-    for (int p = m.disc_cell_offsets()[0]; p < m.disc_cell_offsets()[1]; ++p) {
-      const int c = m.disc_cell_index()[p];
+    for (int p = m.stone_cell_offsets()[0]; p < m.stone_cell_offsets()[1]; ++p) {
+      const int c = m.stone_cell_index()[p];
       const double ac = g.cell_area(c / g.nx());
       EXPECT_NEAR(m.cell_porosity()[c], 1.0 - (1.0 - 0.41) * m.cell_solid_area()[c] / ac, 1e-14);
     }

@@ -76,8 +76,8 @@ TEST(PorosityMapper, DiscOverManyCellsSumsToPiRSquared) {
   PorosityMapper mp(g, params(PorosityMethod::kExact, r, r));
   mp.map({0.1234567}, {0.1111111}, {r});
   double sum = 0.0;
-  for (int p = mp.disc_cell_offsets()[0]; p < mp.disc_cell_offsets()[1]; ++p) sum += mp.disc_cell_area()[p];
-  EXPECT_GT(mp.disc_cell_offsets()[1], 80);
+  for (int p = mp.stone_cell_offsets()[0]; p < mp.stone_cell_offsets()[1]; ++p) sum += mp.stone_cell_area()[p];
+  EXPECT_GT(mp.stone_cell_offsets()[1], 80);
   EXPECT_NEAR(sum, kPi * r * r, 1e-12 * kPi * r * r);
 }
 

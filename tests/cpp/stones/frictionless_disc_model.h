@@ -19,27 +19,27 @@ class FrictionlessDiscModel final : public StoneModel {
  public:
   static constexpr double kPi = 3.14159265358979323846;
   const char* name() const override { return "frictionless_disc"; }
-  double volume(const DEMSystem& s, int i) const override { return kPi / 6.0 * std::pow(2.0 * s.disc_radius[i], 3); }
-  double inertia(const DEMSystem& s, int i, double m) const override { return 0.4 * m * std::pow(s.disc_radius[i], 2); }
-  double nominal_diameter(const DEMSystem& s, int i) const override { return 2.0 * s.disc_radius[i]; }
-  double projected_area(const DEMSystem& s, int i) const override { return kPi * std::pow(s.disc_radius[i], 2); }
+  double volume(const DEMSystem& s, int i) const override { return kPi / 6.0 * std::pow(2.0 * s.stone_radius[i], 3); }
+  double inertia(const DEMSystem& s, int i, double m) const override { return 0.4 * m * std::pow(s.stone_radius[i], 2); }
+  double nominal_diameter(const DEMSystem& s, int i) const override { return 2.0 * s.stone_radius[i]; }
+  double projected_area(const DEMSystem& s, int i) const override { return kPi * std::pow(s.stone_radius[i], 2); }
   double projected_area(const DEMSystem& s, int i, double, double) const override { return projected_area(s, i); }
   // the normal mode of two of the lightest stones, pi / (10 omega)
   double stable_dt(const DEMSystem& s) const override {
     double m_min = INFINITY;
     for (int i = 0; i < s.n(); ++i)
-      if (s.disc_active[i] && !s.disc_fixed[i]) m_min = std::min(m_min, s.mass(i));
+      if (s.stone_active[i] && !s.stone_fixed[i]) m_min = std::min(m_min, s.mass(i));
     return std::isfinite(m_min) ? kPi / (10.0 * std::sqrt(2.0 * s.stiffness_normal() / m_min)) : INFINITY;
   }
   // the normal force -f_n n on i along the line of centres, its opposite on j
   ContactTally contact_forces(DEMSystem& s, double dt) override {
     ContactTally t;
     for (ContactPair& c : pairs(s)) {
-      const double dx = s.disc_pos[2 * c.j] - s.disc_pos[2 * c.i], dz = s.disc_pos[2 * c.j + 1] - s.disc_pos[2 * c.i + 1];
-      const double d = std::hypot(dx, dz), rs = s.disc_radius[c.i] + s.disc_radius[c.j];
+      const double dx = s.stone_pos[2 * c.j] - s.stone_pos[2 * c.i], dz = s.stone_pos[2 * c.j + 1] - s.stone_pos[2 * c.i + 1];
+      const double d = std::hypot(dx, dz), rs = s.stone_radius[c.i] + s.stone_radius[c.j];
       if (d >= rs || d == 0.0) continue;
       const double nx = dx / d, nz = dz / d;
-      const double vn = (s.disc_vel[2 * c.i] - s.disc_vel[2 * c.j]) * nx + (s.disc_vel[2 * c.i + 1] - s.disc_vel[2 * c.j + 1]) * nz;
+      const double vn = (s.stone_vel[2 * c.i] - s.stone_vel[2 * c.j]) * nx + (s.stone_vel[2 * c.i + 1] - s.stone_vel[2 * c.j + 1]) * nz;
       add(s, c.i, c.j, rs - d, vn, nx, nz, contact_law(s).damp * c.sqrt_m, dt, t);
     }
     return t;
@@ -50,16 +50,16 @@ class FrictionlessDiscModel final : public StoneModel {
       const auto [wx, wz] = DEMSystem::wall_unit_normal(wall);
       for (int i = 0; i < s.n(); ++i) {
         if (inv_mass(s)[i] == 0.0) continue;
-        const double gap = (s.disc_pos[2 * i] - wall.point[0]) * wx + (s.disc_pos[2 * i + 1] - wall.point[1]) * wz;
-        if (gap >= s.disc_radius[i]) continue;
-        const double vn = -(s.disc_vel[2 * i] * wx + s.disc_vel[2 * i + 1] * wz);
-        add(s, i, -1, s.disc_radius[i] - gap, vn, -wx, -wz, contact_law(s).damp * std::sqrt(mass_eff(s)[i]), dt, t);
+        const double gap = (s.stone_pos[2 * i] - wall.point[0]) * wx + (s.stone_pos[2 * i + 1] - wall.point[1]) * wz;
+        if (gap >= s.stone_radius[i]) continue;
+        const double vn = -(s.stone_vel[2 * i] * wx + s.stone_vel[2 * i + 1] * wz);
+        add(s, i, -1, s.stone_radius[i] - gap, vn, -wx, -wz, contact_law(s).damp * std::sqrt(mass_eff(s)[i]), dt, t);
       }
     }
     return t;
   }
   void map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const override {
-    m.map(s.n(), x, z, s.disc_radius.data(), s.disc_active.data());
+    m.map(s.n(), x, z, s.stone_radius.data(), s.stone_active.data());
   }
   DragForce drag(const DEMSystem& s, int i, const StoneFlowSample& f, double up, double wp, double rho, double nu,
                  DragLaw law, double* slope) const override {
@@ -72,11 +72,11 @@ class FrictionlessDiscModel final : public StoneModel {
     return relax * mass / drag_slope(vrel, nominal_diameter(s, i), w * 0.5 * rho * projected_area(s, i), nu, DragLaw::kPaper);
   }
   double gap(const DEMSystem& s, int i, double x, double z) const override {
-    return std::max(std::hypot(x - s.disc_pos[2 * i], z - s.disc_pos[2 * i + 1]) - s.disc_radius[i], 0.0);
+    return std::max(std::hypot(x - s.stone_pos[2 * i], z - s.stone_pos[2 * i + 1]) - s.stone_radius[i], 0.0);
   }
   bool covers(const DEMSystem& s, int i, double x, double z) const override { return gap(s, i, x, z) == 0.0; }
   double outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const override {
-    return f(s.disc_pos[2 * i], s.disc_pos[2 * i + 1]) + s.disc_radius[i];
+    return f(s.stone_pos[2 * i], s.stone_pos[2 * i + 1]) + s.stone_radius[i];
   }
 
  private:
@@ -85,8 +85,8 @@ class FrictionlessDiscModel final : public StoneModel {
                   ContactTally& t) {
     double xi = 0.0;
     const ContactForce f = linear_contact(delta, vn, 0.0, xi, dt, s.stiffness_normal(), 0.0, cn, 0.0, 0.0, false);
-    s.disc_force[2 * i] -= f.fn * nx, s.disc_force[2 * i + 1] -= f.fn * nz;
-    if (j >= 0) s.disc_force[2 * j] += f.fn * nx, s.disc_force[2 * j + 1] += f.fn * nz;
+    s.stone_force[2 * i] -= f.fn * nx, s.stone_force[2 * i + 1] -= f.fn * nz;
+    if (j >= 0) s.stone_force[2 * j] += f.fn * nx, s.stone_force[2 * j + 1] += f.fn * nz;
     t.elastic += f.energy_spring, t.dissipated += f.power_damp * dt, ++t.count;
   }
 };

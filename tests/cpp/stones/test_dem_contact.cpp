@@ -40,9 +40,9 @@ Impact run_wall_impact(DEMSystem& s, double dt) {
       break;
     }
   }
-  out.vx_after = s.disc_vel[0];
-  out.vz_after = s.disc_vel[1];
-  out.omega_after = s.disc_omega[0];
+  out.vx_after = s.stone_vel[0];
+  out.vz_after = s.stone_vel[1];
+  out.omega_after = s.stone_omega[0];
   return out;
 }
 }  // namespace
@@ -62,7 +62,7 @@ TEST(DEMContact, NormalImpactOnWallRestitutionAndDuration) {
     p.stiffness_normal = 1e5;
     p.restitution = e;
     DEMSystem s = one_stone(p, 0.5, kR + 0.001);
-    s.disc_vel[1] = -1.0;
+    s.stone_vel[1] = -1.0;
     const double m = sphere_mass(kR);
     const double zeta = damping_ratio_from_restitution(e);
     const double tc = contact_duration(1e5, m, zeta);
@@ -82,8 +82,8 @@ TEST(DEMContact, NormalImpactOfTwoStonesUsesTheReducedMass) {
   // stones of different sizes meet head-on
   const double r2 = 0.02;
   DEMSystem s(p, {0.0, 0.0, kR + r2 + 0.0005, 0.0}, {kR, r2}, {kRho});
-  s.disc_vel[0] = 0.5;
-  s.disc_vel[2] = -0.5;
+  s.stone_vel[0] = 0.5;
+  s.stone_vel[2] = -0.5;
   const double m1 = sphere_mass(kR), m2 = sphere_mass(r2), mr = m1 * m2 / (m1 + m2);
   const double tc = contact_duration(2e5, mr, damping_ratio_from_restitution(0.5));
   const double dt = tc / 400.0;
@@ -98,11 +98,11 @@ TEST(DEMContact, NormalImpactOfTwoStonesUsesTheReducedMass) {
       break;
     }
   }
-  const double e = (s.disc_vel[2] - s.disc_vel[0]) / 1.0;
+  const double e = (s.stone_vel[2] - s.stone_vel[0]) / 1.0;
   EXPECT_NEAR(e, 0.5, 0.005);
   EXPECT_NEAR(duration, tc, 0.02 * tc);
   // momentum is conserved by the pair force
-  EXPECT_NEAR(m1 * s.disc_vel[0] + m2 * s.disc_vel[2], m1 * 0.5 - m2 * 0.5, 1e-12);
+  EXPECT_NEAR(m1 * s.stone_vel[0] + m2 * s.stone_vel[2], m1 * 0.5 - m2 * 0.5, 1e-12);
 }
 
 // rigid-body impulse theory (e.g. Chung & Ooi 2011, their test 4: e = 0.98, mu = 0.092, 3.9 m/s): a
@@ -119,8 +119,8 @@ Impact oblique(double angle_deg, double mu, double e) {
   p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, mu});
   DEMSystem s(p, {0.5, kR + 0.001}, {kR}, {kRho});
   const double a = angle_deg * kPi / 180.0;
-  s.disc_vel[0] = 3.9 * std::sin(a);
-  s.disc_vel[1] = -3.9 * std::cos(a);
+  s.stone_vel[0] = 3.9 * std::sin(a);
+  s.stone_vel[1] = -3.9 * std::cos(a);
   const double tc = contact_duration(1e5, sphere_mass(kR), damping_ratio_from_restitution(e));
   return run_wall_impact(s, tc / 400.0);
 }
@@ -174,9 +174,9 @@ DEMSystem incline(double theta, double mu, bool rotation, double inertia_factor)
 // mean acceleration along the incline between t = 0.5 s and 1.0 s
 double incline_acceleration(DEMSystem& s) {
   s.advance(0.5);
-  const double v0 = s.disc_vel[0];
+  const double v0 = s.stone_vel[0];
   s.advance(0.5);
-  return (s.disc_vel[0] - v0) / 0.5;
+  return (s.stone_vel[0] - v0) / 0.5;
 }
 }  // namespace
 
@@ -185,8 +185,8 @@ TEST(DEMContact, BlockOnInclineHoldsBelowFrictionAngleAndSlidesAbove) {
   {
     DEMSystem s = incline(std::atan(0.9 * mu), mu, false, 0.4);
     s.advance(1.0);
-    EXPECT_LT(std::fabs(s.disc_vel[0]), 1e-4);
-    EXPECT_LT(std::fabs(s.disc_pos[0]), 1e-4);  // the tangential spring's creep only
+    EXPECT_LT(std::fabs(s.stone_vel[0]), 1e-4);
+    EXPECT_LT(std::fabs(s.stone_pos[0]), 1e-4);  // the tangential spring's creep only
   }
   {
     const double th = std::atan(1.1 * mu);
@@ -204,7 +204,7 @@ TEST(DEMContact, RollingDiscAcceleratesAtTheAnalyticRate) {
   const double a_sphere = incline_acceleration(sphere);
   EXPECT_NEAR(a_sphere, 5.0 / 7.0 * g * std::sin(th), 0.005 * g * std::sin(th));
   // rolls without slip: omega r = -v
-  EXPECT_NEAR(sphere.disc_omega[0] * kR, -sphere.disc_vel[0], 1e-3 * sphere.disc_vel[0]);
+  EXPECT_NEAR(sphere.stone_omega[0] * kR, -sphere.stone_vel[0], 1e-3 * sphere.stone_vel[0]);
   // disc inertia (I = 1/2 M r^2): 2/3 g sin(theta)
   DEMSystem disc = incline(th, mu, true, 0.5);
   EXPECT_NEAR(incline_acceleration(disc), 2.0 / 3.0 * g * std::sin(th), 0.005 * g * std::sin(th));

@@ -61,7 +61,7 @@ DEMSystem random_polygons(int n, std::uint64_t seed) {
     radius.push_back(0.03);
   }
   DEMSystem s(p, pos, radius, {kRho});
-  for (int i = 0; i < n; ++i) s.disc_angle[i] = 2.0 * kPi * rng_uniform01(g);
+  for (int i = 0; i < n; ++i) s.stone_angle[i] = 2.0 * kPi * rng_uniform01(g);
   s.set_polygons(v, off);
   return s;
 }
@@ -76,7 +76,7 @@ TEST(DEMPolygon, MassAndInertiaOfTheMatchingStone) {
   EXPECT_NEAR(s.volume(0), m / kRho, 1e-18);
   // I = 2 f M J/A, J/A = (w^2 + h^2)/12 for a rectangle
   EXPECT_NEAR(s.inertia(0), 0.8 * m * (0.06 * 0.06 + 0.02 * 0.02) / 12.0, 1e-18);
-  EXPECT_NEAR(s.disc_radius[0], std::hypot(0.03, 0.01), 1e-16);  // the bounding radius
+  EXPECT_NEAR(s.stone_radius[0], std::hypot(0.03, 0.01), 1e-16);  // the bounding radius
   EXPECT_NEAR(s.nominal_diameter(0), 2.0 * std::sqrt(0.0012 / kPi), 1e-16);
   // projected area: (pi/2) r_A W; flow along x sees the height 0.02, along z the length 0.06
   const double rA = std::sqrt(0.0012 / kPi);
@@ -97,23 +97,23 @@ TEST(DEMPolygon, StackAtRestBalancesTheWeights) {
   s.advance(1.0);
   const double m = box_mass(a, b);
   const double d_bed = m * g / k, d_top = 0.5 * m * g / k;
-  EXPECT_NEAR(s.disc_pos[1], b - d_bed, 1e-4 * d_bed);
-  EXPECT_NEAR(s.disc_pos[3], 3.0 * b - d_bed - d_top, 1e-4 * d_bed);
+  EXPECT_NEAR(s.stone_pos[1], b - d_bed, 1e-4 * d_bed);
+  EXPECT_NEAR(s.stone_pos[3], 3.0 * b - d_bed - d_top, 1e-4 * d_bed);
   for (int i = 0; i < 2; ++i) {
     // contact forces = the weight: the net force vanishes to 1e-6 of the weight, no spin
-    EXPECT_LT(std::hypot(s.disc_force[2 * i], s.disc_force[2 * i + 1]), 1e-6 * m * g) << i;
-    EXPECT_LT(std::fabs(s.disc_torque[i]), 1e-6 * m * g * a) << i;
-    EXPECT_LT(std::hypot(s.disc_vel[2 * i], s.disc_vel[2 * i + 1]), 1e-8) << i;
+    EXPECT_LT(std::hypot(s.stone_force[2 * i], s.stone_force[2 * i + 1]), 1e-6 * m * g) << i;
+    EXPECT_LT(std::fabs(s.stone_torque[i]), 1e-6 * m * g * a) << i;
+    EXPECT_LT(std::hypot(s.stone_vel[2 * i], s.stone_vel[2 * i + 1]), 1e-8) << i;
   }
   EXPECT_EQ(s.contact_count(), 1);
   EXPECT_EQ(s.wall_contact_count(), 1);
   // the upper box pushed off-centre by 1.5 cm still rests: its weight now on unequal points
   DEMSystem t = boxes(p, {0.0, b, 0.015, 3.0 * b + 1e-4}, a, b);
   t.advance(1.0);
-  EXPECT_LT(std::hypot(t.disc_force[2], t.disc_force[3]), 1e-6 * m * g);
-  EXPECT_LT(std::fabs(t.disc_torque[1]), 1e-6 * m * g * a);
-  EXPECT_LT(std::fabs(t.disc_angle[1]), 1e-3);
-  EXPECT_NEAR(t.disc_pos[2], 0.015, 1e-5);  // the tangential springs' creep only
+  EXPECT_LT(std::hypot(t.stone_force[2], t.stone_force[3]), 1e-6 * m * g);
+  EXPECT_LT(std::fabs(t.stone_torque[1]), 1e-6 * m * g * a);
+  EXPECT_LT(std::fabs(t.stone_angle[1]), 1e-3);
+  EXPECT_NEAR(t.stone_pos[2], 0.015, 1e-5);  // the tangential springs' creep only
 }
 
 TEST(DEMPolygon, FlatImpactOnTheBedHasTheRestitution) {
@@ -130,11 +130,11 @@ TEST(DEMPolygon, FlatImpactOnTheBedHasTheRestitution) {
     const double tc = contact_duration(2e5, m, damping_ratio_from_restitution(e));
     p.dt = tc / 400.0;
     s.set_params(p);
-    s.disc_vel[1] = -0.5;
+    s.stone_vel[1] = -0.5;
     s.advance(0.0005 / 0.5 + 2.0 * tc);
-    EXPECT_NEAR(s.disc_vel[1], 0.5 * e, 0.005 * 0.5 * e) << e;
-    EXPECT_NEAR(s.disc_vel[0], 0.0, 1e-12);
-    EXPECT_NEAR(s.disc_omega[0], 0.0, 1e-9);
+    EXPECT_NEAR(s.stone_vel[1], 0.5 * e, 0.005 * 0.5 * e) << e;
+    EXPECT_NEAR(s.stone_vel[0], 0.0, 1e-12);
+    EXPECT_NEAR(s.stone_omega[0], 0.0, 1e-9);
   }
 }
 
@@ -153,18 +153,18 @@ TEST(DEMPolygon, BlockOnInclineHoldsBelowTheFrictionAngleAndSlidesAbove) {
   {
     DEMSystem s = incline(std::atan(0.9 * mu));
     s.advance(1.0);
-    EXPECT_LT(std::fabs(s.disc_vel[0]), 1e-4);
-    EXPECT_LT(std::fabs(s.disc_pos[0]), 1e-4);  // the tangential springs' creep only
+    EXPECT_LT(std::fabs(s.stone_vel[0]), 1e-4);
+    EXPECT_LT(std::fabs(s.stone_pos[0]), 1e-4);  // the tangential springs' creep only
   }
   {
     const double th = std::atan(1.1 * mu);
     DEMSystem s = incline(th);
     s.advance(0.5);
-    const double v0 = s.disc_vel[0];
+    const double v0 = s.stone_vel[0];
     s.advance(0.5);
-    const double acc = (s.disc_vel[0] - v0) / 0.5, exact = g * (std::sin(th) - mu * std::cos(th));
+    const double acc = (s.stone_vel[0] - v0) / 0.5, exact = g * (std::sin(th) - mu * std::cos(th));
     EXPECT_NEAR(acc, exact, 0.01 * exact);
-    EXPECT_LT(std::fabs(s.disc_angle[0]), 1e-3);  // slides flat
+    EXPECT_LT(std::fabs(s.stone_angle[0]), 1e-3);  // slides flat
   }
 }
 
@@ -187,11 +187,11 @@ TEST(DEMPolygon, HexagonTipsOverAtThirtyDegrees) {
     return s;
   };
   const DEMSystem held = run(29.0);
-  EXPECT_LT(std::fabs(held.disc_angle[0]), 1e-3);
-  EXPECT_LT(std::fabs(held.disc_pos[0]), 1e-4);
+  EXPECT_LT(std::fabs(held.stone_angle[0]), 1e-3);
+  EXPECT_LT(std::fabs(held.stone_pos[0]), 1e-4);
   const DEMSystem rolling = run(31.0);
-  EXPECT_LT(rolling.disc_angle[0], -kPi);  // rolled over more than three edges down the slope
-  EXPECT_GT(rolling.disc_pos[0], 0.05);
+  EXPECT_LT(rolling.stone_angle[0], -kPi);  // rolled over more than three edges down the slope
+  EXPECT_GT(rolling.stone_pos[0], 0.05);
 }
 
 TEST(DEMPolygon, EnergyIsConservedWithoutDampingOrFriction) {
@@ -224,7 +224,7 @@ TEST(DEMPolygon, RunsAreBitForBitReproducibleAndRestartable) {
   c.import_state(checkpoint);
   c.advance(0.1);
   EXPECT_EQ(state_hash(a), state_hash(c));
-  EXPECT_EQ(std::memcmp(a.disc_pos.data(), c.disc_pos.data(), a.disc_pos.size() * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(a.stone_pos.data(), c.stone_pos.data(), a.stone_pos.size() * sizeof(double)), 0);
   EXPECT_NE(state_hash(a), state_hash(b));
   // a disc state makes the system discs again
   DEMSystem d(c.params(), {0.1, 0.1}, {0.024}, {kRho});
@@ -239,7 +239,7 @@ TEST(DEMPolygon, StableStepBoundsTheRockingModes) {
   // the trace bound: 4 k (1/m + R^2/I) over the stones
   double lam = 0.0;
   for (int i = 0; i < s.n(); ++i)
-    lam = std::max(lam, 1.0 / s.mass(i) + s.disc_radius[i] * s.disc_radius[i] / s.inertia(i));
+    lam = std::max(lam, 1.0 / s.mass(i) + s.stone_radius[i] * s.stone_radius[i] / s.inertia(i));
   EXPECT_NEAR(dt, kPi / (10.0 * std::sqrt(4.0 * s.stiffness_normal() * lam)), 1e-15);
   EXPECT_GE(dt, s.params().dt);  // 40 steps per contact at 5e-5 s: the same k_n as discs at 20 and 1e-4 s
   EXPECT_THROW(s.step(2.0 * dt), std::invalid_argument);
@@ -255,18 +255,18 @@ TEST(DEMPolygon, SleepingAndRemovalWorkAsForDiscs) {
   p.domain_max = {1.0, 2.0};
   const double m = box_mass(0.03, 0.015);
   DEMSystem s = boxes(p, {0.0, 0.015 - m * 9.81 / 2e5, 0.5, 0.5}, 0.03, 0.015);
-  s.disc_vel[2] = 2.0;  // the second box is thrown out of the domain
+  s.stone_vel[2] = 2.0;  // the second box is thrown out of the domain
   s.advance(0.6);
-  EXPECT_EQ(s.disc_asleep[0], 1);
+  EXPECT_EQ(s.stone_asleep[0], 1);
   EXPECT_EQ(s.removed_count(), 1);
-  EXPECT_EQ(s.disc_active[1], 0);
-  const double x = s.disc_pos[0];
+  EXPECT_EQ(s.stone_active[1], 0);
+  const double x = s.stone_pos[0];
   s.advance(0.2);
-  EXPECT_EQ(s.disc_pos[0], x);  // asleep: not integrated
-  s.disc_force_ext[0] = 2.0;     // more than mu M g = 0.75 N
+  EXPECT_EQ(s.stone_pos[0], x);  // asleep: not integrated
+  s.stone_force_ext[0] = 2.0;     // more than mu M g = 0.75 N
   s.advance(0.1);
-  EXPECT_EQ(s.disc_asleep[0], 0);
-  EXPECT_GT(s.disc_vel[0], 0.01);
+  EXPECT_EQ(s.stone_asleep[0], 0);
+  EXPECT_GT(s.stone_vel[0], 0.01);
 }
 
 TEST(DEMPolygon, RefusesBadPolygons) {

@@ -44,25 +44,25 @@ TEST(DEMSystem, FreeStoneUnderWaterFollowsEquationNine) {
   p.medium.rho_water = 1000.0;
   p.added_mass_coefficient = 1.0;
   DEMSystem s(p, {0.0, 1.0}, {kR}, {2650.0});
-  s.disc_force_ext[0] = 0.2;
+  s.stone_force_ext[0] = 0.2;
   s.advance(0.01);
   const double V = 4.0 / 3.0 * kPi * kR * kR * kR, M = 2650.0 * V;
   EXPECT_NEAR(s.mass(0), 0.15345, 1e-5);  // 2650 pi 0.048^3 / 6 (REFERENCES.md: 0.1535 kg)
   const double az = -(M - 1000.0 * V) * 9.81 / (M + 1000.0 * V);
   const double ax = 0.2 / (M + 1000.0 * V);
-  EXPECT_NEAR(s.disc_acc[1], az, 1e-12);
-  EXPECT_NEAR(s.disc_acc[0], ax, 1e-12);
-  EXPECT_NEAR(s.disc_vel[1], az * 0.01, 1e-12);
+  EXPECT_NEAR(s.stone_acc[1], az, 1e-12);
+  EXPECT_NEAR(s.stone_acc[0], ax, 1e-12);
+  EXPECT_NEAR(s.stone_vel[1], az * 0.01, 1e-12);
   // half wet: buoyancy and added mass halve
-  s.disc_wet[0] = 0.5;
+  s.stone_wet[0] = 0.5;
   s.advance(0.001);
-  EXPECT_NEAR(s.disc_acc[1], -(M - 500.0 * V) * 9.81 / (M + 500.0 * V), 1e-12);
+  EXPECT_NEAR(s.stone_acc[1], -(M - 500.0 * V) * 9.81 / (M + 500.0 * V), 1e-12);
   // effect flags switch them off
   DEMParams q = p;
   q.flags &= ~(kDEMBuoyancy | kDEMAddedMass);
   s.set_params(q);
   s.advance(0.001);
-  EXPECT_NEAR(s.disc_acc[1], -9.81, 1e-12);
+  EXPECT_NEAR(s.stone_acc[1], -9.81, 1e-12);
 }
 
 TEST(DEMSystem, AutomaticStiffnessGivesTheRequestedContactSteps) {
@@ -92,7 +92,7 @@ TEST(DEMSystem, EnergyIsConservedWithoutDampingOrFriction) {
   p.stiffness_normal = 1e5;
   p.add_flume(0.0, 0.3, 0.0);
   DEMSystem s(p, {0.05, 0.10, 0.15, 0.05, 0.16, 0.17, 0.25, 0.2}, {kR, 0.02, 0.022, 0.026}, {2650.0});
-  s.disc_vel = {0.3, 0.0, -0.2, 0.5, 0.1, -0.4, -0.5, 0.0};
+  s.stone_vel = {0.3, 0.0, -0.2, 0.5, 0.1, -0.4, -0.5, 0.0};
   // 40 steps per contact (stable_dt/2, i.e. 20 steps, gives a worst deviation of 0.4 %, final 0.06 %)
   const double dt = 0.25 * s.stable_dt();
   const double e0 = s.energy().total();
@@ -144,7 +144,7 @@ TEST(DEMSystem, NeighbourSearchFindsTheSameContactsAsTheReference) {
     }
     DEMParams p;
     DEMSystem s(p, pos, radius, {2650.0}, fixed);
-    if (trial % 3 == 0) s.disc_active[static_cast<std::size_t>(n / 2)] = 0;
+    if (trial % 3 == 0) s.stone_active[static_cast<std::size_t>(n / 2)] = 0;
     const auto fast = s.overlapping_pairs();
     const auto slow = s.overlapping_pairs_reference();
     ASSERT_EQ(fast, slow) << "trial " << trial;
@@ -176,7 +176,7 @@ TEST(DEMSystem, RunsAreBitForBitReproducibleAndRestartable) {
   c.import_state(checkpoint);
   c.advance(0.2);
   EXPECT_EQ(state_hash(a), state_hash(c));
-  EXPECT_EQ(std::memcmp(a.disc_pos.data(), c.disc_pos.data(), a.disc_pos.size() * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(a.stone_pos.data(), c.stone_pos.data(), a.stone_pos.size() * sizeof(double)), 0);
   EXPECT_NE(state_hash(a), state_hash(b));
 }
 
@@ -185,10 +185,10 @@ TEST(DEMSystem, StonesLeavingTheDomainAreCountedNotLost) {
   p.domain_min = {-1.0, -0.5};
   p.domain_max = {1.0, 2.0};
   DEMSystem s(p, {0.0, 0.0, 0.5, 0.0}, {kR, kR}, {2650.0});
-  s.disc_vel[0] = 3.0;
+  s.stone_vel[0] = 3.0;
   s.advance(0.5);
   EXPECT_EQ(s.removed_count(), 2);  // both fell below z = -0.5, one also crossed x = 1
-  EXPECT_EQ(s.disc_active[0], 0);
+  EXPECT_EQ(s.stone_active[0], 0);
   EXPECT_EQ(s.n(), 2);
 }
 
@@ -200,14 +200,14 @@ TEST(DEMSystem, SleepingStonesStopAndWakeWhenPushed) {
   const double m = 2650.0 * 4.0 / 3.0 * kPi * kR * kR * kR;
   DEMSystem s(p, {0.0, kR - m * 9.81 / 1e5}, {kR}, {2650.0});
   s.advance(0.5);
-  EXPECT_EQ(s.disc_asleep[0], 1);
-  const double z = s.disc_pos[1];
+  EXPECT_EQ(s.stone_asleep[0], 1);
+  const double z = s.stone_pos[1];
   s.advance(0.5);
-  EXPECT_EQ(s.disc_pos[1], z);  // not integrated
-  s.disc_force_ext[0] = 2.0;     // more than mu M g = 0.75 N
+  EXPECT_EQ(s.stone_pos[1], z);  // not integrated
+  s.stone_force_ext[0] = 2.0;     // more than mu M g = 0.75 N
   s.advance(0.1);
-  EXPECT_EQ(s.disc_asleep[0], 0);
-  EXPECT_GT(s.disc_vel[0], 0.01);
+  EXPECT_EQ(s.stone_asleep[0], 0);
+  EXPECT_GT(s.stone_vel[0], 0.01);
 }
 
 TEST(DEMSystem, FailureRestoresTheStateAndNamesTheStone) {
@@ -215,17 +215,17 @@ TEST(DEMSystem, FailureRestoresTheStateAndNamesTheStone) {
   DEMSystem s(p, {0.0, 0.0, 0.1, 0.0}, {kR, kR}, {2650.0});
   s.advance(0.01);
   const auto before = state_hash(s);
-  s.disc_force_ext[3] = INFINITY;
+  s.stone_force_ext[3] = INFINITY;
   EXPECT_THROW(s.advance(0.01), std::invalid_argument);  // refused on entry
-  s.disc_force_ext[3] = 1.7e308;
-  s.disc_force_ext[2] = 1.7e308;
+  s.stone_force_ext[3] = 1.7e308;
+  s.stone_force_ext[2] = 1.7e308;
   try {
     s.advance(0.01);
     FAIL() << "non-finite state not detected";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("stone 1"), std::string::npos) << e.what();
   }
-  s.disc_force_ext[2] = s.disc_force_ext[3] = 0.0;
+  s.stone_force_ext[2] = s.stone_force_ext[3] = 0.0;
   EXPECT_EQ(state_hash(s), before);
 }
 
@@ -238,6 +238,6 @@ TEST(DEMSystem, RefusesBadInput) {
   EXPECT_THROW(DEMSystem(q, {0.0}, {0.1}, {2650.0}), std::invalid_argument);
   DEMSystem s(q, {0.0, 0.0}, {0.1}, {2650.0});
   EXPECT_THROW(s.advance(-1.0), std::invalid_argument);
-  s.disc_wet[0] = 2.0;
+  s.stone_wet[0] = 2.0;
   EXPECT_THROW(s.advance(0.1), std::invalid_argument);
 }

@@ -26,7 +26,7 @@ TEST(PolygonPins, SettlingHeapOfPolygons) {
     d.push_back(0.048 * (0.9 + 0.2 * rng_uniform01(g)));
   }
   DEMSystem s(p, pos, radius, {2650.0});
-  for (int i = 0; i < s.n(); ++i) s.disc_angle[i] = 6.3 * rng_uniform01(g);
+  for (int i = 0; i < s.n(); ++i) s.stone_angle[i] = 6.3 * rng_uniform01(g);
   std::vector<double> v;
   std::vector<int> off;
   random_polygon_set(3, PolygonSpec{}, d, v, off);

@@ -32,7 +32,7 @@ std::uint64_t fnv(std::uint64_t h, const std::vector<double>& v) {
 // FNV-1a of the trajectory (positions, velocities, spins, angles)
 std::uint64_t motion_hash(const DEMSystem& s) {
   std::uint64_t h = 1469598103934665603ull;
-  for (const auto* v : {&s.disc_pos, &s.disc_vel, &s.disc_omega, &s.disc_angle}) h = fnv(h, *v);
+  for (const auto* v : {&s.stone_pos, &s.stone_vel, &s.stone_omega, &s.stone_angle}) h = fnv(h, *v);
   return h;
 }
 
@@ -149,12 +149,12 @@ std::pair<double, double> turn(Turned& t, int stone, double w, int n, double dt,
   double theta = theta0;
   double moment = m0;
   for (int k = 0; k < n; ++k) {
-    t.sys.disc_omega[stone] = w;
+    t.sys.stone_omega[stone] = w;
     t.sys.step(dt);
     theta += w * dt;
     const double expect = std::clamp(m0 - t.kr * (theta - theta0), -t.cap, t.cap);
-    EXPECT_NEAR(t.sys.disc_torque[stone], expect, 1e-9 * t.cap) << "step " << k;
-    moment = t.sys.disc_torque[stone];
+    EXPECT_NEAR(t.sys.stone_torque[stone], expect, 1e-9 * t.cap) << "step " << k;
+    moment = t.sys.stone_torque[stone];
   }
   return {theta, moment};
 }
@@ -181,7 +181,7 @@ TEST(RollingResistance, MomentRotationCurveOfOneStoneContact) {
   std::tie(theta, m) = turn(t, 1, -w, 60, dt, theta, m);  // part-way back: elastic, below the cap
   EXPECT_LT(std::fabs(m), t.cap);
   // the moment on the fixed stone is the opposite one
-  EXPECT_NEAR(t.sys.disc_torque[0], -m, 1e-12);
+  EXPECT_NEAR(t.sys.stone_torque[0], -m, 1e-12);
 }
 
 TEST(RollingResistance, OnlyTheRelativeRotationIsResisted) {
@@ -197,12 +197,12 @@ TEST(RollingResistance, OnlyTheRelativeRotationIsResisted) {
     const double reff = kR * r2 / (kR + r2), kr = s.stiffness_tangential() * reff * reff;
     const double w = 0.2, dt = 1e-5;
     for (int k = 1; k <= 5; ++k) {
-      s.disc_omega[0] = w;
-      s.disc_omega[1] = sign * w;
+      s.stone_omega[0] = w;
+      s.stone_omega[1] = sign * w;
       s.step(dt);
       const double expect = sign > 0.0 ? 0.0 : -kr * 2.0 * w * k * dt;
-      ASSERT_NEAR(s.disc_torque[0], expect, 1e-12) << sign << " " << k;
-      ASSERT_NEAR(s.disc_torque[1], -expect, 1e-12) << sign << " " << k;
+      ASSERT_NEAR(s.stone_torque[0], expect, 1e-12) << sign << " " << k;
+      ASSERT_NEAR(s.stone_torque[1], -expect, 1e-12) << sign << " " << k;
     }
   }
 }
@@ -222,9 +222,9 @@ DEMSystem incline(double theta, double mu, double mu_r, double inertia_factor) {
 // mean acceleration along the incline between t = 0.5 s and 1.0 s
 double incline_acceleration(DEMSystem& s) {
   s.advance(0.5);
-  const double v0 = s.disc_vel[0];
+  const double v0 = s.stone_vel[0];
   s.advance(0.5);
-  return (s.disc_vel[0] - v0) / 0.5;
+  return (s.stone_vel[0] - v0) / 0.5;
 }
 }  // namespace
 
@@ -233,16 +233,16 @@ TEST(RollingResistance, DiscOnInclineHoldsBelowTheRollingAngle) {
   for (double f : {0.4, 0.5}) {
     DEMSystem s = incline(std::atan(0.95 * mu_r), mu, mu_r, f);
     s.advance(2.0);
-    EXPECT_LT(std::fabs(s.disc_vel[0]), 1e-5) << f;
-    EXPECT_LT(std::fabs(s.disc_omega[0]) * kR, 1e-5) << f;
+    EXPECT_LT(std::fabs(s.stone_vel[0]), 1e-5) << f;
+    EXPECT_LT(std::fabs(s.stone_omega[0]) * kR, 1e-5) << f;
     // only the springs' give while gravity loads them from the start (67 um measured; their static
     // deflections M g sin / k_t and r (M g sin r) / k_r are 10 um each)
-    EXPECT_LT(std::fabs(s.disc_pos[0]), 1e-4) << f;
+    EXPECT_LT(std::fabs(s.stone_pos[0]), 1e-4) << f;
   }
   // without the rolling resistance it rolls away (a = 5/7 g sin)
   DEMSystem free = incline(std::atan(0.95 * mu_r), mu, 0.0, 0.4);
   free.advance(1.0);
-  EXPECT_GT(free.disc_vel[0], 1.0);
+  EXPECT_GT(free.stone_vel[0], 1.0);
 }
 
 TEST(RollingResistance, DiscOnInclineRollsAboveItAtTheHandComputedRate) {
@@ -256,7 +256,7 @@ TEST(RollingResistance, DiscOnInclineRollsAboveItAtTheHandComputedRate) {
       const double a_exact = g * (std::sin(th) - mu_r * std::cos(th)) / (1.0 + f);
       EXPECT_NEAR(a, a_exact, 0.005 * a_exact) << "f = " << f << ", tan = " << k << " mu_r";
       // rolling without slip: omega r = -v
-      EXPECT_NEAR(s.disc_omega[0] * kR, -s.disc_vel[0], 1e-3 * s.disc_vel[0]);
+      EXPECT_NEAR(s.stone_omega[0] * kR, -s.stone_vel[0], 1e-3 * s.stone_vel[0]);
     }
   }
 }
@@ -269,7 +269,7 @@ TEST(RollingResistance, RockingStoneKeepsItsEnergyWithoutDampingOrSlip) {
   p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 5.0});
   const double delta = sphere_mass(kR) * 9.81 / 1e5;
   DEMSystem s(p, {0.0, kR - delta}, {kR}, {kRho});
-  s.disc_omega[0] = 0.5;
+  s.stone_omega[0] = 0.5;
   const double dt = 0.25 * s.stable_dt();
   s.step(dt);
   const double e0 = s.energy().total(), k0 = s.energy().kinetic;
@@ -328,10 +328,10 @@ TEST(RollingResistance, StaticHeapDoesNotCreep) {
   for (int k = 0; k < 40 && vmax > 1e-4; ++k) {
     s.advance(0.25);
     vmax = 0.0;
-    for (int i = 0; i < s.n(); ++i) vmax = std::max(vmax, std::hypot(s.disc_vel[2 * i], s.disc_vel[2 * i + 1]));
+    for (int i = 0; i < s.n(); ++i) vmax = std::max(vmax, std::hypot(s.stone_vel[2 * i], s.stone_vel[2 * i + 1]));
   }
   ASSERT_LT(vmax, 1e-4) << "heap not at rest";
-  const std::vector<double> rest = s.disc_pos;
+  const std::vector<double> rest = s.stone_pos;
   auto com_z = [&](const std::vector<double>& x) {
     double z = 0.0;
     for (int i = 0; i < s.n(); ++i) z += x[2 * i + 1];
@@ -340,9 +340,9 @@ TEST(RollingResistance, StaticHeapDoesNotCreep) {
   s.advance(4.0);
   double worst = 0.0;
   for (int i = 0; i < s.n(); ++i)
-    worst = std::max(worst, std::hypot(s.disc_pos[2 * i] - rest[2 * i], s.disc_pos[2 * i + 1] - rest[2 * i + 1]));
+    worst = std::max(worst, std::hypot(s.stone_pos[2 * i] - rest[2 * i], s.stone_pos[2 * i + 1] - rest[2 * i + 1]));
   EXPECT_LT(worst, 1e-4);                                // every stone within 0.1 mm
-  EXPECT_LT(std::fabs(com_z(s.disc_pos) - com_z(rest)), 1e-6);  // centre of mass within 1 um
+  EXPECT_LT(std::fabs(com_z(s.stone_pos) - com_z(rest)), 1e-6);  // centre of mass within 1 um
   EXPECT_EQ(s.removed_count(), 0);
 }
 

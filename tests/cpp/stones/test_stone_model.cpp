@@ -80,16 +80,16 @@ TEST(StoneModel, ATestModelRunsThroughCoupledStepsWithoutTurningAndRestsOnTheBed
   EXPECT_GT(s.sim->redistributed_volume(), 0.0);  // the stones displaced water on the way down
   const double g = 9.81, rho_w = s.fluid->params().medium.rho_water;
   for (int i = 0; i < 2; ++i) {
-    EXPECT_EQ(s.stones->disc_omega[i], 0.0);  // no torque: the stones never turn
-    EXPECT_EQ(s.stones->disc_angle[i], 0.0);
+    EXPECT_EQ(s.stones->stone_omega[i], 0.0);  // no torque: the stones never turn
+    EXPECT_EQ(s.stones->stone_angle[i], 0.0);
     // at rest on the bed, pressed in by the buoyant weight (M - rho_w V) g over k_n
     const double overlap = (s.stones->mass(i) - rho_w * s.stones->volume(i)) * g / s.stones->stiffness_normal();
-    EXPECT_NEAR(s.stones->disc_pos[2 * i + 1], r - overlap, 0.05 * overlap) << "stone " << i;
-    EXPECT_LT(std::abs(s.stones->disc_vel[2 * i + 1]), 1e-3) << "stone " << i;  // (free to slide: no friction)
+    EXPECT_NEAR(s.stones->stone_pos[2 * i + 1], r - overlap, 0.05 * overlap) << "stone " << i;
+    EXPECT_LT(std::abs(s.stones->stone_vel[2 * i + 1]), 1e-3) << "stone " << i;  // (free to slide: no friction)
   }
   // the flow sees the stone: the cell at its centre holds solid
   const Grid2D& grid = s.fluid->grid();
-  const int c = grid.cell(grid.locate_x(s.stones->disc_pos[0]), grid.locate_z(s.stones->disc_pos[1]));
+  const int c = grid.cell(grid.locate_x(s.stones->stone_pos[0]), grid.locate_z(s.stones->stone_pos[1]));
   EXPECT_LT(s.fluid->cell_porosity[c], 0.9);
 }
 

@@ -30,14 +30,14 @@ TEST(WeirPacking, SmallWeirIsPackedAtRestAndReproducible) {
   WeirPackingReport r1, r2;
   DEMSystem a = pack_weir(s, DEMParams{}, r1);
   DEMSystem b = pack_weir(s, DEMParams{}, r2);
-  EXPECT_EQ(a.disc_pos, b.disc_pos);
+  EXPECT_EQ(a.stone_pos, b.stone_pos);
   EXPECT_GT(r1.n_fixed, 5);
   EXPECT_LT(r1.max_speed, 1e-3);
   EXPECT_LT(r1.outline_error, s.d_mean);
   EXPECT_GT(r1.porosity, 0.05);
   EXPECT_LT(r1.porosity, 0.5);
   for (int i = 0; i < a.n(); ++i) {
-    const double d = 2.0 * a.disc_radius[i];
+    const double d = 2.0 * a.stone_radius[i];
     EXPECT_GE(d, 0.9 * s.d_mean - 1e-12);
     EXPECT_LE(d, 1.1 * s.d_mean + 1e-12);
   }
@@ -67,7 +67,7 @@ TEST(WeirPacking, SmallPolygonWeirIsPackedAtRestInsideTheOutlineAndReproducible)
   DEMSystem a = pack_weir(s, p, r1);
   DEMSystem b = pack_weir(s, p, r2);
   EXPECT_STREQ(a.model().name(), "polygon");
-  EXPECT_EQ(a.disc_pos, b.disc_pos);
+  EXPECT_EQ(a.stone_pos, b.stone_pos);
   EXPECT_EQ(a.poly_vertex, b.poly_vertex);
   EXPECT_GT(r1.n_fixed, 3);
   EXPECT_GT(r1.n_stones, r1.n_fixed + 5);

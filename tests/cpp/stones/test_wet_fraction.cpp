@@ -55,18 +55,18 @@ TEST(WetFraction, WaterTakenOnStartsAtRest) {
   p.flags &= ~kDEMGravity;
   DEMSystem s(p, {0.5, 0.5}, {kR}, {2650.0});
   s.set_wet_fraction(0, 0.0);
-  s.disc_vel[1] = -1.0;
+  s.stone_vel[1] = -1.0;
   s.advance(1e-4);
   const double M = 2650.0 * kV, e0 = s.energy().kinetic + s.energy().dissipated;
   // entering the water: (M + M') v kept, C_M = 1
   s.set_wet_fraction(0, 1.0);
-  EXPECT_NEAR(s.disc_vel[1], -M / (M + 1000.0 * kV), 1e-15);
+  EXPECT_NEAR(s.stone_vel[1], -M / (M + 1000.0 * kV), 1e-15);
   // the kinetic energy lost is counted as dissipated
   EXPECT_NEAR(s.energy().kinetic + s.energy().dissipated, e0, 1e-15);
   // leaving it: the velocity is kept (the water left behind keeps its momentum)
-  const double v = s.disc_vel[1];
+  const double v = s.stone_vel[1];
   s.set_wet_fraction(0, 0.3);
-  EXPECT_EQ(s.disc_vel[1], v);
+  EXPECT_EQ(s.stone_vel[1], v);
   EXPECT_THROW(s.set_wet_fraction(0, 1.5), std::invalid_argument);
 }
 
@@ -81,13 +81,13 @@ std::pair<double, double> bobbing(bool follow) {
   p.medium.rho_water = 1000.0;
   p.added_mass_coefficient = 0.0;
   DEMSystem s(p, {0.5, 0.3}, {kR}, {500.0});
-  s.disc_vel[1] = 0.2;
+  s.stone_vel[1] = 0.2;
   double first = 0.0, last = 0.0;
   for (int k = 0; k < 400; ++k) {
-    if (follow) s.disc_water_level[0] = 0.3;
-    else s.set_wet_fraction(0, disc_wet_fraction((0.3 - s.disc_pos[1]) / kR));
+    if (follow) s.stone_water_level[0] = 0.3;
+    else s.set_wet_fraction(0, disc_wet_fraction((0.3 - s.stone_pos[1]) / kR));
     s.advance(0.01);
-    const double rise = s.disc_pos[1] - 0.3;
+    const double rise = s.stone_pos[1] - 0.3;
     if (k < 100) first = std::max(first, rise);
     if (k >= 300) last = std::max(last, rise);
   }
@@ -100,10 +100,10 @@ TEST(WetFraction, TheWetFractionFollowsTheStoneAcrossALevel) {
   p.submerged = true;
   p.medium.rho_water = 1000.0;
   DEMSystem s(p, {0.5, 0.3}, {kR}, {500.0});
-  s.disc_water_level[0] = 0.3;
-  s.disc_vel[1] = 0.2;
+  s.stone_water_level[0] = 0.3;
+  s.stone_vel[1] = 0.2;
   s.advance(0.01);
-  EXPECT_NEAR(s.disc_wet[0], disc_wet_fraction((0.3 - s.disc_pos[1]) / kR), 1e-15);
+  EXPECT_NEAR(s.stone_wet[0], disc_wet_fraction((0.3 - s.stone_pos[1]) / kR), 1e-15);
   // held over each 0.01 s the buoyancy lags the motion and the bobbing grows; followed it keeps its
   // amplitude (to the DEM step's error)
   const auto held = bobbing(false), followed = bobbing(true);

@@ -15,7 +15,7 @@
 //                      water volume n F V kept per cell (water_redistribution.h), stones' velocity at
 //                      the faces for the relative-velocity resistance
 //   2. "fluid_forces"  pore velocity and pressure gradient averaged over each stone's cells
-//                      (fluid_forces.h) -> disc_force_drag, disc_force_pressure, disc_wet, disc_force_ext
+//                      (fluid_forces.h) -> stone_force_drag, stone_force_pressure, stone_wet, stone_force_ext
 //   3. "dem"           the stones advance by dt in substeps of their own step (DEMParams::dt, 1e-4 s)
 //   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
 //   5. "checks"        non-finite forces or stone state -> std::runtime_error
@@ -74,7 +74,7 @@ enum CouplerEffect : unsigned {
   // 1u << 5 retired: the porous resistance on the velocity relative to the stones is the flow's own
   // effect (kFlowRelativeVelocity), owned by FlowParams::flags; the coupler maps the stones' velocity
   // to the faces whenever that flag is on
-  kCoupleWetFraction = 1u << 6,       // disc_wet from the water fraction (buoyancy, added mass); off: w kept
+  kCoupleWetFraction = 1u << 6,       // stone_wet from the water fraction (buoyancy, added mass); off: w kept
   kCoupleChecks = 1u << 7,            // non-finite forces / stone state checked every step
   kCoupleLookupPorosity = 1u << 8,    // porosity from the paper's lookup table instead of exact disc areas
   kCoupleDisplaceFlow = 1u << 9,      // porosity changes drive the flow (dn/dt + div u = 0 in the flow's projection,
@@ -142,9 +142,9 @@ struct CouplerState {
   long long steps = 0;
   bool mapped = false;
   double redistributed = 0.0;  // [m^2]
-  std::vector<double> disc_force_drag, disc_force_pressure, disc_relative_speed;
+  std::vector<double> stone_force_drag, stone_force_pressure, stone_relative_speed;
   bool has_drag_slope = false;  // the bed drag's slopes (false: zero)
-  std::vector<double> disc_drag_slope;
+  std::vector<double> stone_drag_slope;
   std::vector<double> cell_base_porosity, cell_base_diameter;
 };
 
@@ -196,7 +196,7 @@ class Coupler {
   // n F V per cell (displaced water moves to neighbours, as while stepping); false keeps F, so the pores
   // of stones placed into a filled scene hold water and the volume drops by the stones' share (scene set-up)
   void update_porosity(bool keep_water_volume = true);
-  // recomputes the fluid forces now (disc_force_drag, disc_force_pressure, disc_wet, disc_force_ext)
+  // recomputes the fluid forces now (stone_force_drag, stone_force_pressure, stone_wet, stone_force_ext)
   void update_fluid_forces();
   // the fluid's water volume sum(n F V) per unit width [m^2] (0 without fluid)
   double water_volume() const;
@@ -224,8 +224,8 @@ class Coupler {
   double floored_solid_area() const { return floored_solid_area_; }
 
   // ---- state arrays ----
-  std::vector<double> disc_force_drag;      // drag on each stone (sphere or bed drag) [N], 2n (x, z)
-  std::vector<double> disc_force_pressure;  // pressure-gradient force on each stone [N], 2n
+  std::vector<double> stone_force_drag;      // drag on each stone (sphere or bed drag) [N], 2n (x, z)
+  std::vector<double> stone_force_pressure;  // pressure-gradient force on each stone [N], 2n
   std::vector<double> cell_base_porosity;   // porosity without the stones [-], ncell (from the fluid at construction)
   std::vector<double> cell_base_diameter;   // stone diameter of the base porosity [m], ncell
 
@@ -274,7 +274,7 @@ class Coupler {
   double time_ = 0.0;
   long long steps_ = 0;
   bool mapped_ = false;  // the porosity reflects the stones (needed again only if they move)
-  bool forces_applied_ = false;  // disc_force_ext holds fluid forces (cleared when the effects go off)
+  bool forces_applied_ = false;  // stone_force_ext holds fluid forces (cleared when the effects go off)
   double redistributed_ = 0.0;
 
   std::unique_ptr<PorosityMapper> mapper_;
@@ -303,11 +303,11 @@ class Coupler {
   int snapshot_interval_ = 1;  // [steps], doubles up to max_snapshot_interval
   bool csr_current_ = false;  // the mapper's per-stone cell lists match the stones' positions
   // scratch (sized at construction)
-  std::vector<double> disc_x_, disc_z_;
+  std::vector<double> stone_x_, stone_z_;
   std::vector<double> n_old_;  // the flow's porosity before the porosity stage
   std::vector<double> cell_U_, cell_W_, cell_dpdx_, cell_dpdz_;
-  std::vector<double> disc_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
-  std::vector<double> disc_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]
+  std::vector<double> stone_vrel_;  // relative speed |U - u_p| of each stone at the last exchange [m/s]
+  std::vector<double> stone_drag_slope_;  // |dF / du_p| of each stone's drag at the last exchange [N s/m]
   std::vector<double> cell_solid_sum_, cell_solid_u_, cell_solid_w_, cell_diam_sum_;
   // kernel mapping: the operator, its porosity, the smoothed water fraction, the bed drag's smoothed
   // densities (x, z, slope per unit stone volume and water density), sized by make_kernel()

@@ -93,11 +93,11 @@ class PorosityMapper {
   PorosityMapper(const Grid2D& grid, const PorosityParams& params);
 
   // maps n discs of centres (disc_x, disc_z) [m] and radii disc_r [m] onto cell_solid_area and
-  // cell_porosity; disc_active (may be null) skips discs whose flag is 0. Allocates nothing.
+  // cell_porosity; stone_active (may be null) skips discs whose flag is 0. Allocates nothing.
   // Throws std::invalid_argument for n > max_discs, a non-finite centre or a radius outside
   // [r_min, r_max].
   void map(int n, const double* disc_x, const double* disc_z, const double* disc_r,
-           const std::uint8_t* disc_active = nullptr);
+           const std::uint8_t* stone_active = nullptr);
   void map(const std::vector<double>& disc_x, const std::vector<double>& disc_z, const std::vector<double>& disc_r);
   // maps n convex polygon stones (centres (x, z) [m], angles [rad] counter-clockwise, body-frame vertices
   // poly_vertex (x, z pairs) [m] of stone j from poly_offset[j] to poly_offset[j+1]-1, as DEMSystem holds
@@ -114,12 +114,12 @@ class PorosityMapper {
   std::vector<double>& cell_solid_area() { return cell_solid_area_; }
   // porosity of eq. (11) of each cell [-], size ncell
   std::vector<double>& cell_porosity() { return cell_porosity_; }
-  // per-disc overlapped cells in CSR form: disc j covers cells disc_cell_index[p] with area
-  // disc_cell_area[p] [m^2] (uncapped) for p in [disc_cell_offsets[j], disc_cell_offsets[j+1]).
+  // per-disc overlapped cells in CSR form: disc j covers cells stone_cell_index[p] with area
+  // stone_cell_area[p] [m^2] (uncapped) for p in [stone_cell_offsets[j], stone_cell_offsets[j+1]).
   // Sized for max_discs; only the first n + 1 offsets of the last call are meaningful.
-  std::vector<int>& disc_cell_offsets() { return disc_cell_offsets_; }
-  std::vector<int>& disc_cell_index() { return disc_cell_index_; }
-  std::vector<double>& disc_cell_area() { return disc_cell_area_; }
+  std::vector<int>& stone_cell_offsets() { return stone_cell_offsets_; }
+  std::vector<int>& stone_cell_index() { return stone_cell_index_; }
+  std::vector<double>& stone_cell_area() { return stone_cell_area_; }
   // number of discs of the last call
   int ndisc() const { return ndisc_; }
 
@@ -145,8 +145,8 @@ class PorosityMapper {
   // cell c gets area [m^2] of the stone being mapped: the cell's sum and the stone's CSR entry p; returns p + 1
   int append_cell(int c, double area, int p) {
     cell_solid_area_[c] += area;
-    disc_cell_index_[p] = c;
-    disc_cell_area_[p] = area;
+    stone_cell_index_[p] = c;
+    stone_cell_area_[p] = area;
     return p + 1;
   }
   // what map() and map_polygons() share: n checked against max_discs and each active stone by check(j)
@@ -163,10 +163,10 @@ class PorosityMapper {
     std::fill(cell_solid_area_.begin(), cell_solid_area_.end(), 0.0);
     int p = 0;
     for (int j = 0; j < n; ++j) {
-      disc_cell_offsets_[j] = p;
+      stone_cell_offsets_[j] = p;
       if (!active || active[j]) p = add(j, p);
     }
-    disc_cell_offsets_[n] = p;
+    stone_cell_offsets_[n] = p;
     ndisc_ = n;
     apply_eq11();
   }
@@ -183,8 +183,8 @@ class PorosityMapper {
   std::vector<std::vector<double>> tables_;
 
   std::vector<double> cell_solid_area_, cell_porosity_;
-  std::vector<int> disc_cell_offsets_, disc_cell_index_;
-  std::vector<double> disc_cell_area_;
+  std::vector<int> stone_cell_offsets_, stone_cell_index_;
+  std::vector<double> stone_cell_area_;
   std::vector<double> node_phi_;  // scratch of the exact method: node values, then 3 lines of scratch_line_
   int scratch_line_ = 0;
   std::vector<double> poly_scratch_;  // scratch of map_polygons: world vertices, a strip, clip buffers

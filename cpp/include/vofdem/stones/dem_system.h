@@ -12,14 +12,14 @@
 // the water; as it leaves, v_i is kept and the water left behind takes its momentum with it), so a
 // change of w_i never adds kinetic energy. Contacts: dem_contact.h; rolling resistance (a moment added
 // to eq. 10, effect kDEMRollingResistance): rolling_resistance.h.
-// F_x, F_z: disc_force_ext, set by the coupler (the fluid's pressure-gradient force, and the drag when it
-// is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (disc_drag_coef c_i, disc_drag_vel
+// F_x, F_z: stone_force_ext, set by the coupler (the fluid's pressure-gradient force, and the drag when it
+// is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (stone_drag_coef c_i, stone_drag_vel
 // U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
 //
 // Stone shape: a stone model (stone_model.h), registered by name: discs (disc_model.h, the default) or
 // convex polygons (polygon_model.h, set_polygons()). The model gives V_i, I_i and the areas, the contact
 // forces with their histories and their stable step; DEMSystem never asks which model it holds. For
-// polygons disc_radius is the bounding radius (neighbour search), disc_angle the orientation of the
+// polygons stone_radius is the bounding radius (neighbour search), stone_angle the orientation of the
 // body-frame vertices poly_vertex.
 // Integration: velocity Verlet (kick-drift-kick; forces from the half-step velocity), one force
 // evaluation per step. The linear drag is integrated exactly in each half kick (exponential integrator):
@@ -61,7 +61,7 @@ enum DEMFlag : unsigned {
   kDEMBuoyancy = 1u << 4,       // rho_w V w g in eq. (9)
   kDEMSleeping = 1u << 5,       // stones at rest under small forces are not integrated (Box2D-like)
   kDEMDamping = 1u << 6,        // contact dashpots
-  kDEMExternalForce = 1u << 7,  // disc_force_ext (fluid forces from the coupler)
+  kDEMExternalForce = 1u << 7,  // stone_force_ext (fluid forces from the coupler)
   kDEMRemoval = 1u << 8,        // stones leaving the domain box are deactivated and counted
   kDEMRollingResistance = 1u << 9,  // rolling moment of rolling_resistance.h (costs nothing while mu_r = 0)
   kDEMAllEffects = (1u << 10) - 1u - (1u << 5),  // everything but sleeping
@@ -121,17 +121,17 @@ struct DEMEnergy {
   double potential = 0.0;      // sum -(M - rho_w V w) g . x [J] (zero at the origin)
   double elastic = 0.0;        // energy in the contact springs (rolling ones too) at the last evaluation [J]
   double dissipated = 0.0;     // dashpots + Coulomb and rolling slip + sleeping, accumulated [J]
-  double work_external = 0.0;  // work of disc_force_ext, accumulated [J]
+  double work_external = 0.0;  // work of stone_force_ext, accumulated [J]
   double total() const { return kinetic + potential + elastic + dissipated - work_external; }
 };
 
 // the whole state of a DEMSystem as one typed value (export_state / import_state): what a run needs to
 // continue bit-for-bit. Copying it is a copy of arrays (a reused DEMState allocates nothing once sized)
 struct DEMState {
-  std::vector<double> disc_pos, disc_vel, disc_angle, disc_omega, disc_radius, disc_density;
-  std::vector<std::uint8_t> disc_fixed, disc_active, disc_asleep;
-  std::vector<double> disc_force_ext, disc_drag_coef, disc_drag_vel, disc_wet, disc_water_level, disc_force,
-      disc_torque, disc_acc, disc_alpha, disc_sleep_timer;
+  std::vector<double> stone_pos, stone_vel, stone_angle, stone_omega, stone_radius, stone_density;
+  std::vector<std::uint8_t> stone_fixed, stone_active, stone_asleep;
+  std::vector<double> stone_force_ext, stone_drag_coef, stone_drag_vel, stone_wet, stone_water_level, stone_force,
+      stone_torque, stone_acc, stone_alpha, stone_sleep_timer;
   // the contact histories that are not zero, sorted by (i, j); the rest is rebuilt by the neighbour search
   std::vector<int> contact_i, contact_j;
   std::vector<double> contact_xi, contact_mr;  // tangential spring [m], rolling spring moment [N m]
@@ -212,12 +212,12 @@ class DEMSystem {
   void set_model(std::unique_ptr<StoneModel> model);
   // makes every stone a convex polygon (polygon_model.h): body-frame vertices (x, z pairs,
   // counter-clockwise, centroid at the origin) [m], stone i owning vertices offset[i] .. offset[i+1]-1
-  // (3 to 16 each); sets disc_radius to each bounding radius. Throws std::invalid_argument for a bad
+  // (3 to 16 each); sets stone_radius to each bounding radius. Throws std::invalid_argument for a bad
   // polygon (naming the stone).
   void set_polygons(const std::vector<double>& vertex, const std::vector<int>& offset);
 
   // derived per-stone properties of the 3D stone the model stands for (read-only for users)
-  double mass(int i) const { return disc_density[i] * model_->volume(*this, i); }  // M_i [kg]
+  double mass(int i) const { return stone_density[i] * model_->volume(*this, i); }  // M_i [kg]
   double volume(int i) const { return model_->volume(*this, i); }                    // V_i [m^3]
   // A_pi, the mean over directions [m^2]: pi d^2 / 4 for a disc; r_A P / 2 for a polygon
   double projected_area(int i) const { return model_->projected_area(*this, i); }
@@ -255,28 +255,28 @@ class DEMSystem {
   StageProfile& profile() { return profile_; }
 
   // ---- state arrays (flat; vectors stored as (x, z) pairs) ----
-  std::vector<double> disc_pos;             // centre (x along the flume, z up) [m], 2n
-  std::vector<double> disc_vel;             // velocity [m/s], 2n
-  std::vector<double> disc_angle;           // rotation angle, counter-clockwise in (x, z) [rad], n
-  std::vector<double> disc_omega;           // angular velocity [rad/s], n
-  std::vector<double> disc_radius;          // radius d/2 [m], n (usual 0.024)
-  std::vector<double> disc_density;         // rho_s [kg/m^3], n (usual 2650)
-  std::vector<std::uint8_t> disc_fixed;     // 1: never moves (bed layer), n
-  std::vector<std::uint8_t> disc_active;    // 0: left the domain (kept, not integrated), n
-  std::vector<double> disc_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
-  std::vector<double> disc_drag_coef;       // linear drag coefficient c >= 0 [N s/m], n; 0 (with kDEMExternalForce)
-  std::vector<double> disc_drag_vel;        // velocity U the linear drag c (U - v) pulls towards [m/s], 2n
-  std::vector<double> disc_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
+  std::vector<double> stone_pos;             // centre (x along the flume, z up) [m], 2n
+  std::vector<double> stone_vel;             // velocity [m/s], 2n
+  std::vector<double> stone_angle;           // rotation angle, counter-clockwise in (x, z) [rad], n
+  std::vector<double> stone_omega;           // angular velocity [rad/s], n
+  std::vector<double> stone_radius;          // radius d/2 [m], n (usual 0.024)
+  std::vector<double> stone_density;         // rho_s [kg/m^3], n (usual 2650)
+  std::vector<std::uint8_t> stone_fixed;     // 1: never moves (bed layer), n
+  std::vector<std::uint8_t> stone_active;    // 0: left the domain (kept, not integrated), n
+  std::vector<double> stone_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
+  std::vector<double> stone_drag_coef;       // linear drag coefficient c >= 0 [N s/m], n; 0 (with kDEMExternalForce)
+  std::vector<double> stone_drag_vel;        // velocity U the linear drag c (U - v) pulls towards [m/s], 2n
+  std::vector<double> stone_wet;             // wet fraction in [0, 1], n; set to 1 at construction/resize
                                             // when submerged, else 0 (set_params keeps it)
-  std::vector<double> disc_water_level;     // free-surface level at each stone [m], n; NaN (default): disc_wet
-                                            // is held as set; else disc_wet follows the stone's height over the
+  std::vector<double> stone_water_level;     // free-surface level at each stone [m], n; NaN (default): stone_wet
+                                            // is held as set; else stone_wet follows the stone's height over the
                                             // substeps, the disc's share below the level (wet_fraction.h)
-  std::vector<double> disc_force;           // total force of the last evaluation [N], 2n (output)
-  std::vector<double> disc_torque;          // total torque of the last evaluation [N m], n (output)
-  std::vector<double> disc_acc;             // acceleration of the last evaluation [m/s^2], 2n
-  std::vector<double> disc_alpha;           // angular acceleration of the last evaluation [rad/s^2], n
-  std::vector<std::uint8_t> disc_asleep;    // 1: sleeping (not integrated), n
-  std::vector<double> disc_sleep_timer;     // time spent below the sleep speed [s], n
+  std::vector<double> stone_force;           // total force of the last evaluation [N], 2n (output)
+  std::vector<double> stone_torque;          // total torque of the last evaluation [N m], n (output)
+  std::vector<double> stone_acc;             // acceleration of the last evaluation [m/s^2], 2n
+  std::vector<double> stone_alpha;           // angular acceleration of the last evaluation [rad/s^2], n
+  std::vector<std::uint8_t> stone_asleep;    // 1: sleeping (not integrated), n
+  std::vector<double> stone_sleep_timer;     // time spent below the sleep speed [s], n
   // shape arrays of the models that have them (empty for discs): polygons' body-frame vertices (x, z
   // pairs, CCW) [m] and the index of each stone's first vertex, n + 1 (set_polygons)
   std::vector<double> poly_vertex;
@@ -300,7 +300,7 @@ class DEMSystem {
   void advance_checked(double dt, long long nsub);
   void substep(double dt, StageLaps& laps);
   void evaluate_forces(double dt, bool body, StageLaps& laps);
-  bool moving(int i) const { return inv_mass_[i] > 0.0 && !disc_asleep[i]; }
+  bool moving(int i) const { return inv_mass_[i] > 0.0 && !stone_asleep[i]; }
   void build_wall_candidates();
   struct FirstHalf {
     bool stale = false, escaped = false;
@@ -318,7 +318,7 @@ class DEMSystem {
   }
   // rolling resistance (dem_rolling.cpp, law in rolling_resistance.h): whether a contact kind has it,
   // its term of stable_dt(), and the moments of one stone-stone or stone-wall contact (applied to
-  // disc_torque; the energies returned)
+  // stone_torque; the energies returned)
   bool rolling_stones() const;
   bool rolling_walls() const;
   double rolling_spin_stiffness(double m_min) const;
@@ -335,7 +335,7 @@ class DEMSystem {
   std::unique_ptr<StoneModel> model_;  // the stones' shape (stone_model.h)
   int n_ = 0;
   bool prepared_ = false;
-  bool forces_valid_ = false;  // disc_acc holds the accelerations of the current state
+  bool forces_valid_ = false;  // stone_acc holds the accelerations of the current state
   double kn_ = 0.0, kt_ = 0.0, zeta_ = 0.0;
   double time_ = 0.0;
   long long steps_ = 0;

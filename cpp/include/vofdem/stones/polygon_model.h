@@ -18,7 +18,7 @@
 //   omega^2 <= 2 N k (1/m + R^2 / I)  with N = 2 points and two equal stones,
 // R the bounding radius (the largest lever arm); the step is pi / (10 omega) as for discs.
 //
-// The shapes live in DEMSystem::poly_vertex / poly_offset (set_polygons); disc_radius holds each stone's
+// The shapes live in DEMSystem::poly_vertex / poly_offset (set_polygons); stone_radius holds each stone's
 // bounding radius (the neighbour search's). Footprint: the exact polygon-cell areas (the paper's lookup
 // table holds disc areas: refused). Drag: eqs. (16)-(18) with the projected area across the relative
 // velocity and the nominal diameter. The rolling resistance is refused (mu_r > 0): a polygon resists
@@ -90,7 +90,7 @@ class PolygonModel final : public StoneModel {
   // makes the stones of s these polygons (DEMSystem::set_polygons), checked first: a refused set
   // changes nothing
   void set_shapes(DEMSystem& s, const std::vector<double>& vertex, const std::vector<int>& offset);
-  // section area, J/A, edge normals and bounding radius (disc_radius) of every stone from the shapes;
+  // section area, J/A, edge normals and bounding radius (stone_radius) of every stone from the shapes;
   // throws std::invalid_argument for a bad polygon (naming the stone)
   void update_properties(DEMSystem& s);
 

@@ -92,7 +92,7 @@ class StoneModel {
   virtual double projected_area(const DEMSystem& s, int i, double ux, double uz) const = 0;
 
   // ---- contacts: the stable step [s] of the stones' contacts (prepared system), and the force loops,
-  // which add forces to disc_force and torques to disc_torque and keep their histories
+  // which add forces to stone_force and torques to stone_torque and keep their histories
   virtual double stable_dt(const DEMSystem& s) const = 0;
   virtual ContactTally contact_forces(DEMSystem& s, double dt) = 0;
   virtual ContactTally wall_forces(DEMSystem& s, double dt) = 0;
