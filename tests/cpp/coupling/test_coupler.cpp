@@ -265,6 +265,41 @@ TEST(Coupler, RestartIsBitForBitAndRunsAreDeterministic) {
   EXPECT_GT(a.stones->contact_count() + a.stones->wall_contact_count(), 0);  // contact histories were exercised
 }
 
+// a checkpoint written when the stones' arrays were named disc_* (stone_pos was disc_pos, the coupler's
+// stone_force_drag was disc_force_drag) restarts to the same bits
+TEST(Coupler, CheckpointWithTheFormerDiscKeysRestarts) {
+  std::vector<double> pos;
+  for (int j = 0; j < 3; ++j) pos.push_back(0.1 + 0.002 * j), pos.push_back(0.2 + 0.05 * j);
+  auto build = [&] { return tank(0.2, 0.4, 0.01, 0.2, pos, 0.024, kCoupleTwoWay); };
+  Scene a = build();
+  a.sim->set_inflow_table({0.0, 1.0}, {0.0, 0.0});
+  a.sim->advance(0.1);
+  const auto checkpoint = a.sim->export_state();
+  std::map<std::string, std::vector<double>> former;
+  int renamed = 0;
+  for (const auto& [key, v] : checkpoint) {
+    std::string k = key;
+    for (const char* prefix : {"dem/", "coupler/"}) {
+      const std::string p = std::string(prefix) + "stone_";
+      if (k.rfind(p, 0) == 0) k = std::string(prefix) + "disc_" + k.substr(p.size()), ++renamed;
+    }
+    former[k] = v;
+  }
+  EXPECT_GE(renamed, 20);
+  a.sim->advance(0.1);
+  Scene b = build();
+  b.sim->import_state(former);
+  b.sim->advance(0.1);
+  std::string diff;
+  EXPECT_TRUE(same_bits(a.sim->export_state(), b.sim->export_state(), &diff)) << "first difference: " << diff;
+  DEMSystem alone(b.stones->params(), 3);
+  std::map<std::string, std::vector<double>> dem;
+  for (const auto& [key, v] : former)
+    if (key.rfind("dem/", 0) == 0) dem[key.substr(4)] = v;
+  alone.import_state(dem);
+  EXPECT_EQ(alone.stone_pos, std::vector<double>(former.at("dem/disc_pos")));
+}
+
 TEST(Coupler, RestartWithTurbulenceIsBitForBit) {
   // stones falling through a tank stir the water: k, eps, nu_t and the wall shear of the k-epsilon
   // model are state that the next step reads, so the checkpoint must carry them
