@@ -46,7 +46,7 @@ def test_the_scene_and_the_binding_take_the_names_from_the_registry():
     assert s.shape == "disc"
     s.set_model("polygon")
     assert s.shape == "polygon"
-    with pytest.raises(ValueError, match="'cube' is not one of the registered stone models 'disc', 'polygon'"):
+    with pytest.raises(ValueError, match="'cube' is not one of the registered stone models 'disc', 'polygon', 'sphere'"):
         s.set_model("cube")
 
 

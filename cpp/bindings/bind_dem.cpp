@@ -76,6 +76,8 @@ void bind_params(py::module_& m) {
       .def_readwrite("sleep_time", &DEMParams::sleep_time)
       .def_readwrite("wake_acceleration", &DEMParams::wake_acceleration)
       .def_readwrite("walls", &DEMParams::walls)
+      .def_readwrite("width", &DEMParams::width)
+      .def_readwrite("side_wall_friction", &DEMParams::side_wall_friction)
       .def_readwrite("flags", &DEMParams::flags)
       .def("add_flume", &DEMParams::add_flume, py::arg("x_min"), py::arg("x_max"), py::arg("z_bed") = 0.0,
            py::arg("mu") = 0.176);
@@ -227,6 +229,33 @@ void bind_system(py::module_& m) {
            "total force of the last evaluation (n, 2) [N], zero-copy view")
       .def_property_readonly("stone_acc", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_acc, self); },
            "acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view")
+      .def_property_readonly("stone_y", [](py::object self) { return view(self.cast<DEMSystem&>().stone_y, self); },
+           "3D stones: centre across the flume, 0 <= y <= width (n) [m] (empty for the plane's models), zero-copy view")
+      .def_property_readonly("stone_vel_y", [](py::object self) { return view(self.cast<DEMSystem&>().stone_vel_y, self); },
+           "3D stones: velocity across the flume (n) [m/s] (empty for the plane's models), zero-copy view")
+      .def_property_readonly("stone_force_y",
+                             [](py::object self) { return view(self.cast<DEMSystem&>().stone_force_y, self); },
+           "3D stones: total force across the flume of the last evaluation (n) [N], zero-copy view")
+      .def_property_readonly("stone_acc_y", [](py::object self) { return view(self.cast<DEMSystem&>().stone_acc_y, self); },
+           "3D stones: acceleration across the flume of the last evaluation (n) [m/s^2], zero-copy view")
+      .def_property_readonly("stone_quat",
+                             [](py::object self) {
+                               auto& v = self.cast<DEMSystem&>().stone_quat;
+                               return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 4), 4, self);
+                             },
+           "3D stones: orientation, unit quaternions (w, x, y, z) body -> world (n, 4) [-], zero-copy view")
+      .def_property_readonly("stone_omega_3d",
+                             [](py::object self) {
+                               auto& v = self.cast<DEMSystem&>().stone_omega_3d;
+                               return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 3), 3, self);
+                             },
+           "3D stones: angular velocity in the world frame (x, y, z) (n, 3) [rad/s], zero-copy view")
+      .def_property_readonly("stone_torque_3d",
+                             [](py::object self) {
+                               auto& v = self.cast<DEMSystem&>().stone_torque_3d;
+                               return view2d(v.data(), static_cast<py::ssize_t>(v.size() / 3), 3, self);
+                             },
+           "3D stones: total torque about the centre of the last evaluation, world frame (n, 3) [N m], zero-copy view")
       .def_property_readonly("stone_angle", [](py::object self) { return view(self.cast<DEMSystem&>().stone_angle, self); },
            "rotation angle, counter-clockwise in (x, z) (n) [rad], zero-copy view")
       .def_property_readonly("stone_omega", [](py::object self) { return view(self.cast<DEMSystem&>().stone_omega, self); },

@@ -507,6 +507,12 @@ class DEMParams:
     def rolling_friction_wall(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def side_wall_friction(self) -> float:
+        ...
+    @side_wall_friction.setter
+    def side_wall_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def sleep_time(self) -> float:
         ...
     @sleep_time.setter
@@ -561,6 +567,12 @@ class DEMParams:
         """
         rho_w of buoyancy and added mass [kg/m^3]: medium.rho_water if submerged, else 0
         """
+    @property
+    def width(self) -> float:
+        ...
+    @width.setter
+    def width(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class DEMFlag(enum.IntFlag):
     """
     Bit flags of the DEM's physical effects (DEMParams.flags).
@@ -809,6 +821,11 @@ class DEMSystem:
         acceleration of the last evaluation (n, 2) [m/s^2], zero-copy view
         """
     @property
+    def stone_acc_y(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: acceleration across the flume of the last evaluation (n) [m/s^2], zero-copy view
+        """
+    @property
     def stone_active(self) -> numpy.typing.NDArray[numpy.uint8]:
         """
         0: the stone left the domain (kept, not integrated) (n), zero-copy view
@@ -859,14 +876,29 @@ class DEMSystem:
         external (fluid) forces (n, 2) [N], held until changed; zero-copy view
         """
     @property
+    def stone_force_y(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: total force across the flume of the last evaluation (n) [N], zero-copy view
+        """
+    @property
     def stone_omega(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         angular velocity (n) [rad/s], zero-copy view
         """
     @property
+    def stone_omega_3d(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: angular velocity in the world frame (x, y, z) (n, 3) [rad/s], zero-copy view
+        """
+    @property
     def stone_pos(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         centres (x along the flume, z up) (n, 2) [m], zero-copy view
+        """
+    @property
+    def stone_quat(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: orientation, unit quaternions (w, x, y, z) body -> world (n, 4) [-], zero-copy view
         """
     @property
     def stone_radius(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -879,9 +911,19 @@ class DEMSystem:
         total torque of the last evaluation (n) [N m], zero-copy view
         """
     @property
+    def stone_torque_3d(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: total torque about the centre of the last evaluation, world frame (n, 3) [N m], zero-copy view
+        """
+    @property
     def stone_vel(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         velocities (n, 2) [m/s], zero-copy view
+        """
+    @property
+    def stone_vel_y(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: velocity across the flume (n) [m/s] (empty for the plane's models), zero-copy view
         """
     @property
     def stone_water_level(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -892,6 +934,11 @@ class DEMSystem:
     def stone_wet(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         wet fraction in [0, 1] (n) [-], zero-copy view
+        """
+    @property
+    def stone_y(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        3D stones: centre across the flume, 0 <= y <= width (n) [m] (empty for the plane's models), zero-copy view
         """
     @property
     def time(self) -> float:

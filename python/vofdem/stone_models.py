@@ -144,6 +144,20 @@ class PolygonFront(StoneFront):
         return np.array(system.poly_vertex, float), np.array(system.poly_offset, np.int64)
 
 
+class SphereFront(StoneFront):
+    """3D spheres across the flume's width (sphere_model.h): run by a DEMSystem (``set_model('sphere')``,
+    ``DEMParams.width``) but not yet packed into a weir or coupled to the flow, so a scene refuses them."""
+
+    name = "sphere"
+    lookup_table = False
+    outline_packer = False
+
+    def check(self, stones, prefix: str) -> None:
+        raise ValueError(f"{prefix}.shape = 'sphere' is not allowed in a scene yet: 3D stones are not packed into a "
+                         "weir nor coupled to the flow (allowed: 'disc', 'polygon'); a DEMSystem runs them alone "
+                         "(set_model('sphere') with DEMParams.width)")
+
+
 _FRONTS: Dict[str, StoneFront] = {}
 
 
@@ -180,3 +194,4 @@ def stone_diameters(system) -> np.ndarray:
 
 register_front(StoneFront())
 register_front(PolygonFront())
+register_front(SphereFront())

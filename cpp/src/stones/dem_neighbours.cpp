@@ -65,6 +65,7 @@ void DEMSystem::build_neighbours() {
   if (nact < 2) {
     pairs_.swap(new_pairs_);
     pairs_.clear();
+    if (model_->own_pair_history()) model_->pairs_rebuilt(*this, carried_ = {});
     return;
   }
   // cells no smaller than the largest cut-off; at most ~4 cells per stone even if stones spread far
@@ -118,17 +119,23 @@ void DEMSystem::build_neighbours() {
     std::sort(new_pairs_.begin() + static_cast<std::ptrdiff_t>(first), new_pairs_.end(),
               [](const Pair& a, const Pair& b) { return a.j < b.j; });
   }
-  // carry the tangential and rolling springs over (both lists sorted by (i, j))
+  // carry the tangential and rolling springs over (both lists sorted by (i, j)); a model with histories
+  // of its own hears where each new pair was
+  const bool own = model_->own_pair_history();
+  if (own) carried_.assign(new_pairs_.size(), -1);
   std::size_t k = 0;
-  for (Pair& p : new_pairs_) {
+  for (std::size_t m = 0; m < new_pairs_.size(); ++m) {
+    Pair& p = new_pairs_[m];
     while (k < pairs_.size() && (pairs_[k].i < p.i || (pairs_[k].i == p.i && pairs_[k].j < p.j))) ++k;
     if (k < pairs_.size() && pairs_[k].i == p.i && pairs_[k].j == p.j) {
       p.xi = pairs_[k].xi;
       p.mr = pairs_[k].mr;
       p.points = pairs_[k].points;
+      if (own) carried_[m] = static_cast<int>(k);
     }
   }
   pairs_.swap(new_pairs_);
+  if (own) model_->pairs_rebuilt(*this, carried_);
   update_pair_rolling();
 }
 

@@ -51,6 +51,23 @@ const DiscField<std::uint8_t> kDiscFlags[] = {
     {"stone_asleep", &DEMState::stone_asleep, &DEMSystem::stone_asleep, 0, 1, false, 0.0},
 };
 
+// the out-of-plane state of 3D stones: its arrays and their values per stone (empty for the plane's models)
+struct OutOfPlane {
+  const char* key;
+  std::vector<double> DEMState::*state;
+  std::vector<double> DEMSystem::*live;
+  std::size_t per;
+};
+const OutOfPlane kOutOfPlane[] = {
+    {"stone_y", &DEMState::stone_y, &DEMSystem::stone_y, 1},
+    {"stone_vel_y", &DEMState::stone_vel_y, &DEMSystem::stone_vel_y, 1},
+    {"stone_force_y", &DEMState::stone_force_y, &DEMSystem::stone_force_y, 1},
+    {"stone_acc_y", &DEMState::stone_acc_y, &DEMSystem::stone_acc_y, 1},
+    {"stone_quat", &DEMState::stone_quat, &DEMSystem::stone_quat, 4},
+    {"stone_omega_3d", &DEMState::stone_omega_3d, &DEMSystem::stone_omega_3d, 3},
+    {"stone_torque_3d", &DEMState::stone_torque_3d, &DEMSystem::stone_torque_3d, 3},
+};
+
 // op(field) for every per-stone array, of either element type
 template <class Op>
 void each_disc_field(Op&& op) {
@@ -82,6 +99,7 @@ void DEMSystem::export_state(DEMState& s) const {
   s.nwall_contact = nwall_contact_;
   s.forces_valid = forces_valid_;
   s.model = model_->name();
+  for (const auto& f : kOutOfPlane) s.*f.state = this->*f.live;
   s.clear_model_part();
   model_->export_state(*this, s);
 }
@@ -90,6 +108,8 @@ void DEMState::clear_model_part() {
   poly_vertex.clear(), poly_offset.clear();
   poly_contact_i.clear(), poly_contact_j.clear(), poly_contact_id.clear(), poly_contact_xi.clear();
   poly_wall_id.clear(), poly_wall_xi.clear();
+  sphere_contact_i.clear(), sphere_contact_j.clear(), sphere_contact_spring.clear(), sphere_contact_rolling.clear();
+  sphere_wall_spring.clear(), sphere_wall_rolling.clear();
 }
 
 void DEMSystem::check_state(const DEMState& s) const {
@@ -109,6 +129,8 @@ void DEMSystem::check_state(const DEMState& s) const {
   }
   require_size("wall_xi", s.wall_xi, nw);
   require_size("wall_mr", s.wall_mr, nw);
+  const bool three_d = (s.model == model_->name() ? model_->dimensions() : make_stone_model(s.model)->dimensions()) == 3;
+  for (const auto& f : kOutOfPlane) require_size(f.key, s.*f.state, three_d ? f.per * n : 0);
   if (s.model == model_->name()) model_->check_state(*this, s);
   else make_stone_model(s.model)->check_state(*this, s);
 }
@@ -128,6 +150,9 @@ void DEMSystem::import_state(const DEMState& s) {
     poly_vertex.clear();
     poly_offset.clear();
   }
+  three_d_ = model_->dimensions() == 3;
+  for (const auto& f : kOutOfPlane) state::copy_into(this->*f.live, s.*f.state);
+  inertia_3d_.assign(three_d_ ? 3 * n : 0, std::numeric_limits<double>::infinity());
   model_->import_state(*this, s);
   time_ = s.time;
   steps_ = s.steps;
@@ -154,6 +179,8 @@ std::map<std::string, std::vector<double>> dem_state_to_map(DEMState t) {
   s["contact_mr"] = std::move(t.contact_mr);
   s["wall_xi"] = std::move(t.wall_xi);
   s["wall_mr"] = std::move(t.wall_mr);
+  for (const auto& f : kOutOfPlane)
+    if (!(t.*f.state).empty()) s[f.key] = std::move(t.*f.state);
   s["scalars"] = {t.time,
                   static_cast<double>(t.steps),
                   static_cast<double>(t.removed),
@@ -188,7 +215,10 @@ DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& ch
   else t.wall_mr.assign(nw, 0.0);
   // the model whose own key the checkpoint holds, and its part
   t.model = stone_model_of_checkpoint([&](const std::string& key) { return s.count(key) > 0; });
-  make_stone_model(t.model)->state_from_map(s, n, nwalls, t);
+  const auto model = make_stone_model(t.model);
+  for (const auto& f : kOutOfPlane)
+    if (model->dimensions() == 3) t.*f.state = entry(s, f.key, f.per * n);
+  model->state_from_map(s, n, nwalls, t);
   const auto& sc = entry(s, "scalars", 9);
   t.time = sc[0];
   t.steps = static_cast<long long>(sc[1]);

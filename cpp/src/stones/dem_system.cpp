@@ -86,6 +86,8 @@ void DEMSystem::resize(int n) {
   stone_sleep_timer.assign(un, 0.0);
   // back to the default model: a model with shapes is made again (set_polygons(), set_model())
   model_ = make_stone_model(kDefaultStoneModel);
+  three_d_ = false;
+  size_out_of_plane(0);
   poly_vertex.clear();
   poly_offset.clear();
   pairs_.clear();
@@ -137,6 +139,10 @@ void DEMParams::validate() const {
     if (!(domain_max[c] > domain_min[c]))
       require_in_open_closed(c == 0 ? "domain_max[0]" : "domain_max[1]", domain_max[c], domain_min[c], INFINITY);
   }
+  require_finite("width", width);
+  require_non_negative("width", width);
+  require_non_negative("side_wall_friction", side_wall_friction);
+  require_finite("side_wall_friction", side_wall_friction);
   for (const DEMWall& w : walls) {
     require_finite("wall point", w.point[0]);
     require_finite("wall point", w.point[1]);
@@ -158,6 +164,8 @@ void DEMSystem::set_model(std::unique_ptr<StoneModel> model) {
   if (!model) throw std::invalid_argument("set_model: no model");
   model->check_params(params_);
   model_ = std::move(model);
+  three_d_ = model_->dimensions() == 3;
+  size_out_of_plane(0);
   poly_vertex.clear();
   poly_offset.clear();
   std::fill(wall_xi_.begin(), wall_xi_.end(), 0.0);
@@ -188,6 +196,7 @@ void DEMSystem::check_stones() const {
     require_finite("stone_drag_vel", stone_drag_vel[2 * i]);
     require_finite("stone_drag_vel", stone_drag_vel[2 * i + 1]);
   }
+  if (three_d_) check_out_of_plane();
 }
 
 // derived masses (eqs. 8-9): M + M', buoyant weight, inertia; fixed or inactive stones get 1/M = 0
@@ -206,7 +215,8 @@ void DEMSystem::update_stone_properties(int i) {
   const DEMParams& p = params_;
   const bool mobile = stone_active[i] && !stone_fixed[i];
   const double inertia = model_->inertia(*this, i, m);
-  inv_inertia_[i] = mobile && (p.flags & kDEMRotation) ? 1.0 / inertia : 0.0;
+  // 3D stones turn by their principal moments (inertia_3d_), not by the plane's angle
+  inv_inertia_[i] = mobile && (p.flags & kDEMRotation) && !three_d_ ? 1.0 / inertia : 0.0;
 }
 
 // the parts that follow the wet fraction (eqs. 8-9): M + M', buoyant weight, 1/(M + M'); returns the
@@ -243,7 +253,9 @@ void DEMSystem::change_wet_fraction(int i, double w) {
     const double c = p.water_density() * p.added_mass_coefficient * v_i;
     const double m_old = m + c * w_old, r = m_old / (m + c * w);
     double* v = &stone_vel[2 * i];
-    dissipated_ += 0.5 * m_old * (1.0 - r) * (v[0] * v[0] + v[1] * v[1]);
+    double v2 = v[0] * v[0] + v[1] * v[1];
+    if (three_d_) v2 += stone_vel_y[i] * stone_vel_y[i], stone_vel_y[i] *= r;
+    dissipated_ += 0.5 * m_old * (1.0 - r) * v2;
     v[0] *= r;
     v[1] *= r;
   }
@@ -303,6 +315,7 @@ void DEMSystem::prepare() {
   if (!(p.flags & kDEMSleeping)) std::fill(stone_asleep.begin(), stone_asleep.end(), 0);
   update_properties();
   update_rolling_inertia();
+  if (three_d_) update_inertia_3d();
   // radii, activity or fixing may have been changed through the views: the list is rebuilt; else only
   // the pairs' reduced masses are refreshed (wet fractions may have changed)
   if (cached_radius_ != stone_radius || cached_active_ != stone_active || cached_fixed_ != stone_fixed) {
@@ -379,7 +392,7 @@ void DEMSystem::evaluate_forces(double dt, bool body, StageLaps& laps) {
   dissipated_ += c.dissipated;
   ncontact_ = c.count;
   laps.lap(kStageContacts);
-  if (!params_.walls.empty()) {
+  if (!params_.walls.empty() || three_d_) {  // 3D stones have their side walls
     const ContactTally w = model_->wall_forces(*this, dt);
     elastic_ += w.elastic;
     dissipated_ += w.dissipated;
@@ -404,6 +417,7 @@ void DEMSystem::substep(double dt, StageLaps& laps) {
       stone_acc[2 * i + 1] = stone_force[2 * i + 1] * inv_mass_[i];
       stone_alpha[i] = stone_torque[i] * inv_inertia_[i];
     }
+    if (three_d_) out_of_plane_accelerations();
     forces_valid_ = true;
   }
   // one pass: kick, drift, body forces, escape and neighbour-list checks
@@ -482,6 +496,7 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
     }
   }
   work_external_ += work * dt;
+  if (three_d_) out_of_plane_first_half(dt);
   return out;
 }
 
@@ -512,6 +527,7 @@ void DEMSystem::integrate_second_half(double dt) {
     if (!std::isfinite(v[0] + v[1] + stone_omega[i] + stone_pos[2 * i] + stone_pos[2 * i + 1]))
       fail("integrate", i, time_, "non-finite position or velocity");
   }
+  if (three_d_) out_of_plane_second_half(dt);
 }
 
 void DEMSystem::remove_escaped() {
@@ -529,6 +545,7 @@ void DEMSystem::remove_escaped() {
     stone_acc[2 * i] = stone_acc[2 * i + 1] = 0.0;
     stone_alpha[i] = 0.0;
     stone_force[2 * i] = stone_force[2 * i + 1] = 0.0;
+    if (three_d_) out_of_plane_removed(i);
     for (std::size_t w = 0; w < p.walls.size(); ++w) {
       wall_xi_[i * p.walls.size() + w] = 0.0;
       wall_mr_[i * p.walls.size() + w] = 0.0;
@@ -562,6 +579,7 @@ void DEMSystem::body_forces(double dt) {
       work_external_ += (fx * v[0] + fz * v[1]) * dt;
     }
   }
+  if (three_d_) out_of_plane_body_forces(dt);
 }
 
 // Box2D-like sleeping: slow for sleep_time -> frozen; woken when its net force would accelerate it
@@ -575,7 +593,9 @@ void DEMSystem::sleep_update(double dt) {
     const double r = stone_radius[i];
     if (stone_asleep[i]) {
       const double ar = stone_alpha[i] * r;
-      if (a[0] * a[0] + a[1] * a[1] + ar * ar > a2) {
+      double acc2 = a[0] * a[0] + a[1] * a[1] + ar * ar;
+      if (three_d_) acc2 += stone_acc_y[i] * stone_acc_y[i];
+      if (acc2 > a2) {
         stone_asleep[i] = 0;
         stone_sleep_timer[i] = 0.0;
       }
@@ -583,11 +603,14 @@ void DEMSystem::sleep_update(double dt) {
     }
     double* v = &stone_vel[2 * i];
     const double wr = stone_omega[i] * r;
-    if (v[0] * v[0] + v[1] * v[1] < v2 && wr * wr < v2) {
+    double speed2 = v[0] * v[0] + v[1] * v[1], spin2 = wr * wr;
+    if (three_d_) speed2 += stone_vel_y[i] * stone_vel_y[i], spin2 += out_of_plane_speed2(i);
+    if (speed2 < v2 && spin2 < v2) {
       stone_sleep_timer[i] += dt;
       if (stone_sleep_timer[i] >= p.sleep_time) {
         dissipated_ += 0.5 * mass_eff_[i] * (v[0] * v[0] + v[1] * v[1]) +
                        (inv_inertia_[i] > 0.0 ? 0.5 * stone_omega[i] * stone_omega[i] / inv_inertia_[i] : 0.0);
+        if (three_d_) out_of_plane_sleep(i);
         stone_asleep[i] = 1;
         v[0] = v[1] = 0.0;
         stone_omega[i] = 0.0;
@@ -614,6 +637,7 @@ DEMEnergy DEMSystem::energy() const {
     const double inertia = model_->inertia(*this, i, m);
     const double* u = &stone_vel[2 * i];
     e.kinetic += 0.5 * me * (u[0] * u[0] + u[1] * u[1]) + 0.5 * inertia * stone_omega[i] * stone_omega[i];
+    if (three_d_) e.kinetic += out_of_plane_kinetic(i, me);
     if (grav) e.potential -= mw * (p.medium.gravity[0] * stone_pos[2 * i] + p.medium.gravity[1] * stone_pos[2 * i + 1]);
   }
   e.elastic = elastic_;

@@ -23,8 +23,8 @@ void require(bool ok, const char* name, const char* range, double value) {
 
 void check_sphere(const SphereOfBody& s, const char* who) {
   require(std::isfinite(s.radius) && s.radius > 0.0, who, "a radius finite and > 0 [m]", s.radius);
-  require(std::isfinite(s.mass) && s.mass > 0.0, who, "a mass finite and > 0 [kg]", s.mass);
-  require(std::isfinite(s.inertia) && s.inertia >= 0.0, who, "an inertia finite and >= 0 [kg m^2]", s.inertia);
+  require(s.mass > 0.0, who, "a mass > 0 [kg] (+inf: a fixed body)", s.mass);
+  require(s.inertia >= 0.0, who, "an inertia >= 0 [kg m^2] (+inf: a body that does not turn)", s.inertia);
 }
 
 // turns a history vector onto the tangent plane of n, keeping its length (LAMMPS pair granular)
@@ -144,6 +144,11 @@ SphereContactLoads sphere_sphere_contact(const SphereOfBody& i, const SphereOfBo
   check_sphere(i, "sphere i");
   check_sphere(j, "sphere j");
   check_dt(dt);
+  return sphere_sphere_contact_unchecked(i, j, h, law, dt);
+}
+
+SphereContactLoads sphere_sphere_contact_unchecked(const SphereOfBody& i, const SphereOfBody& j,
+                                                   SphereContactHistory& h, const SphereContactLaw& law, double dt) {
   const Vec3 d = j.centre - i.centre;
   const double dist = d.norm();
   const double delta = i.radius + j.radius - dist;
@@ -158,7 +163,7 @@ SphereContactLoads sphere_sphere_contact(const SphereOfBody& i, const SphereOfBo
   const Vec3 arm_i = g.point - i.com, arm_j = g.point - j.com;
   g.v_rel = (i.vel + i.omega.cross(arm_i)) - (j.vel + j.omega.cross(arm_j));
   g.w_rel = i.omega - j.omega;
-  g.m_reduced = i.mass * j.mass / (i.mass + j.mass);
+  g.m_reduced = 1.0 / (1.0 / i.mass + 1.0 / j.mass);  // a fixed body's mass is +inf
   g.r_eff = i.radius * j.radius / (i.radius + j.radius);
   const double inv_i = 1.0 / (i.inertia + i.mass * i.radius * i.radius);
   const double inv_j = 1.0 / (j.inertia + j.mass * j.radius * j.radius);
@@ -179,6 +184,11 @@ SphereContactLoads sphere_plane_contact(const SphereOfBody& i, const ContactPlan
           plane.friction);
   require(std::isfinite(plane.rolling_friction) && plane.rolling_friction >= 0.0, "plane.rolling_friction",
           "finite and >= 0 [-]", plane.rolling_friction);
+  return sphere_plane_contact_unchecked(i, plane, h, law, dt);
+}
+
+SphereContactLoads sphere_plane_contact_unchecked(const SphereOfBody& i, const ContactPlane& plane,
+                                                  SphereContactHistory& h, const SphereContactLaw& law, double dt) {
   const double delta = i.radius - (i.centre - plane.point).dot(plane.normal);
   if (!(delta > 0.0)) {
     h = SphereContactHistory();

@@ -9,6 +9,7 @@
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/disc_model.h"
 #include "vofdem/stones/polygon_model.h"
+#include "vofdem/stones/sphere_model.h"
 #include "vofdem/stones/stone_packing.h"
 
 namespace vofdem {
@@ -27,6 +28,7 @@ struct Registry {
     // registered during static initialisation, before such a table would be made)
     models.emplace_back("disc", make_model<DiscModel>);
     models.emplace_back("polygon", make_model<PolygonModel>);
+    models.emplace_back("sphere", make_model<SphereModel>);
   }
 };
 
@@ -90,6 +92,8 @@ std::string stone_model_of_checkpoint(const std::function<bool(const std::string
 std::vector<ContactPair>& StoneModel::pairs(DEMSystem& s) { return s.pairs_; }
 const std::vector<double>& StoneModel::inv_mass(const DEMSystem& s) { return s.inv_mass_; }
 const std::vector<double>& StoneModel::mass_eff(const DEMSystem& s) { return s.mass_eff_; }
+const std::vector<double>& StoneModel::contact_inv_mass(const DEMSystem& s) { return s.contact_inv_mass_; }
+const std::vector<double>& StoneModel::inertia_3d(const DEMSystem& s) { return s.inertia_3d_; }
 std::vector<double>& StoneModel::wall_spring(DEMSystem& s) { return s.wall_xi_; }
 std::vector<double>& StoneModel::wall_rolling_spring(DEMSystem& s) { return s.wall_mr_; }
 std::vector<PointSprings>& StoneModel::wall_point_springs(DEMSystem& s) { return s.wall_points_; }

@@ -16,8 +16,8 @@
 // is held), plus a linear drag c_i (U_i - v_i) in the stone's own velocity (stone_drag_coef c_i, stone_drag_vel
 // U_i: the coupler's drag linearised at the last exchange), evaluated at every substep.
 //
-// Stone shape: a stone model (stone_model.h), registered by name: discs (disc_model.h, the default) or
-// convex polygons (polygon_model.h, set_polygons()). The model gives V_i, I_i and the areas, the contact
+// Stone shape: a stone model (stone_model.h), registered by name: discs (disc_model.h, the default),
+// convex polygons (polygon_model.h, set_polygons()) or 3D spheres across the flume (sphere_model.h). The model gives V_i, I_i and the areas, the contact
 // forces with their histories and their stable step; DEMSystem never asks which model it holds. For
 // polygons stone_radius is the bounding radius (neighbour search), stone_angle the orientation of the
 // body-frame vertices poly_vertex.
@@ -29,6 +29,12 @@
 // wet fraction that follows a water level changes M' within a step: k follows it at once (the momentum
 // kept as above), so the kicks after the change integrate the drag with the mass the stone has.
 // Walls are half-planes (the flume bed, its end walls); fixed stones are discs that never move.
+// 3D stones (a model of dimensions() == 3) keep the plane's arrays for x and z (what the 2D flow sees and
+// acts on) and add the out-of-plane state: y across the flume of width `width` between two side walls,
+// its velocity and force, and the rotation as a unit quaternion with a world angular velocity, advanced
+// by the same kick-drift-kick with rotation_step's splitting (quaternion.h) in place of the angle; their
+// in-plane angle arrays stay zero. Gravity and the flow's forces lie in the plane; the linear drag pulls
+// v_y towards 0 (the width-averaged flow has no velocity across the flume).
 // Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept sorted by (i, j) so
 // that contact histories and force sums are evaluated in one fixed order: runs are bit-for-bit
 // reproducible, and export_state()/import_state() restart them bit-for-bit.
@@ -100,6 +106,10 @@ struct DEMParams {
   double sleep_time = 0.2;                    // ... held for this long [s]
   double wake_acceleration = 0.2;             // a sleeping stone wakes when its net force gives more [m/s^2]
   std::vector<DEMWall> walls;                 // half-plane walls (bed, end walls)
+  // 3D stones only (models of dimensions() == 3): the flume's width between its side walls y = 0 and
+  // y = width, and the stone-side wall friction (the paper's glass: 0.176)
+  double width = 0.0;                         // [m], > 0 for 3D stones (then larger than every stone)
+  double side_wall_friction = 0.176;          // Coulomb coefficient stone-side wall [-], >= 0
   unsigned flags = kDEMAllEffects;            // DEMFlag bits
 
   // adds the flume: bed z = z_bed and end walls x = x_min, x_max [m], all with stone-wall friction mu
@@ -141,6 +151,13 @@ struct DEMState {
   std::vector<double> poly_vertex;
   std::vector<int> poly_offset, poly_contact_i, poly_contact_j, poly_contact_id, poly_wall_id;
   std::vector<double> poly_contact_xi, poly_wall_xi;
+  // the out-of-plane state of 3D stones (empty for the plane's models) and the sphere model's histories:
+  // per listed pair (i, j) and per (stone, wall) (the walls, then the side walls y = 0 and y = width), the
+  // tangential spring and the rolling spring moment (x, y, z each)
+  std::vector<double> stone_y, stone_vel_y, stone_force_y, stone_acc_y, stone_quat, stone_omega_3d,
+      stone_torque_3d;
+  std::vector<int> sphere_contact_i, sphere_contact_j;
+  std::vector<double> sphere_contact_spring, sphere_contact_rolling, sphere_wall_spring, sphere_wall_rolling;
   double time = 0.0;  // [s]
   long long steps = 0;
   int removed = 0, ncontact = 0, nwall_contact = 0;
@@ -281,6 +298,15 @@ class DEMSystem {
   // pairs, CCW) [m] and the index of each stone's first vertex, n + 1 (set_polygons)
   std::vector<double> poly_vertex;
   std::vector<int> poly_offset;
+  // ---- the out-of-plane state of 3D stones (sized n for a model of dimensions() == 3, else empty) ----
+  std::vector<double> stone_y;          // centre across the flume, in [radius, width - radius] [m], n
+  std::vector<double> stone_vel_y;      // velocity across the flume [m/s], n
+  std::vector<double> stone_force_y;    // total force across the flume of the last evaluation [N], n
+  std::vector<double> stone_acc_y;      // acceleration across the flume of the last evaluation [m/s^2], n
+  std::vector<double> stone_quat;       // orientation: unit quaternion (w, x, y, z), body -> world, 4n
+  std::vector<double> stone_omega_3d;   // angular velocity, world frame (x, y, z) [rad/s], 3n
+  std::vector<double> stone_torque_3d;  // total torque about the centre, last evaluation (world) [N m], 3n
+  bool three_d() const { return three_d_; }
 
  private:
   friend class StoneModel;  // the models' loops reach the arrays below through StoneModel's accessors
@@ -330,6 +356,19 @@ class DEMSystem {
   RollingEnergy rolling_contact(Pair& c, double fn, double dt);
   RollingEnergy rolling_wall(int i, double& mr, double fn, double dt);
   void sleep_update(double dt);
+  // the out-of-plane state (dem_out_of_plane.cpp): sized and checked with the model, kicked, drifted,
+  // loaded and accounted as the plane's part is
+  void size_out_of_plane(std::size_t old_n);
+  void check_out_of_plane() const;
+  void update_inertia_3d();
+  void out_of_plane_body_forces(double dt);
+  void out_of_plane_first_half(double dt);
+  void out_of_plane_second_half(double dt);
+  void out_of_plane_accelerations();
+  void out_of_plane_removed(int i);
+  double out_of_plane_speed2(int i) const;
+  void out_of_plane_sleep(int i);
+  double out_of_plane_kinetic(int i, double mass_eff) const;
   double reduced_stiffness_mass() const;
   DEMParams params_;
   std::unique_ptr<StoneModel> model_;  // the stones' shape (stone_model.h)
@@ -354,6 +393,9 @@ class DEMSystem {
   std::vector<double> wall_roll_c_;       // 2 r sqrt(I + (M + M') r^2) per stone: roll_c of its wall contacts
   double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off
   std::vector<double> contact_inv_mass_;  // inv_mass_ at the step's start: the contacts' dashpot masses
+  bool three_d_ = false;                  // the model's dimensions() == 3
+  std::vector<double> inertia_3d_;        // 3D stones' principal moments, 3n [kg m^2]; +inf: does not turn
+  std::vector<int> carried_;              // the former index of each new pair (models with own pair histories)
 
   // neighbour list and contact histories
   std::vector<Pair> pairs_;

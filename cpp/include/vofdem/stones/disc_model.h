@@ -16,7 +16,7 @@
 
 namespace vofdem {
 
-class DiscModel final : public StoneModel {
+class DiscModel : public StoneModel {
  public:
   const char* name() const override { return "disc"; }
   double volume(const DEMSystem& s, int i) const override;

@@ -55,9 +55,10 @@ struct SphereOfBody {
   Eigen::Vector3d com = Eigen::Vector3d::Zero();     // the body's centre of mass [m]
   Eigen::Vector3d vel = Eigen::Vector3d::Zero();     // velocity of the centre of mass [m/s]
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();   // angular velocity [rad/s]
-  double mass = 0.0;                                 // the body's mass [kg], > 0 (damping's m*)
+  double mass = 0.0;                                 // the body's mass [kg], > 0 (damping's m*); +inf: fixed
   double inertia = 0.0;                              // moment of inertia about the centre of mass for the
-                                                     // rolling damper's I_r [kg m^2] (sphere: 2/5 m r^2)
+                                                     // rolling damper's I_r [kg m^2] (sphere: 2/5 m r^2);
+                                                     // +inf: a body that does not turn
 };
 
 // a fixed plane: the bed or a side wall, with its own friction coefficients
@@ -95,9 +96,17 @@ struct SphereContactLoads {
 SphereContactLoads sphere_sphere_contact(const SphereOfBody& i, const SphereOfBody& j, SphereContactHistory& h,
                                          const SphereContactLaw& law, double dt);
 
+// the same without the checks, for the stone models' loops (DEMSystem has checked their inputs)
+SphereContactLoads sphere_sphere_contact_unchecked(const SphereOfBody& i, const SphereOfBody& j,
+                                                   SphereContactHistory& h, const SphereContactLaw& law, double dt);
+
 // contact of sphere i with a fixed plane over dt [s] (the plane's friction replaces law.friction and
 // law.rolling_friction); torque_j is zero. Throws as above, and for a normal that is not of unit length.
 SphereContactLoads sphere_plane_contact(const SphereOfBody& i, const ContactPlane& plane, SphereContactHistory& h,
                                         const SphereContactLaw& law, double dt);
+
+// the same without the checks (the models' loops)
+SphereContactLoads sphere_plane_contact_unchecked(const SphereOfBody& i, const ContactPlane& plane,
+                                                  SphereContactHistory& h, const SphereContactLaw& law, double dt);
 
 }  // namespace vofdem

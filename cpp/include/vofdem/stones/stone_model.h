@@ -12,6 +12,8 @@
 //                        (PorosityMapper), and the drag of the flow on it (its diameter and areas)
 //   outline              the point queries of the packing diagnostics (distance, cover, reach)
 //   packing              how the weir's packing generator draws and places its stones
+//   dimensions           2: stones in the flume's plane (x, z and one angle); 3: stones that also move
+//                        across the flume (DEMSystem's out-of-plane state: y, a quaternion, a 3D spin)
 //
 // A model is a class derived from StoneModel in a header/source pair of its own under stones/, and one
 // line in the registry (stone_model.cpp: kBuiltinModels) or a call of register_stone_model() by a program
@@ -21,6 +23,7 @@
 // per stage.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -91,6 +94,14 @@ class StoneModel {
   // seen along the direction (ux, uz) of the flume's plane [m^2] ((0, 0): the mean)
   virtual double projected_area(const DEMSystem& s, int i, double ux, double uz) const = 0;
 
+  // ---- dimensions: 2, or 3 for stones with DEMSystem's out-of-plane state (stone_y, stone_quat,
+  // stone_omega_3d; dem_system.h), whose principal moments of inertia [kg m^2] the model gives
+  virtual int dimensions() const { return 2; }
+  virtual std::array<double, 3> principal_inertia(const DEMSystem& s, int i, double mass) const {
+    const double inertia_i = inertia(s, i, mass);
+    return {inertia_i, inertia_i, inertia_i};
+  }
+
   // ---- contacts: the stable step [s] of the stones' contacts (prepared system), and the force loops,
   // which add forces to stone_force and torques to stone_torque and keep their histories
   virtual double stable_dt(const DEMSystem& s) const = 0;
@@ -104,6 +115,10 @@ class StoneModel {
   virtual void resize(DEMSystem&) {}
   virtual void prepare(DEMSystem&) {}
   virtual void remove_stone(DEMSystem&, int) {}
+  // a model that keeps its own history per listed pair (own_pair_history()) hears of each rebuild of the
+  // neighbour list: new pair k was pair from[k] of the former list (-1: a new pair)
+  virtual bool own_pair_history() const { return false; }
+  virtual void pairs_rebuilt(DEMSystem&, const std::vector<int>& /*from*/) {}
 
   // ---- state: the model's part (typed, reused without allocation once sized), checked before anything
   // is written; and in the checkpoint's map of named arrays. checkpoint_key(): a key only this model's
@@ -145,6 +160,10 @@ class StoneModel {
   static std::vector<ContactPair>& pairs(DEMSystem& s);
   static const std::vector<double>& inv_mass(const DEMSystem& s);
   static const std::vector<double>& mass_eff(const DEMSystem& s);
+  // 1 / (M + M') at the step's start (the contacts' dashpot masses; 0: fixed or inactive)
+  static const std::vector<double>& contact_inv_mass(const DEMSystem& s);
+  // principal moments of inertia of 3D stones, 3n [kg m^2] (infinite: fixed, inactive or not turning)
+  static const std::vector<double>& inertia_3d(const DEMSystem& s);
   static std::vector<double>& wall_spring(DEMSystem& s);          // tangential spring per (stone, wall) [m]
   static std::vector<double>& wall_rolling_spring(DEMSystem& s);  // rolling moment per (stone, wall) [N m]
   static std::vector<PointSprings>& wall_point_springs(DEMSystem& s);  // points' springs per (stone, wall)

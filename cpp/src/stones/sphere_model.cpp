@@ -1,0 +1,241 @@
+// Sphere stones across the flume (sphere_model.h): the contact loops over the plane's neighbour list and
+// the walls, the histories they keep, and their part of the state.
+#include "vofdem/stones/sphere_model.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "common/state_fields.h"
+#include "vofdem/common/check.h"
+#include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/stone_packing.h"
+
+namespace vofdem {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// the law's constants with the effect flags of the system (damping off: e = 1; friction off: mu = k_t = 0)
+SphereContactLaw sphere_law(const DEMSystem& s) {
+  const DEMParams& p = s.params();
+  SphereContactLaw law;
+  law.stiffness_normal = s.stiffness_normal();
+  const bool friction = p.flags & kDEMFriction;
+  law.stiffness_ratio = friction ? p.stiffness_ratio : 0.0;
+  law.friction = friction ? p.friction_stone : 0.0;
+  law.restitution = (p.flags & kDEMDamping) ? p.restitution : 1.0;
+  law.tangential_damping_factor = p.tangential_damping_factor;
+  law.rolling_friction = (p.flags & kDEMRollingResistance) ? p.rolling_friction_stone : 0.0;
+  law.rolling_damping = p.rolling_damping;
+  return law;
+}
+
+// the loads of a contact into the system's arrays: i gets them, j (if >= 0) their opposite
+void apply(DEMSystem& s, int i, int j, const SphereContactLoads& f, ContactTally& t, double dt) {
+  s.stone_force[2 * i] += f.force_i[0];
+  s.stone_force_y[i] += f.force_i[1];
+  s.stone_force[2 * i + 1] += f.force_i[2];
+  for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * i + k] += f.torque_i[k];
+  if (j >= 0) {
+    s.stone_force[2 * j] -= f.force_i[0];
+    s.stone_force_y[j] -= f.force_i[1];
+    s.stone_force[2 * j + 1] -= f.force_i[2];
+    for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * j + k] += f.torque_j[k];
+  }
+  ++t.count;
+  t.elastic += f.energy_spring;
+  t.dissipated += f.power_damp * dt + f.energy_slip;
+}
+
+void push3(std::vector<double>& out, const Eigen::Vector3d& v) { out.insert(out.end(), {v[0], v[1], v[2]}); }
+Eigen::Vector3d at3(const std::vector<double>& v, std::size_t k) { return {v[3 * k], v[3 * k + 1], v[3 * k + 2]}; }
+}  // namespace
+
+void SphereModel::check_params(const DEMParams& p) const {
+  if (!(p.width > 0.0))
+    throw std::invalid_argument("width = " + format_value(p.width) +
+                                " m: 3D stones need the flume's width between its side walls, allowed range (0, inf)");
+}
+
+std::vector<ContactPlane> SphereModel::planes(const DEMParams& p) {
+  std::vector<ContactPlane> out;
+  const double mu_r = (p.flags & kDEMRollingResistance) ? p.rolling_friction_wall : 0.0;
+  const double mu_on = (p.flags & kDEMFriction) ? 1.0 : 0.0;
+  for (const DEMWall& w : p.walls) {
+    const auto [wx, wz] = DEMSystem::wall_unit_normal(w);
+    out.push_back({{w.point[0], 0.0, w.point[1]}, {wx, 0.0, wz}, mu_on * w.friction, mu_r});
+  }
+  out.push_back({{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, mu_on * p.side_wall_friction, mu_r});
+  out.push_back({{0.0, p.width, 0.0}, {0.0, -1.0, 0.0}, mu_on * p.side_wall_friction, mu_r});
+  return out;
+}
+
+void SphereModel::prepare(DEMSystem& s) {
+  const std::size_t size = static_cast<std::size_t>(s.n()) * (s.params().walls.size() + 2);
+  if (wall_history_.size() != size) wall_history_.assign(size, SphereContactHistory());
+}
+
+// stone i as a sphere of its body, with the mass its contacts' dashpots use (+inf: fixed)
+SphereOfBody SphereModel::body(const DEMSystem& s, int i, double mass) const {
+  SphereOfBody b;
+  b.centre = {s.stone_pos[2 * i], s.stone_y[i], s.stone_pos[2 * i + 1]};
+  b.com = b.centre;
+  b.radius = s.stone_radius[i];
+  b.vel = {s.stone_vel[2 * i], s.stone_vel_y[i], s.stone_vel[2 * i + 1]};
+  b.omega = {s.stone_omega_3d[3 * i], s.stone_omega_3d[3 * i + 1], s.stone_omega_3d[3 * i + 2]};
+  b.mass = mass;
+  b.inertia = inertia_3d(s)[3 * i];
+  return b;
+}
+
+ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
+  const SphereContactLaw law = sphere_law(s);
+  std::vector<ContactPair>& list = pairs(s);
+  if (pair_history_.size() != list.size())
+    throw std::logic_error("sphere model: the pair histories do not follow the neighbour list");
+  const std::vector<double>& inv_m = contact_inv_mass(s);
+  const double* pos = s.stone_pos.data();
+  const double* y = s.stone_y.data();
+  const double* radius = s.stone_radius.data();
+  ContactTally t;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const int i = list[k].i, j = list[k].j;
+    const double dx = pos[2 * j] - pos[2 * i], dy = y[j] - y[i], dz = pos[2 * j + 1] - pos[2 * i + 1];
+    const double rs = radius[i] + radius[j];
+    if (dx * dx + dy * dy + dz * dz >= rs * rs) {
+      pair_history_[k] = SphereContactHistory();
+      continue;
+    }
+    const SphereContactLoads f = sphere_sphere_contact_unchecked(body(s, i, 1.0 / inv_m[i]), body(s, j, 1.0 / inv_m[j]),
+                                                                 pair_history_[k], law, dt);
+    apply(s, i, j, f, t, dt);
+  }
+  return t;
+}
+
+ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
+  const std::vector<ContactPlane> plane = planes(s.params());
+  const std::size_t np = plane.size(), nw = s.params().walls.size();
+  const SphereContactLaw law = sphere_law(s);
+  const std::vector<double>& inv_m = inv_mass(s);
+  const std::vector<double>& m_eff = mass_eff(s);
+  const WallCandidates cand = wall_candidates(s);
+  ContactTally t;
+  auto touch = [&](int i, std::size_t w) {
+    SphereContactHistory& h = wall_history_[static_cast<std::size_t>(i) * np + w];
+    const SphereContactLoads f = sphere_plane_contact_unchecked(body(s, i, m_eff[i]), plane[w], h, law, dt);
+    if (f.touching) apply(s, i, -1, f, t, dt);
+  };
+  // the plane's walls: the stones near each (the neighbour build's candidates)
+  for (std::size_t w = 0; w < nw; ++w)
+    for (int c = cand.start[w]; c < cand.start[w + 1]; ++c)
+      if (inv_m[cand.index[c]] > 0.0) touch(cand.index[c], w);
+  // the side walls: every mobile stone within reach
+  for (int i = 0; i < s.n(); ++i) {
+    if (inv_m[i] == 0.0) continue;
+    const double r = s.stone_radius[i];
+    for (std::size_t w = nw; w < np; ++w) {
+      const double gap = (w == nw) ? s.stone_y[i] : s.params().width - s.stone_y[i];
+      if (gap < r || wall_history_[static_cast<std::size_t>(i) * np + w].spring.squaredNorm() > 0.0) touch(i, w);
+    }
+  }
+  return t;
+}
+
+void SphereModel::pairs_rebuilt(DEMSystem& s, const std::vector<int>& from) {
+  std::vector<SphereContactHistory> carried(from.size());
+  for (std::size_t k = 0; k < from.size(); ++k)
+    if (from[k] >= 0 && static_cast<std::size_t>(from[k]) < pair_history_.size()) carried[k] = pair_history_[from[k]];
+  pair_history_.swap(carried);
+  (void)s;
+}
+
+// ---- state: the pairs' histories that are not zero, and every (stone, plane) history
+
+void SphereModel::export_state(const DEMSystem& s, DEMState& t) const {
+  const std::vector<ContactPair>& list = pairs(const_cast<DEMSystem&>(s));
+  for (std::size_t k = 0; k < list.size() && k < pair_history_.size(); ++k) {
+    const SphereContactHistory& h = pair_history_[k];
+    if (h.spring.isZero(0.0) && h.rolling.isZero(0.0)) continue;
+    t.sphere_contact_i.push_back(list[k].i);
+    t.sphere_contact_j.push_back(list[k].j);
+    push3(t.sphere_contact_spring, h.spring);
+    push3(t.sphere_contact_rolling, h.rolling);
+  }
+  const std::size_t size = static_cast<std::size_t>(s.n()) * (s.params().walls.size() + 2);
+  for (std::size_t k = 0; k < size; ++k) {
+    const SphereContactHistory h = k < wall_history_.size() ? wall_history_[k] : SphereContactHistory();
+    push3(t.sphere_wall_spring, h.spring);
+    push3(t.sphere_wall_rolling, h.rolling);
+  }
+}
+
+void SphereModel::check_state(const DEMSystem& s, const DEMState& t) const {
+  check_params(s.params());
+  const std::size_t n = t.stone_radius.size(), np = t.sphere_contact_i.size();
+  const std::size_t nw = n * (s.params().walls.size() + 2);
+  require_size("sphere_contact_j", t.sphere_contact_j, np);
+  require_size("sphere_contact_spring", t.sphere_contact_spring, 3 * np);
+  require_size("sphere_contact_rolling", t.sphere_contact_rolling, 3 * np);
+  require_size("sphere_wall_spring", t.sphere_wall_spring, 3 * nw);
+  require_size("sphere_wall_rolling", t.sphere_wall_rolling, 3 * nw);
+  for (std::size_t k = 0; k < np; ++k) {
+    const int i = t.sphere_contact_i[k], j = t.sphere_contact_j[k];
+    const bool sorted =
+        k == 0 || t.sphere_contact_i[k - 1] < i || (t.sphere_contact_i[k - 1] == i && t.sphere_contact_j[k - 1] < j);
+    if (!(i >= 0 && i < j && j < static_cast<int>(n)) || !sorted)
+      throw std::invalid_argument("import_state: sphere contact pair (" + std::to_string(i) + ", " + std::to_string(j) +
+                                  ") is outside 0 <= i < j < n or not sorted by (i, j)");
+  }
+}
+
+// after check_state: the listed pairs are those with a history (the next build carries them over)
+void SphereModel::import_state(DEMSystem& s, const DEMState& t) {
+  std::vector<ContactPair>& list = pairs(s);
+  list.clear();
+  pair_history_.clear();
+  for (std::size_t k = 0; k < t.sphere_contact_i.size(); ++k) {
+    list.push_back({t.sphere_contact_i[k], t.sphere_contact_j[k], 0.0, 0.0});
+    pair_history_.push_back({at3(t.sphere_contact_spring, k), at3(t.sphere_contact_rolling, k)});
+  }
+  wall_history_.resize(t.sphere_wall_spring.size() / 3);
+  for (std::size_t k = 0; k < wall_history_.size(); ++k)
+    wall_history_[k] = {at3(t.sphere_wall_spring, k), at3(t.sphere_wall_rolling, k)};
+}
+
+void SphereModel::state_to_map(DEMState& t, StateMap& m) const {
+  using state::to_double;
+  m["sphere_contact_i"] = to_double(t.sphere_contact_i);
+  m["sphere_contact_j"] = to_double(t.sphere_contact_j);
+  m["sphere_contact_spring"] = std::move(t.sphere_contact_spring);
+  m["sphere_contact_rolling"] = std::move(t.sphere_contact_rolling);
+  m["sphere_wall_spring"] = std::move(t.sphere_wall_spring);
+  m["sphere_wall_rolling"] = std::move(t.sphere_wall_rolling);
+}
+
+void SphereModel::state_from_map(const StateMap& m, std::size_t n, std::size_t nwalls, DEMState& t) const {
+  using state::entry;
+  using state::from_double;
+  const std::size_t nw = n * (nwalls + 2);
+  const auto& ci = entry(m, "sphere_contact_i", state::kAnySize);
+  from_double(t.sphere_contact_i, ci);
+  from_double(t.sphere_contact_j, entry(m, "sphere_contact_j", ci.size()));
+  t.sphere_contact_spring = entry(m, "sphere_contact_spring", 3 * ci.size());
+  t.sphere_contact_rolling = entry(m, "sphere_contact_rolling", 3 * ci.size());
+  t.sphere_wall_spring = entry(m, "sphere_wall_spring", 3 * nw);
+  t.sphere_wall_rolling = entry(m, "sphere_wall_rolling", 3 * nw);
+}
+
+// ---- what the 3D stones cannot do yet
+
+void SphereModel::map_footprint(const DEMSystem&, PorosityMapper&, const double*, const double*) const {
+  throw std::invalid_argument(
+      "stones.shape = 'sphere': 3D stones are not coupled to the flow yet (their footprint, the stones' volume in "
+      "each cell's slab across the width, is the next step); allowed with a Coupler: 'disc', 'polygon'");
+}
+
+std::unique_ptr<StonePacking> SphereModel::packing(const WeirSpec&) const { return nullptr; }
+
+}  // namespace vofdem

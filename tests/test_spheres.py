@@ -1,0 +1,75 @@
+"""3D sphere stones across the flume from Python (sphere_model.h): the out-of-plane state as zero-copy views, a
+settling that stays between the side walls, checkpoint and restart bit for bit, and the refusals of what they
+cannot do yet (a Coupler, a scene)."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vofdem
+from vofdem import _core
+
+
+def heap(n=12, width=0.1, seed=0):
+    """n spheres of 4.8 cm dropped in a 0.25 m long flume of the given width [m], the model set."""
+    p = vofdem.DEMParams()
+    p.add_flume(0.0, 0.25, 0.0, 0.3)
+    p.width = width
+    p.stiffness_normal = 1e5
+    p.restitution = 0.3
+    g = np.random.default_rng(seed)
+    pos = np.array([[0.03 + 0.05 * (k % 4) + 0.004 * g.random(), 0.03 + 0.05 * (k // 4)] for k in range(n)])
+    s = vofdem.DEMSystem(p, pos=pos, radius=np.full(n, 0.024))
+    s.set_model("sphere")
+    s.stone_y[:] = 0.025 + (width - 0.05) * g.random(n)
+    return s
+
+
+def test_the_out_of_plane_state_is_seen_in_place():
+    s = heap()
+    assert s.shape == "sphere"
+    assert s.stone_y.shape == (12,) and s.stone_quat.shape == (12, 4) and s.stone_omega_3d.shape == (12, 3)
+    np.testing.assert_array_equal(s.stone_quat[:, 0], 1.0)  # unturned
+    y = s.stone_y
+    y[0] = 0.05
+    s.stone_vel_y[0] = 0.1
+    s.advance(1e-3)
+    assert y[0] > 0.05  # the view is the C++ array: it moved with the stone
+    # the plane's models have none
+    assert vofdem.DEMSystem(vofdem.DEMParams(), 2).stone_y.shape == (0,)
+
+
+def test_a_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
+    s = heap()
+    s.advance(0.2)
+    checkpoint = s.export_state()
+    assert "stone_quat" in checkpoint and "sphere_wall_spring" in checkpoint
+    s.advance(0.2)
+    r = heap()
+    r.import_state(checkpoint)
+    r.advance(0.2)
+    for key, value in s.export_state().items():
+        np.testing.assert_array_equal(r.export_state()[key], value, err_msg=key)
+    # every stone stays between the walls, on or above the bed, and some turned about x or z
+    radius = np.asarray(s.stone_radius)
+    assert np.all(s.stone_y >= radius * 0.95) and np.all(s.stone_y <= 0.1 - radius * 0.95)
+    assert np.all(s.stone_pos[:, 1] >= radius * 0.95)
+    assert np.abs(s.stone_quat[:, [1, 3]]).max() > 1e-3
+    assert s.wall_contact_count > 0
+
+
+def test_what_spheres_cannot_do_yet_is_refused_with_the_key_named():
+    p = vofdem.DEMParams()
+    s = vofdem.DEMSystem(p, pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
+    with pytest.raises(ValueError, match="width"):
+        s.set_model("sphere")
+    assert s.shape == "disc"
+    stones = heap(n=2)
+    grid = vofdem.Grid2D.uniform(10, 20, 0.25, 0.3)
+    fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    sim = _core.Coupler(fluid, stones, _core.CouplerParams())
+    with pytest.raises(ValueError, match="stones.shape = 'sphere'.*not coupled"):
+        sim.advance(0.01)
+    scene = vofdem.load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008.toml")
+    with pytest.raises(ValueError, match="stones.shape = 'sphere' is not allowed in a scene yet"):
+        vofdem.Scene.from_dict({**scene.to_dict(), "stones": {**scene.to_dict()["stones"], "shape": "sphere"}})
