@@ -40,6 +40,17 @@ inline const StateMap& with_stone_keys(const StateMap& s, const std::string& pre
   return renamed;
 }
 
+// the contact pairs of a checkpoint (i[k], j[k]) of n stones: 0 <= i < j < n and sorted by (i, j); else
+// std::invalid_argument naming `what` ("contact", "polygon contact", ...)
+inline void check_sorted_pairs(const char* what, const std::vector<int>& i, const std::vector<int>& j, std::size_t n) {
+  for (std::size_t k = 0; k < i.size(); ++k) {
+    const bool sorted = k == 0 || i[k - 1] < i[k] || (i[k - 1] == i[k] && j[k - 1] < j[k]);
+    if (!(i[k] >= 0 && i[k] < j[k] && j[k] < static_cast<int>(n)) || !sorted)
+      throw std::invalid_argument("import_state: " + std::string(what) + " pair (" + std::to_string(i[k]) + ", " +
+                                  std::to_string(j[k]) + ") is outside 0 <= i < j < n or not sorted by (i, j)");
+  }
+}
+
 // same size: written in place, so the numpy views of dst stay valid; another size reallocates
 template <class T>
 void copy_into(std::vector<T>& dst, const std::vector<T>& src) {

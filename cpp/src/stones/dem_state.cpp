@@ -119,14 +119,7 @@ void DEMSystem::check_state(const DEMState& s) const {
   require_size("contact_j", s.contact_j, nc);
   require_size("contact_xi", s.contact_xi, nc);
   require_size("contact_mr", s.contact_mr, nc);
-  for (std::size_t k = 0; k < nc; ++k) {
-    const int i = s.contact_i[k], j = s.contact_j[k];
-    if (!(i >= 0 && i < j && j < static_cast<int>(n)))
-      throw std::invalid_argument("import_state: contact pair (" + std::to_string(i) + ", " + std::to_string(j) +
-                                  ") is outside 0 <= i < j < n");
-    if (k > 0 && !(s.contact_i[k - 1] < i || (s.contact_i[k - 1] == i && s.contact_j[k - 1] < j)))
-      throw std::invalid_argument("import_state: contact pairs are not sorted by (i, j)");
-  }
+  state::check_sorted_pairs("contact", s.contact_i, s.contact_j, n);
   require_size("wall_xi", s.wall_xi, nw);
   require_size("wall_mr", s.wall_mr, nw);
   const bool three_d = (s.model == model_->name() ? model_->dimensions() : make_stone_model(s.model)->dimensions()) == 3;

@@ -515,13 +515,7 @@ void PolygonModel::check_state(const DEMSystem& s, const DEMState& t) const {
   require_size("poly_contact_xi", t.poly_contact_xi, 2 * np);
   require_size("poly_wall_id", t.poly_wall_id, 2 * nw);
   require_size("poly_wall_xi", t.poly_wall_xi, 2 * nw);
-  for (std::size_t k = 0; k < np; ++k) {
-    const int i = t.poly_contact_i[k], j = t.poly_contact_j[k];
-    const bool sorted = k == 0 || t.poly_contact_i[k - 1] < i || (t.poly_contact_i[k - 1] == i && t.poly_contact_j[k - 1] < j);
-    if (!(i >= 0 && i < j && j < static_cast<int>(n)) || !sorted)
-      throw std::invalid_argument("import_state: polygon contact pair (" + std::to_string(i) + ", " +
-                                  std::to_string(j) + ") is outside 0 <= i < j < n or not sorted by (i, j)");
-  }
+  state::check_sorted_pairs("polygon contact", t.poly_contact_i, t.poly_contact_j, n);
 }
 
 // after check_state (the pair list is made anew)

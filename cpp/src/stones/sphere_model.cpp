@@ -181,14 +181,7 @@ void SphereModel::check_state(const DEMSystem& s, const DEMState& t) const {
   require_size("sphere_contact_rolling", t.sphere_contact_rolling, 3 * np);
   require_size("sphere_wall_spring", t.sphere_wall_spring, 3 * nw);
   require_size("sphere_wall_rolling", t.sphere_wall_rolling, 3 * nw);
-  for (std::size_t k = 0; k < np; ++k) {
-    const int i = t.sphere_contact_i[k], j = t.sphere_contact_j[k];
-    const bool sorted =
-        k == 0 || t.sphere_contact_i[k - 1] < i || (t.sphere_contact_i[k - 1] == i && t.sphere_contact_j[k - 1] < j);
-    if (!(i >= 0 && i < j && j < static_cast<int>(n)) || !sorted)
-      throw std::invalid_argument("import_state: sphere contact pair (" + std::to_string(i) + ", " + std::to_string(j) +
-                                  ") is outside 0 <= i < j < n or not sorted by (i, j)");
-  }
+  state::check_sorted_pairs("sphere contact", t.sphere_contact_i, t.sphere_contact_j, n);
 }
 
 // after check_state: the listed pairs are those with a history (the next build carries them over)
