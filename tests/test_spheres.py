@@ -1,6 +1,6 @@
 """3D sphere stones across the flume from Python (sphere_model.h): the out-of-plane state as zero-copy views, a
-settling that stays between the side walls, checkpoint and restart bit for bit, and the refusals of what they
-cannot do yet (a Coupler, a scene)."""
+settling that stays between the side walls, checkpoint and restart bit for bit, a coupled run that keeps the
+water, and the refusals (a packing porosity inside 3D stones, a scene, which cannot pack them yet)."""
 from pathlib import Path
 
 import numpy as np
@@ -58,17 +58,43 @@ def test_a_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
     assert s.wall_contact_count > 0
 
 
+def test_spheres_under_the_flow_keep_the_water():
+    stones = heap(n=4)
+    grid = vofdem.Grid2D.uniform(25, 30, 0.25, 0.3)
+    fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    fluid.fill_water_below(0.28)
+    fluid.set_hydrostatic_pressure()
+    cp = _core.CouplerParams()
+    cp.n_exp = 0.0
+    stones.set_params(_wet(stones.params))
+    sim = _core.Coupler(fluid, stones, cp)
+    sim.update_porosity(True)
+    v0 = sim.water_volume
+    volume = sum(stones.volume(i) for i in range(stones.n))
+    solid = float(np.sum(1.0 - np.asarray(fluid.cell_porosity))) * 0.01 * 0.01 * 0.1
+    assert solid == pytest.approx(volume, rel=1e-9)  # the true solid fraction: their volume over the width
+    sim.advance(0.2)
+    assert sim.water_volume == pytest.approx(v0, rel=1e-12)
+    assert np.all(np.abs(sim.stone_force_pressure) < 10.0) and np.isfinite(np.asarray(stones.stone_pos)).all()
+
+
+def _wet(p):
+    p.submerged = True
+    return p
+
+
 def test_what_spheres_cannot_do_yet_is_refused_with_the_key_named():
     p = vofdem.DEMParams()
     s = vofdem.DEMSystem(p, pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
     with pytest.raises(ValueError, match="width"):
         s.set_model("sphere")
     assert s.shape == "disc"
+    # coupled to the flow, their footprint is their volume: eq. (11)'s packing porosity must be 0
     stones = heap(n=2)
     grid = vofdem.Grid2D.uniform(10, 20, 0.25, 0.3)
     fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
     sim = _core.Coupler(fluid, stones, _core.CouplerParams())
-    with pytest.raises(ValueError, match="stones.shape = 'sphere'.*not coupled"):
+    with pytest.raises(ValueError, match=r"n_exp = 0.41 is outside the allowed range \[0, 0\] with 3D stones"):
         sim.advance(0.01)
     scene = vofdem.load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008.toml")
     with pytest.raises(ValueError, match="stones.shape = 'sphere' is not allowed in a scene yet"):

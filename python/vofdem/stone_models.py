@@ -146,7 +146,8 @@ class PolygonFront(StoneFront):
 
 class SphereFront(StoneFront):
     """3D spheres across the flume's width (sphere_model.h): run by a DEMSystem (``set_model('sphere')``,
-    ``DEMParams.width``) but not yet packed into a weir or coupled to the flow, so a scene refuses them."""
+    ``DEMParams.width``) and coupled by a Coupler (``CouplerParams.n_exp = 0``), but not yet packed into a
+    weir, so a scene refuses them."""
 
     name = "sphere"
     lookup_table = False
@@ -154,8 +155,8 @@ class SphereFront(StoneFront):
 
     def check(self, stones, prefix: str) -> None:
         raise ValueError(f"{prefix}.shape = 'sphere' is not allowed in a scene yet: 3D stones are not packed into a "
-                         "weir nor coupled to the flow (allowed: 'disc', 'polygon'); a DEMSystem runs them alone "
-                         "(set_model('sphere') with DEMParams.width)")
+                         "weir (allowed: 'disc', 'polygon'); a DEMSystem runs them (set_model('sphere') with "
+                         "DEMParams.width), and a Coupler with CouplerParams.n_exp = 0")
 
 
 _FRONTS: Dict[str, StoneFront] = {}

@@ -9,6 +9,7 @@
 
 #include "common/state_fields.h"
 #include "vofdem/common/check.h"
+#include "vofdem/coupling/porosity_map.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/stone_packing.h"
 
@@ -221,12 +222,15 @@ void SphereModel::state_from_map(const StateMap& m, std::size_t n, std::size_t n
   t.sphere_wall_rolling = entry(m, "sphere_wall_rolling", 3 * nw);
 }
 
-// ---- what the 3D stones cannot do yet
+// ---- the flow's view: the exact volume in each cell's slab across the width, the true solid fraction
 
-void SphereModel::map_footprint(const DEMSystem&, PorosityMapper&, const double*, const double*) const {
-  throw std::invalid_argument(
-      "stones.shape = 'sphere': 3D stones are not coupled to the flow yet (their footprint, the stones' volume in "
-      "each cell's slab across the width, is the next step); allowed with a Coupler: 'disc', 'polygon'");
+void SphereModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const {
+  if (m.params().n_exp != 0.0)
+    throw std::invalid_argument("n_exp = " + format_value(m.params().n_exp) +
+                                " is outside the allowed range [0, 0] with 3D stones (stones.shape = 'sphere'): their "
+                                "footprint is their volume, so the porosity is the true void fraction without eq. "
+                                "(11)'s packing porosity (CouplerParams.n_exp = 0)");
+  m.map_spheres(s.n(), x, z, s.stone_radius.data(), s.params().width, s.stone_active.data());
 }
 
 std::unique_ptr<StonePacking> SphereModel::packing(const WeirSpec&) const { return nullptr; }

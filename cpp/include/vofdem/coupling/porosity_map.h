@@ -32,6 +32,10 @@
 // so the areas are exact up to round-off and sum to the polygon's area; they feed the same per-stone
 // cell lists and eq. (11). The lookup table is built for discs and is refused for polygons.
 //
+// 3D spheres across a flume of width B (map_spheres, sphere_porosity.cpp): each cell gets the sphere's
+// exact volume in its slab dx x dz x B over B (slab_volume.h), an area per unit width whose parts sum to
+// V / B; with n_exp = 0, eq. (11) is then the true solid fraction n = 1 - V_s / (dx dz B).
+//
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using
 // VOF-DEM coupled model, ICHE 2008, Nagoya, section 2.4 and Fig. 3.
 #pragma once
@@ -107,6 +111,14 @@ class PorosityMapper {
   void map_polygons(int n, const double* x, const double* z, const double* angle, const double* poly_vertex,
                     const int* poly_offset, const std::uint8_t* active = nullptr);
 
+  // maps n 3D spheres across a flume of width [m] (centres (x, z) [m], radii r [m]) onto the same outputs:
+  // each cell's "area" is the sphere's exact volume in the cell's slab dx x dz x width over the width
+  // (sphere_porosity.cpp), so that eq. (11) with n_exp = 0 gives the true solid fraction. Throws
+  // std::invalid_argument for the lookup method, width <= 0, n > max_discs, a non-finite centre or a
+  // radius outside [r_min, r_max]. Allocates nothing.
+  void map_spheres(int n, const double* x, const double* z, const double* r, double width,
+                   const std::uint8_t* active = nullptr);
+
   const Grid2D& grid() const { return grid_; }
   const PorosityParams& params() const { return params_; }
 
@@ -141,6 +153,7 @@ class PorosityMapper {
   int add_exact(int j, double x, double z, double r, int p);
   int add_lookup(int j, double x, double z, double r, int p);
   int add_polygon(const double* world, int count, int p);
+  int add_sphere(double x, double z, double r, double width, int p);
   void apply_eq11();
   // cell c gets area [m^2] of the stone being mapped: the cell's sum and the stone's CSR entry p; returns p + 1
   int append_cell(int c, double area, int p) {

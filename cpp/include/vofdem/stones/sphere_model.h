@@ -12,8 +12,12 @@
 // the end walls) as planes across the flume, and the two side walls with side_wall_friction (the
 // paper's glass: 0.176). The neighbour list is the plane's (pairs whose projections on the x-z plane are
 // within reach): it holds every pair that can touch, whatever their y. Stable step: the disc model's (the
-// same normal and tangential-rotational modes). The packing generator and the coupling to the flow do
-// not take 3D stones yet (refused with the key named).
+// same normal and tangential-rotational modes). Footprint on the 2D flow: each cell's slab dx x dz x B
+// holds the sphere's exact volume (porosity_map.h, map_spheres), and the porosity is the true void
+// fraction (n_exp = 0 required: no packing porosity inside the stones); the fluid's forces act in x and z
+// (the width-averaged flow has no velocity across the flume), the drag on the sphere's pi r^2. The wet
+// fraction at the free surface is still the disc's share (wet_fraction.h). The packing generator does not
+// take 3D stones yet (refused with the key named).
 //
 // References: Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29(1), 47-65. Ai, J., Chen, J.-F.,
 // Rotter, J. M. & Ooi, J. Y. (2011), Powder Technology 206, 269-282.
