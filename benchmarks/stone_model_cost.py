@@ -23,6 +23,7 @@ import hashlib
 import json
 import os
 import platform
+import re
 import statistics
 import subprocess
 import sys
@@ -35,13 +36,15 @@ SCENES = {"disc": "scenes/maeno2008.toml", "polygon": "scenes/maeno2008_polygons
 
 
 def state_hash(state: dict) -> str:
-    """sha256 of a state's named arrays, in key order (the bits, not the values' text)."""
+    """sha256 of a state's named arrays, in key order (the bits, not the values' text); the stones' arrays
+    under their present names (stone_pos), also for builds that named them disc_pos."""
     import numpy as np
 
+    named = {re.sub(r"(^|/)disc_", r"\1stone_", key): key for key in state}
     h = hashlib.sha256()
-    for key in sorted(state):
-        h.update(key.encode())
-        h.update(np.ascontiguousarray(np.asarray(state[key], dtype=float)).tobytes())
+    for name in sorted(named):
+        h.update(name.encode())
+        h.update(np.ascontiguousarray(np.asarray(state[named[name]], dtype=float)).tobytes())
     return h.hexdigest()[:16]
 
 
