@@ -360,6 +360,7 @@ void Coupler::stage_fluid_forces() {
   const std::vector<int>& idx = mapper_->stone_cell_index();
   const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
   const bool bed = params_.stone_drag == StoneDragModel::kBed;
+  const WetLaw wet_law = stones_->model().wet_law();
   BedDragParams bp;
   if (bed) {
     // the flow's own closure law, terms and relative velocity: the reaction of what it removes
@@ -434,7 +435,7 @@ void Coupler::stage_fluid_forces() {
       const double w = snapped_wet_fraction(std::clamp(s.wet, 0.0, 1.0), params_.wet_fraction_tolerance);
       stones_->set_wet_fraction(j, w);
       stones_->stone_water_level[j] =
-          water_level_of_wet_fraction(stones_->stone_pos[2 * j + 1], stones_->stone_radius[j], w);
+          water_level_of_wet_fraction(stones_->stone_pos[2 * j + 1], stones_->stone_radius[j], w, wet_law);
     }
   }
 }

@@ -144,6 +144,7 @@ void DEMSystem::import_state(const DEMState& s) {
     poly_offset.clear();
   }
   three_d_ = model_->dimensions() == 3;
+  wet_law_ = model_->wet_law();
   for (const auto& f : kOutOfPlane) state::copy_into(this->*f.live, s.*f.state);
   inertia_3d_.assign(three_d_ ? 3 * n : 0, std::numeric_limits<double>::infinity());
   model_->import_state(*this, s);

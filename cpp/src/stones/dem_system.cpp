@@ -87,6 +87,7 @@ void DEMSystem::resize(int n) {
   // back to the default model: a model with shapes is made again (set_polygons(), set_model())
   model_ = make_stone_model(kDefaultStoneModel);
   three_d_ = false;
+  wet_law_ = model_->wet_law();
   size_out_of_plane(0);
   poly_vertex.clear();
   poly_offset.clear();
@@ -165,6 +166,7 @@ void DEMSystem::set_model(std::unique_ptr<StoneModel> model) {
   model->check_params(params_);
   model_ = std::move(model);
   three_d_ = model_->dimensions() == 3;
+  wet_law_ = model_->wet_law();
   size_out_of_plane(0);
   poly_vertex.clear();
   poly_offset.clear();
@@ -241,7 +243,7 @@ void DEMSystem::set_wet_fraction(int i, double w) {
   change_wet_fraction(i, w);
 }
 
-// set_wet_fraction without its checks (w in [0, 1] from disc_wet_fraction)
+// set_wet_fraction without its checks (w in [0, 1] from the model's wet law)
 void DEMSystem::change_wet_fraction(int i, double w) {
   const double w_old = stone_wet[i];
   if (w == w_old) return;
@@ -268,7 +270,7 @@ void DEMSystem::change_wet_fraction(int i, double w) {
 // the drag's kick scale follows its new mass, so that the next half kicks integrate the linear drag
 // exactly with the added mass the stone now has (set_wet_fraction has kept its momentum)
 void DEMSystem::follow_water_level(int i) {
-  const double w = disc_wet_fraction((stone_water_level[i] - stone_pos[2 * i + 1]) / stone_radius[i]);
+  const double w = wet_law_.fraction((stone_water_level[i] - stone_pos[2 * i + 1]) / stone_radius[i]);
   if (w == stone_wet[i]) return;
   change_wet_fraction(i, w);
   if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);

@@ -14,6 +14,7 @@
 #include "common/pin_hash.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/sphere_model.h"
+#include "vofdem/stones/wet_fraction.h"
 
 using namespace vofdem;
 
@@ -273,4 +274,26 @@ TEST(SphereModel, BadInputIsRefusedWithTheKeyNamed) {
   DEMSystem turned = spheres(DEMParams{}, {0.0, 0.5}, 0.1);
   turned.stone_quat[0] = 2.0;
   EXPECT_THROW(turned.advance(1e-3), std::invalid_argument);
+}
+
+TEST(SphereModel, AtTheWaterSurfaceItsWetFractionIsTheCapsVolume) {
+  // w(s) = (1 + s)^2 (2 - s) / 4: a half-submerged sphere 1/2, its centre r/2 under the surface 27/32
+  EXPECT_EQ(sphere_wet_fraction(0.0), 0.5);
+  EXPECT_DOUBLE_EQ(sphere_wet_fraction(0.5), 27.0 / 32.0);
+  EXPECT_DOUBLE_EQ(sphere_wet_fraction(-0.5), 5.0 / 32.0);
+  EXPECT_EQ(sphere_wet_fraction(-1.5), 0.0);
+  EXPECT_EQ(sphere_wet_fraction(2.0), 1.0);
+  // the level that gives it, by the same Newton-bisection as the disc's
+  EXPECT_NEAR(water_level_of_wet_fraction(0.3, kR, 27.0 / 32.0, kSphereWetLaw), 0.3 + 0.5 * kR, 1e-13);
+  EXPECT_NEAR(water_level_of_wet_fraction(0.3, kR, 0.2, kSphereWetLaw),
+              0.3 + kR * (water_level_of_wet_fraction(0.0, 1.0, 0.2, kSphereWetLaw)), 1e-13);
+  // a sphere held with the water level at r / 2 above its centre takes the cap's share, not the disc's
+  DEMParams p;
+  p.submerged = true;
+  p.flags = kDEMAllEffects & ~kDEMGravity;
+  DEMSystem s = spheres(p, {0.0, 0.3}, 0.1);
+  s.stone_water_level[0] = 0.3 + 0.5 * kR;
+  s.step(1e-5);
+  EXPECT_DOUBLE_EQ(s.stone_wet[0], 27.0 / 32.0);
+  EXPECT_GT(std::fabs(s.stone_wet[0] - disc_wet_fraction(0.5)), 0.02);  // the disc's would be 0.804
 }

@@ -287,7 +287,7 @@ class DEMSystem {
                                             // when submerged, else 0 (set_params keeps it)
   std::vector<double> stone_water_level;     // free-surface level at each stone [m], n; NaN (default): stone_wet
                                             // is held as set; else stone_wet follows the stone's height over the
-                                            // substeps, the disc's share below the level (wet_fraction.h)
+                                            // substeps, its share below the level (the model's wet law)
   std::vector<double> stone_force;           // total force of the last evaluation [N], 2n (output)
   std::vector<double> stone_torque;          // total torque of the last evaluation [N m], n (output)
   std::vector<double> stone_acc;             // acceleration of the last evaluation [m/s^2], 2n
@@ -394,6 +394,7 @@ class DEMSystem {
   double roll_eta_sqrt_kt_ = 0.0;         // eta_r sqrt(k_t) [N^0.5 m^-0.5], 0 with the dampers off
   std::vector<double> contact_inv_mass_;  // inv_mass_ at the step's start: the contacts' dashpot masses
   bool three_d_ = false;                  // the model's dimensions() == 3
+  WetLaw wet_law_ = kDiscWetLaw;          // the model's wet fraction law (a plain pair: no virtual call per substep)
   std::vector<double> inertia_3d_;        // 3D stones' principal moments, 3n [kg m^2]; +inf: does not turn
   std::vector<int> carried_;              // the former index of each new pair (models with own pair histories)
 

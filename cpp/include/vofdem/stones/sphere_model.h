@@ -15,9 +15,9 @@
 // same normal and tangential-rotational modes). Footprint on the 2D flow: each cell's slab dx x dz x B
 // holds the sphere's exact volume (porosity_map.h, map_spheres), and the porosity is the true void
 // fraction (n_exp = 0 required: no packing porosity inside the stones); the fluid's forces act in x and z
-// (the width-averaged flow has no velocity across the flume), the drag on the sphere's pi r^2. The wet
-// fraction at the free surface is still the disc's share (wet_fraction.h). The packing generator does not
-// take 3D stones yet (refused with the key named).
+// (the width-averaged flow has no velocity across the flume), the drag on the sphere's pi r^2; at the free
+// surface the wet fraction is the cap's volume, (1 + s)^2 (2 - s) / 4 (wet_fraction.h). The packing
+// generator does not take 3D stones yet (refused with the key named).
 //
 // References: Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29(1), 47-65. Ai, J., Chen, J.-F.,
 // Rotter, J. M. & Ooi, J. Y. (2011), Powder Technology 206, 269-282.
@@ -34,6 +34,7 @@ class SphereModel final : public DiscModel {
  public:
   const char* name() const override { return "sphere"; }
   int dimensions() const override { return 3; }
+  WetLaw wet_law() const override { return kSphereWetLaw; }
   void check_params(const DEMParams& p) const override;
   void prepare(DEMSystem& s) override;
   ContactTally contact_forces(DEMSystem& s, double dt) override;

@@ -31,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "vofdem/stones/wet_fraction.h"
+
 namespace vofdem {
 
 class DEMSystem;
@@ -97,6 +99,9 @@ class StoneModel {
   // ---- dimensions: 2, or 3 for stones with DEMSystem's out-of-plane state (stone_y, stone_quat,
   // stone_omega_3d; dem_system.h), whose principal moments of inertia [kg m^2] the model gives
   virtual int dimensions() const { return 2; }
+  // the share of the stone below a water level as a function of s = (level - z) / r (wet_fraction.h): the
+  // disc's area share for the plane's models, a cap's volume for spheres
+  virtual WetLaw wet_law() const { return kDiscWetLaw; }
   virtual std::array<double, 3> principal_inertia(const DEMSystem& s, int i, double mass) const {
     const double inertia_i = inertia(s, i, mass);
     return {inertia_i, inertia_i, inertia_i};

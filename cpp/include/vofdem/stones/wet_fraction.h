@@ -2,7 +2,8 @@
 //
 //   w(s) = (acos(-s) + s sqrt(1 - s^2)) / pi,   s = (h - z) / r clamped to [-1, 1]          (W)
 //
-// the share of a disc of radius r centred at height z that lies below a level h (w = 0 above the
+// the share of a disc of radius r centred at height z that lies below a level h (a sphere's: a cap's
+// volume, sphere_wet_fraction; each stone model gives its law, StoneModel::wet_law) (w = 0 above the
 // surface, 1/2 with the centre on it, 1 under water). The coupler measures the wet fraction w of each
 // stone from the water fraction of the cells it covers (eq. 9's buoyancy and added mass) once per fluid
 // step, and hands the DEM the level h at which (W) gives that w at the stone's present height:
@@ -17,6 +18,7 @@
 // 1e-7 of their value.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -38,18 +40,39 @@ inline double disc_wet_fraction(double s) {
   return w < 0.0 ? 0.0 : (w > 1.0 ? 1.0 : w);
 }
 
-// the level [m] at which a disc of radius r [m] centred at z [m] has wet fraction w [-]: z + r s with
-// disc_wet_fraction(s) = w (Newton on dw/ds = 2 sqrt(1 - s^2) / pi inside a shrinking bracket, bisection
-// where a step leaves it; to 1e-13 in s); +inf for w >= 1, -inf for w <= 0
-inline double water_level_of_wet_fraction(double z, double r, double w) {
+// dw/ds of (W) [-]
+inline double disc_wet_slope(double s) { return 2.0 * std::sqrt(std::max(0.0, 1.0 - s * s)) / M_PI; }
+
+// share of a sphere's volume below the level, a cap's: w(s) = (1 + s)^2 (2 - s) / 4 (3D stones); clamped
+inline double sphere_wet_fraction(double s) {
+  if (std::isnan(s)) return s;
+  if (s <= -1.0) return 0.0;
+  if (s >= 1.0) return 1.0;
+  const double w = (1.0 + s) * (1.0 + s) * (2.0 - s) / 4.0;
+  return w < 0.0 ? 0.0 : (w > 1.0 ? 1.0 : w);
+}
+inline double sphere_wet_slope(double s) { return 0.75 * std::max(0.0, 1.0 - s * s); }
+
+// a stone model's wet fraction law: w(s) and dw/ds (stone_model.h: the disc's, a sphere's)
+struct WetLaw {
+  double (*fraction)(double s);
+  double (*slope)(double s);
+};
+inline constexpr WetLaw kDiscWetLaw{disc_wet_fraction, disc_wet_slope};
+inline constexpr WetLaw kSphereWetLaw{sphere_wet_fraction, sphere_wet_slope};
+
+// the level [m] at which a stone of radius r [m] centred at z [m] has wet fraction w [-]: z + r s with
+// law.fraction(s) = w (Newton on law.slope inside a shrinking bracket, bisection where a step leaves it;
+// to 1e-13 in s); +inf for w >= 1, -inf for w <= 0
+inline double water_level_of_wet_fraction(double z, double r, double w, const WetLaw& law = kDiscWetLaw) {
   if (!(w > 0.0)) return -std::numeric_limits<double>::infinity();
   if (w >= 1.0) return std::numeric_limits<double>::infinity();
   double lo = -1.0, hi = 1.0, s = 2.0 * w - 1.0;
   for (int it = 0; it < 200 && hi - lo > 1e-13; ++it) {
-    const double f = disc_wet_fraction(s) - w;
+    const double f = law.fraction(s) - w;
     if (f == 0.0) break;
     (f < 0.0 ? lo : hi) = s;
-    const double slope = 2.0 * std::sqrt(1.0 - s * s) / M_PI;
+    const double slope = law.slope(s);
     double next = slope > 0.0 ? s - f / slope : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - s) < 1e-14) {
