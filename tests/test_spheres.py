@@ -10,9 +10,10 @@ import vofdem
 from vofdem import _core
 
 
-def heap(n=12, width=0.1, seed=0):
+def heap(n=12, width=0.1, seed=0, submerged=False):
     """n spheres of 4.8 cm dropped in a 0.25 m long flume of the given width [m], the model set."""
     p = vofdem.DEMParams()
+    p.submerged = submerged
     p.add_flume(0.0, 0.25, 0.0, 0.3)
     p.width = width
     p.stiffness_normal = 1e5
@@ -59,14 +60,13 @@ def test_a_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
 
 
 def test_spheres_under_the_flow_keep_the_water():
-    stones = heap(n=4)
+    stones = heap(n=4, submerged=True)
     grid = vofdem.Grid2D.uniform(25, 30, 0.25, 0.3)
     fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
     fluid.fill_water_below(0.28)
     fluid.set_hydrostatic_pressure()
     cp = _core.CouplerParams()
     cp.n_exp = 0.0
-    stones.set_params(_wet(stones.params))
     sim = _core.Coupler(fluid, stones, cp)
     sim.update_porosity(True)
     v0 = sim.water_volume
@@ -76,11 +76,6 @@ def test_spheres_under_the_flow_keep_the_water():
     sim.advance(0.2)
     assert sim.water_volume == pytest.approx(v0, rel=1e-12)
     assert np.all(np.abs(sim.stone_force_pressure) < 10.0) and np.isfinite(np.asarray(stones.stone_pos)).all()
-
-
-def _wet(p):
-    p.submerged = True
-    return p
 
 
 def test_what_spheres_cannot_do_yet_is_refused_with_the_key_named():
