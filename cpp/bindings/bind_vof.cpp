@@ -152,12 +152,13 @@ void bind_vof(py::module_& m) {
   def_part_field(fp, "turbulence_pore_filter_length", k_eps, &KEpsilonParams::pore_filter_length,
                  "side of the FILTERED pore strain's averaging box [m]");
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
-                 "k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES");
+                 "k-epsilon time stepping: POINT_IMPLICIT, VERTICAL_LINES or ALTERNATING_LINES");
   def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,
                  "safety factor of the k-epsilon step limit [-], (0, 1], 0.5");
   def_part_field(fp, "turbulence_limit_step", k_eps, &KEpsilonParams::limit_step,
-                 "VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False: not "
-                 "accurate in the weir, docs/k_epsilon.md)");
+                 "VERTICAL_LINES, ALTERNATING_LINES: the explicit part's limit (the horizontal faces', or the "
+                 "horizontal advection's alone) bounds the step (True) or not (False: not accurate in the weir, "
+                 "docs/k_epsilon.md); POINT_IMPLICIT always limits the step and refuses False");
   def_part_field(fp, "turbulence_bed_roughness", k_eps, &KEpsilonParams::bed_roughness,
                  "equivalent sand roughness k_s of the bed [m]");
   def_part_field(fp, "turbulence_wall_roughness", k_eps, &KEpsilonParams::wall_roughness,

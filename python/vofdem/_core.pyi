@@ -2170,7 +2170,7 @@ class FlowParams:
     @property
     def turbulence_limit_step(self) -> bool:
         """
-        VERTICAL_LINES: the horizontal faces' explicit limit bounds the step (True) or not (False: not accurate in the weir, docs/k_epsilon.md)
+        VERTICAL_LINES, ALTERNATING_LINES: the explicit part's limit (the horizontal faces', or the horizontal advection's alone) bounds the step (True) or not (False: not accurate in the weir, docs/k_epsilon.md); POINT_IMPLICIT always limits the step and refuses False
         """
     @turbulence_limit_step.setter
     def turbulence_limit_step(self, arg1: bool) -> None:
@@ -2210,7 +2210,7 @@ class FlowParams:
     @property
     def turbulence_time_scheme(self) -> KEpsilonTimeScheme:
         """
-        k-epsilon time stepping: POINT_IMPLICIT or VERTICAL_LINES
+        k-epsilon time stepping: POINT_IMPLICIT, VERTICAL_LINES or ALTERNATING_LINES
         """
     @turbulence_time_scheme.setter
     def turbulence_time_scheme(self, arg1: KEpsilonTimeScheme) -> None:

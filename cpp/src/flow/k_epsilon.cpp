@@ -455,25 +455,37 @@ void KEpsilonModel::face_coefficients(int i, int k, const std::vector<double>& f
   }
 }
 
+void KEpsilonModel::start_values() {
+  const KEpsilonParams& p = params_;
+  detail::parallel_range(grid_.ncell(), [&](long long c0, long long c1) {
+    for (long long c = c0; c < c1; ++c) {
+      const std::uint8_t role = cell_role_[c];
+      scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
+      scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
+    }
+  });
+}
+
+KEpsilonModel::SourceSink KEpsilonModel::source_sink(int c, bool prod_on) const {
+  const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
+  const double prod = prod_on ? cell_prod_[c] : 0.0;
+  return {{prod, params_.c1 * rate * prod}, {rate, params_.c2 * rate}};
+}
+
 void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                                     const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                                     const std::vector<double>& cell_nu) {
   const KEpsilonParams& p = params_;
   const bool prod_on = has(p.flags, kKEpsProduction);
-  const int ncell = grid_.ncell();
   std::vector<double>* target[2] = {&cell_k, &cell_eps};
   std::vector<double>* scratch[2] = {&scratch_, &scratch_eps_};
   const std::vector<double>* old[2] = {&k_old_, &eps_old_};
   const double floor[2] = {p.k_min, p.eps_min};
-  // values that no pass changes: air/solid cells at the floor, wall cells at the wall-law values,
-  // and the starting values of solved cells (the old value, or a freshly wetted cell's start)
-  for (int c = 0; c < ncell; ++c) {
-    const std::uint8_t role = cell_role_[c];
-    const double vk = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
-    const double ve = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
-    cell_k[c] = scratch_[c] = vk;
-    cell_eps[c] = scratch_eps_[c] = ve;
-  }
+  // values that no pass changes (air/solid and wall cells) and the starting values of solved cells,
+  // in both buffers
+  start_values();
+  std::copy(scratch_.begin(), scratch_.end(), cell_k.begin());
+  std::copy(scratch_eps_.begin(), scratch_eps_.end(), cell_eps.begin());
   // k and eps are independent within a step (both use the time scale eps/k and the production of
   // the old state), so one pass over the cells assembles both. Pass 0 is the predictor: below
   // the cell's explicit limit (dt sum(a) <= n), explicit transport with the implicit sink, which
@@ -493,10 +505,9 @@ void KEpsilonModel::solve_transport(double dt, const std::vector<double>& face_u
       if (cell_role_[c] != kSolved) continue;
       face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
       const double n = cell_porosity[c];
-      const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
-      const double prod = prod_on ? cell_prod_[c] : 0.0;
-      const double source[2] = {prod, p.c1 * rate * prod};
-      const double sink[2] = {rate, p.c2 * rate};
+      const SourceSink ss = source_sink(c, prod_on);
+      const double* source = ss.source;
+      const double* sink = ss.sink;
       for (int e = 0; e < 2; ++e) {
         const std::vector<double>& cur = first_to_target ? *scratch[e] : *target[e];
         std::vector<double>& dst = first_to_target ? *target[e] : *scratch[e];

@@ -62,6 +62,14 @@ void lines_row_rates(int nx, double dx, const double* u, const double* n, const 
   rate[e] = at(e, g_k[e - 1], g_eps[e - 1], 0.0, 0.0, act[e - 1] != 0.0, false);
 }
 
+// a cell's row of a tridiagonal system (sub, diagonal, super, rhs) before its assembly: the identity,
+// x_c = rhs (a known value, or no change)
+void reset_row(std::vector<double>* row, int c, double rhs) {
+  row[0][c] = row[2][c] = 0.0;
+  row[1][c] = 1.0;
+  row[3][c] = rhs;
+}
+
 }  // namespace
 
 // row by row (vectorised), the rows' largest taken in order: the first cell at the largest rate
@@ -108,15 +116,7 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
   const double floor[2] = {p.k_min, p.eps_min};
   for (int e = 0; e < 2; ++e)
     for (std::vector<double>& t : tri_[e]) t.resize(static_cast<std::size_t>(ncell));
-  // values at the step's start: air/solid cells at the floor, wall cells at the wall-law values, solved
-  // cells at their old value (or a freshly wetted cell's start)
-  detail::parallel_range(ncell, [&](long long c0, long long c1) {
-    for (long long c = c0; c < c1; ++c) {
-      const std::uint8_t role = cell_role_[c];
-      scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
-      scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
-    }
-  });
+  start_values();
   const std::vector<double>* start[2] = {&scratch_, &scratch_eps_};
   half_cell_resistances(cell_porosity, cell_F, cell_nu);
   // rows on the threads: a cell writes its own rows of the systems and reads the start values only
@@ -125,19 +125,13 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
     for (int k = k0; k < k1; ++k) {
       for (int i = 0; i < nx; ++i) {
         const int c = grid_.cell(i, k);
-        for (int e = 0; e < 2; ++e) {
-          std::vector<double>* row = tri_[e];
-          row[0][c] = row[2][c] = 0.0;
-          row[1][c] = 1.0;
-          row[3][c] = (*start[e])[c];  // a known value unless solved
-        }
+        for (int e = 0; e < 2; ++e) reset_row(tri_[e], c, (*start[e])[c]);  // a known value unless solved
         if (cell_role_[c] != kSolved) continue;
         face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
         const double n = cell_porosity[c];
-        const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
-        const double prod = prod_on ? cell_prod_[c] : 0.0;
-        const double source[2] = {prod, p.c1 * rate * prod};
-        const double sink[2] = {rate, p.c2 * rate};
+        const SourceSink ss = source_sink(c, prod_on);
+        const double* source = ss.source;
+        const double* sink = ss.sink;
         for (int e = 0; e < 2; ++e) {
           const std::vector<double>& x0 = *start[e];
           std::vector<double>* row = tri_[e];
@@ -212,13 +206,7 @@ void KEpsilonModel::solve_transport_alternating(double dt, const std::vector<dou
     for (std::vector<double>& t : tri_[e]) t.resize(static_cast<std::size_t>(ncell));
     row_pass_[e].resize(static_cast<std::size_t>(ncell));
   }
-  detail::parallel_range(ncell, [&](long long c0, long long c1) {
-    for (long long c = c0; c < c1; ++c) {
-      const std::uint8_t role = cell_role_[c];
-      scratch_[c] = role == kInactive ? p.k_min : role == kWallFixed ? wall_k_[c] : cell_k[c];
-      scratch_eps_[c] = role == kInactive ? p.eps_min : role == kWallFixed ? wall_eps_[c] : cell_eps[c];
-    }
-  });
+  start_values();
   const std::vector<double>* start[2] = {&scratch_, &scratch_eps_};
   half_cell_resistances(cell_porosity, cell_F, cell_nu);
   // pass 0: the rows' systems for y (sub/super-diagonal: west/east); pass 1: the columns' for d
@@ -229,19 +217,13 @@ void KEpsilonModel::solve_transport_alternating(double dt, const std::vector<dou
       for (int k = k0; k < k1; ++k) {
         for (int i = 0; i < nx; ++i) {
           const int c = grid_.cell(i, k);
-          for (int e = 0; e < 2; ++e) {
-            std::vector<double>* row = tri_[e];
-            row[0][c] = row[2][c] = 0.0;
-            row[1][c] = 1.0;
-            row[3][c] = 0.0;  // no change unless solved
-          }
+          for (int e = 0; e < 2; ++e) reset_row(tri_[e], c, 0.0);  // no change unless solved
           if (cell_role_[c] != kSolved) continue;
           face_coefficients(i, k, face_u, face_w, cell_porosity, cell_F, cell_nu, fc);
           const double n = cell_porosity[c];
-          const double rate = eps_old_[c] / k_old_[c];  // 1/s, > 0 by the floors
-          const double prod = prod_on ? cell_prod_[c] : 0.0;
-          const double source[2] = {prod, p.c1 * rate * prod};
-          const double sink[2] = {rate, p.c2 * rate};
+          const SourceSink ss = source_sink(c, prod_on);
+          const double* source = ss.source;
+          const double* sink = ss.sink;
           for (int e = 0; e < 2; ++e) {
             const std::vector<double>& x0 = *start[e];
             std::vector<double>* row = tri_[e];

@@ -274,6 +274,18 @@ class KEpsilonModel {
                          const std::vector<double>& face_w, const std::vector<double>& cell_porosity,
                          const std::vector<double>& cell_F, const std::vector<double>& cell_nu, FaceCoef* out,
                          bool x_only = false) const;
+  // the values of k, eps at the step's start into scratch_, scratch_eps_: air/solid cells at the floors,
+  // wall cells at the wall-law values, solved cells at cell_k, cell_eps (the old value, or a freshly
+  // wetted cell's start)
+  void start_values();
+  // a solved cell's linearised source and sink of (K) (index 0) and (E) (index 1), with the time scale
+  // eps/k of the step's start and the production P of this step (0 with production off):
+  // source {P, C1 (eps/k) P} [m^2/s^3, m^2/s^4], sink {eps/k, C2 eps/k} [1/s] (the rate of x^new)
+  struct SourceSink {
+    double source[2];
+    double sink[2];
+  };
+  SourceSink source_sink(int c, bool prod_on) const;
   void solve_transport(double dt, const std::vector<double>& face_u, const std::vector<double>& face_w,
                        const std::vector<double>& cell_porosity, const std::vector<double>& cell_F,
                        const std::vector<double>& cell_nu);
