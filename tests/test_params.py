@@ -65,6 +65,7 @@ DEM_BAD = {
     "inertia_factor": [0.0, 1.5, NAN], "rolling_friction_stone": [-0.1, NAN], "rolling_friction_wall": [-0.1, NAN],
     "rolling_damping": [-0.1, 1.5, NAN], "neighbour_skin": [-1e-3, NAN], "sleep_velocity": [-1e-3, NAN],
     "sleep_time": [-0.1, NAN], "wake_acceleration": [-0.1, NAN], "flags": [1 << 10],
+    "width": [-0.1, NAN, math.inf], "side_wall_friction": [-0.1, NAN, math.inf],
 }
 # fields holding pairs: the bad pair and the element the error names
 DEM_BAD_PAIRS = {
