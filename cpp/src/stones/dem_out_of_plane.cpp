@@ -35,8 +35,8 @@ void store_vec(std::vector<double>& v, int i, const Vec3& x) {
 }  // namespace
 
 // the arrays for the model's dimensions: empty for the plane's models; else n stones at mid-width, at rest,
-// unturned (the entries of stones 0 .. old_n - 1 kept)
-void DEMSystem::size_out_of_plane(std::size_t old_n) {
+// unturned
+void DEMSystem::size_out_of_plane() {
   std::vector<double>* arrays[] = {&stone_y,    &stone_vel_y,    &stone_force_y,  &stone_acc_y,
                                    &stone_quat, &stone_omega_3d, &stone_torque_3d};
   if (!three_d_) {
@@ -45,14 +45,11 @@ void DEMSystem::size_out_of_plane(std::size_t old_n) {
     return;
   }
   const std::size_t n = static_cast<std::size_t>(n_);
-  if (stone_y.size() != old_n) old_n = 0;
-  stone_y.resize(n, 0.5 * params_.width);
-  for (std::size_t i = old_n; i < n; ++i) stone_y[i] = 0.5 * params_.width;
-  for (auto* a : {&stone_vel_y, &stone_force_y, &stone_acc_y}) a->resize(n, 0.0);
-  for (auto* a : {&stone_omega_3d, &stone_torque_3d}) a->resize(3 * n, 0.0);
-  stone_quat.resize(4 * n, 0.0);
-  for (std::size_t i = old_n; i < n; ++i) stone_quat[4 * i] = 1.0, stone_quat[4 * i + 1] = 0.0,
-                                          stone_quat[4 * i + 2] = 0.0, stone_quat[4 * i + 3] = 0.0;
+  stone_y.assign(n, 0.5 * params_.width);
+  for (auto* a : {&stone_vel_y, &stone_force_y, &stone_acc_y}) a->assign(n, 0.0);
+  for (auto* a : {&stone_omega_3d, &stone_torque_3d}) a->assign(3 * n, 0.0);
+  stone_quat.assign(4 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) stone_quat[4 * i] = 1.0;
   inertia_3d_.assign(3 * n, kInf);
 }
 

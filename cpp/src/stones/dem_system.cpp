@@ -88,7 +88,7 @@ void DEMSystem::resize(int n) {
   model_ = make_stone_model(kDefaultStoneModel);
   three_d_ = false;
   wet_law_ = model_->wet_law();
-  size_out_of_plane(0);
+  size_out_of_plane();
   poly_vertex.clear();
   poly_offset.clear();
   pairs_.clear();
@@ -167,7 +167,7 @@ void DEMSystem::set_model(std::unique_ptr<StoneModel> model) {
   model_ = std::move(model);
   three_d_ = model_->dimensions() == 3;
   wet_law_ = model_->wet_law();
-  size_out_of_plane(0);
+  size_out_of_plane();
   poly_vertex.clear();
   poly_offset.clear();
   std::fill(wall_xi_.begin(), wall_xi_.end(), 0.0);

@@ -145,12 +145,11 @@ ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
   return t;
 }
 
-void SphereModel::pairs_rebuilt(DEMSystem& s, const std::vector<int>& from) {
+void SphereModel::pairs_rebuilt(DEMSystem&, const std::vector<int>& from) {
   std::vector<SphereContactHistory> carried(from.size());
   for (std::size_t k = 0; k < from.size(); ++k)
     if (from[k] >= 0 && static_cast<std::size_t>(from[k]) < pair_history_.size()) carried[k] = pair_history_[from[k]];
   pair_history_.swap(carried);
-  (void)s;
 }
 
 // ---- state: the pairs' histories that are not zero, and every (stone, plane) history

@@ -358,7 +358,7 @@ class DEMSystem {
   void sleep_update(double dt);
   // the out-of-plane state (dem_out_of_plane.cpp): sized and checked with the model, kicked, drifted,
   // loaded and accounted as the plane's part is
-  void size_out_of_plane(std::size_t old_n);
+  void size_out_of_plane();
   void check_out_of_plane() const;
   void update_inertia_3d();
   void out_of_plane_body_forces(double dt);
