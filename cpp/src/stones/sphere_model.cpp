@@ -73,8 +73,10 @@ std::vector<ContactPlane> SphereModel::planes(const DEMParams& p) {
   return out;
 }
 
+// before the steps of a call (parameters change only between calls): the planes, the histories' size
 void SphereModel::prepare(DEMSystem& s) {
-  const std::size_t size = static_cast<std::size_t>(s.n()) * (s.params().walls.size() + 2);
+  planes_ = planes(s.params());
+  const std::size_t size = static_cast<std::size_t>(s.n()) * planes_.size();
   if (wall_history_.size() != size) wall_history_.assign(size, SphereContactHistory());
 }
 
@@ -117,7 +119,7 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
 }
 
 ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
-  const std::vector<ContactPlane> plane = planes(s.params());
+  const std::vector<ContactPlane>& plane = planes_;
   const std::size_t np = plane.size(), nw = s.params().walls.size();
   const SphereContactLaw law = sphere_law(s);
   const std::vector<double>& inv_m = inv_mass(s);
@@ -139,7 +141,9 @@ ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
     const double r = s.stone_radius[i];
     for (std::size_t w = nw; w < np; ++w) {
       const double gap = (w == nw) ? s.stone_y[i] : s.params().width - s.stone_y[i];
-      if (gap < r || wall_history_[static_cast<std::size_t>(i) * np + w].spring.squaredNorm() > 0.0) touch(i, w);
+      // (and once more as it leaves, so that its histories start again from zero)
+      const SphereContactHistory& h = wall_history_[static_cast<std::size_t>(i) * np + w];
+      if (gap < r || h.spring.squaredNorm() > 0.0 || h.rolling.squaredNorm() > 0.0) touch(i, w);
     }
   }
   return t;

@@ -60,6 +60,7 @@ class SphereModel final : public DiscModel {
   SphereOfBody body(const DEMSystem& s, int i, double mass) const;
   std::vector<SphereContactHistory> pair_history_;  // one per listed pair, in the list's order
   std::vector<SphereContactHistory> wall_history_;  // per (stone, plane of planes())
+  std::vector<ContactPlane> planes_;                // planes() of the parameters in use (prepare)
 };
 
 }  // namespace vofdem
