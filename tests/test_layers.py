@@ -15,8 +15,8 @@ import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "python" / "vofdem"
 LAYERS = [
-    {"schema", "outline", "reference", "fidelity", "closure", "porosity", "flow", "polygon_output", "fragility",
-     "cluster"},
+    {"schema", "outline", "reference", "fidelity", "closure", "porosity", "flow", "polygon_output", "output_3d",
+     "fragility", "cluster"},
     {"scene", "flood", "grading", "stone_models"},
     {"builder", "outline_packing"},
     {"analysis", "io", "plots", "checkpoint", "reports"},

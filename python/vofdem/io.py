@@ -21,6 +21,7 @@ Layout of ``run.h5`` (SI units; a capacity of T snapshots, a grid of nx x nz cel
     /stones/active      (T,n)     uint8   0 once a stone has left the domain
     /stones/force_drag, force_pressure (T,n,2) [N]   fluid forces on each stone
     /stones/poly_*, /stones/angle        polygon stones only: see polygon_output.py
+    /stones/y, quat, point3              3D stones only (across the flume): see output_3d.py
     /snapshots/000042/<name>      snapshot 42 of each series above as a dataset of its own (an HDF5
                                   virtual dataset, no copy): for readers that take whole datasets only
     /profile/names, seconds, calls        the solver's per-stage cost (written at the end)
@@ -60,7 +61,7 @@ from typing import Dict, List, Optional, Sequence
 import h5py
 import numpy as np
 
-from . import polygon_output
+from . import output_3d, polygon_output
 
 # the HDF5 format written: the oldest object versions ('earliest': superblock 0, which has no
 # open-for-write flag), and nothing newer than HDF5 1.10 reads (virtual datasets need 1.10)
@@ -142,11 +143,14 @@ class RunWriter:
     capacity: the number of snapshots the file holds (the run's snapshot times are known in advance);
     a snapshot beyond it raises ValueError. polygons: (body-frame vertices (m, 2) [m], offsets (n + 1))
     of polygon stones (polygon_output.py), None for discs; each snapshot then needs stones["angle"].
+    width: the flume's width B [m] of 3D stones (output_3d.py), None for stones in the plane; each
+    snapshot then needs stones["y"] (n,) [m] and stones["quat"] (n, 4).
     xdmf_seconds: wall time [s] between rewrites of the XDMF files (>= 0; 0: after every snapshot)."""
 
     def __init__(self, path, x_faces: Sequence[float], z_faces: Sequence[float], diameters: Sequence[float],
                  fixed: Sequence[bool], capacity: int, scene_toml: str = "", seed: int = 0, version: str = "",
-                 write_fields: bool = True, polygons=None, xdmf_seconds: float = XDMF_SECONDS):
+                 write_fields: bool = True, polygons=None, xdmf_seconds: float = XDMF_SECONDS,
+                 width: Optional[float] = None):
         if not int(capacity) >= 1:
             raise ValueError(f"capacity = {capacity} snapshots is out of range (allowed: >= 1)")
         if not xdmf_seconds >= 0.0:
@@ -154,7 +158,7 @@ class RunWriter:
         self.path = Path(path)
         self.xdmf_seconds = float(xdmf_seconds)
         self._geometry(np.asarray(x_faces, float), np.asarray(z_faces, float), len(diameters), write_fields,
-                       int(capacity), polygons)
+                       int(capacity), polygons, None if width is None else output_3d.check_width(width))
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.file = None
         try:
@@ -183,7 +187,7 @@ class RunWriter:
             f.close()
             raise ValueError(f"count = {count} snapshots is out of range for {self.path} (allowed: 1 .. {T})")
         self._geometry(f["grid/x_faces"][()], f["grid/z_faces"][()], f["stones/diameter"].shape[0],
-                       "fields" in f, T, polygon_output.reopen(f))
+                       "fields" in f, T, polygon_output.reopen(f), output_3d.width_of(f))
         f["time"][count:] = np.nan
         f.flush()
         self.count = count
@@ -200,12 +204,13 @@ class RunWriter:
         except (OSError, ValueError, RuntimeError):
             pass
 
-    def _geometry(self, x_faces, z_faces, n, write_fields, capacity, polygons=None):
+    def _geometry(self, x_faces, z_faces, n, write_fields, capacity, polygons=None, width=None):
         self.xmf_path = self.path.with_suffix(".xmf")
         self.stones_xmf_path = self.path.with_name("stones.xmf")
         # polygon stones: (body-frame vertices (m, 2), offsets (n + 1)); None for discs
         self.polygons = None if polygons is None or not n else (np.asarray(polygons[0], float).reshape(-1, 2),
                                                                  np.asarray(polygons[1], np.int64))
+        self.width = width if n else None  # 3D stones: the flume's width [m]
         self.x_faces, self.z_faces = x_faces, z_faces
         self.nx, self.nz = x_faces.size - 1, z_faces.size - 1
         self.n = n
@@ -264,6 +269,8 @@ class RunWriter:
             self._series(f, "stones/active", (self.n,), "u1", 0)
         if self.polygons is not None:
             polygon_output.create_datasets(f, *self.polygons, self.n, self._series)
+        if self.width is not None:
+            output_3d.create_datasets(f, self.n, self.width, self._series)
 
     def __enter__(self):
         return self
@@ -274,9 +281,10 @@ class RunWriter:
     def write_snapshot(self, t: float, discharge: float, upstream_level: float, fields: Optional[Dict] = None,
                        stones: Optional[Dict] = None) -> None:
         """Appends one snapshot: fields {name: (nz, nx)}, stones {pos, vel, force_drag, force_pressure:
-        (n, 2), active: (n,)}. The values are flushed, then the time (the mark of a completed snapshot),
-        then the XDMF files are rewritten if xdmf_seconds have passed since their last rewrite. Raises
-        OutputError if a write fails (earlier snapshots kept)."""
+        (n, 2), active: (n,)} (and the polygons' angle, the 3D stones' y and quat). The values are
+        flushed, then the time (the mark of a completed snapshot), then the XDMF files are rewritten if
+        xdmf_seconds have passed since their last rewrite. Raises OutputError if a write fails (earlier
+        snapshots kept)."""
         f, k, put = self.file, self.count, self._put
         if k >= self.capacity:
             raise ValueError(f"snapshot {k + 1} is beyond the file's capacity of {self.capacity} snapshots")
@@ -292,6 +300,8 @@ class RunWriter:
                 put("stones/active", k, stones["active"])
             if self.polygons is not None:
                 polygon_output.write_snapshot(f, k, *self.polygons, stones["pos"], stones["angle"])
+            if self.width is not None:
+                output_3d.write_snapshot(self._put, k, self.width, stones["pos"], stones["y"], stones["quat"])
             f.flush()
             put("time", k, t)
             f.flush()
@@ -322,7 +332,7 @@ class RunWriter:
         steps = self._xdmf_steps
         for k in range(len(steps["fields"]), self.count):
             fields, stones = xdmf_step(self.path.name, k, self._times[k], self.nx, self.nz, self.n,
-                                       self.write_fields)
+                                       self.write_fields, self.width is not None)
             steps["fields"].append(fields)
             steps["stones"].append(stones)
             if self.polygons is not None:
@@ -395,9 +405,10 @@ def _attribute(name, kind, center, item) -> str:
     return f'<Attribute Name="{name}" AttributeType="{kind}" Center="{center}">{item}</Attribute>'
 
 
-def xdmf_step(h5name: str, k: int, t: float, nx: int, nz: int, n: int, fields: bool = True):
+def xdmf_step(h5name: str, k: int, t: float, nx: int, nz: int, n: int, fields: bool = True, three_d: bool = False):
     """(fields grid, stones grid): the XDMF 3 text of snapshot k at time t [s]. Each attribute is a
-    whole dataset (/snapshots/<k>/...), which every reader takes (meshio reads no hyperslabs)."""
+    whole dataset (/snapshots/<k>/...), which every reader takes (meshio reads no hyperslabs). three_d:
+    the stones at their 3D points (output_3d.py) instead of (x, z)."""
     snap = f"/snapshots/{k:06d}"
     time = f'<Time Value="{float(t)!r}"/>'
     fgrid = ""
@@ -415,12 +426,15 @@ def xdmf_step(h5name: str, k: int, t: float, nx: int, nz: int, n: int, fields: b
         parts = [f'<Grid Name="stones_{k}" GridType="Uniform">', time,
                  f'<Topology TopologyType="Polyvertex" NumberOfElements="{n}" NodesPerElement="1">'
                  + _item([n, 1], "/stones/index", h5name, "Int", "4") + "</Topology>",
+                 output_3d.xdmf_geometry(h5name, k, n, _item) if three_d else
                  '<Geometry GeometryType="XY">' + _item([n, 2], f"{snap}/pos", h5name) + "</Geometry>",
                  _attribute("diameter", "Scalar", "Node", _item([n], "/stones/diameter", h5name)),
                  _attribute("fixed", "Scalar", "Node", _item([n], "/stones/fixed", h5name, "UChar", "1")),
                  _attribute("active", "Scalar", "Node", _item([n], f"{snap}/active", h5name, "UChar", "1"))]
         for name in ("vel", "force_drag", "force_pressure", "pos"):
             parts.append(_attribute(STONE_POINT_DATA[name], "Vector", "Node", _item([n, 2], f"{snap}/{name}", h5name)))
+        if three_d:
+            parts.append(output_3d.xdmf_attributes(h5name, k, n, _item, _attribute))
         sgrid = "".join(parts) + "</Grid>"
     return fgrid, sgrid
 
@@ -454,6 +468,7 @@ class RunData:
                 setattr(self, name, f[f"stones/{name}"][:T] if n else np.zeros((T, 0, 2)))
             self.active = f["stones/active"][:T].astype(bool) if n else np.zeros((T, 0), bool)
             self.poly_vertex, self.poly_offset, self.angle = polygon_output.read(f, T)  # None for discs
+            self.width, self.y, self.quat = output_3d.read(f, T)  # None for stones in the plane
             self.has_fields = "fields" in f
             self.profile = None
             if "profile" in f:

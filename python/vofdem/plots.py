@@ -15,6 +15,8 @@ notebooks. Figures:
                             destruction stages marked at their discharges
 * `fig_destruction`         the weir before and after: each stone where it ended, coloured by the
                             stage that removed it, the stones' initial places and surface outlined
+* `fig_plan_view`           3D stones only: the weir seen from above between the flume's side walls,
+                            at the start and at a later snapshot, coloured by the stage that removed them
 """
 from __future__ import annotations
 
@@ -314,6 +316,49 @@ def fig_destruction(analysis, data, scene, k: Optional[int] = None) -> Figure:
     return fig
 
 
+def _plan_stones(ax, x, y, d, colors, alpha, edge="0.2"):
+    col = EllipseCollection(d, d, np.zeros(d.size), units="xy", offsets=np.column_stack([x, y]), facecolors=colors,
+                            edgecolors=edge, linewidths=0.4, alpha=alpha, zorder=3,
+                            **{"offset_transform" if _MPL_36 else "transOffset": ax.transData})
+    ax.add_collection(col)
+
+
+def fig_plan_view(data, scene, analysis=None, k: Optional[int] = None) -> Figure:
+    """3D stones (data.y not None) seen from above: the flume between its side walls y = 0 and B, the
+    stones at the start (left) and at snapshot k (right; default the last), each coloured by the stage
+    that removed it (analysis given) or grey if fixed, tan if loose; the weir's toes dashed."""
+    if getattr(data, "y", None) is None:
+        raise ValueError("fig_plan_view draws 3D stones (stones.shape = 'sphere'); this run's stones are in the plane")
+    k = data.times.size - 1 if k is None else k
+    w = scene.weir
+    colors = np.where(data.fixed, "0.45", "tan").astype(object)
+    if analysis is not None:
+        label = stage_of_stones(analysis)
+        for st in analysis.stages:
+            colors[label == st.number] = STAGE_COLORS[(st.number - 1) % len(STAGE_COLORS)]
+        colors[label == -1] = "gold"
+    x0, x1 = max(data.x_faces[0], w.toe_x - 0.25), min(data.x_faces[-1], w.x_toe_down + 0.25)
+    fig = Figure(figsize=(9.0, 1.2 + 2 * 8.0 * data.width / (x1 - x0)), layout="constrained")
+    axes = fig.subplots(2, 1, sharex=True)
+    for ax, j, what in ((axes[0], 0, "start"), (axes[1], k, "now")):
+        keep = data.active[j]
+        # the lowest stones first, so that the top layer is drawn over them
+        order = np.argsort(data.pos[j, :, 1])
+        order = order[keep[order]]
+        _plan_stones(ax, data.pos[j, order, 0], data.y[j, order], data.diameter[order], list(colors[order]), 0.9)
+        for yw in (0.0, data.width):
+            ax.axhline(yw, color="k", lw=1.2)
+        for xt in (w.toe_x, w.x_toe_down):
+            ax.axvline(xt, color=WEIR_COLOR, lw=1.0, ls="--")
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(-0.05 * data.width, 1.05 * data.width)
+        ax.set_aspect("equal")
+        ax.set_ylabel("y [m]")
+        _title(ax, data, j, f"Plan view ({what}, {int(keep.sum())} stones in the flume)")
+    axes[1].set_xlabel("x [m]")
+    return fig
+
+
 def make_figures(data, analysis, scene, out_dir) -> List[Path]:
     """Writes every figure as PNG to out_dir; returns their paths."""
     out = Path(out_dir)
@@ -329,6 +374,8 @@ def make_figures(data, analysis, scene, out_dir) -> List[Path]:
     save(fig_hydrograph(analysis, data, scene), "hydrograph.png")
     save(fig_destruction(analysis, data, scene), "destruction.png")
     save(fig_rating_curve(data, scene), "rating_curve.png")
+    if getattr(data, "y", None) is not None:
+        save(fig_plan_view(data, scene, analysis), "plan_view.png")
     if not data.has_fields:
         return files
     save(fig_porosity(data, scene, 0), "porosity_initial.png")

@@ -123,6 +123,7 @@ class _Recorder:
         self.pos0 = np.array(start, float).reshape(-1, 2).copy()
         self.diameter = stone_diameters(sim.stones)
         self.polygons = front_of(sim.stones).output_shapes(sim.stones) is not None
+        self.three_d = front_of(sim.stones).dimensions == 3
         self.fixed0 = np.zeros(len(self.diameter), bool) if fixed0 is None else np.asarray(fixed0, bool)
         self.removal_t = np.full(len(self.diameter), np.nan)  # first snapshot of each removal (analysis.py)
         self.moved = 0
@@ -142,6 +143,8 @@ class _Recorder:
                   "active": np.asarray(st.stone_active).astype(bool)}
         if self.polygons:
             stones["angle"] = np.array(st.stone_angle, float)
+        if self.three_d:
+            stones["y"], stones["quat"] = np.array(st.stone_y, float), np.array(st.stone_quat, float)
         t = float(sim.time)
         self.check_top_row(F[-1], t)
         disp = np.linalg.norm(pos - self.pos0, axis=1)
@@ -296,7 +299,8 @@ class _Loop:
             x_faces, z_faces = grid_faces(sim.fluid.grid)
             self.writer = RunWriter(out / "run.h5", x_faces, z_faces, stone_diameters(st), self.fixed0,
                                     capacity=1 + len(self.targets), scene_toml=scene.to_toml(), seed=scene.seed,
-                                    version=version, polygons=front_of(st).output_shapes(st), xdmf_seconds=xdmf_seconds)
+                                    version=version, polygons=front_of(st).output_shapes(st), xdmf_seconds=xdmf_seconds,
+                                    width=st.params.width if front_of(st).dimensions == 3 else None)
             if self.hold:
                 st.stone_fixed[:] = True
             self.base_profile, self.base_wall, pos0 = {}, 0.0, None

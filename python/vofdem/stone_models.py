@@ -28,6 +28,7 @@ class StoneFront:
     name = "disc"
     lookup_table = True  # the paper's porosity lookup table (numerics.porosity_method = 'lookup') maps them
     outline_packer = True  # outline_packing.py places them (own outlines, zones, sieve curves)
+    dimensions = 2  # 3: the stones move across the flume too (run.h5's output_3d.py series)
 
     def label(self, stones) -> str:
         """The model in words for tables: 'discs' or 'discs, mu_r = 0.5'."""
@@ -150,6 +151,7 @@ class SphereFront(StoneFront):
     weir, so a scene refuses them."""
 
     name = "sphere"
+    dimensions = 3
     lookup_table = False
     outline_packer = False
 
