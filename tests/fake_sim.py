@@ -35,7 +35,7 @@ class FakeSimulation:
         self.params = SimpleNamespace(n_exp=scene.stones.n_exp)  # as the Coupler's CouplerParams
         self.stones = SimpleNamespace(shape="disc", stone_pos=pos, stone_vel=np.zeros((n, 2)),
                                       stone_radius=np.full(n, d / 2), stone_active=np.ones(n, bool),
-                                      stone_fixed=pos[:, 1] <= d / 2 + 1e-12)
+                                      stone_fixed=pos[:, 1] <= d / 2 + 1e-12, held=False)
         self.stone_force_drag = np.zeros((n, 2))
         self.stone_force_pressure = np.zeros((n, 2))
         self.profile = FakeProfile()
@@ -65,7 +65,7 @@ class FakeSimulation:
         self.fluid.face_u[:] = q / self.scene.flume.width / max(level, 1e-3)
         st = self.stones
         for i, thr in self.thresholds.items():
-            if q * 1e3 >= thr and not st.stone_fixed[i]:
+            if q * 1e3 >= thr and not st.stone_fixed[i] and not st.held:
                 st.stone_vel[i] = (0.3, -0.05)
                 st.stone_pos[i] += dt * st.stone_vel[i]
                 self.stone_force_drag[i] = (1.0, 0.1)

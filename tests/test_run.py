@@ -52,7 +52,7 @@ def test_stones_are_held_during_the_spin_up(tmp_path):
     d = RunData(tmp_path / "run.h5")
     moved = np.linalg.norm(d.pos - d.pos[0], axis=2).max(axis=1)
     assert moved[d.times <= 12.0].max() == 0.0 and moved[-1] > 0
-    assert np.array_equal(sim.stones.stone_fixed, d.fixed)  # fixed flags restored after the spin-up
+    assert np.array_equal(sim.stones.stone_fixed, d.fixed) and not sim.stones.held  # held by DEMSystem.held, let go
 
 
 def test_water_at_the_domain_top_is_reported_once(tmp_path):

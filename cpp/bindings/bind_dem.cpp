@@ -141,6 +141,9 @@ void bind_system(py::module_& m) {
       .def_property(
           "params", [](const DEMSystem& s) { return s.params(); }, &DEMSystem::set_params,
           "a copy (editing it changes nothing); assign a modified copy to change them, checked")
+      .def_property("held", &DEMSystem::held, &DEMSystem::set_held,
+                    "True: every stone held in place, steps advance the time alone and the contacts keep their "
+                    "springs (a run's spin-up); False lets them go. Holding stops the stones. Not in export_state()")
       .def("resize", &DEMSystem::resize, py::arg("n"),
            "n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories")
       .def("stable_dt", &DEMSystem::stable_dt,

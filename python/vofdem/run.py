@@ -302,7 +302,7 @@ class _Loop:
                                     version=version, polygons=front_of(st).output_shapes(st), xdmf_seconds=xdmf_seconds,
                                     width=st.params.width if front_of(st).dimensions == 3 else None)
             if self.hold:
-                st.stone_fixed[:] = True
+                st.held = True  # kept in place with their contacts' springs (DEMSystem.held)
             self.base_profile, self.base_wall, pos0 = {}, 0.0, None
         else:
             sim.import_state(ck.state)
@@ -310,6 +310,9 @@ class _Loop:
             self.writer = RunWriter.reopen(out / "run.h5", ck.snapshots, xdmf_seconds)
             data = RunData(self.writer.path)
             self.fixed0, pos0 = data.fixed, data.pos[0]
+            if self.hold:  # a checkpoint that held by fixing every stone (before DEMSystem.held) is let go as well
+                st.stone_fixed[:] = self.fixed0
+            st.held = self.hold
             self.t_start = float(data.times[0])
             self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
         self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
@@ -337,7 +340,7 @@ class _Loop:
     def after_advance(self) -> None:
         """Releases the held stones once the ramp starts."""
         if self.hold and float(self.sim.time) >= self.scene.hydrograph.ramp_start - 1e-9:
-            self.sim.stones.stone_fixed[:] = self.fixed0
+            self.sim.stones.held = False
             self.hold = False
 
     def snapshot(self) -> None:

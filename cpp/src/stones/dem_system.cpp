@@ -341,6 +341,14 @@ double DEMSystem::stable_dt() {
   return model_->stable_dt(*this);
 }
 
+void DEMSystem::set_held(bool held) {
+  if (held && !held_) {
+    for (auto* v : {&stone_vel, &stone_omega, &stone_vel_y, &stone_omega_3d}) std::fill(v->begin(), v->end(), 0.0);
+  }
+  if (!held) forces_valid_ = false;
+  held_ = held;
+}
+
 void DEMSystem::step(double dt) { advance_checked(dt, 1); }
 
 void DEMSystem::advance(double duration) {
@@ -406,6 +414,11 @@ void DEMSystem::evaluate_forces(double dt, bool body, StageLaps& laps) {
 // one velocity-Verlet step: kick-drift, forces at the new positions, kick (the time since the last
 // lap of the previous substep counts to this one's integration)
 void DEMSystem::substep(double dt, StageLaps& laps) {
+  if (held_) {  // nothing moves, nothing changes: the time alone
+    time_ += dt;
+    ++steps_;
+    return;
+  }
   const unsigned f = params_.flags;
   if (!forces_valid_) {
     // a fresh start: the first kick needs the accelerations of the initial state

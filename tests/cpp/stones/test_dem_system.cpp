@@ -241,3 +241,38 @@ TEST(DEMSystem, RefusesBadInput) {
   s.stone_wet[0] = 2.0;
   EXPECT_THROW(s.advance(0.1), std::invalid_argument);
 }
+
+// A heap held while the flow spins up keeps its contacts: the pairs and their tangential and rolling
+// springs after a held second are those of before, the stones where they were; let go, it steps on from
+// that state. Fixing every stone instead (the former hold) drops the pairs of two fixed stones.
+TEST(DEMSystem, HoldingKeepsTheContactsAndTheirSprings) {
+  DEMParams p;
+  p.rolling_friction_stone = 0.3;
+  p.flags |= kDEMRollingResistance;
+  DEMSystem s = random_box(24, 7, p);
+  s.advance(0.6);
+  const auto before = s.export_state();
+  ASSERT_GT(before.at("contact_i").size(), 10u);  // the contacts whose springs are not zero
+  s.set_held(true);
+  EXPECT_TRUE(s.held());
+  s.stone_force_ext.assign(s.stone_force_ext.size(), 0.5);  // a load that would move free stones
+  s.advance(1.0);
+  const auto held = s.export_state();
+  EXPECT_EQ(held.at("contact_i"), before.at("contact_i"));
+  EXPECT_EQ(held.at("contact_j"), before.at("contact_j"));
+  EXPECT_EQ(held.at("contact_xi"), before.at("contact_xi"));
+  EXPECT_EQ(held.at("contact_mr"), before.at("contact_mr"));
+  EXPECT_EQ(held.at("stone_pos"), before.at("stone_pos"));
+  for (double v : held.at("stone_vel")) EXPECT_EQ(v, 0.0);
+  // let go: the stones move under the load again, from the kept contacts
+  s.set_held(false);
+  s.advance(0.01);
+  EXPECT_NE(s.export_state().at("stone_pos"), before.at("stone_pos"));
+
+  // the former hold, every stone fixed: the pairs of two fixed stones are gone
+  DEMSystem f = random_box(24, 7, p);
+  f.advance(0.6);
+  std::fill(f.stone_fixed.begin(), f.stone_fixed.end(), 1);
+  f.advance(0.01);
+  EXPECT_TRUE(f.export_state().at("contact_i").empty());
+}

@@ -189,6 +189,15 @@ class DEMSystem {
   // nothing); the derived constants follow on the next step
   void set_params(const DEMParams& p);
 
+  // holds every stone in place (true) or lets them go (false). A held system's steps only advance its
+  // time: no stone moves, and the contact pairs with their tangential and rolling springs stay as they
+  // were, so that stones held while the flow spins up are released with the friction their packing
+  // built (fixing them instead would drop the pairs of two fixed stones, and their springs). Holding
+  // stops every stone; letting go recomputes the accelerations on the next step. Not in the state
+  // (export_state): the caller that holds records it (the run's checkpoint does).
+  void set_held(bool held);
+  bool held() const { return held_; }
+
   // the contact's stable step [s]: 1/10 of the shortest undamped contact duration pi / omega_max
   // (normal and tangential-rotational modes of the lightest stone, the latter with the rolling spring),
   // and no more than the explicit dashpots allow in a packing (kPackedContacts contacts per stone; binds
@@ -375,6 +384,7 @@ class DEMSystem {
   int n_ = 0;
   bool prepared_ = false;
   bool forces_valid_ = false;  // stone_acc holds the accelerations of the current state
+  bool held_ = false;          // set_held
   double kn_ = 0.0, kt_ = 0.0, zeta_ = 0.0;
   double time_ = 0.0;
   long long steps_ = 0;
