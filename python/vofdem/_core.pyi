@@ -758,6 +758,14 @@ class DEMSystem:
         normal damping ratio zeta [-] from params.restitution
         """
     @property
+    def held(self) -> bool:
+        """
+        True: every stone held in place, steps advance the time alone and the contacts keep their springs (a run's spin-up); False lets them go. Holding stops the stones. Not in export_state()
+        """
+    @held.setter
+    def held(self, arg1: bool) -> None:
+        ...
+    @property
     def n(self) -> int:
         """
         number of stones (removed ones included; see stone_active)
