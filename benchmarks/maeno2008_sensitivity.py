@@ -156,7 +156,7 @@ def run_variant(name: str, dt_snap: float = 0.5) -> dict:
     loose = ~fixed0
     pos0 = np.asarray(st.stone_pos, float).reshape(-1, 2).copy()
     ramp = scene.hydrograph.ramp_start
-    st.stone_fixed[:] = True  # held during the spin-up, as run_scene does
+    st.held = True  # held during the spin-up with their contacts, as run_scene does (DEMSystem.held)
     times, pos, active, rows = [], [], [], []
     wall0 = time.perf_counter()
     t_end = scene.duration
@@ -165,8 +165,7 @@ def run_variant(name: str, dt_snap: float = 0.5) -> dict:
     for t in targets:
         sim.advance(float(t))
         if held and float(sim.time) >= ramp - 1e-9:
-            st.stone_fixed[:] = fixed0
-            held = False
+            st.held = held = False
         p = np.asarray(st.stone_pos, float).reshape(-1, 2).copy()
         fd = np.asarray(sim.stone_force_drag, float).reshape(-1, 2)
         fs = np.asarray(sim.stone_force_pressure, float).reshape(-1, 2)
