@@ -12,6 +12,8 @@
 #include "flags.h"
 #include "state.h"
 #include "views.h"
+#include "vofdem/stones/clump.h"
+#include "vofdem/stones/clump_model.h"
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/weir_packing.h"
@@ -117,6 +119,22 @@ void bind_params(py::module_& m) {
         "Restitution coefficient e [-] of a linear spring-dashpot of damping ratio zeta [-] (0 for zeta >= 1).");
   m.def("stone_model_names", &stone_model_names,
         "the registered stone models' names (DEMSystem.shape, the scene's stones.shape), the built-in ones first");
+  m.def(
+      "quarried_stone",
+      [](const std::string& name, double d_eq, double ratio_intermediate, double ratio_short) {
+        const Clump c = quarried_stone(name, d_eq, ratio_intermediate, ratio_short);
+        py::array_t<double> out({static_cast<py::ssize_t>(c.spheres().size()), py::ssize_t{4}});
+        for (std::size_t k = 0; k < c.spheres().size(); ++k) {
+          for (int d = 0; d < 3; ++d) out.mutable_at(k, d) = c.spheres()[k].centre[d];
+          out.mutable_at(k, 3) = c.spheres()[k].radius;
+        }
+        return out;
+      },
+      py::arg("name"), py::arg("d_eq"), py::arg("ratio_intermediate") = 0.8, py::arg("ratio_short") = 0.6,
+      "The spheres (k, 4) of a library clump (x, y, z, r) [m] in its principal frame: name one of "
+      "quarried_stone_names(), d_eq [m] in (0, inf) its volume-equivalent diameter, the aspect ratios "
+      "intermediate/long in [ratio_short, 1] and short/long in [0.55, 1] [-].");
+  m.def("quarried_stone_names", &quarried_stone_names, "the library clumps' names (quarried_stone)");
   m.def("contact_duration", &contact_duration, py::arg("k"), py::arg("m_reduced"), py::arg("zeta"),
         "Contact duration t_c [s] of a linear spring-dashpot: stiffness k [N/m], reduced mass m_reduced [kg], damping "
         "ratio zeta [-] (inf for zeta >= 1).");
@@ -195,6 +213,14 @@ void bind_system(py::module_& m) {
            py::arg("vertex"), py::arg("offset"),
            "Makes every stone a convex polygon: body-frame vertices (x, z) [m], CCW, centroid at the origin; "
            "stone i owns vertices offset[i]:offset[i+1]. Invalidates the poly_* views.")
+      .def(
+          "set_clumps",
+          [](DEMSystem& s, const A& sphere, const std::vector<int>& offset) { set_clumps(s, flat_pos(sphere), offset); },
+          py::arg("sphere"), py::arg("offset"),
+          "Makes every stone a clump of overlapping spheres (the model 'clump'): sphere (m, 4) rows (x, y, z, r) "
+          "[m] in any frame, each stone's stored in its principal frame (stone_pos, stone_y: its centre of mass); "
+          "stone i owns rows offset[i]:offset[i+1] (1 to 8); stone_radius becomes each bounding radius. The "
+          "out-of-plane state is made anew.")
       .def_property_readonly("poly_vertex",
                              [](py::object self) { return view_pairs(self.cast<DEMSystem&>().poly_vertex, self); },
            "polygon stones' body-frame vertices (m, 2) [m], zero-copy view (set_polygons reallocates it)")

@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_cell_area', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'quarried_stone', 'quarried_stone_names', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_cell_area', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -718,6 +718,10 @@ class DEMSystem:
     def resize(self, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         """
         n stones, all arrays zeroed (discs again); invalidates every earlier view and the contact histories
+        """
+    def set_clumps(self, sphere: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], offset: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
+        """
+        Makes every stone a clump of overlapping spheres (the model 'clump'): sphere (m, 4) rows (x, y, z, r) [m] in any frame, each stone's stored in its principal frame (stone_pos, stone_y: its centre of mass); stone i owns rows offset[i]:offset[i+1] (1 to 8); stone_radius becomes each bounding radius. The out-of-plane state is made anew.
         """
     def set_model(self, name: str) -> None:
         """
@@ -3056,6 +3060,14 @@ def porosity_eq11(a_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], 
 def pressure_residual(grid: Grid2D, problem: PressureProblem, rhs: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], p: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
     """
     b - A p on active cells (0 elsewhere)
+    """
+def quarried_stone(name: str, d_eq: typing.SupportsFloat | typing.SupportsIndex, ratio_intermediate: typing.SupportsFloat | typing.SupportsIndex = 0.8, ratio_short: typing.SupportsFloat | typing.SupportsIndex = 0.6) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    The spheres (k, 4) of a library clump (x, y, z, r) [m] in its principal frame: name one of quarried_stone_names(), d_eq [m] in (0, inf) its volume-equivalent diameter, the aspect ratios intermediate/long in [ratio_short, 1] and short/long in [0.55, 1] [-].
+    """
+def quarried_stone_names() -> list[str]:
+    """
+    the library clumps' names (quarried_stone)
     """
 def random_polygons(diameters: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], seed: typing.SupportsInt | typing.SupportsIndex = 0, vertices_min: typing.SupportsInt | typing.SupportsIndex = 5, vertices_max: typing.SupportsInt | typing.SupportsIndex = 8, aspect_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.5, radial_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.2) -> tuple[numpy.typing.NDArray[numpy.float64], list[int]]:
     """

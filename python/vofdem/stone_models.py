@@ -161,6 +161,24 @@ class SphereFront(StoneFront):
                          "DEMParams.width), and a Coupler with CouplerParams.n_exp = 0")
 
 
+class ClumpFront(StoneFront):
+    """Rigid clumps of 1 to 8 overlapping spheres across the flume's width (clump_model.h): run by a DEMSystem
+    (``set_clumps``, library shapes from ``quarried_stone``), not yet coupled to the flow nor packed into a
+    weir, so a scene refuses them."""
+
+    name = "clump"
+    lookup_table = False
+    outline_packer = False
+
+    def diameters(self, system) -> np.ndarray:
+        return np.array([system.nominal_diameter(i) for i in range(system.n)])
+
+    def check(self, stones, prefix: str) -> None:
+        raise ValueError(f"{prefix}.shape = 'clump' is not allowed in a scene yet: clumps are neither packed into a "
+                         "weir nor coupled to the flow (allowed: 'disc', 'polygon'); a DEMSystem runs them "
+                         "(set_clumps with DEMParams.width)")
+
+
 _FRONTS: Dict[str, StoneFront] = {}
 
 
@@ -198,3 +216,4 @@ def stone_diameters(system) -> np.ndarray:
 register_front(StoneFront())
 register_front(PolygonFront())
 register_front(SphereFront())
+register_front(ClumpFront())

@@ -110,6 +110,8 @@ void DEMState::clear_model_part() {
   poly_wall_id.clear(), poly_wall_xi.clear();
   sphere_contact_i.clear(), sphere_contact_j.clear(), sphere_contact_spring.clear(), sphere_contact_rolling.clear();
   sphere_wall_spring.clear(), sphere_wall_rolling.clear();
+  clump_sphere.clear(), clump_property.clear(), clump_offset.clear(), clump_contact.clear();
+  clump_contact_spring.clear(), clump_contact_rolling.clear(), clump_wall_spring.clear(), clump_wall_rolling.clear();
 }
 
 void DEMSystem::check_state(const DEMState& s) const {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/clump_model.h"
 #include "vofdem/stones/disc_model.h"
 #include "vofdem/stones/polygon_model.h"
 #include "vofdem/stones/sphere_model.h"
@@ -29,6 +30,7 @@ struct Registry {
     models.emplace_back("disc", make_model<DiscModel>);
     models.emplace_back("polygon", make_model<PolygonModel>);
     models.emplace_back("sphere", make_model<SphereModel>);
+    models.emplace_back("clump", make_model<ClumpModel>);
   }
 };
 

@@ -158,6 +158,12 @@ struct DEMState {
       stone_torque_3d;
   std::vector<int> sphere_contact_i, sphere_contact_j;
   std::vector<double> sphere_contact_spring, sphere_contact_rolling, sphere_wall_spring, sphere_wall_rolling;
+  // clump stones (clump_model.h): spheres (x, y, z, r) in the principal frames, offsets (n + 1), the
+  // union's volume and principal moments per unit density (4 per stone); per touching sub-sphere pair
+  // (i, j, a, b) and per (sub-sphere, plane) the tangential spring and the rolling spring moment
+  std::vector<double> clump_sphere, clump_property;
+  std::vector<int> clump_offset, clump_contact;
+  std::vector<double> clump_contact_spring, clump_contact_rolling, clump_wall_spring, clump_wall_rolling;
   double time = 0.0;  // [s]
   long long steps = 0;
   int removed = 0, ncontact = 0, nwall_contact = 0;

@@ -1,0 +1,115 @@
+// Clump stones: rigid 3D stones of 1 to 8 overlapping spheres (clump.h) across the flume of width B
+// (DEMParams::width), between the side walls y = 0 and y = B, in DEMSystem's out-of-plane state.
+//
+// Mass properties, from the union of the spheres (each overlap counted once; clump.h):
+//
+//   M = rho_s V_union,   J_k = rho_s (tr S - S)_k (principal moments, ascending),
+//   d_eq = (6 V_union / pi)^(1/3) (nominal diameter),   A_p = pi d_eq^2 / 4
+//
+// Each stone's spheres are kept in its principal frame (centroid at the origin), so stone_pos / stone_y
+// hold the centre of mass and stone_quat turns the principal frame into the world; stone_radius holds the
+// bounding radius max(|c_k| + r_k), which the neighbour search and the wall candidates read.
+//
+// Contacts: every sub-sphere pair (a of i, b of j) of a listed stone pair whose spheres overlap, through
+// the sphere_contact.h kernel at the contact point of the two rigid bodies (lever arms from each stone's
+// centre of mass), each with its own tangential-spring and rolling history (several contacts per stone
+// pair); and each sub-sphere against each plane (the walls of DEMParams across the flume, the side walls
+// with side_wall_friction) with its history. Rolling resistance, where it is on: per sub-sphere contact
+// with the sub-spheres' radii (R* = r_a r_b / (r_a + r_b)) and the stone's smallest principal moment for
+// the damper's I_r; Yade's and LAMMPS's clumps have none, and with the rolling friction 0 (the default)
+// neither have these.
+//
+// Stable step: from the stone's mass and its smallest principal moment, as for polygons,
+//   omega^2 = 4 max(k_n, k_t) (1/M + R^2 / J_1)   (two contacts of a pair, two equal stones, R the
+//   bounding radius), and the disc model's dashpot bound. A sub-sphere has no mass of its own: every
+//   contact loads the whole rigid body, so its mass share would understate the mode's inertia.
+//
+// Coupling: refused (map_footprint throws, naming stones.shape). The mapper keeps one cell list per stone
+// and takes a stone's sub-spheres as one sphere each; mapping a clump's parts needs a list per stone
+// built from several primitives, which it has not. The drag and the wet law are the sphere's with r_eq
+// (the latter in DEMSystem's follow-the-water-level reads stone_radius, the bounding radius: noted in
+// docs/stone_models.md). The packing generator does not take 3D stones yet (refused with the key named).
+//
+// References: Favier, J. F., Abbaspour-Fard, M. H., Kremmer, M. & Raji, A. O. (1999), Eng. Computations
+// 16(4), 467-480. Ferellec, J.-F. & McDowell, G. R. (2010), Granular Matter 12, 459-467. Cundall, P. A.
+// & Strack, O. D. L. (1979), Geotechnique 29(1), 47-65.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "vofdem/stones/disc_model.h"
+#include "vofdem/stones/sphere_contact.h"
+
+namespace vofdem {
+
+// the most spheres one clump stone may have
+inline constexpr int kClumpMaxSpheres = 8;
+
+class ClumpModel final : public DiscModel {
+ public:
+  const char* name() const override { return "clump"; }
+  int dimensions() const override { return 3; }
+  WetLaw wet_law() const override { return kSphereWetLaw; }
+  double volume(const DEMSystem& s, int i) const override;
+  double inertia(const DEMSystem& s, int i, double mass) const override;
+  std::array<double, 3> principal_inertia(const DEMSystem& s, int i, double mass) const override;
+  double nominal_diameter(const DEMSystem& s, int i) const override;
+  double projected_area(const DEMSystem& s, int i) const override;
+  double projected_area(const DEMSystem& s, int i, double ux, double uz) const override;
+  double stable_dt(const DEMSystem& s) const override;
+  void check_params(const DEMParams& p) const override;
+  void prepare(DEMSystem& s) override;
+  ContactTally contact_forces(DEMSystem& s, double dt) override;
+  ContactTally wall_forces(DEMSystem& s, double dt) override;
+  bool own_pair_history() const override { return true; }
+  void pairs_rebuilt(DEMSystem& s, const std::vector<int>& from) override;
+
+  void export_state(const DEMSystem& s, DEMState& t) const override;
+  void check_state(const DEMSystem& s, const DEMState& t) const override;
+  void import_state(DEMSystem& s, const DEMState& t) override;
+  const char* checkpoint_key() const override { return "clump_sphere"; }
+  void state_to_map(DEMState& t, StateMap& m) const override;
+  void state_from_map(const StateMap& m, std::size_t n, std::size_t nwalls, DEMState& t) const override;
+
+  bool lookup_footprint() const override { return false; }
+  void map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const override;
+  std::unique_ptr<StonePacking> packing(const WeirSpec& spec) const override;
+
+  // the stones' shapes: sphere holds (x, y, z, r) per sphere [m] in any frame, stone i owning spheres
+  // offset[i] .. offset[i+1]-1 (1 to kClumpMaxSpheres); each is stored in its principal frame. Checked
+  // first (std::invalid_argument naming the stone); the stones' radii become the bounding radii
+  void set_shapes(int n, const std::vector<double>& sphere, const std::vector<int>& offset);
+  const std::vector<double>& spheres() const { return sphere_; }  // principal frames, (x, y, z, r) each
+  const std::vector<int>& offsets() const { return offset_; }
+  const std::vector<double>& bounding_radii() const { return bound_; }
+
+ private:
+  struct SubContact {
+    int a, b;  // the sub-spheres of i and of j (their rank in the stone)
+    bool touched;
+    SphereContactHistory h;
+  };
+  void default_shapes(const DEMSystem& s);
+  void world_spheres(const DEMSystem& s);
+  SphereOfBody body(const DEMSystem& s, int i, int g, double mass) const;
+  std::size_t np() const { return planes_.size(); }
+
+  bool shaped_ = false;          // shapes set (else one sphere of stone_radius per stone, made at prepare)
+  std::vector<double> sphere_;   // (x, y, z, r) per sub-sphere, principal frame [m]
+  std::vector<int> offset_;      // n + 1
+  std::vector<double> volume_;   // union volume [m^3], n
+  std::vector<double> moment_;   // principal moments per unit density (J / rho) [m^5], 3n
+  std::vector<double> bound_;    // bounding radius [m], n
+  std::vector<double> world_;    // sub-sphere centres in the world [m], 3 per sub-sphere (scratch)
+  std::vector<std::vector<SubContact>> pair_history_;  // per listed pair, its touching sub-sphere pairs
+  std::vector<SphereContactHistory> wall_history_;     // per (sub-sphere, plane of planes_)
+  std::vector<ContactPlane> planes_;
+};
+
+// makes every stone of s a clump of these spheres (ClumpModel::set_shapes; the model set anew, the
+// stones' radii their bounding radii). A refused set changes nothing
+void set_clumps(DEMSystem& s, const std::vector<double>& sphere, const std::vector<int>& offset);
+
+}  // namespace vofdem

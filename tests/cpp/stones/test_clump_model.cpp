@@ -1,0 +1,256 @@
+// Clump stones (clump_model.h) in DEMSystem: the mass properties of clump.h through the model, two
+// dumbbells meeting tip to tip with the force of one sphere pair by hand, a dumbbell lying on the bed on
+// two contacts without turning, one dropped on its end that tips over, a rebound off a side wall, the
+// energy account of a collision, determinism and restart bit for bit, and the refusals.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/pin_hash.h"
+#include "vofdem/stones/clump.h"
+#include "vofdem/stones/clump_model.h"
+#include "vofdem/stones/dem_system.h"
+
+using namespace vofdem;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kR = 0.012;   // sub-sphere radius [m]
+constexpr double kC = 0.008;   // sub-sphere centre's distance from the clump's centre [m]
+constexpr double kRho = 2650.0;
+constexpr double kG = 9.81;
+
+// a dumbbell of two spheres on the x axis, (x, y, z, r) rows
+std::vector<double> dumbbell() { return {-kC, 0.0, 0.0, kR, kC, 0.0, 0.0, kR}; }
+
+// n dumbbells at (x, z) pairs in a flume of width `width`
+DEMSystem dumbbells(DEMParams p, const std::vector<double>& xz, double width) {
+  p.width = width;
+  p.dt = 1e-5;
+  const int n = static_cast<int>(xz.size() / 2);
+  DEMSystem s(p, xz, std::vector<double>(n, kR), {kRho});
+  std::vector<double> sphere;
+  std::vector<int> offset{0};
+  for (int i = 0; i < n; ++i) {
+    for (double v : dumbbell()) sphere.push_back(v);
+    offset.push_back(2 * (i + 1));
+  }
+  set_clumps(s, sphere, offset);
+  return s;
+}
+
+// the rotation's column k (body axis k in the world) of stone i
+Eigen::Vector3d body_axis(const DEMSystem& s, int i, int k) {
+  const double* q = &s.stone_quat[4 * i];
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix().col(k);
+}
+}  // namespace
+
+TEST(ClumpModel, MassAndInertiaAreClumpsAnalyticTwoSphereUnion) {
+  const DEMSystem s = dumbbells(DEMParams{}, {0.1, 0.1}, 0.1);
+  const VolumeMoments u = sphere_pair_union_moments({Eigen::Vector3d(-kC, 0, 0), kR}, {Eigen::Vector3d(kC, 0, 0), kR});
+  // the lens: V = 2 V_sphere - V_lens, a cap of height h = r - c on each side
+  const double h = kR - kC, lens = 2.0 * kPi * h * h * (3.0 * kR - h) / 3.0;
+  EXPECT_NEAR(s.volume(0), 8.0 / 3.0 * kPi * kR * kR * kR - lens, 1e-15);
+  EXPECT_DOUBLE_EQ(s.volume(0), u.m0);
+  EXPECT_DOUBLE_EQ(s.mass(0), kRho * u.m0);
+  EXPECT_DOUBLE_EQ(s.nominal_diameter(0), std::cbrt(6.0 * u.m0 / kPi));
+  EXPECT_NEAR(s.projected_area(0), kPi * std::pow(std::cbrt(6.0 * u.m0 / kPi), 2) / 4.0, 1e-15);
+  // unturned: the long axis along x, so the moment about y is the transverse one
+  const Eigen::Matrix3d j = kRho * u.inertia_about_centroid();
+  EXPECT_NEAR(s.inertia(0), j(1, 1), 1e-12 * j(1, 1));
+  EXPECT_NEAR(body_axis(s, 0, 0).cwiseAbs().x(), 1.0, 1e-15);
+  // the stone's radius is the bounding one
+  EXPECT_DOUBLE_EQ(s.stone_radius[0], kC + kR);
+  const auto& m = dynamic_cast<const ClumpModel&>(s.model());
+  EXPECT_EQ(m.offsets(), (std::vector<int>{0, 2}));
+}
+
+TEST(ClumpModel, TwoDumbbellsTipToTipPushLikeOneSpherePair) {
+  DEMParams p;
+  p.flags = kDEMAllEffects & ~kDEMGravity & ~kDEMDamping;
+  p.stiffness_normal = 1e5;
+  const double x1 = 0.1 + 2.0 * kC + 2.0 * kR - 1e-4;
+  DEMSystem s = dumbbells(p, {0.1, 0.1, x1, 0.1}, 0.1);
+  s.step(1e-5);
+  const double overlap = 2.0 * kR - ((s.stone_pos[2] - kC) - (s.stone_pos[0] + kC));
+  EXPECT_GT(overlap, 0.9e-4);
+  EXPECT_NEAR(s.stone_force[0], -1e5 * overlap, 1e-9);
+  EXPECT_NEAR(s.stone_force[2], 1e5 * overlap, 1e-9);
+  EXPECT_EQ(s.stone_force[1], 0.0);
+  EXPECT_EQ(s.stone_force_y[0], 0.0);
+  EXPECT_EQ(s.contact_count(), 1);
+  // on the line of the centres: no torque
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.stone_torque_3d[k], 0.0, 1e-15);
+}
+
+TEST(ClumpModel, ADumbbellOnTheBedRestsOnTwoContactsWithoutTurning) {
+  DEMParams p;
+  p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.5});
+  p.stiffness_normal = 1e5;
+  p.restitution = 0.0;
+  DEMSystem s = dumbbells(p, {0.1, kR + 1e-4}, 0.1);
+  s.advance(0.3);
+  const double m = s.mass(0);
+  // each sphere carries half the weight: its overlap m g / (2 k_n) (one contact would sink twice as far)
+  EXPECT_NEAR(kR - s.stone_pos[1], m * kG / (2.0 * 1e5), 1e-3 * m * kG / 2e5);
+  EXPECT_EQ(s.wall_contact_count(), 2);
+  EXPECT_LT(std::fabs(s.stone_vel[1]), 1e-9);
+  for (int k = 1; k < 4; ++k) EXPECT_LT(std::fabs(s.stone_quat[k]), 1e-9);
+}
+
+TEST(ClumpModel, ADumbbellDroppedOnItsEndTipsOver) {
+  DEMParams p;
+  p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.5});
+  p.stiffness_normal = 1e5;
+  p.restitution = 0.3;
+  DEMSystem s = dumbbells(p, {0.1, kC + kR + 0.002}, 0.1);
+  // the long axis 5 degrees off the vertical, in the x-z plane
+  const double a = 0.5 * (0.5 * kPi - 5.0 * kPi / 180.0);
+  s.stone_quat[0] = std::cos(a), s.stone_quat[2] = std::sin(a);
+  EXPECT_GT(std::fabs(body_axis(s, 0, 0).z()), 0.99);
+  s.advance(0.6);
+  // lying: the long axis horizontal, both spheres on the bed, the centre at the sphere's height
+  EXPECT_LT(std::fabs(body_axis(s, 0, 0).z()), 1e-3);
+  EXPECT_EQ(s.wall_contact_count(), 2);
+  EXPECT_NEAR(s.stone_pos[1], kR, 2e-4);
+}
+
+TEST(ClumpModel, ADumbbellReboundsOffASideWallWithoutTurning) {
+  DEMParams p;
+  p.flags = kDEMAllEffects & ~kDEMGravity & ~kDEMDamping;
+  p.stiffness_normal = 1e5;
+  DEMSystem s = dumbbells(p, {0.1, 0.1}, 0.1);
+  s.stone_y[0] = 0.02;
+  s.stone_vel_y[0] = -0.5;
+  int most = 0;
+  for (int k = 0; k < 140; ++k) {
+    s.advance(2e-4);
+    most = std::max(most, s.wall_contact_count());
+  }
+  // both spheres met the wall at once: an elastic rebound, no spin (the glass's friction has no slip)
+  EXPECT_EQ(most, 2);
+  EXPECT_NEAR(s.stone_vel_y[0], 0.5, 1e-3);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.stone_omega_3d[k], 0.0, 1e-12);
+  EXPECT_GT(s.stone_y[0], kR);
+}
+
+TEST(ClumpModel, ACollisionsEnergyIsAccountedFor) {
+  // two dumbbells crossing off-centre, with dashpots and friction: what they lose is dissipated
+  DEMParams p;
+  p.flags = kDEMAllEffects & ~kDEMGravity;
+  p.stiffness_normal = 1e5;
+  p.restitution = 0.5;
+  DEMSystem s = dumbbells(p, {0.1, 0.1, 0.16, 0.105}, 0.1);
+  s.stone_y[1] = 0.053;
+  s.stone_vel[0] = 1.0;
+  s.stone_vel[2] = -1.0;
+  s.advance(1e-5);
+  const double e0 = s.energy().total();
+  s.advance(0.06);
+  const DEMEnergy e = s.energy();
+  EXPECT_GT(e.dissipated, 0.05 * e0);  // they met, lost energy and turned
+  double spin = 0.0;
+  for (double w : s.stone_omega_3d) spin = std::max(spin, std::fabs(w));
+  EXPECT_GT(spin, 1.0);
+  EXPECT_NEAR(e.total(), e0, 2e-3 * e0);
+}
+
+namespace {
+// 24 library clumps dropped into a flume 0.16 m long and 0.05 m wide, frictional, turned at random
+DEMSystem clump_heap() {
+  DEMParams p;
+  p.add_flume(0.0, 0.16, 0.0, 0.3);
+  p.stiffness_normal = 1e5;
+  p.restitution = 0.3;
+  p.width = 0.05;
+  p.dt = 1e-5;
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> xz, sphere;
+  std::vector<int> offset{0};
+  // the library's shapes, integrated once
+  static const std::vector<Clump> shapes = [] {
+    std::vector<Clump> out;
+    for (const std::string& name : quarried_stone_names()) out.push_back(quarried_stone(name, 0.025, 0.8, 0.6));
+    return out;
+  }();
+  for (int k = 0; k < 24; ++k) {
+    xz.push_back(0.025 + 0.037 * (k % 4) + 0.003 * u(g)), xz.push_back(0.03 + 0.04 * (k / 4));
+    const Clump& c = shapes[k % shapes.size()];
+    for (const ClumpSphere& b : c.spheres()) sphere.insert(sphere.end(), {b.centre[0], b.centre[1], b.centre[2], b.radius});
+    offset.push_back(static_cast<int>(sphere.size() / 4));
+  }
+  DEMSystem s(p, xz, std::vector<double>(24, 0.02), {kRho});
+  set_clumps(s, sphere, offset);
+  for (int i = 0; i < 24; ++i) {
+    const Eigen::Quaterniond q = Eigen::Quaterniond(u(g) - 0.5, u(g) - 0.5, u(g) - 0.5, u(g) - 0.5).normalized();
+    s.stone_quat[4 * i] = q.w(), s.stone_quat[4 * i + 1] = q.x(), s.stone_quat[4 * i + 2] = q.y();
+    s.stone_quat[4 * i + 3] = q.z();
+    s.stone_y[i] = 0.022 + 0.006 * u(g);
+  }
+  return s;
+}
+}  // namespace
+
+TEST(ClumpModel, RunsAreDeterministicAndRestartBitForBit) {
+  DEMSystem a = clump_heap();
+  a.advance(0.2);
+  const auto checkpoint = a.export_state();
+  EXPECT_TRUE(checkpoint.count("clump_sphere"));
+  EXPECT_GT(checkpoint.at("clump_contact").size(), 0u);
+  a.advance(0.05);
+  DEMSystem b = clump_heap();
+  b.import_state(checkpoint);
+  b.advance(0.05);
+  DEMSystem c = clump_heap();
+  c.advance(0.2);
+  c.advance(0.05);
+  EXPECT_EQ(test::state_hash(a.export_state()), test::state_hash(b.export_state()));
+  EXPECT_EQ(test::state_hash(a.export_state()), test::state_hash(c.export_state()));
+  EXPECT_GT(a.contact_count(), 10);
+  // a system of another model takes the checkpoint with its model and shapes
+  DEMSystem d(a.params(), a.n());
+  d.import_state(checkpoint);
+  EXPECT_STREQ(d.model().name(), "clump");
+  d.advance(0.05);
+  EXPECT_EQ(test::state_hash(a.export_state()), test::state_hash(d.export_state()));
+}
+
+TEST(ClumpModel, WithoutShapesEachStoneIsOneSphere) {
+  DEMParams p;
+  p.width = 0.1;
+  p.stiffness_normal = 1e5;
+  p.dt = 1e-5;
+  DEMSystem s(p, {0.1, 0.1}, {kR}, {kRho});
+  s.set_model("clump");
+  s.advance(1e-3);
+  EXPECT_NEAR(s.mass(0), kRho * 4.0 / 3.0 * kPi * kR * kR * kR, 1e-15);
+  EXPECT_NEAR(s.inertia(0), 0.4 * s.mass(0) * kR * kR, 1e-18);
+}
+
+TEST(ClumpModel, BadShapesAndTheCouplingAreRefusedWithTheKeyNamed) {
+  DEMParams p;
+  p.width = 0.1;
+  DEMSystem s(p, {0.1, 0.1}, {kR}, {kRho});
+  auto refused = [&](const std::vector<double>& sphere, const std::vector<int>& offset, const std::string& key) {
+    try {
+      set_clumps(s, sphere, offset);
+      FAIL() << "no throw for " << key;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  refused(std::vector<double>(36, 0.01), {0, 9}, "[1, 8]");
+  refused({0.0, 0.0, 0.0, 0.0}, {0, 1}, "radius in (0, inf)");
+  refused({0.0, 0.0, 0.0, 0.01}, {0, 2}, "offsets");
+  EXPECT_STREQ(s.model().name(), "disc");  // nothing changed
+  p.width = 0.0;
+  DEMSystem narrow(p, {0.1, 0.1}, {kR}, {kRho});
+  EXPECT_THROW(set_clumps(narrow, dumbbell(), {0, 2}), std::invalid_argument);
+}

@@ -1,0 +1,81 @@
+"""Clump stones from Python (clump_model.h): library shapes set on a DEMSystem, a heap that settles between
+the side walls and restarts bit for bit, and the refusals (bad shapes, the coupling, a scene)."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vofdem
+from vofdem import _core
+
+
+def heap(n=12, width=0.06, seed=0):
+    """n library clumps of d_eq = 3 cm dropped in a 0.16 m long flume of the given width [m]."""
+    p = vofdem.DEMParams()
+    p.add_flume(0.0, 0.16, 0.0, 0.3)
+    p.width = width
+    p.stiffness_normal = 1e5
+    p.restitution = 0.3
+    p.dt = 1e-5
+    g = np.random.default_rng(seed)
+    pos = np.array([[0.025 + 0.037 * (k % 4) + 0.003 * g.random(), 0.03 + 0.045 * (k // 4)] for k in range(n)])
+    s = vofdem.DEMSystem(p, pos=pos, radius=np.full(n, 0.02))
+    names = _core.quarried_stone_names()
+    shapes = [_core.quarried_stone(names[k % len(names)], 0.03) for k in range(n)]
+    offset = np.concatenate([[0], np.cumsum([len(c) for c in shapes])]).astype(int)
+    s.set_clumps(np.vstack(shapes), offset.tolist())
+    q = g.normal(size=(n, 4))
+    s.stone_quat[:] = q / np.linalg.norm(q, axis=1)[:, None]
+    s.stone_y[:] = 0.5 * width + 0.004 * (g.random(n) - 0.5)
+    return s
+
+
+def test_library_clumps_have_the_volume_of_their_equivalent_sphere():
+    assert _core.quarried_stone_names() == ["pair_2", "triangle_3", "tetra_4", "box_8"]
+    s = heap(n=4)
+    assert s.shape == "clump"
+    for i in range(4):
+        # the library scales each union to pi d^3 / 6 (to its quadrature's accuracy, clump.h)
+        assert s.nominal_diameter(i) == pytest.approx(0.03, rel=1e-5)
+        assert s.volume(i) == pytest.approx(np.pi * 0.03**3 / 6.0, rel=3e-5)
+        assert s.stone_radius[i] > 0.015  # the bounding radius, beyond the equivalent sphere's
+    assert [len(_core.quarried_stone(n, 0.03)) for n in _core.quarried_stone_names()] == [2, 3, 4, 8]
+
+
+def test_a_clump_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
+    s = heap()
+    s.advance(0.15)
+    checkpoint = s.export_state()
+    assert "clump_sphere" in checkpoint and "clump_wall_spring" in checkpoint
+    s.advance(0.1)
+    r = heap()
+    r.import_state(checkpoint)
+    r.advance(0.1)
+    for key, value in s.export_state().items():
+        np.testing.assert_array_equal(r.export_state()[key], value, err_msg=key)
+    assert s.contact_count > 0 and s.wall_contact_count > 0
+    # settled into the flume: the centres above the bed and between the side walls, the speeds small
+    assert np.all(s.stone_pos[:, 1] > 0.0) and np.all(s.stone_pos[:, 1] < 0.2)
+    assert np.all((s.stone_y > 0.0) & (s.stone_y < 0.06))
+    e = s.energy()
+    assert e.dissipated > 0.0 and e.total == r.energy().total
+
+
+def test_what_clumps_cannot_do_yet_is_refused_with_the_key_named():
+    s = heap(n=2)
+    with pytest.raises(ValueError, match=r"allowed range \[1, 8\]"):
+        s.set_clumps(np.full((9, 4), 0.01), [0, 9, 9])
+    with pytest.raises(ValueError, match=r"radius in \(0, inf\)"):
+        s.set_clumps(np.zeros((2, 4)), [0, 1, 2])
+    with pytest.raises(ValueError, match="d_eq"):
+        _core.quarried_stone("pair_2", -1.0)
+    grid = vofdem.Grid2D.uniform(10, 20, 0.16, 0.3)
+    fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    cp = _core.CouplerParams()
+    cp.n_exp = 0.0
+    with pytest.raises(ValueError, match="stones.shape = 'clump' cannot be coupled to the flow yet"):
+        sim = _core.Coupler(fluid, s, cp)
+        sim.advance(0.01)
+    scene = vofdem.load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008.toml")
+    with pytest.raises(ValueError, match="stones.shape = 'clump' is not allowed in a scene yet"):
+        vofdem.Scene.from_dict({**scene.to_dict(), "stones": {**scene.to_dict()["stones"], "shape": "clump"}})
