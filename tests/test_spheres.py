@@ -1,7 +1,7 @@
 """3D sphere stones across the flume from Python (sphere_model.h): the out-of-plane state as zero-copy views, a
 settling that stays between the side walls, checkpoint and restart bit for bit, a coupled run that keeps the
-water, and the refusals (a packing porosity inside 3D stones, a scene, which cannot pack them yet)."""
-from pathlib import Path
+water, and the refusals (a flume without width, a packing porosity inside 3D stones; scenes of spheres:
+test_sphere_scenes.py)."""
 
 import numpy as np
 import pytest
@@ -91,6 +91,3 @@ def test_what_spheres_cannot_do_yet_is_refused_with_the_key_named():
     sim = _core.Coupler(fluid, stones, _core.CouplerParams())
     with pytest.raises(ValueError, match=r"n_exp = 0.41 is outside the allowed range \[0, 0\] with 3D stones"):
         sim.advance(0.01)
-    scene = vofdem.load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008.toml")
-    with pytest.raises(ValueError, match="stones.shape = 'sphere' is not allowed in a scene yet"):
-        vofdem.Scene.from_dict({**scene.to_dict(), "stones": {**scene.to_dict()["stones"], "shape": "sphere"}})

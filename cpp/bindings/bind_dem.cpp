@@ -354,7 +354,11 @@ void bind_packing(py::module_& m) {
       .def_readonly("n_fixed", &WeirPackingReport::n_fixed,
            "fixed bottom stones")
       .def_readonly("porosity", &WeirPackingReport::porosity,
-           "2D porosity of the trapezoid: 1 - (stone area inside) / area [-]")
+           "porosity of the trapezoid [-]: 1 - (stone area inside) / area in the plane; for 3D stones that of "
+           "the prism across the width, 1 - (stone volume inside) / (area B)")
+      .def_readonly("stones_across", &WeirPackingReport::stones_across,
+           "3D stones: the mean number of stones a line across the flume through the trapezoid crosses [-] "
+           "(0 in the plane)")
       .def_readonly("max_speed", &WeirPackingReport::max_speed,
            "largest stone speed at the end [m/s]")
       .def_readonly("settle_time", &WeirPackingReport::settle_time,
@@ -365,7 +369,8 @@ void bind_packing(py::module_& m) {
            "wall-clock time of the packing [s]")
       .def("__repr__", [](const WeirPackingReport& r) {
         return "WeirPackingReport(n_stones=" + std::to_string(r.n_stones) + ", n_fixed=" + std::to_string(r.n_fixed) +
-               ", porosity=" + std::to_string(r.porosity) + ", max_speed=" + std::to_string(r.max_speed) +
+               ", porosity=" + std::to_string(r.porosity) + ", stones_across=" + std::to_string(r.stones_across) +
+               ", max_speed=" + std::to_string(r.max_speed) +
                ", outline_error=" + std::to_string(r.outline_error) + ")";
       });
   // the weir packer: one C++ packer, a WeirSpec in; the keyword form (older scripts) makes the spec

@@ -1100,12 +1100,17 @@ class WeirPackingReport:
     @property
     def porosity(self) -> float:
         """
-        2D porosity of the trapezoid: 1 - (stone area inside) / area [-]
+        porosity of the trapezoid [-]: 1 - (stone area inside) / area in the plane; for 3D stones that of the prism across the width, 1 - (stone volume inside) / (area B)
         """
     @property
     def settle_time(self) -> float:
         """
         simulated time of the settling phases [s]
+        """
+    @property
+    def stones_across(self) -> float:
+        """
+        3D stones: the mean number of stones a line across the flume through the trapezoid crosses [-] (0 in the plane)
         """
     @property
     def wall_seconds(self) -> float:

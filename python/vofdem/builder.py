@@ -71,6 +71,9 @@ def dem_params(scene: Scene, submerged: bool = True, fluid_density: Optional[flo
     if fx.drag or fx.pressure_gradient:
         flags |= _core.DEMFlag.EXTERNAL_FORCE
     p.flags = int(flags)
+    # 3D stones lie across the flume between its side walls
+    if front(st.shape).dimensions == 3:
+        p.width = scene.flume.width
     if is_graded(scene):
         p.stiffness_normal, p.dt = graded_contact(scene, p)
     return p
@@ -354,8 +357,12 @@ def disc_porosity(scene: Scene, stones):
     'paper': n_s = n_exp. Eq. (11) then maps a mean porosity 1 - phi (1 - n_exp) over the weir: the
     voids between the discs (1 - phi, ~0.2 for 2D discs) and n_exp again inside them.
     'bulk': n_s = 1 - (1 - n_exp) / phi, so that the weir's mean mapped porosity is the measured n_exp;
-    phi from the packed stones, computed once at build."""
+    phi from the packed stones, computed once at build.
+    3D stones (spheres): n_s = 0 whatever the mapping, their volume mapped exactly (CouplerParams.n_exp = 0)."""
     st = scene.stones
+    # 3D stones map their volume: the porosity is the true void fraction, with no porosity inside them
+    if front(st.shape).dimensions == 3:
+        return 0.0, None
     if st.porosity_mapping == "paper":
         return st.n_exp, None
     phi = solid_fraction(scene, stones)

@@ -26,6 +26,7 @@ class StoneFront:
     outline packer usable."""
 
     name = "disc"
+    dimensions = 2  # 3: stones that also move across the flume's width (DEMParams.width = flume.width)
     lookup_table = True  # the paper's porosity lookup table (numerics.porosity_method = 'lookup') maps them
     outline_packer = True  # outline_packing.py places them (own outlines, zones, sieve curves)
     dimensions = 2  # 3: the stones move across the flume too (run.h5's output_3d.py series)
@@ -146,19 +147,20 @@ class PolygonFront(StoneFront):
 
 
 class SphereFront(StoneFront):
-    """3D spheres across the flume's width (sphere_model.h): run by a DEMSystem (``set_model('sphere')``,
-    ``DEMParams.width``) and coupled by a Coupler (``CouplerParams.n_exp = 0``), but not yet packed into a
-    weir, so a scene refuses them."""
+    """3D spheres across the flume's width (sphere_model.h): a scene's weir of them is packed in 3D by
+    pack_weir (weir_packing_3d.h) across ``flume.width``, and coupled with eq. (11)'s packing porosity
+    n_exp = 0 (their footprint is their volume: the porosity is the true void fraction). Trapezoids of
+    uniform sizes only (the outline packer places discs and polygons)."""
 
     name = "sphere"
     dimensions = 3
     lookup_table = False
     outline_packer = False
 
-    def check(self, stones, prefix: str) -> None:
-        raise ValueError(f"{prefix}.shape = 'sphere' is not allowed in a scene yet: 3D stones are not packed into a "
-                         "weir (allowed: 'disc', 'polygon'); a DEMSystem runs them (set_model('sphere') with "
-                         "DEMParams.width), and a Coupler with CouplerParams.n_exp = 0")
+    def install(self, system, shapes) -> None:
+        """The model set, and explicit stones placed on the flume's centre line across the width."""
+        super().install(system, shapes)
+        system.stone_y[:] = 0.5 * system.params.width
 
 
 class ClumpFront(StoneFront):

@@ -236,6 +236,25 @@ void SphereModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const dou
   m.map_spheres(s.n(), x, z, s.stone_radius.data(), s.params().width, s.stone_active.data());
 }
 
-std::unique_ptr<StonePacking> SphereModel::packing(const WeirSpec&) const { return nullptr; }
+namespace {
+// spheres in the 3D packing generator (weir_packing_3d.h): the drawn diameter, placed at (x, y, z)
+class SpherePacking final : public StonePacking {
+ public:
+  PackedStone draw(double d) override { return PackedStone{0.5 * d}; }
+  // spheres roll off the slopes' toes onto the bed like discs
+  bool drop_toe_rollers() const override { return true; }
+  DEMSystem make(const DEMParams& p, const PackedStones& pile, double density) const override {
+    if (pile.y.size() != pile.size() || pile.quat.size() != 4 * pile.size())
+      throw std::invalid_argument("sphere packing: every stone needs its y and quaternion");
+    DEMSystem s(p, pile.pos, pile.radius, {density}, pile.fixed);
+    s.set_model("sphere");
+    s.stone_y = pile.y;
+    s.stone_quat = pile.quat;
+    return s;
+  }
+};
+}  // namespace
+
+std::unique_ptr<StonePacking> SphereModel::packing(const WeirSpec&) const { return std::make_unique<SpherePacking>(); }
 
 }  // namespace vofdem

@@ -13,20 +13,20 @@
 #include "vofdem/common/check.h"
 #include "vofdem/stones/stone_model.h"
 #include "vofdem/stones/stone_packing.h"
+#include "vofdem/stones/weir_packing_3d.h"
+#include "stones/packing_random.h"
 
 namespace vofdem {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-// uniform in [0, 1) from the top 53 bits, independent of the standard library's distributions
-double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+using packing_random::uniform01;
+double draw_diameter(std::mt19937_64& g, const WeirSpec& s) { return packing_random::diameter(g, s); }
 
-double draw_diameter(std::mt19937_64& g, const WeirSpec& s) {
-  return s.d_mean * (1.0 + s.d_spread * (2.0 * uniform01(g) - 1.0));
-}
+}  // namespace
 
-void check_spec(const WeirSpec& s) {
+void check_weir_spec(const WeirSpec& s) {
   require_positive("height", s.height);
   require_non_negative("crest", s.crest);
   require_in_open_closed("slope_up_deg", s.slope_up_deg, 0.0, 90.0);
@@ -40,6 +40,8 @@ void check_spec(const WeirSpec& s) {
   require_positive("rest_speed", s.rest_speed);
   if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
 }
+
+namespace {
 
 double max_speed(const DEMSystem& sys) {
   double v2 = 0.0;
@@ -76,6 +78,12 @@ void PackedStones::add(double x, double z, const PackedStone& s, std::uint8_t fi
   shape.push_back(s.shape);
 }
 
+void PackedStones::add(double x, double y_across, double z, const PackedStone& s, std::uint8_t fixed_flag) {
+  add(x, z, s, fixed_flag);
+  y.push_back(y_across);
+  quat.insert(quat.end(), {1.0, 0.0, 0.0, 0.0});
+}
+
 void PackedStones::copy_stone(const DEMSystem& sys, const PackedStones& from, int i) {
   pos.push_back(sys.stone_pos[2 * i]);
   pos.push_back(sys.stone_pos[2 * i + 1]);
@@ -83,11 +91,28 @@ void PackedStones::copy_stone(const DEMSystem& sys, const PackedStones& from, in
   angle.push_back(sys.stone_angle[i]);
   fixed.push_back(sys.stone_fixed[i]);
   shape.push_back(from.shape[static_cast<std::size_t>(i)]);
+  // 3D stones keep their place across the flume and their orientation
+  if (!from.y.empty()) {
+    y.push_back(sys.stone_y[i]);
+    quat.insert(quat.end(), sys.stone_quat.begin() + 4 * i, sys.stone_quat.begin() + 4 * i + 4);
+  }
 }
 
 void PackedStones::take(const DEMSystem& sys) {
   pos = sys.stone_pos;
   angle = sys.stone_angle;
+  if (!y.empty()) {
+    y = sys.stone_y;
+    quat = sys.stone_quat;
+  }
+}
+
+void StonePacking::bottom_row(const WeirSpec&, const std::function<double()>&, PackedStones&) {
+  throw std::logic_error("StonePacking::bottom_row: a 2D step asked of a model that does not lay a row");
+}
+
+bool StonePacking::fits(const PackedStones&, double, double, const PackedStone&, double) const {
+  throw std::logic_error("StonePacking::fits: a 2D step asked of a model that does not test its fit");
 }
 
 namespace {
@@ -183,7 +208,9 @@ std::unique_ptr<StonePacking> model_packing(const WeirSpec& spec) {
 }  // namespace
 
 DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report) {
-  check_spec(spec);
+  check_weir_spec(spec);
+  // stones that also move across the flume: the 3D generator (weir_packing_3d.h)
+  if (make_stone_model(spec.shape)->dimensions() == 3) return pack_weir_3d(spec, params, report);
   const auto wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<StonePacking> packing = model_packing(spec);
   std::mt19937_64 rng(spec.seed);

@@ -16,8 +16,8 @@
 // holds the sphere's exact volume (porosity_map.h, map_spheres), and the porosity is the true void
 // fraction (n_exp = 0 required: no packing porosity inside the stones); the fluid's forces act in x and z
 // (the width-averaged flow has no velocity across the flume), the drag on the sphere's pi r^2; at the free
-// surface the wet fraction is the cap's volume, (1 + s)^2 (2 - s) / 4 (wet_fraction.h). The packing
-// generator does not take 3D stones yet (refused with the key named).
+// surface the wet fraction is the cap's volume, (1 + s)^2 (2 - s) / 4 (wet_fraction.h). The weir's packing
+// generator packs them in 3D (weir_packing_3d.h).
 //
 // References: Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29(1), 47-65. Ai, J., Chen, J.-F.,
 // Rotter, J. M. & Ooi, J. Y. (2011), Powder Technology 206, 269-282.

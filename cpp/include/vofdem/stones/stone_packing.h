@@ -26,12 +26,16 @@ struct PackedStone {
 };
 
 // the stones placed so far: centres (x, z) [m], bounding radii [m], orientations [rad], fixed flags and
-// shapes, one entry each
+// shapes, one entry each; for 3D models (weir_packing_3d.h) also the centres across the flume y [m] and
+// the orientations as unit quaternions (w, x, y, z), 4 each (empty in the plane)
 struct PackedStones {
   std::vector<double> pos, radius, angle;
   std::vector<std::uint8_t> fixed;
   std::vector<std::vector<double>> shape;
+  std::vector<double> y, quat;
   void add(double x, double z, const PackedStone& s, std::uint8_t fixed_flag);
+  // a 3D stone at (x, y, z), unrotated
+  void add(double x, double y, double z, const PackedStone& s, std::uint8_t fixed_flag);
   // stone i of sys, whose shape is that of `from`'s stone i
   void copy_stone(const DEMSystem& sys, const PackedStones& from, int i);
   // the positions and orientations of sys (the same stones, settled)
@@ -47,16 +51,18 @@ class StonePacking {
   // the largest bounding diameter over the nominal one [-]: the pour lattice's pitch
   virtual double bounding_factor() const { return 1.0; }
   // the fixed bottom row on the bed along the base [x_toe, x_end], touching stones whose nominal
-  // diameters come from next_diameter()
-  virtual void bottom_row(const WeirSpec& spec, const std::function<double()>& next_diameter,
-                          PackedStones& pile) = 0;
-  // whether stone s at (x, z) keeps more than margin [m] from every placed stone
-  virtual bool fits(const PackedStones& pile, double x, double z, const PackedStone& s, double margin) const = 0;
+  // diameters come from next_diameter() (2D models: the 3D generator lays its own bottom layer and
+  // tests fits with bounding spheres, so the default throws std::logic_error)
+  virtual void bottom_row(const WeirSpec& spec, const std::function<double()>& next_diameter, PackedStones& pile);
+  // whether stone s at (x, z) keeps more than margin [m] from every placed stone (2D models; the default
+  // throws std::logic_error)
+  virtual bool fits(const PackedStones& pile, double x, double z, const PackedStone& s, double margin) const;
   // orientations tried, a sixth of a turn apart, where a stone is laid by hand into a hollow
   virtual int turns() const { return 1; }
   // whether stones that rolled off a toe onto the bed are removed at the end (shapes that roll far)
   virtual bool drop_toe_rollers() const { return false; }
-  // the DEM system of the placed stones (radii, density, fixed flags; the model and its shapes)
+  // the DEM system of the placed stones (radii, density, fixed flags; the model and its shapes; for 3D
+  // models their y and quaternions)
   virtual DEMSystem make(const DEMParams& p, const PackedStones& pile, double density) const = 0;
 };
 

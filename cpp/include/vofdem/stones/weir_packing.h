@@ -14,7 +14,8 @@
 //
 // What depends on the stone model (how a stone is drawn, the bottom row, whether a stone fits at a
 // point, the DEM system of the placed stones) is the model's StonePacking (stone_packing.h): discs in
-// disc_model.cpp, polygons in polygon_packing.cpp.
+// disc_model.cpp, polygons in polygon_packing.cpp. Models of dimensions() == 3 (spheres) are packed by
+// the 3D generator, weir_packing_3d.h, which pack_weir calls for them.
 #pragma once
 
 #include <cstdint>
@@ -50,12 +51,20 @@ struct WeirSpec {
 struct WeirPackingReport {
   int n_stones = 0;            // stones in the weir (fixed included)
   int n_fixed = 0;             // fixed bottom stones
-  double porosity = 0.0;       // 2D porosity of the trapezoid: 1 - (disc area inside) / area [-]
+  // porosity of the trapezoid [-]: 2D models 1 - (stone area inside) / area; 3D models (weir_packing_3d.h)
+  // that of the prism across the width, 1 - (stone volume inside) / (area B)
+  double porosity = 0.0;
+  // 3D models: the mean number of stones a line across the flume through the trapezoid crosses [-] (0 in
+  // the plane)
+  double stones_across = 0.0;
   double max_speed = 0.0;      // largest stone speed at the end [m/s]
   double settle_time = 0.0;    // simulated time used by the settling phases [s]
   double outline_error = 0.0;  // weir_outline_error() of the result [m]
   double wall_seconds = 0.0;   // wall-clock time of the generation [s]
 };
+
+// throws std::invalid_argument naming the first bad field of the spec
+void check_weir_spec(const WeirSpec& spec);
 
 // packs the weir with the contact law of `params` (its walls are kept if any, else the bed z = z_bed
 // is added); returns the DEM system, at rest, and fills `report`
