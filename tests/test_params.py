@@ -73,9 +73,11 @@ DEM_BAD_PAIRS = {
     "domain_max": [([-2e30, 0.0], "domain_max[0]"), ([1.0, NAN], "domain_max[1]")],
 }
 COUPLER_BAD = {
-    "flags": [1 << 10], "n_exp": [-0.1, 1.1, NAN], "lookup_m": [1, 65], "lookup_dr": [0.0, NAN],
+    "flags": [1 << 11], "n_exp": [-0.1, 1.1, NAN], "lookup_m": [1, 65], "lookup_dr": [0.0, NAN],
     "max_dt": [0.0, NAN], "stone_cfl": [0.0, 1.5, NAN], "drag_relaxation": [0.0, NAN], "min_dt": [-1.0, NAN], "wet_fraction_tolerance": [-1e-9, 0.6, NAN],
     "max_snapshot_interval": [0, 4097], "bandwidth": [-0.01, 1.5, NAN],
+    "overflow_drag_coefficient": [0.0, 5.5, NAN], "overflow_lift_coefficient": [-0.1, 5.5, NAN],
+    "overflow_band_height": [0.0, 5.5, NAN],
 }
 # the medium shared by flow and stones (FlowParams.medium, DEMParams.medium)
 MEDIUM_BAD = {

@@ -28,6 +28,8 @@ void bind_coupler(py::module_& m) {
       .value("CHECKS", kCoupleChecks, "non-finite forces and stone states checked every step")
       .value("LOOKUP_POROSITY", kCoupleLookupPorosity, "the paper's lookup table instead of exact areas")
       .value("DISPLACE_FLOW", kCoupleDisplaceFlow, "porosity changes drive the flow (dn/dt + div u = 0)")
+      .value("OVERFLOW_LOAD", kCoupleOverflowLoad,
+             "drag and lift of the overflow on the stones' exposed parts, the reaction taken from the flow")
       .value("FORCES", kCoupleForces, "DRAG and PRESSURE_GRADIENT")
       .value("ONE_WAY", kCoupleOneWay, "the stones feel the flow, the flow ignores them")
       .value("TWO_WAY", kCoupleTwoWay, "ONE_WAY and POROSITY")
@@ -70,6 +72,18 @@ void bind_coupler(py::module_& m) {
       .def_readwrite("bandwidth", &CouplerParams::bandwidth,
                      "KERNEL: the Gaussian's width b in exp(-r^2/b^2) [m], (0, 1], sigma = b / sqrt(2); 0 = unset: "
                      "1.0 x the stones' mean nominal diameter")
+      .def_property(
+          "overflow_drag_coefficient", [](const CouplerParams& p) { return p.overflow.drag_coefficient; },
+          [](CouplerParams& p, double v) { p.overflow.drag_coefficient = v; },
+          "OVERFLOW_LOAD: drag coefficient C_D of a stone's exposed part [-], (0, 5], 0.91 (Schmeeckle et al. 2007)")
+      .def_property(
+          "overflow_lift_coefficient", [](const CouplerParams& p) { return p.overflow.lift_coefficient; },
+          [](CouplerParams& p, double v) { p.overflow.lift_coefficient = v; },
+          "OVERFLOW_LOAD: lift coefficient C_L [-], [0, 5], 0.178 (Einstein and El-Samni 1949)")
+      .def_property(
+          "overflow_band_height", [](const CouplerParams& p) { return p.overflow.band_height; },
+          [](CouplerParams& p, double v) { p.overflow.band_height = v; },
+          "OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5], 1")
       .def("validate", &CouplerParams::validate);
 
   bind_state_class<CouplerState>(m, "CouplerState",
@@ -149,6 +163,15 @@ void bind_coupler(py::module_& m) {
       .def_property_readonly("stone_force_pressure",
                              [](py::object self) { return view_pairs(self.cast<Coupler&>().stone_force_pressure, self); },
            "pressure-gradient force on each stone (n, 2) [N], zero-copy view")
+      .def_property_readonly("stone_force_overflow",
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().stone_force_overflow, self); },
+           "OVERFLOW_LOAD: the overflow's drag and lift on each stone (n, 2) [N] (zeros while off), zero-copy view")
+      .def_property_readonly("stone_exposed_share",
+                             [](py::object self) { return view(self.cast<Coupler&>().stone_exposed_share, self); },
+           "OVERFLOW_LOAD: each stone's projected area share loaded by the overflow (n) [-], zero-copy view")
+      .def_property_readonly("cell_overflow_reaction",
+                             [](py::object self) { return view_pairs(self.cast<Coupler&>().cell_overflow_reaction, self); },
+           "OVERFLOW_LOAD: the reaction taken from each cell (ncell, 2) [N per metre of flume width], zero-copy view")
       .def_property_readonly("cell_base_porosity",
                              [](py::object self) { return view(self.cast<Coupler&>().cell_base_porosity, self); },
            "porosity without the stones per cell (ncell) [-] (from the flow at construction), zero-copy view")

@@ -7,7 +7,7 @@ import enum
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'quarried_stone', 'quarried_stone_names', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_cell_area', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
+__all__: list[str] = ['COUPLE_CHECKS', 'COUPLE_DEFAULT', 'COUPLE_DEM', 'COUPLE_DISPLACE_FLOW', 'COUPLE_DRAG', 'COUPLE_FLUID', 'COUPLE_FORCES', 'COUPLE_LOOKUP_POROSITY', 'COUPLE_ONE_WAY', 'COUPLE_OVERFLOW_LOAD', 'COUPLE_POROSITY', 'COUPLE_PRESSURE_GRADIENT', 'COUPLE_TWO_WAY', 'COUPLE_WET_FRACTION', 'CornerViscosity', 'Coupler', 'CouplerEffect', 'CouplerParams', 'CouplerState', 'CouplingMapping', 'DEMEnergy', 'DEMFlag', 'DEMParams', 'DEMState', 'DEMSystem', 'DEMWall', 'DEM_ADDED_MASS', 'DEM_ALL_EFFECTS', 'DEM_BUOYANCY', 'DEM_DAMPING', 'DEM_EXTERNAL_FORCE', 'DEM_FRICTION', 'DEM_GRAVITY', 'DEM_REMOVAL', 'DEM_ROLLING_RESISTANCE', 'DEM_ROTATION', 'DEM_SLEEPING', 'DischargeTable', 'DragLaw', 'ERGUN_K1', 'ERGUN_K2', 'FlowEffect', 'FlowParams', 'FlowStableDt', 'FlowState', 'Grid2D', 'InletBoundary', 'InletProfile', 'KEpsilonPoreStrain', 'KEpsilonProduction', 'KEpsilonTimeScheme', 'Medium', 'MomentumTimeScheme', 'OutletBoundary', 'PAPER_K1', 'PAPER_K2', 'PorosityMapper', 'PorosityMethod', 'PorosityParams', 'PressureProblem', 'PressureSolveStats', 'PressureSolver', 'PressureSolverKind', 'StageProfile', 'StoneDragModel', 'TopBoundary', 'VOFGrid', 'VOF_CLIP_TOLERANCE', 'ViscousBound', 'ViscousScheme', 'VofBoundaryInflow', 'VofNormal', 'VofScratch', 'WallCondition', 'WeirPackingReport', 'WeirSpec', 'advect_vof', 'built_with_openmp', 'contact_duration', 'damping_ratio_from_restitution', 'drag_coefficient', 'forchheimer_coefficient', 'max_threads', 'pack_weir', 'permeability', 'plic_area_below', 'plic_line_constant', 'porosity_eq11', 'pressure_residual', 'quarried_stone', 'quarried_stone_names', 'random_polygons', 'restitution_from_damping_ratio', 'set_thread_min_cells', 'set_threads', 'stone_cell_area', 'stone_model_names', 'thread_min_cells', 'threads', 'vof_stable_dt', 'weir_outline_error', 'weir_porosity']
 class Grid2D:
     """
     Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).
@@ -2599,6 +2599,7 @@ class CouplerEffect(enum.IntFlag):
     FORCES: typing.ClassVar[CouplerEffect]
     LOOKUP_POROSITY: typing.ClassVar[CouplerEffect]
     ONE_WAY: typing.ClassVar[CouplerEffect]
+    OVERFLOW_LOAD: typing.ClassVar[CouplerEffect]
     POROSITY: typing.ClassVar[CouplerEffect]
     PRESSURE_GRADIENT: typing.ClassVar[CouplerEffect]
     TWO_WAY: typing.ClassVar[CouplerEffect]
@@ -2821,6 +2822,30 @@ class CouplerParams:
     def n_exp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def overflow_band_height(self) -> float:
+        """
+        OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5], 1
+        """
+    @overflow_band_height.setter
+    def overflow_band_height(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def overflow_drag_coefficient(self) -> float:
+        """
+        OVERFLOW_LOAD: drag coefficient C_D of a stone's exposed part [-], (0, 5], 0.91 (Schmeeckle et al. 2007)
+        """
+    @overflow_drag_coefficient.setter
+    def overflow_drag_coefficient(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def overflow_lift_coefficient(self) -> float:
+        """
+        OVERFLOW_LOAD: lift coefficient C_L [-], [0, 5], 0.178 (Einstein and El-Samni 1949)
+        """
+    @overflow_lift_coefficient.setter
+    def overflow_lift_coefficient(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def stone_cfl(self) -> float:
         """
         cells a stone crosses per step at most [-], 0.5
@@ -2933,6 +2958,11 @@ class Coupler:
         porosity without the stones per cell (ncell) [-] (from the flow at construction), zero-copy view
         """
     @property
+    def cell_overflow_reaction(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        OVERFLOW_LOAD: the reaction taken from each cell (ncell, 2) [N per metre of flume width], zero-copy view
+        """
+    @property
     def floored_solid_area(self) -> float:
         """
         KERNEL: solid area per unit width [m^2] the porosity floor n >= n_exp removed at the last mapping (0: the flow sees all of the stones' solid volume)
@@ -2981,9 +3011,19 @@ class Coupler:
         coupled steps taken
         """
     @property
+    def stone_exposed_share(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        OVERFLOW_LOAD: each stone's projected area share loaded by the overflow (n) [-], zero-copy view
+        """
+    @property
     def stone_force_drag(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view
+        """
+    @property
+    def stone_force_overflow(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        OVERFLOW_LOAD: the overflow's drag and lift on each stone (n, 2) [N] (zeros while off), zero-copy view
         """
     @property
     def stone_force_pressure(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -3127,6 +3167,7 @@ COUPLE_FLUID: CouplerEffect
 COUPLE_FORCES: CouplerEffect
 COUPLE_LOOKUP_POROSITY: CouplerEffect
 COUPLE_ONE_WAY: CouplerEffect
+COUPLE_OVERFLOW_LOAD: CouplerEffect
 COUPLE_POROSITY: CouplerEffect
 COUPLE_PRESSURE_GRADIENT: CouplerEffect
 COUPLE_TWO_WAY: CouplerEffect

@@ -405,6 +405,11 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
         flags |= _core.CouplerEffect.WET_FRACTION
     if scene.numerics.porosity_method == "lookup":
         flags |= _core.CouplerEffect.LOOKUP_POROSITY
+    if scene.numerics.overflow_load == "drag_lift":
+        flags |= _core.CouplerEffect.OVERFLOW_LOAD
+    p.overflow_drag_coefficient = scene.numerics.overflow_drag_coefficient
+    p.overflow_lift_coefficient = scene.numerics.overflow_lift_coefficient
+    p.overflow_band_height = scene.numerics.overflow_band_height
     p.flags = int(flags)
     return p
 

@@ -410,6 +410,17 @@ class Numerics(_Section):
     coupling_bandwidth: Optional[float] = _p(None, "length", 0.0, 1.0, "coupling_mapping = 'kernel': the Gaussian's "
                                              "width b [m] (sigma = b / sqrt 2); unset: 1.0 x the stones' mean diameter",
                                              "(]")
+    overflow_load: str = _choice("off", ("off", "drag_lift"),
+                                 "the overflow's drag and lift on the stones that stick out of the stone surface, "
+                                 "loaded on their exposed share by the water above their tops, the reaction taken "
+                                 "from the flow ('drag_lift'), or none ('off', the paper's; docs/coupler.md)")
+    overflow_drag_coefficient: float = _p(0.91, None, 0.0, 5.0, "overflow_load = 'drag_lift': drag coefficient C_D "
+                                          "of a stone's exposed part [-]; 0.91, natural particles near a bed "
+                                          "(Schmeeckle et al. 2007)", "(]")
+    overflow_lift_coefficient: float = _p(0.178, None, 0.0, 5.0, "overflow_load = 'drag_lift': lift coefficient C_L "
+                                          "[-]; 0.178 (Einstein and El-Samni 1949)", "[]")
+    overflow_band_height: float = _p(1.0, None, 0.0, 5.0, "overflow_load = 'drag_lift': the approach velocity's "
+                                     "band above a stone's top, in stone diameters [-]; 1", "(]")
     fidelity: Optional[str] = _choice(None, ("draft", "standard", "fine"),
                                       "a preset of the grid, CFL and porosity method (fidelity.py; the scene must "
                                       "hold its values); unset: the scene's own values")

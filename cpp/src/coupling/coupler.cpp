@@ -12,6 +12,7 @@
 #include "vofdem/coupling/drag_exchange.h"
 #include "vofdem/coupling/fluid_forces.h"
 #include "vofdem/common/advance.h"
+#include "vofdem/stones/stone_model.h"
 #include "vofdem/stones/wet_fraction.h"
 
 namespace vofdem {
@@ -21,8 +22,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
 void CouplerParams::validate() const {
-  if (flags >= (1u << 10))
-    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 1023]");
+  if (flags >= (1u << 11))
+    throw std::invalid_argument("flags = " + std::to_string(flags) + " is outside the allowed range [0, 2047]");
   if (flags & (1u << 5))
     throw std::invalid_argument("flags = " + std::to_string(flags) + ": bit 5 (the former relative-velocity "
                                 "coupling) is retired: the effect is the flow's own flag, FlowEffect.RELATIVE_VELOCITY "
@@ -50,6 +51,7 @@ void CouplerParams::validate() const {
   if (model < 0 || model > 1)
     throw std::invalid_argument("stone_drag = " + std::to_string(model) +
                                 " is outside the allowed values {0 (kSphere), 1 (kBed)}");
+  overflow.validate();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -62,6 +64,11 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
   share_medium();
   stone_force_drag.assign(2 * static_cast<std::size_t>(n_), 0.0);
   stone_force_pressure.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  stone_force_overflow.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  stone_exposed_share.assign(static_cast<std::size_t>(n_), 0.0);
+  stone_extent_.assign(static_cast<std::size_t>(n_), StoneExtent{0.0, 0.0, 0.0, 0.0});
+  stone_active_u8_.assign(static_cast<std::size_t>(n_), 0);
+  band_offsets_.assign(static_cast<std::size_t>(n_) + 1, 0);
   stone_vrel_.assign(static_cast<std::size_t>(n_), 0.0);
   stone_drag_slope_.assign(static_cast<std::size_t>(n_), 0.0);
   stone_x_.assign(static_cast<std::size_t>(n_), 0.0);
@@ -80,6 +87,9 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     cell_solid_u_.assign(nc, 0.0);
     cell_solid_w_.assign(nc, 0.0);
     cell_diam_sum_.assign(nc, 0.0);
+    cell_overflow_reaction.assign(2 * nc, 0.0);
+    band_U_.assign(nc, 0.0);
+    band_W_.assign(nc, 0.0);
     redistribution_ = std::make_unique<WaterRedistribution>(g);
     make_mapper();
     make_kernel();
@@ -382,6 +392,9 @@ void Coupler::stage_fluid_forces() {
   // the water fraction the stones see: the flow's, or smoothed with the kernel
   const double* cell_F = kernel_ ? cell_kernel_F_.data() : fluid_->cell_F.data();
   const std::vector<double>& area = mapper_->stone_cell_area();
+  const bool over = fl & kCoupleOverflowLoad;
+  if (over) overflow_loads(rho);
+  const unsigned forces = kCoupleForces | kCoupleOverflowLoad;
   for (int j = 0; j < n_; ++j) {
     double* fd = &stone_force_drag[2 * j];
     double* fs = &stone_force_pressure[2 * j];
@@ -407,11 +420,17 @@ void Coupler::stage_fluid_forces() {
                                    cell_W_.data(), up, wp, stones_->volume(j), bp, &stone_drag_slope_[j]);
       fd[0] = f.fx, fd[1] = f.fz;
     }
+    if (over) {
+      // the exposed share is loaded by the overflow instead of the pore velocity (overflow_load.h)
+      const double keep = 1.0 - stone_exposed_share[j];
+      fd[0] *= keep, fd[1] *= keep;
+      stone_drag_slope_[j] *= keep;
+    }
     if (fl & kCouplePressureGradient) {
       const auto f = stone_pressure_force(s, stones_->volume(j));
       fs[0] = f[0], fs[1] = f[1];
     }
-    if (fl & kCoupleForces) {
+    if (fl & forces) {
       forces_applied_ = true;
       // the drag linearised in the stone's velocity (implicit in the DEM), or held over the step
       const LinearDrag ld = params_.implicit_drag ? linearise_drag({fd[0], fd[1]}, stone_drag_slope_[j], up, wp)
@@ -419,6 +438,10 @@ void Coupler::stage_fluid_forces() {
       const bool held = ld.coef == 0.0;
       stones_->stone_force_ext[2 * j] = (held ? fd[0] : 0.0) + fs[0];
       stones_->stone_force_ext[2 * j + 1] = (held ? fd[1] : 0.0) + fs[1];
+      if (over) {  // held over the step: the approach velocity is the overflow's, not the stone's cells'
+        stones_->stone_force_ext[2 * j] += stone_force_overflow[2 * j];
+        stones_->stone_force_ext[2 * j + 1] += stone_force_overflow[2 * j + 1];
+      }
       stones_->stone_drag_coef[j] = ld.coef;
       stones_->stone_drag_vel[2 * j] = ld.vel_x;
       stones_->stone_drag_vel[2 * j + 1] = ld.vel_z;
@@ -512,9 +535,92 @@ DragForce Coupler::kernel_bed_drag(int j, double* slope) const {
   return {scale * fx, scale * fz};
 }
 
+// the overflow load (overflow_load.h) on every active stone: its extents, protrusion and exposed share, the
+// approach band in the column of its centre, F_D + F_L, and the reaction per cell (per metre of width)
+void Coupler::overflow_loads(double rho) {
+  if (st_overflow_ < 0) st_overflow_ = profile_.add_stage("overflow_load");
+  ScopedStage timer(profile_, st_overflow_);
+  const Grid2D& g = fluid_->grid();
+  const StoneModel& model = stones_->model();
+  for (int j = 0; j < n_; ++j) {
+    stone_active_u8_[j] = stones_->stone_active[j] ? 1 : 0;
+    if (!stone_active_u8_[j]) continue;
+    StoneExtent& e = stone_extent_[j];
+    e.x_hi = model.outline_max(*stones_, j, [](double x, double) { return x; });
+    e.x_lo = -model.outline_max(*stones_, j, [](double x, double) { return -x; });
+    e.z_hi = model.outline_max(*stones_, j, [](double, double z) { return z; });
+    e.z_lo = -model.outline_max(*stones_, j, [](double, double z) { return -z; });
+  }
+  // the bands: cells of the centre's column from the top up to band_height diameters, weights l_c F_c
+  const double* fxn = fluid_->face_x_porosity.data();
+  const double* fzn = fluid_->face_z_porosity.data();
+  const std::vector<double>& F = fluid_->cell_F;
+  band_cells_.clear();
+  band_weights_.clear();
+  for (int j = 0; j < n_; ++j) {
+    band_offsets_[j] = static_cast<int>(band_cells_.size());
+    stone_exposed_share[j] = 0.0;
+    if (!stone_active_u8_[j]) continue;
+    const StoneExtent& e = stone_extent_[j];
+    const double share =
+        exposed_share(stone_protrusion(j, n_, stone_extent_.data(), stone_active_u8_.data()), e.z_hi - e.z_lo);
+    if (share <= 0.0) continue;
+    stone_exposed_share[j] = share;
+    const double z0 = e.z_hi, z1 = e.z_hi + params_.overflow.band_height * stones_->nominal_diameter(j);
+    const int i = g.locate_x(0.5 * (e.x_lo + e.x_hi));
+    for (int k = g.locate_z(z0); k <= g.locate_z(z1); ++k) {
+      const double len = std::min(z1, g.z_face(k + 1)) - std::max(z0, g.z_face(k));
+      if (len <= 0.0 || !overflow_band_cell(g, i, k, fxn, fzn)) continue;
+      band_cells_.push_back(g.cell(i, k));
+      band_weights_.push_back(len);
+    }
+  }
+  band_offsets_[n_] = static_cast<int>(band_cells_.size());
+  const int nb = band_offsets_[n_];
+  if (nb > 0) fluid_->pore_velocity_at_cells(nb, band_cells_.data(), band_U_, band_W_);
+  std::fill(cell_overflow_reaction.begin(), cell_overflow_reaction.end(), 0.0);
+  const double inv_b = 1.0 / fluid_->params().flume_width;
+  for (int j = 0; j < n_; ++j) {
+    stone_force_overflow[2 * j] = stone_force_overflow[2 * j + 1] = 0.0;
+    double len = 0.0, wet = 0.0, u = 0.0, w = 0.0;
+    for (int q = band_offsets_[j]; q < band_offsets_[j + 1]; ++q) {
+      const int c = band_cells_[q];
+      const double lf = band_weights_[q] * F[c];
+      len += band_weights_[q], wet += lf, u += lf * band_U_[c], w += lf * band_W_[c];
+    }
+    if (!(wet > 0.0)) {  // a dry band, or none: nothing, and the cell drag stays whole
+      stone_exposed_share[j] = 0.0;
+      continue;
+    }
+    u /= wet, w /= wet;
+    const double ur = u - stones_->stone_vel[2 * j], wr = w - stones_->stone_vel[2 * j + 1];
+    const double ap = (ur != 0.0 || wr != 0.0) ? model.projected_area(*stones_, j, ur, wr)
+                                               : model.projected_area(*stones_, j);
+    const DragForce f = overflow_force(stone_exposed_share[j] * ap, ur, wr, wet / len, rho, params_.overflow);
+    stone_force_overflow[2 * j] = f.fx, stone_force_overflow[2 * j + 1] = f.fz;
+    // the reaction from the band's cells, by their share of the sample
+    for (int q = band_offsets_[j]; q < band_offsets_[j + 1]; ++q) {
+      const int c = band_cells_[q];
+      const double share = band_weights_[q] * F[c] / wet * inv_b;
+      cell_overflow_reaction[2 * c] -= share * f.fx;
+      cell_overflow_reaction[2 * c + 1] -= share * f.fz;
+    }
+  }
+  overflow_pending_ = true;
+}
+
+void Coupler::apply_overflow_reaction(double dt) {
+  ScopedStage timer(profile_, st_overflow_);
+  vofdem::apply_overflow_reaction(fluid_->grid(), fluid_->face_x_porosity.data(), fluid_->face_z_porosity.data(),
+                                  cell_overflow_reaction.data(), dt, fluid_->params().medium.rho_water,
+                                  fluid_->face_u.data(), fluid_->face_w.data());
+  overflow_pending_ = false;
+}
+
 void Coupler::clear_fluid_forces() {
   std::fill(stone_force_drag.begin(), stone_force_drag.end(), 0.0);
   std::fill(stone_force_pressure.begin(), stone_force_pressure.end(), 0.0);
+  std::fill(stone_force_overflow.begin(), stone_force_overflow.end(), 0.0);
   std::fill(stones_->stone_force_ext.begin(), stones_->stone_force_ext.end(), 0.0);
   std::fill(stones_->stone_drag_coef.begin(), stones_->stone_drag_coef.end(), 0.0);
   std::fill(stones_->stone_drag_vel.begin(), stones_->stone_drag_vel.end(), 0.0);
@@ -713,9 +819,13 @@ void Coupler::run_stages(double dt) {
   csr_current_ = false;
   kernel_solid_current_ = false;
   // the force stage skipped: the stones must not keep the last fluid force it wrote
-  if (forces_applied_ && !(fl & kCoupleForces) && stones_) clear_fluid_forces();
+  if (forces_applied_ && !(fl & (kCoupleForces | kCoupleOverflowLoad)) && stones_) clear_fluid_forces();
   if (fluid_ && mapper_ && (fl & kCouplePorosity) && (stones_move || !mapped_)) stage_porosity();
-  if (fluid_ && mapper_ && (fl & (kCoupleForces | kCoupleWetFraction)) && stones_move) stage_fluid_forces();
+  overflow_pending_ = false;
+  if (fluid_ && mapper_ && (fl & (kCoupleForces | kCoupleWetFraction | kCoupleOverflowLoad)) && stones_move)
+    stage_fluid_forces();
+  // the overflow's reaction goes to the flow that is stepped (a frozen flow stays as it is)
+  if (overflow_pending_ && (fl & kCoupleFluid)) apply_overflow_reaction(dt);
   if (stones_move) stage_dem(dt);
   if (fluid_ && (fl & kCoupleFluid)) stage_fluid(dt);
   if (has_stones() && (fl & kCoupleChecks)) stage_checks();

@@ -19,6 +19,9 @@
 //   3. "dem"           the stones advance by dt in substeps of their own step (DEMParams::dt, 1e-4 s)
 //   4. "fluid"         the flow advances by dt (VOF advection, momentum, porous resistance, projection)
 //   5. "checks"        non-finite forces or stone state -> std::runtime_error
+// With kCoupleOverflowLoad, "overflow_load" times the overflow load inside stage 2 (the stones' protrusion,
+// the approach band's sample, F_D + F_L; overflow_load.h) and its reaction on the flow's faces before stage 4;
+// without the flag it does not run and is not in the profile.
 // With CouplerParams::mapping = kKernel, "kernel" times the smoothing (kernel_smoothing.h) inside stages 1
 // and 2 (their times include it); with kCell (the default) it does not run and is not in the profile.
 // and before them "snapshot", the copy of the state that a failing stage restores (coupled scenes only);
@@ -57,6 +60,7 @@
 #include "vofdem/coupling/bed_drag.h"
 #include "vofdem/coupling/drag.h"
 #include "vofdem/coupling/kernel_smoothing.h"
+#include "vofdem/coupling/overflow_load.h"
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/common/profile.h"
 #include "vofdem/flow/vof_grid.h"
@@ -79,6 +83,8 @@ enum CouplerEffect : unsigned {
   kCoupleLookupPorosity = 1u << 8,    // porosity from the paper's lookup table instead of exact disc areas
   kCoupleDisplaceFlow = 1u << 9,      // porosity changes drive the flow (dn/dt + div u = 0 in the flow's projection,
                                       // F kept) instead of moving the displaced water by volume
+  kCoupleOverflowLoad = 1u << 10,     // drag and lift of the overflow on the stones' exposed parts, the reaction
+                                      // taken from the flow (overflow_load.h); not in the defaults
   kCoupleForces = kCoupleDrag | kCouplePressureGradient,
   kCoupleOneWay = kCoupleDEM | kCoupleFluid | kCoupleForces | kCoupleWetFraction | kCoupleChecks,
   kCoupleTwoWay = kCoupleOneWay | kCouplePorosity,
@@ -127,6 +133,10 @@ struct CouplerParams {
   // kKernel: the Gaussian's width b in exp(-r^2/b^2) [m], (0, 1], sigma = b / sqrt(2); 0 = unset: 1.0 x
   // the stones' mean nominal diameter
   double bandwidth = 0.0;
+  // kCoupleOverflowLoad: C_D, C_L and the approach band's height (overflow_load.h; the scene's
+  // numerics.overflow_*): drag_coefficient (0, 5] [-], 0.91; lift_coefficient [0, 5] [-], 0.178;
+  // band_height (0, 5] stone diameters, 1
+  OverflowLoadParams overflow;
 
   // throws std::invalid_argument naming the first bad parameter
   void validate() const;
@@ -226,6 +236,13 @@ class Coupler {
   // ---- state arrays ----
   std::vector<double> stone_force_drag;      // drag on each stone (sphere or bed drag) [N], 2n (x, z)
   std::vector<double> stone_force_pressure;  // pressure-gradient force on each stone [N], 2n
+  // kCoupleOverflowLoad: the overflow's drag and lift on each stone [N], 2n (x, z), its exposed share phi
+  // of the projected area [-], n, and the reaction per cell [N per metre of flume width], 2 ncell (x, z),
+  // the sum over the cells times B equal to minus the stones' sum; zeros while the effect is off (not in
+  // the checkpoint: recomputed at each exchange)
+  std::vector<double> stone_force_overflow;
+  std::vector<double> stone_exposed_share;
+  std::vector<double> cell_overflow_reaction;
   std::vector<double> cell_base_porosity;   // porosity without the stones [-], ncell (from the fluid at construction)
   std::vector<double> cell_base_diameter;   // stone diameter of the base porosity [m], ncell
 
@@ -245,6 +262,8 @@ class Coupler {
   DragForce kernel_bed_drag(int j, double* slope) const;
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
+  void overflow_loads(double rho);
+  void apply_overflow_reaction(double dt);
   std::string non_finite_cell(int count, const int* cells) const;
   // with both force effects off: zeroes the fluid forces the stones still hold (once, on the switch)
   void clear_fluid_forces();
@@ -322,6 +341,14 @@ class Coupler {
   StageProfile profile_;
   int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_, st_stable_dt_;
   int st_kernel_ = -1;  // added with the first kernel
+  int st_overflow_ = -1;  // added with the first overflow load
+  // the overflow load's scratch: each stone's extents, the approach bands' cells (CSR) and weights l_c F_c,
+  // the pore velocity at them; the reaction waits for the step's dt
+  std::vector<StoneExtent> stone_extent_;
+  std::vector<std::uint8_t> stone_active_u8_;
+  std::vector<int> band_offsets_, band_cells_;
+  std::vector<double> band_weights_, band_U_, band_W_;
+  bool overflow_pending_ = false;
 };
 
 }  // namespace vofdem
