@@ -80,6 +80,7 @@ void bind_params(py::module_& m) {
       .def_readwrite("walls", &DEMParams::walls)
       .def_readwrite("width", &DEMParams::width)
       .def_readwrite("side_wall_friction", &DEMParams::side_wall_friction)
+      .def_readwrite("plane_neighbour_list", &DEMParams::plane_neighbour_list)
       .def_readwrite("flags", &DEMParams::flags)
       .def("add_flume", &DEMParams::add_flume, py::arg("x_min"), py::arg("x_max"), py::arg("z_bed") = 0.0,
            py::arg("mu") = 0.176);

@@ -400,6 +400,7 @@ class DEMParams:
     """
     Constant parameters of the DEM of the stones (SI units; see dem_system.h).
     """
+    plane_neighbour_list: bool
     def __init__(self) -> None:
         ...
     def add_flume(self, x_min: typing.SupportsFloat | typing.SupportsIndex, x_max: typing.SupportsFloat | typing.SupportsIndex, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, mu: typing.SupportsFloat | typing.SupportsIndex = 0.176) -> None:

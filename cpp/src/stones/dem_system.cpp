@@ -310,6 +310,7 @@ void DEMSystem::prepare() {
   const double skin = p.neighbour_skin > 0.0 ? p.neighbour_skin : 0.2 * rmax;
   if (skin != skin_) rebuild_ = true;
   skin_ = skin;
+  if (neighbours_3d() == build_y_.empty()) rebuild_ = true;  // the list's kind changed (3D cells keep y)
   if (wall_xi_.size() != static_cast<std::size_t>(n_) * p.walls.size())
     wall_xi_.assign(static_cast<std::size_t>(n_) * p.walls.size(), 0.0);
   if (wall_mr_.size() != wall_xi_.size()) wall_mr_.assign(wall_xi_.size(), 0.0);
@@ -442,7 +443,7 @@ void DEMSystem::substep(double dt, StageLaps& laps) {
     remove_escaped();
     laps.lap(kStageRemoval);
   }
-  if (rebuild_ || pass.stale) {
+  if (rebuild_ || pass.stale || (neighbours_3d() && neighbours_stale())) {  // 3D: the move across too
     build_neighbours();
     laps.lap(kStageNeighbours);
   }

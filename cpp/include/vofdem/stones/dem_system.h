@@ -37,7 +37,8 @@
 // v_y towards 0 (the width-averaged flow has no velocity across the flume).
 // Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept sorted by (i, j) so
 // that contact histories and force sums are evaluated in one fixed order: runs are bit-for-bit
-// reproducible, and export_state()/import_state() restart them bit-for-bit.
+// reproducible, and export_state()/import_state() restart them bit-for-bit. 3D stones are binned in x, y
+// and z (unless plane_neighbour_list); the pairs that touch are the same, so the forces are the same bits.
 //
 // References: Maeno, S. & Tomita, A. (2008), ICHE 2008, Nagoya. Gotoh, H. & Sakai, T. (1997), J. Waterway
 // Port Coastal Ocean Eng. 123(6), 329-336. Cundall, P. A. & Strack, O. D. L. (1979), Geotechnique 29, 47-65.
@@ -110,6 +111,9 @@ struct DEMParams {
   // y = width, and the stone-side wall friction (the paper's glass: 0.176)
   double width = 0.0;                         // [m], > 0 for 3D stones (then larger than every stone)
   double side_wall_friction = 0.176;          // Coulomb coefficient stone-side wall [-], >= 0
+  // true: 3D stones' neighbours by their x-z projections whatever their y (the plane's list: more pairs,
+  // the same forces); false: cells in x, y and z
+  bool plane_neighbour_list = false;
   unsigned flags = kDEMAllEffects;            // DEMFlag bits
 
   // adds the flume: bed z = z_bed and end walls x = x_min, x_max [m], all with stone-wall friction mu
@@ -338,6 +342,9 @@ class DEMSystem {
   void follow_water_level(int i);
   void build_neighbours();
   bool neighbours_stale() const;
+  bool neighbours_3d() const { return three_d_ && !params_.plane_neighbour_list; }
+  void list_pairs_plane(int nact, double h, double xmin, double zmin, int ncx, int ncz);
+  void list_pairs_3d(int nact, double h, double xmin, double zmin, int ncx, int ncz);
   void advance_checked(double dt, long long nsub);
   void substep(double dt, StageLaps& laps);
   void evaluate_forces(double dt, bool body, StageLaps& laps);
@@ -420,12 +427,14 @@ class DEMSystem {
   std::vector<double> wall_mr_;      // rolling spring moment per (stone, wall) [N m], n * nwall
   std::vector<PointSprings> wall_points_;  // several-point contacts' springs per (stone, wall), n * nwall
   std::vector<double> build_pos_;    // positions at the last neighbour build
+  std::vector<double> build_y_;      // 3D stones' y at the last build (cells in x, y and z only)
   double skin_ = 0.0;
   bool rebuild_ = true;
   struct SortedStone {
     double x, z, r;
     int index;
     bool fixed;
+    double y;  // 3D cells only
   };
   std::vector<int> cell_start_, cell_next_, cell_fill_;
   std::vector<SortedStone> sorted_;  // active stones in cell order (neighbour builds)
