@@ -70,3 +70,22 @@ def test_a_scene_of_spheres_refuses_what_its_packing_cannot_do_naming_the_key():
     d["numerics"]["porosity_method"] = "lookup"
     with pytest.raises(ValueError, match="stones.shape = 'sphere'.*lookup|lookup.*stones.shape = 'sphere'"):
         vofdem.Scene.from_dict(d)
+
+
+def test_a_run_of_spheres_writes_them_in_3d(tmp_path):
+    from vofdem.io import RunData, check_xdmf
+    from vofdem.run import run_scene
+
+    d = small_sphere_scene().to_dict()
+    d["hydrograph"].update(spin_up_duration=0.5)
+    scene = vofdem.Scene.from_dict(d).replace(end_time=1.0).validate()
+    sim = build_simulation(scene)
+    run_scene(scene, tmp_path, sim=sim, progress=False, figures=True, animation=False)
+    data = RunData(tmp_path / "run.h5")
+    assert data.width == 0.1 and data.y.shape == (data.times.size, data.diameter.size)
+    assert np.all(data.y >= 0.0) and np.all(data.y <= 0.1) and np.abs(data.y[-1] - data.y[0]).max() > 0.0
+    np.testing.assert_allclose(np.linalg.norm(data.quat[-1], axis=1), 1.0, rtol=1e-12)
+    np.testing.assert_array_equal(data.y[-1], np.asarray(sim.stones.stone_y))  # the last snapshot is the end
+    np.testing.assert_array_equal(data.quat[-1], np.asarray(sim.stones.stone_quat))
+    assert check_xdmf(tmp_path / "run.xmf") > 0 and check_xdmf(tmp_path / "stones.xmf") > 0
+    assert (tmp_path / "figures" / "plan_view.png").stat().st_size > 0
