@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/state_fields.h"
+#include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/stones/clump.h"
 #include "vofdem/stones/dem_system.h"
@@ -21,42 +22,11 @@
 namespace vofdem {
 
 namespace {
+using sphere_loads::apply;
+using sphere_loads::at3;
+using sphere_loads::push3;
 constexpr double kPi = 3.14159265358979323846;
 
-// the law's constants with the effect flags of the system (as the sphere model's)
-SphereContactLaw clump_law(const DEMSystem& s) {
-  const DEMParams& p = s.params();
-  SphereContactLaw law;
-  law.stiffness_normal = s.stiffness_normal();
-  const bool friction = p.flags & kDEMFriction;
-  law.stiffness_ratio = friction ? p.stiffness_ratio : 0.0;
-  law.friction = friction ? p.friction_stone : 0.0;
-  law.restitution = (p.flags & kDEMDamping) ? p.restitution : 1.0;
-  law.tangential_damping_factor = p.tangential_damping_factor;
-  law.rolling_friction = (p.flags & kDEMRollingResistance) ? p.rolling_friction_stone : 0.0;
-  law.rolling_damping = p.rolling_damping;
-  return law;
-}
-
-// the loads of a contact into the system's arrays: i gets them, j (if >= 0) their opposite
-void apply(DEMSystem& s, int i, int j, const SphereContactLoads& f, ContactTally& t, double dt) {
-  s.stone_force[2 * i] += f.force_i[0];
-  s.stone_force_y[i] += f.force_i[1];
-  s.stone_force[2 * i + 1] += f.force_i[2];
-  for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * i + k] += f.torque_i[k];
-  if (j >= 0) {
-    s.stone_force[2 * j] -= f.force_i[0];
-    s.stone_force_y[j] -= f.force_i[1];
-    s.stone_force[2 * j + 1] -= f.force_i[2];
-    for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * j + k] += f.torque_j[k];
-  }
-  ++t.count;
-  t.elastic += f.energy_spring;
-  t.dissipated += f.power_damp * dt + f.energy_slip;
-}
-
-void push3(std::vector<double>& out, const Eigen::Vector3d& v) { out.insert(out.end(), {v[0], v[1], v[2]}); }
-Eigen::Vector3d at3(const std::vector<double>& v, std::size_t k) { return {v[3 * k], v[3 * k + 1], v[3 * k + 2]}; }
 bool zero(const SphereContactHistory& h) { return h.spring.isZero(0.0) && h.rolling.isZero(0.0); }
 
 // the spheres of one stone (4 values each) in the offsets' layout, checked
@@ -219,7 +189,7 @@ SphereOfBody ClumpModel::body(const DEMSystem& s, int i, int g, double mass) con
 }
 
 ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
-  const SphereContactLaw law = clump_law(s);
+  const SphereContactLaw law = sphere_loads::law(s);
   std::vector<ContactPair>& list = pairs(s);
   if (pair_history_.size() != list.size())
     throw std::logic_error("clump model: the pair histories do not follow the neighbour list");
@@ -257,7 +227,7 @@ ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
 }
 
 ContactTally ClumpModel::wall_forces(DEMSystem& s, double dt) {
-  const SphereContactLaw law = clump_law(s);
+  const SphereContactLaw law = sphere_loads::law(s);
   const std::vector<double>& inv_m = inv_mass(s);
   const std::vector<double>& m_eff = mass_eff(s);
   const std::size_t nplane = np();

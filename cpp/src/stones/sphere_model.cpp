@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/state_fields.h"
+#include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/stones/dem_system.h"
@@ -16,42 +17,11 @@
 namespace vofdem {
 
 namespace {
+using sphere_loads::apply;
+using sphere_loads::at3;
+using sphere_loads::push3;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// the law's constants with the effect flags of the system (damping off: e = 1; friction off: mu = k_t = 0)
-SphereContactLaw sphere_law(const DEMSystem& s) {
-  const DEMParams& p = s.params();
-  SphereContactLaw law;
-  law.stiffness_normal = s.stiffness_normal();
-  const bool friction = p.flags & kDEMFriction;
-  law.stiffness_ratio = friction ? p.stiffness_ratio : 0.0;
-  law.friction = friction ? p.friction_stone : 0.0;
-  law.restitution = (p.flags & kDEMDamping) ? p.restitution : 1.0;
-  law.tangential_damping_factor = p.tangential_damping_factor;
-  law.rolling_friction = (p.flags & kDEMRollingResistance) ? p.rolling_friction_stone : 0.0;
-  law.rolling_damping = p.rolling_damping;
-  return law;
-}
-
-// the loads of a contact into the system's arrays: i gets them, j (if >= 0) their opposite
-void apply(DEMSystem& s, int i, int j, const SphereContactLoads& f, ContactTally& t, double dt) {
-  s.stone_force[2 * i] += f.force_i[0];
-  s.stone_force_y[i] += f.force_i[1];
-  s.stone_force[2 * i + 1] += f.force_i[2];
-  for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * i + k] += f.torque_i[k];
-  if (j >= 0) {
-    s.stone_force[2 * j] -= f.force_i[0];
-    s.stone_force_y[j] -= f.force_i[1];
-    s.stone_force[2 * j + 1] -= f.force_i[2];
-    for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * j + k] += f.torque_j[k];
-  }
-  ++t.count;
-  t.elastic += f.energy_spring;
-  t.dissipated += f.power_damp * dt + f.energy_slip;
-}
-
-void push3(std::vector<double>& out, const Eigen::Vector3d& v) { out.insert(out.end(), {v[0], v[1], v[2]}); }
-Eigen::Vector3d at3(const std::vector<double>& v, std::size_t k) { return {v[3 * k], v[3 * k + 1], v[3 * k + 2]}; }
 }  // namespace
 
 void SphereModel::check_params(const DEMParams& p) const {
@@ -94,7 +64,7 @@ SphereOfBody SphereModel::body(const DEMSystem& s, int i, double mass) const {
 }
 
 ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
-  const SphereContactLaw law = sphere_law(s);
+  const SphereContactLaw law = sphere_loads::law(s);
   std::vector<ContactPair>& list = pairs(s);
   if (pair_history_.size() != list.size())
     throw std::logic_error("sphere model: the pair histories do not follow the neighbour list");
@@ -121,7 +91,7 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
 ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
   const std::vector<ContactPlane>& plane = planes_;
   const std::size_t np = plane.size(), nw = s.params().walls.size();
-  const SphereContactLaw law = sphere_law(s);
+  const SphereContactLaw law = sphere_loads::law(s);
   const std::vector<double>& inv_m = inv_mass(s);
   const std::vector<double>& m_eff = mass_eff(s);
   const WallCandidates cand = wall_candidates(s);

@@ -15,6 +15,7 @@
 #include "vofdem/stones/stone_packing.h"
 #include "vofdem/stones/weir_packing_3d.h"
 #include "stones/packing_random.h"
+#include "stones/packing_steps.h"
 
 namespace vofdem {
 
@@ -54,18 +55,7 @@ double max_speed(const DEMSystem& sys) {
   return std::sqrt(v2);
 }
 
-// runs until every stone has been slower than rest_speed for `hold` seconds, or time runs out
-double settle(DEMSystem& sys, const WeirSpec& s, double hold) {
-  const double chunk = 0.01;
-  double t = 0.0, quiet = 0.0;
-  while (t < s.settle_time_max) {
-    sys.advance(chunk);
-    t += chunk;
-    quiet = max_speed(sys) < s.rest_speed ? quiet + chunk : 0.0;
-    if (quiet >= hold - 1e-12) break;
-  }
-  return t;
-}
+double settle(DEMSystem& sys, const WeirSpec& s, double hold) { return packing_steps::settle(sys, s, hold, max_speed); }
 
 }  // namespace
 
@@ -214,8 +204,6 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   const auto wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<StonePacking> packing = model_packing(spec);
   std::mt19937_64 rng(spec.seed);
-  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
-  const double x_end = spec.x_end();
   PackedStones pile;
   const auto make = [&packing, &spec](const DEMParams& p, const PackedStones& stones) {
     return packing->make(p, stones, spec.density);
@@ -228,16 +216,9 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   // (2) free stones poured in rounds: the free sites of a loose triangular lattice filling the
   // trapezoid are occupied, the stones settle inside temporary slope walls, and the gaps left at the
   // top by the compaction are filled again in the next round
-  DEMParams p = params;
-  if (p.walls.empty()) p.walls.push_back({{spec.x_toe, spec.z_bed}, {0.0, 1.0}, 0.176});
-  const std::vector<DEMWall> final_walls = p.walls;
-  p.flags &= ~static_cast<unsigned>(kDEMSleeping | kDEMExternalForce);
-  // slope walls half a mean diameter outside the slopes: stone centres end near the slope lines
-  const double off = 0.5 * spec.d_mean;
-  p.walls.push_back({{spec.x_toe - off / std::sin(au), spec.z_bed}, {std::sin(au), -std::cos(au)},
-                     p.walls.front().friction});
-  p.walls.push_back({{x_end + off / std::sin(ad), spec.z_bed}, {-std::sin(ad), -std::cos(ad)},
-                     p.walls.front().friction});
+  std::vector<DEMWall> final_walls;
+  const DEMParams p = packing_steps::pour_params(params, spec, final_walls);
+  const double off = 0.5 * spec.d_mean;  // the slope walls' offset outside the slopes
   double t_total = 0.0;
   DEMSystem box(p, 0);
   for (int round = 0; round < 6; ++round) {
@@ -248,14 +229,7 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   }
 
   // (3) keep the stones whose centres lie below the crest
-  const double z_crest = spec.z_bed + spec.height;
-  PackedStones kept;
-  for (int i = 0; i < box.n(); ++i) {
-    if (!box.stone_active[i]) continue;
-    if (!box.stone_fixed[i] && box.stone_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
-    kept.copy_stone(box, pile, i);
-  }
-  pile = kept;
+  pile = packing_steps::below_crest(box, pile, spec);
 
   // (4) slope walls removed: the mound settles on its own
   DEMParams q = params;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "stones/packing_random.h"
+#include "stones/packing_steps.h"
 #include "vofdem/common/check.h"
 #include "vofdem/common/grid.h"
 #include "vofdem/coupling/porosity_map.h"
@@ -35,17 +36,8 @@ double max_speed_3d(const DEMSystem& sys) {
   return std::sqrt(v2);
 }
 
-// runs until every stone has been slower than rest_speed for `hold` seconds, or time runs out
 double settle(DEMSystem& sys, const WeirSpec& s, double hold) {
-  const double chunk = 0.01;
-  double t = 0.0, quiet = 0.0;
-  while (t < s.settle_time_max) {
-    sys.advance(chunk);
-    t += chunk;
-    quiet = max_speed_3d(sys) < s.rest_speed ? quiet + chunk : 0.0;
-    if (quiet >= hold - 1e-12) break;
-  }
-  return t;
+  return packing_steps::settle(sys, s, hold, max_speed_3d);
 }
 
 // the fixed bottom layer: rows of touching stones along the base, spaced evenly across the width by at
@@ -151,7 +143,6 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   if (!(width >= 1.5 * 1.04 * d_max))
     require_in_closed("width", width, 1.5 * 1.04 * d_max, INFINITY);  // two lattice columns across
   std::mt19937_64 rng(spec.seed);
-  const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
   PackedStones pile;
   const auto make = [&packing, &spec](const DEMParams& p, const PackedStones& stones) {
     return packing->make(p, stones, spec.density);
@@ -162,15 +153,9 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   const int n_fixed = static_cast<int>(pile.size());
 
   // (2) free stones poured in rounds inside temporary slope walls half a mean diameter outside the slopes
-  DEMParams p = params;
-  if (p.walls.empty()) p.walls.push_back({{spec.x_toe, spec.z_bed}, {0.0, 1.0}, 0.176});
-  const std::vector<DEMWall> final_walls = p.walls;
-  p.flags &= ~static_cast<unsigned>(kDEMSleeping | kDEMExternalForce);
-  const double off = 0.5 * spec.d_mean;
-  p.walls.push_back({{spec.x_toe - off / std::sin(au), spec.z_bed}, {std::sin(au), -std::cos(au)},
-                     p.walls.front().friction});
-  p.walls.push_back({{spec.x_end() + off / std::sin(ad), spec.z_bed}, {-std::sin(ad), -std::cos(ad)},
-                     p.walls.front().friction});
+  std::vector<DEMWall> final_walls;
+  const DEMParams p = packing_steps::pour_params(params, spec, final_walls);
+  const double off = 0.5 * spec.d_mean;  // the slope walls' offset outside the slopes
   double t_total = 0.0;
   DEMSystem box = make(p, pile);
   for (int round = 0; round < 6; ++round) {
@@ -182,14 +167,7 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   }
 
   // (3) keep the stones whose centres lie below the crest (the plane's criterion)
-  const double z_crest = spec.z_bed + spec.height;
-  PackedStones kept;
-  for (int i = 0; i < box.n(); ++i) {
-    if (!box.stone_active[i]) continue;
-    if (!box.stone_fixed[i] && box.stone_pos[2 * i + 1] > z_crest + 0.25 * spec.d_mean) continue;
-    kept.copy_stone(box, pile, i);
-  }
-  pile = kept;
+  pile = packing_steps::below_crest(box, pile, spec);
 
   // (4) slope walls removed: the mound settles on its own; stones that rolled off a toe are not the weir's
   DEMParams q = params;

@@ -1,0 +1,53 @@
+// What the 3D models built on sphere contacts share (sphere_model.cpp, clump_model.cpp): the contact law's
+// constants from the system's parameters and effect flags, the loads of one contact added into the
+// system's arrays with the energy tally, and the 3-vectors of their checkpoint arrays.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/sphere_contact.h"
+#include "vofdem/stones/stone_model.h"
+
+namespace vofdem::sphere_loads {
+
+// the law's constants with the effect flags of the system (damping off: e = 1; friction off: mu = k_t = 0)
+inline SphereContactLaw law(const DEMSystem& s) {
+  const DEMParams& p = s.params();
+  SphereContactLaw law;
+  law.stiffness_normal = s.stiffness_normal();
+  const bool friction = p.flags & kDEMFriction;
+  law.stiffness_ratio = friction ? p.stiffness_ratio : 0.0;
+  law.friction = friction ? p.friction_stone : 0.0;
+  law.restitution = (p.flags & kDEMDamping) ? p.restitution : 1.0;
+  law.tangential_damping_factor = p.tangential_damping_factor;
+  law.rolling_friction = (p.flags & kDEMRollingResistance) ? p.rolling_friction_stone : 0.0;
+  law.rolling_damping = p.rolling_damping;
+  return law;
+}
+
+// the loads of a contact into the system's arrays: i gets them, j (if >= 0) their opposite
+inline void apply(DEMSystem& s, int i, int j, const SphereContactLoads& f, ContactTally& t, double dt) {
+  s.stone_force[2 * i] += f.force_i[0];
+  s.stone_force_y[i] += f.force_i[1];
+  s.stone_force[2 * i + 1] += f.force_i[2];
+  for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * i + k] += f.torque_i[k];
+  if (j >= 0) {
+    s.stone_force[2 * j] -= f.force_i[0];
+    s.stone_force_y[j] -= f.force_i[1];
+    s.stone_force[2 * j + 1] -= f.force_i[2];
+    for (int k = 0; k < 3; ++k) s.stone_torque_3d[3 * j + k] += f.torque_j[k];
+  }
+  ++t.count;
+  t.elastic += f.energy_spring;
+  t.dissipated += f.power_damp * dt + f.energy_slip;
+}
+
+inline void push3(std::vector<double>& out, const Eigen::Vector3d& v) { out.insert(out.end(), {v[0], v[1], v[2]}); }
+inline Eigen::Vector3d at3(const std::vector<double>& v, std::size_t k) {
+  return {v[3 * k], v[3 * k + 1], v[3 * k + 2]};
+}
+
+}  // namespace vofdem::sphere_loads
