@@ -15,6 +15,7 @@
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/stones/clump.h"
+#include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/sphere_model.h"
 #include "vofdem/stones/stone_packing.h"
@@ -190,6 +191,7 @@ SphereOfBody ClumpModel::body(const DEMSystem& s, int i, int g, double mass) con
 
 ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
   const SphereContactLaw law = sphere_loads::law(s);
+  const double zeta = damping_ratio_from_restitution(law.restitution);  // once per loop, not per contact
   std::vector<ContactPair>& list = pairs(s);
   if (pair_history_.size() != list.size())
     throw std::logic_error("clump model: the pair histories do not follow the neighbour list");
@@ -216,8 +218,8 @@ ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
         auto it = std::find_if(hist.begin(), hist.end(), [&](const SubContact& c) { return c.a == la && c.b == lb; });
         if (it == hist.end()) it = hist.insert(hist.end(), SubContact{la, lb, false, SphereContactHistory()});
         it->touched = true;
-        const SphereContactLoads f = sphere_sphere_contact_unchecked(body(s, i, a, 1.0 / inv_m[i]),
-                                                                     body(s, j, b, 1.0 / inv_m[j]), it->h, law, dt);
+        const SphereContactLoads f = sphere_sphere_contact_unchecked(
+            body(s, i, a, 1.0 / inv_m[i]), body(s, j, b, 1.0 / inv_m[j]), it->h, law, zeta, dt);
         apply(s, i, j, f, t, dt);
       }
     // a sub-sphere pair that opened starts again from zero
@@ -228,6 +230,7 @@ ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
 
 ContactTally ClumpModel::wall_forces(DEMSystem& s, double dt) {
   const SphereContactLaw law = sphere_loads::law(s);
+  const double zeta = damping_ratio_from_restitution(law.restitution);  // once per loop, not per contact
   const std::vector<double>& inv_m = inv_mass(s);
   const std::vector<double>& m_eff = mass_eff(s);
   const std::size_t nplane = np();
@@ -242,7 +245,8 @@ ContactTally ClumpModel::wall_forces(DEMSystem& s, double dt) {
         const double gap = (c - planes_[w].point).dot(planes_[w].normal);
         // (and once more as it leaves, so that its histories start again from zero)
         if (gap >= sphere_[4 * g + 3] && zero(h)) continue;
-        const SphereContactLoads f = sphere_plane_contact_unchecked(body(s, i, g, m_eff[i]), planes_[w], h, law, dt);
+        const SphereContactLoads f =
+            sphere_plane_contact_unchecked(body(s, i, g, m_eff[i]), planes_[w], h, law, zeta, dt);
         if (f.touching) apply(s, i, -1, f, t, dt);
       }
     }

@@ -6,7 +6,8 @@
 //   translation   v_y += (h a_y) phi,  y += dt v_y   (the plane's half kicks with the linear drag's phi;
 //                 the drag c (0 - v_y): the width-averaged flow has no velocity across the flume)
 //   rotation      L_w += h tau_w;  free rotation over dt (rotation_step's splitting, quaternion.h);
-//                 L_w += h tau_w' with the torque of the new positions
+//                 L_w += h tau_w' with the torque of the new positions. Spheres (equal moments I):
+//                 omega += h tau_w / I;  one exact turn by omega dt (spherical_rotation);  omega += h tau_w' / I
 //
 // A stone that does not turn (fixed, inactive, or with kDEMRotation off) keeps its orientation and a zero
 // spin; its principal moments are stored as +inf, which the contact models read as a body that cannot turn.
@@ -104,13 +105,22 @@ void DEMSystem::out_of_plane_body_forces(double dt) {
 
 void DEMSystem::out_of_plane_first_half(double dt) {
   const double h = 0.5 * dt;
+  const bool spherical = model_->spherical_inertia();
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0 || stone_asleep[i]) continue;
     stone_vel_y[i] += h * stone_acc_y[i] * kick_scale_[i];
     stone_y[i] += dt * stone_vel_y[i];
     if (std::isinf(inertia_3d_[3 * i])) continue;
-    const Vec3 inertia = vec_at(inertia_3d_, i);
     Quat q = quat_at(stone_quat, i);
+    if (spherical) {
+      // equal moments: omega = L / I, constant over the free rotation, so one exact turn about it
+      const Vec3 omega = vec_at(stone_omega_3d, i) + (h / inertia_3d_[3 * i]) * vec_at(stone_torque_3d, i);
+      spherical_rotation(q, omega, dt);
+      store_quat(stone_quat, i, q);
+      store_vec(stone_omega_3d, i, omega);
+      continue;
+    }
+    const Vec3 inertia = vec_at(inertia_3d_, i);
     Vec3 l = angular_momentum(q, inertia, vec_at(stone_omega_3d, i)) + h * vec_at(stone_torque_3d, i);
     free_rotation(q, l, inertia, dt);
     q.normalize();
@@ -122,6 +132,7 @@ void DEMSystem::out_of_plane_first_half(double dt) {
 
 void DEMSystem::out_of_plane_second_half(double dt) {
   const double h = 0.5 * dt;
+  const bool spherical = model_->spherical_inertia();
   const bool ext = params_.flags & kDEMExternalForce;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] == 0.0) continue;
@@ -136,7 +147,9 @@ void DEMSystem::out_of_plane_second_half(double dt) {
       stone_force_y[i] -= c * dvy;
       stone_acc_y[i] -= c * inv_mass_[i] * dvy;
     }
-    if (!std::isinf(inertia_3d_[3 * i])) {
+    if (spherical && !std::isinf(inertia_3d_[3 * i])) {
+      for (int k = 0; k < 3; ++k) stone_omega_3d[3 * i + k] += h / inertia_3d_[3 * i] * stone_torque_3d[3 * i + k];
+    } else if (!std::isinf(inertia_3d_[3 * i])) {
       const Vec3 inertia = vec_at(inertia_3d_, i);
       const Quat q = quat_at(stone_quat, i);
       const Vec3 l = angular_momentum(q, inertia, vec_at(stone_omega_3d, i)) + h * vec_at(stone_torque_3d, i);

@@ -1,5 +1,6 @@
 // Rotation step of a rigid body with principal moments of inertia (quaternion.h): the free rotor split
-// into exact rotations about the principal axes (Dullweber, Leimkuhler & McLachlan 1997).
+// into exact rotations about the principal axes (Dullweber, Leimkuhler & McLachlan 1997), and the exact
+// rotation of a body with equal moments (a sphere).
 #include "vofdem/stones/quaternion.h"
 
 #include <cmath>
@@ -59,6 +60,19 @@ void free_rotation(Quat& q, const Vec3& l_world, const Vec3& inertia, double dt)
   rotate_about_axis(2, q, l_body, inertia, dt);
   rotate_about_axis(1, q, l_body, inertia, 0.5 * dt);
   rotate_about_axis(0, q, l_body, inertia, 0.5 * dt);
+  q.normalize();
+}
+
+void spherical_rotation(Quat& q, const Vec3& omega_world, double dt) {
+  if (!(std::isfinite(dt) && dt >= 0.0)) {
+    throw std::invalid_argument("dt: the time step must be finite and >= 0 [s], got " + std::to_string(dt));
+  }
+  const double rate = omega_world.norm();
+  if (rate == 0.0) return;  // no axis to turn about: q stays as it is
+  // the world-frame increment dq q (dq/dt = (0, omega_w) q / 2 with omega_w constant)
+  const double half = 0.5 * rate * dt;
+  const Vec3 v = (std::sin(half) / rate) * omega_world;
+  q = Quat(std::cos(half), v.x(), v.y(), v.z()) * q;
   q.normalize();
 }
 

@@ -44,8 +44,8 @@ struct Geometry {
   Vec3 v_rel;          // velocity of i relative to j at the point [m/s]
   Vec3 w_rel;          // omega_i - omega_j [rad/s]
   double m_reduced;    // m* [kg]
-  double r_eff;        // R* [m]
-  double roll_inertia; // I_r [kg m^2]
+  double r_eff = 0.0;  // R* [m] (sphere pairs: set only with the rolling resistance on)
+  double roll_inertia = 0.0;  // I_r [kg m^2] (likewise)
   double mu, mu_r;     // Coulomb and rolling friction [-]
 };
 
@@ -94,14 +94,14 @@ Vec3 rolling(const Geometry& g, double fn, double kt, double eta, double dt, Sph
 
 // the law at one contact: forces on i, torques on i and j about their centres of mass
 SphereContactLoads apply_law(const Geometry& g, const Vec3& arm_i, const Vec3& arm_j, SphereContactHistory& h,
-                             const SphereContactLaw& law, double dt) {
+                             const SphereContactLaw& law, double zeta, double dt) {
   SphereContactLoads out;
   out.touching = true;
   out.normal = g.n;
   out.point = g.point;
   out.overlap = g.delta;
   const double kn = law.stiffness_normal, kt = law.stiffness_ratio * kn;
-  const double cn = 2.0 * damping_ratio_from_restitution(law.restitution) * std::sqrt(g.m_reduced * kn);
+  const double cn = 2.0 * zeta * std::sqrt(g.m_reduced * kn);
   const double ct = law.tangential_damping_factor * cn;
   const double vn = g.v_rel.dot(g.n);
   const Vec3 vt = g.v_rel - vn * g.n;
@@ -144,11 +144,12 @@ SphereContactLoads sphere_sphere_contact(const SphereOfBody& i, const SphereOfBo
   check_sphere(i, "sphere i");
   check_sphere(j, "sphere j");
   check_dt(dt);
-  return sphere_sphere_contact_unchecked(i, j, h, law, dt);
+  return sphere_sphere_contact_unchecked(i, j, h, law, damping_ratio_from_restitution(law.restitution), dt);
 }
 
 SphereContactLoads sphere_sphere_contact_unchecked(const SphereOfBody& i, const SphereOfBody& j,
-                                                   SphereContactHistory& h, const SphereContactLaw& law, double dt) {
+                                                   SphereContactHistory& h, const SphereContactLaw& law, double zeta,
+                                                   double dt) {
   const Vec3 d = j.centre - i.centre;
   const double dist = d.norm();
   const double delta = i.radius + j.radius - dist;
@@ -164,13 +165,16 @@ SphereContactLoads sphere_sphere_contact_unchecked(const SphereOfBody& i, const 
   g.v_rel = (i.vel + i.omega.cross(arm_i)) - (j.vel + j.omega.cross(arm_j));
   g.w_rel = i.omega - j.omega;
   g.m_reduced = 1.0 / (1.0 / i.mass + 1.0 / j.mass);  // a fixed body's mass is +inf
-  g.r_eff = i.radius * j.radius / (i.radius + j.radius);
-  const double inv_i = 1.0 / (i.inertia + i.mass * i.radius * i.radius);
-  const double inv_j = 1.0 / (j.inertia + j.mass * j.radius * j.radius);
-  g.roll_inertia = 1.0 / (inv_i + inv_j);
   g.mu = law.friction;
   g.mu_r = law.rolling_friction;
-  return apply_law(g, arm_i, arm_j, h, law, dt);
+  if (g.mu_r > 0.0) {
+    // only the rolling resistance reads them: four divisions saved per contact without it
+    g.r_eff = i.radius * j.radius / (i.radius + j.radius);
+    const double inv_i = 1.0 / (i.inertia + i.mass * i.radius * i.radius);
+    const double inv_j = 1.0 / (j.inertia + j.mass * j.radius * j.radius);
+    g.roll_inertia = 1.0 / (inv_i + inv_j);
+  }
+  return apply_law(g, arm_i, arm_j, h, law, zeta, dt);
 }
 
 SphereContactLoads sphere_plane_contact(const SphereOfBody& i, const ContactPlane& plane, SphereContactHistory& h,
@@ -184,11 +188,12 @@ SphereContactLoads sphere_plane_contact(const SphereOfBody& i, const ContactPlan
           plane.friction);
   require(std::isfinite(plane.rolling_friction) && plane.rolling_friction >= 0.0, "plane.rolling_friction",
           "finite and >= 0 [-]", plane.rolling_friction);
-  return sphere_plane_contact_unchecked(i, plane, h, law, dt);
+  return sphere_plane_contact_unchecked(i, plane, h, law, damping_ratio_from_restitution(law.restitution), dt);
 }
 
 SphereContactLoads sphere_plane_contact_unchecked(const SphereOfBody& i, const ContactPlane& plane,
-                                                  SphereContactHistory& h, const SphereContactLaw& law, double dt) {
+                                                  SphereContactHistory& h, const SphereContactLaw& law, double zeta,
+                                                  double dt) {
   const double delta = i.radius - (i.centre - plane.point).dot(plane.normal);
   if (!(delta > 0.0)) {
     h = SphereContactHistory();
@@ -206,7 +211,7 @@ SphereContactLoads sphere_plane_contact_unchecked(const SphereOfBody& i, const C
   g.roll_inertia = i.inertia + i.mass * i.radius * i.radius;
   g.mu = plane.friction;
   g.mu_r = plane.rolling_friction;
-  return apply_law(g, arm_i, Vec3::Zero(), h, law, dt);
+  return apply_law(g, arm_i, Vec3::Zero(), h, law, zeta, dt);
 }
 
 }  // namespace vofdem

@@ -11,6 +11,7 @@
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/coupling/porosity_map.h"
+#include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/stone_packing.h"
 
@@ -65,6 +66,7 @@ SphereOfBody SphereModel::body(const DEMSystem& s, int i, double mass) const {
 
 ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
   const SphereContactLaw law = sphere_loads::law(s);
+  const double zeta = damping_ratio_from_restitution(law.restitution);  // once per loop, not per contact
   std::vector<ContactPair>& list = pairs(s);
   if (pair_history_.size() != list.size())
     throw std::logic_error("sphere model: the pair histories do not follow the neighbour list");
@@ -82,7 +84,7 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
       continue;
     }
     const SphereContactLoads f = sphere_sphere_contact_unchecked(body(s, i, 1.0 / inv_m[i]), body(s, j, 1.0 / inv_m[j]),
-                                                                 pair_history_[k], law, dt);
+                                                                 pair_history_[k], law, zeta, dt);
     apply(s, i, j, f, t, dt);
   }
   return t;
@@ -92,13 +94,14 @@ ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
   const std::vector<ContactPlane>& plane = planes_;
   const std::size_t np = plane.size(), nw = s.params().walls.size();
   const SphereContactLaw law = sphere_loads::law(s);
+  const double zeta = damping_ratio_from_restitution(law.restitution);  // once per loop, not per contact
   const std::vector<double>& inv_m = inv_mass(s);
   const std::vector<double>& m_eff = mass_eff(s);
   const WallCandidates cand = wall_candidates(s);
   ContactTally t;
   auto touch = [&](int i, std::size_t w) {
     SphereContactHistory& h = wall_history_[static_cast<std::size_t>(i) * np + w];
-    const SphereContactLoads f = sphere_plane_contact_unchecked(body(s, i, m_eff[i]), plane[w], h, law, dt);
+    const SphereContactLoads f = sphere_plane_contact_unchecked(body(s, i, m_eff[i]), plane[w], h, law, zeta, dt);
     if (f.touching) apply(s, i, -1, f, t, dt);
   };
   // the plane's walls: the stones near each (the neighbour build's candidates)

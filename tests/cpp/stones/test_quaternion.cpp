@@ -125,6 +125,62 @@ TEST(Quaternion, ConstantTorqueAboutPrincipalAxis) {
   }
 }
 
+// a body of equal moments spun at omega = (pi/2) / (n dt) about the unit axis (1, 2, 2)/3 turns by a quarter
+// turn in n exact rotations: q = (cos(pi/4), sin(pi/4) axis) q_0 by hand, to the round-off of n products
+TEST(Quaternion, SphericalRotationQuarterTurnByHand) {
+  const Vec3 axis = Vec3(1.0, 2.0, 2.0) / 3.0;
+  const int n = 1000;
+  const double dt = 1e-3, rate = 0.5 * M_PI / (n * dt);
+  const double c = std::sqrt(0.5);
+  Quat q = Quat::Identity();
+  for (int s = 0; s < n; ++s) spherical_rotation(q, rate * axis, dt);
+  EXPECT_NEAR(q.w(), c, 1e-12);
+  EXPECT_NEAR(q.x(), c / 3.0, 1e-12);
+  EXPECT_NEAR(q.y(), 2.0 * c / 3.0, 1e-12);
+  EXPECT_NEAR(q.z(), 2.0 * c / 3.0, 1e-12);
+  // from a tilted start the quarter turn is applied in the world frame: the body x axis of tilted() is
+  // turned about the world axis by pi/2
+  Quat p = tilted();
+  for (int s = 0; s < n; ++s) spherical_rotation(p, rate * axis, dt);
+  const Vec3 x0 = body_to_world(tilted(), Vec3::UnitX());
+  const Vec3 x_hand = axis.dot(x0) * axis + axis.cross(x0);  // Rodrigues at pi/2: cos 0, sin 1
+  EXPECT_LT((body_to_world(p, Vec3::UnitX()) - x_hand).norm(), 1e-12);
+  // no spin: the orientation is kept bit for bit; a bad step is refused by name
+  Quat r = tilted();
+  spherical_rotation(r, Vec3::Zero(), dt);
+  EXPECT_EQ(std::memcmp(r.coeffs().data(), tilted().coeffs().data(), sizeof(double) * 4), 0);
+  try {
+    spherical_rotation(r, axis, -1e-3);
+    FAIL() << "negative dt accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("dt"), std::string::npos);
+  }
+}
+
+// on a body of equal moments the exact rotation does not depend on the step (a spin held over 1 s in steps
+// of 1e-3 or 5e-4 s: the same orientation to round-off), and the principal axes' splitting converges to it
+// at second order: halving the step divides their difference by 4 (an oblique spin, omega dt = 0.01)
+TEST(Quaternion, SphericalRotationIsTheLimitOfTheSplittingForEqualMoments) {
+  const Vec3 inertia(2.0e-4, 2.0e-4, 2.0e-4);
+  const Vec3 omega0 = 10.0 * Vec3(1.0, -2.0, 0.5).normalized();
+  auto run = [&](int n) {
+    const double dt = 1.0 / n;
+    Quat split = tilted(), exact = tilted();
+    Vec3 omega = omega0;
+    for (int s = 0; s < n; ++s) {
+      rotation_step(split, omega, inertia, Vec3::Zero(), dt);
+      spherical_rotation(exact, omega0, dt);
+    }
+    return std::make_pair(split, exact);
+  };
+  const auto coarse = run(1000), fine = run(2000);
+  EXPECT_LT(angle_between(coarse.second, fine.second), 1e-12);
+  const double e1 = angle_between(coarse.first, coarse.second), e2 = angle_between(fine.first, fine.second);
+  EXPECT_GT(e1, 0.0);
+  const double order = std::log2(e1 / e2);
+  EXPECT_NEAR(order, 2.0, 0.1) << "errors " << e1 << " and " << e2;
+}
+
 TEST(Quaternion, DeterministicBitForBit) {
   auto run = [] {
     Quat q = tilted();

@@ -73,6 +73,23 @@ TEST(SphereModel, TwoSpheresAcrossTheFlumePushApartByHand) {
   EXPECT_EQ(s.stone_angle[0], 0.0);
 }
 
+// a lone sphere spinning in the air without gravity keeps its spin, and its orientation after n steps is
+// the quarter turn about the spin by hand, (cos(pi/4), sin(pi/4) axis), to the round-off of n steps
+TEST(SphereModel, FreeSpinTurnsByTheExactAngle) {
+  DEMParams p;
+  p.flags = kDEMAllEffects & ~kDEMGravity;
+  const int n = 2000;
+  const double dt = 1e-5, rate = 0.5 * kPi / (n * dt);
+  DEMSystem s = spheres(p, {0.1, 0.1}, 0.2);
+  const double axis[3] = {2.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0};
+  for (int k = 0; k < 3; ++k) s.stone_omega_3d[k] = rate * axis[k];
+  for (int step = 0; step < n; ++step) s.step(dt);
+  const double c = std::sqrt(0.5);
+  EXPECT_NEAR(s.stone_quat[0], c, 1e-12);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.stone_quat[1 + k], c * axis[k], 1e-12) << k;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(s.stone_omega_3d[k], rate * axis[k]) << k;
+}
+
 TEST(SphereModel, OnAnInclineRollsSlidesAndHoldsAtTheTheoreticalThresholds) {
   const double theta = 20.0 * kPi / 180.0, t = std::tan(theta);
   // rolling without slip while mu >= (2/7) tan(theta) = 0.104: (5/7) g sin(theta)

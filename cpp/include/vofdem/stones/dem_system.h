@@ -32,7 +32,8 @@
 // 3D stones (a model of dimensions() == 3) keep the plane's arrays for x and z (what the 2D flow sees and
 // acts on) and add the out-of-plane state: y across the flume of width `width` between two side walls,
 // its velocity and force, and the rotation as a unit quaternion with a world angular velocity, advanced
-// by the same kick-drift-kick with rotation_step's splitting (quaternion.h) in place of the angle; their
+// by the same kick-drift-kick with rotation_step's splitting (quaternion.h; one exact turn about the spin
+// for spheres, whose moments are equal) in place of the angle; their
 // in-plane angle arrays stay zero. Gravity and the flow's forces lie in the plane; the linear drag pulls
 // v_y towards 0 (the width-averaged flow has no velocity across the flume).
 // Neighbours: a Verlet list with a skin built from a cell grid (O(N)), its pairs kept sorted by (i, j) so

@@ -18,6 +18,11 @@
 // of the quaternion's conjugate momentum (LAMMPS fix rigid/nve, MathExtra::no_squish_rotate). A constant
 // torque along a principal axis keeps L_b on that axis, so omega = tau t / I is kept to round-off.
 //
+// A body whose three principal moments are equal (a sphere) is the exception: its free rotation keeps
+// omega_w = L_w / I constant, so the orientation turns exactly by the angle |omega| dt about omega in one
+// rotation, q(t + dt) = (cos(|omega| dt / 2), sin(|omega| dt / 2) omega / |omega|) q(t), one sin/cos
+// pair (spherical_rotation below) instead of the splitting's five.
+//
 // References: Dullweber, A., Leimkuhler, B. & McLachlan, R. (1997), Symplectic splitting methods for
 // rigid body molecular dynamics, J. Chem. Phys. 107, 5840-5851. Miller, T. F., Eleftheriou, M.,
 // Pattnaik, P., Ndirango, A., Newns, D. & Martyna, G. J. (2002), Symplectic quaternion scheme for
@@ -51,6 +56,11 @@ double rotational_energy(const Quat& q, const Vec3& inertia, const Vec3& omega_w
 // torque-free rotation over dt [s]: turns q and keeps L_w [kg m^2/s] (the splitting above, no kicks).
 // inertia: principal moments [kg m^2], each > 0; dt >= 0.
 void free_rotation(Quat& q, const Vec3& l_world, const Vec3& inertia, double dt);
+
+// torque-free rotation over dt [s] of a body with equal principal moments: turns q exactly by |omega| dt
+// about the world angular velocity omega [rad/s] (kept; q unchanged when omega is 0) and renormalises it.
+// Throws std::invalid_argument if dt is not finite and >= 0.
+void spherical_rotation(Quat& q, const Vec3& omega_world, double dt);
 
 // one rotation step over dt [s] under a world torque [N m] held constant over the step (kick, free
 // rotation, kick): updates the orientation q (renormalised) and the world angular velocity omega [rad/s].

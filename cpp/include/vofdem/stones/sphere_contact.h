@@ -96,17 +96,21 @@ struct SphereContactLoads {
 SphereContactLoads sphere_sphere_contact(const SphereOfBody& i, const SphereOfBody& j, SphereContactHistory& h,
                                          const SphereContactLaw& law, double dt);
 
-// the same without the checks, for the stone models' loops (DEMSystem has checked their inputs)
+// the same without the checks, for the stone models' loops (DEMSystem has checked their inputs); zeta [-]
+// is the law's damping ratio, damping_ratio_from_restitution(law.restitution) (dem_contact.h), which a loop
+// computes once for all its contacts (a log and a square root saved per contact)
 SphereContactLoads sphere_sphere_contact_unchecked(const SphereOfBody& i, const SphereOfBody& j,
-                                                   SphereContactHistory& h, const SphereContactLaw& law, double dt);
+                                                   SphereContactHistory& h, const SphereContactLaw& law, double zeta,
+                                                   double dt);
 
 // contact of sphere i with a fixed plane over dt [s] (the plane's friction replaces law.friction and
 // law.rolling_friction); torque_j is zero. Throws as above, and for a normal that is not of unit length.
 SphereContactLoads sphere_plane_contact(const SphereOfBody& i, const ContactPlane& plane, SphereContactHistory& h,
                                         const SphereContactLaw& law, double dt);
 
-// the same without the checks (the models' loops)
+// the same without the checks (the models' loops; zeta as above)
 SphereContactLoads sphere_plane_contact_unchecked(const SphereOfBody& i, const ContactPlane& plane,
-                                                  SphereContactHistory& h, const SphereContactLaw& law, double dt);
+                                                  SphereContactHistory& h, const SphereContactLaw& law, double zeta,
+                                                  double dt);
 
 }  // namespace vofdem

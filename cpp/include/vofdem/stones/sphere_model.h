@@ -35,6 +35,7 @@ class SphereModel final : public DiscModel {
   const char* name() const override { return "sphere"; }
   int dimensions() const override { return 3; }
   WetLaw wet_law() const override { return kSphereWetLaw; }
+  bool spherical_inertia() const override { return true; }
   void check_params(const DEMParams& p) const override;
   void prepare(DEMSystem& s) override;
   ContactTally contact_forces(DEMSystem& s, double dt) override;

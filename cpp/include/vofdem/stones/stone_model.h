@@ -106,6 +106,9 @@ class StoneModel {
     const double inertia_i = inertia(s, i, mass);
     return {inertia_i, inertia_i, inertia_i};
   }
+  // true if every stone's three principal moments are equal (spheres): DEMSystem then turns it by one exact
+  // rotation about its spin (quaternion.h, spherical_rotation) instead of the principal axes' splitting
+  virtual bool spherical_inertia() const { return false; }
 
   // ---- contacts: the stable step [s] of the stones' contacts (prepared system), and the force loops,
   // which add forces to stone_force and torques to stone_torque and keep their histories
