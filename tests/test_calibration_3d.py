@@ -40,9 +40,12 @@ def test_small_3d_heap_is_a_cone_at_rest_with_a_finite_angle():
     r = cal.pour_heap(spheres(), 0, setup=cal.ReposeSetup(n_stones=150, release_interval=0.04,
                                                           settle_time_max=8.0))
     assert isinstance(r, c3.ConeResult) and r.settled
-    # frictional spheres without rolling resistance heap low but finitely (20-25 deg in large heaps)
-    assert 8.0 < r.angle < 35.0
-    assert abs(r.left.angle - r.right.angle) < 15.0
+    # a few spheres may roll off the rough disc: taken away, the rest of the heap at rest
+    assert r.lost < 0.05 * 150 and r.max_speed < 1e-3
+    # frictional spheres without rolling resistance heap low but finitely (a heap of 150: ~10 deg; of
+    # 500: ~20 deg, benchmarks/results/sphere_calibration.md)
+    assert 5.0 < r.angle < 30.0
+    assert abs(r.left.angle - r.right.angle) < 10.0
     # the heap stands on the axis of the funnel, far from the walls
     assert np.hypot(*r.axis - [0.0, r.pos[r.fixed, 1].mean()]) < 0.05
     assert r.pos.shape[1] == 3 and cal.fig_heap(r) is not None

@@ -4,7 +4,8 @@
   each dropped a stated height above the heap's current top (higher if a stone still falling is in the way), onto a rough base (a disc of fixed stones of the scene's
   sizes on a triangular lattice on the bed). The side walls stand far away (beyond the widest cone the
   stones can build at 20 degrees), so the heap is a free cone. At rest, its surface stones are the
-  highest of each square cell one mean diameter d wide in plan; their tops z against their distance rho
+  highest of each square cell one mean diameter d wide in plan (stones that rolled off the disc onto the
+  smooth bed are taken away, as stones falling off a table's edge, and counted); their tops z against their distance rho
   from the heap's axis (the plan centroid of the poured stones) are fitted by a straight line
   z = z0 - tan(theta) rho between stated fractions of the heap's height (not its rounded top, not its toe),
   and theta is the angle of repose. The two halves x < axis and x > axis are fitted apart too (their
@@ -61,6 +62,8 @@ class ConeResult:
     height: float          # heap height above the base's top [m]
     base_top: float        # z of the base's top [m]
     settled: bool
+    lost: int              # stones that rolled off the rough disc onto the smooth bed (taken away, as
+    #                        stones falling off a table's edge; the heap is at rest without them)
     max_speed: float       # [m/s]
     time: float            # simulated time [s]
     axis: np.ndarray = field(repr=False)      # (x, y) of the heap's axis [m]
@@ -183,22 +186,37 @@ def pour_cone(scene: Scene, seed: int, submerged: bool, setup, log=None) -> Cone
         sys_.stone_omega_3d[k] = (0.0, 0.0, 0.0)
         sys_.stone_active[k] = 1
         sys_.advance(setup.release_interval)
+        _drop_off_the_base(sys_, nb, yc, r_base, base_top)
         if log and (k - nb + 1) % 100 == 0:
             log(f"  poured {k - nb + 1} stones, t = {sys_.time:.1f} s")
     settled, t_end = False, sys_.time + setup.settle_time_max
     while sys_.time < t_end - 1e-9:
         sys_.advance(0.1)
-        if speeds_3d(sys_)[nb:].max() < setup.rest_speed:
+        _drop_off_the_base(sys_, nb, yc, r_base, base_top)
+        on = np.asarray(sys_.stone_active)[nb:].astype(bool)
+        if speeds_3d(sys_)[nb:][on].max() < setup.rest_speed:
             settled = True
             break
+    lost = int(setup.n_stones - np.asarray(sys_.stone_active)[nb:].sum())
+    fixed = fixed | ~np.asarray(sys_.stone_active).astype(bool)  # the lost stones drop out of the fit
     free = ~fixed
     P, Y = np.asarray(sys_.stone_pos), np.asarray(sys_.stone_y)
     top = tops(sys_)
     cone, left, right, axis, surf, height = fit_cone(P[free, 0], Y[free], top[free], base_top, d, setup)
+    on = np.asarray(sys_.stone_active)[nb:].astype(bool)
     return ConeResult(seed=seed, submerged=submerged, cone=cone, left=left, right=right, height=height,
-                      base_top=base_top, settled=settled, max_speed=float(speeds_3d(sys_)[nb:].max()),
+                      base_top=base_top, settled=settled, lost=lost, max_speed=float(speeds_3d(sys_)[nb:][on].max()),
                       time=float(sys_.time), axis=axis, pos=np.c_[P[:, 0], Y, P[:, 1]],
                       radius=np.asarray(sys_.stone_radius).copy(), fixed=fixed, surface=surf)
+
+
+def _drop_off_the_base(system, nb: int, yc: float, r_base: float, base_top: float) -> None:
+    """Takes away (deactivates) the poured stones that rolled off the rough disc onto the bed: on a smooth
+    bed a sphere without rolling resistance rolls on for ever, and it has left the heap."""
+    P, Y = np.asarray(system.stone_pos), np.asarray(system.stone_y)
+    off = (np.hypot(P[:, 0], Y - yc) > r_base) & (P[:, 1] < base_top)
+    off[:nb] = False
+    system.stone_active[off] = 0
 
 
 def slope_surface_stones_3d(system, scene: Scene, setup, wall_clearance: float = 1.5) -> List[int]:
