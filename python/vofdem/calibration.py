@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 from . import builder
-from .stone_models import front_of, stone_diameters
+from .stone_models import front, front_of, stone_diameters
 from .scene import Scene
 
 # the seed paper's Table 1: mean pull-out force of a slope stone in each direction, dry [N]
@@ -203,8 +203,12 @@ def _free_spot(pos, radius, active, x, z, r) -> bool:
 
 def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optional[ReposeSetup] = None,
               log=None) -> ReposeResult:
-    """Pours setup.n_stones of the scene's stones from a funnel onto a rough base and measures the heap."""
+    """Pours setup.n_stones of the scene's stones from a funnel onto a rough base and measures the heap
+    (stones that move in 3D: a cone on a rough disc, calibration_3d.pour_cone)."""
     setup = (setup or ReposeSetup()).validate()
+    if front(scene.stones.shape).dimensions == 3:
+        from .calibration_3d import pour_cone
+        return pour_cone(scene, seed, submerged, setup, log)
     st = scene.stones
     g = st.grading()  # a sieve curve: its d50 and stones drawn from it by mass (grading.py)
     d = st.diameter if g is None else g.d(0.5)
@@ -322,10 +326,13 @@ class PullSetup:
     update: float = 1e-3     # the spring force is updated every `update` seconds [s]
     z_low: float = 0.2       # stones pulled: centres between z_low and z_high of the weir's height
     z_high: float = 0.8
+    hold_beyond: float = 0.0  # > 0: stones whose centres lie farther than this many of the pulled stone's
+    #                           diameters from it are held fixed during the pull (a packed weir at rest:
+    #                           the far stones do not take part, and held stones cost nothing); 0: none
 
     def validate(self) -> "PullSetup":
         for name, lo, hi in (("spring", 1e-3, 1e6), ("speed", 1e-5, 10.0), ("max_travel", 1e-3, 10.0),
-                             ("pulled_out", 0.01, 100.0), ("update", 1e-5, 0.1)):
+                             ("pulled_out", 0.01, 100.0), ("update", 1e-5, 0.1), ("hold_beyond", 0.0, 1e3)):
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and lo <= v <= hi):
                 raise ValueError(f"{name} = {v!r} is outside the allowed range [{lo}, {hi}]")
@@ -386,6 +393,16 @@ def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None
     return sorted(cand, key=lambda i: P[i, 1])
 
 
+def surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None) -> List[int]:
+    """The stones an experimenter would pull: slope_surface_stones, or for stones that move in 3D
+    calibration_3d.slope_surface_stones_3d (away from the side walls)."""
+    setup = setup or PullSetup()
+    if front_of(system).dimensions == 3:
+        from .calibration_3d import slope_surface_stones_3d
+        return slope_surface_stones_3d(system, scene, setup)
+    return slope_surface_stones(system, scene, setup)
+
+
 def pick_evenly(candidates: Sequence[int], k: int) -> List[int]:
     """k of the candidates spread evenly along their order (all of them if there are no more than k)."""
     if len(candidates) <= k:
@@ -403,6 +420,18 @@ def pull_weir(scene: Scene, seed: int):
     return sys_, sys_.export_state()
 
 
+def _hold_far(system, stone: int, reach: float) -> None:
+    """Fixes the stones whose centres lie farther than reach [m] from the stone's (in 3D for 3D stones);
+    the checkpoint's import_state frees them again."""
+    rel = np.asarray(system.stone_pos) - np.asarray(system.stone_pos)[stone]
+    dist2 = np.sum(rel ** 2, axis=1)
+    y = np.asarray(system.stone_y)
+    if y.size:
+        dist2 = dist2 + (y - y[stone]) ** 2
+    far = dist2 > reach * reach
+    system.stone_fixed[far] = 1
+
+
 def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional[PullSetup] = None,
                seed: int = 0, name: str = "") -> PullResult:
     """Pulls one stone from the checkpoint `state` through the spring; returns the force history."""
@@ -411,6 +440,8 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
     e = np.asarray(direction, float) / np.linalg.norm(direction)
     x0 = np.array(system.stone_pos[stone])
     d = float(system.nominal_diameter(stone))
+    if setup.hold_beyond > 0.0:
+        _hold_far(system, stone, setup.hold_beyond * d)
     weight = float(system.mass(stone)) * builder.GRAVITY
     steps = int(round(setup.max_travel / setup.speed / setup.update))
     travel, force = np.zeros(steps), np.zeros(steps)
@@ -447,7 +478,7 @@ def pull_test(scene: Scene, seeds: Sequence[int] = (0, 1, 2, 3, 4), per_seed: in
     out = []
     for seed in seeds:
         sys_, state = pull_weir(scene, seed)
-        stones = pick_evenly(slope_surface_stones(sys_, scene, setup), per_seed)
+        stones = pick_evenly(surface_stones(sys_, scene, setup), per_seed)
         if not stones:
             raise ValueError(f"seed {seed}: no surface stone on the downstream slope between {setup.z_low} and "
                              f"{setup.z_high} of the weir's height")
@@ -502,8 +533,13 @@ def _discs(ax, pos, radius, fixed, polygons=None):
 
 
 def fig_heap(result: ReposeResult, title: str = ""):
-    """The heap at rest: stones, the upper envelope, the two fitted flanks and their angles."""
+    """The heap at rest: stones, the upper envelope, the two fitted flanks and their angles (a 3D heap:
+    calibration_3d.fig_cone)."""
     from matplotlib.figure import Figure
+
+    if hasattr(result, "cone"):
+        from .calibration_3d import fig_cone
+        return fig_cone(result, title)
 
     fig = Figure(figsize=(8.0, 3.4), layout="constrained")
     ax = fig.add_subplot()

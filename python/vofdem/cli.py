@@ -94,6 +94,9 @@ def _calibrate_parser(sub) -> None:
     q.add_argument("--per-seed", type=int, default=2, help="slope stones pulled per weir (default 2)")
     q.add_argument("--spring", type=float, default=50.0, help="spring stiffness [N/m] (default 50)")
     q.add_argument("--speed", type=float, default=0.02, help="anchor speed [m/s] (default 0.02)")
+    q.add_argument("--hold", type=float, default=0.0,
+                   help="hold the stones farther than this many diameters from the pulled one fixed during its "
+                        "pull [-] (default 0: none; docs/dem.md, 3D spheres)")
     q.add_argument("--out", type=Path, default=None, help="output directory (default: out/calibration/<scene name>)")
 
 
@@ -114,7 +117,7 @@ def _calibrate(args, scene) -> int:
         table, name = cal.repose_markdown(res), "repose"
         cal.fig_heap(res[0]).savefig(out / "heap.png", dpi=110)
     else:
-        setup = cal.PullSetup(spring=args.spring, speed=args.speed)
+        setup = cal.PullSetup(spring=args.spring, speed=args.speed, hold_beyond=args.hold)
         res = cal.pull_test(scene, seeds, args.per_seed, setup=setup, log=log)
         table, name = cal.pull_markdown(res), "pull"
         cal.fig_pull(res).savefig(out / "pull.png", dpi=110)
