@@ -104,3 +104,15 @@ def test_a_resumed_run_does_not_settle_again_and_ends_bit_for_bit(tmp_path, monk
     np.testing.assert_array_equal(a.times, b.times)
     np.testing.assert_array_equal(a.pos, b.pos)
     assert "settle" in (tmp_path / "cut" / "profile.md").read_text(encoding="utf-8")
+
+
+def test_the_benchmark_pairs_the_settle_off_and_on_at_a_tiny_size(tmp_path):
+    from script_loader import load_script
+
+    bench = load_script("benchmarks/settle_still_water.py")
+    md = bench.main(["--quick", "--seeds", "0", "--end-time", "0.2", "--out", str(tmp_path / "ens"),
+                     "--results", str(tmp_path / "settle.md")])
+    text = md.read_text(encoding="utf-8")
+    assert "1 members of both ensembles" in text and "| seed0 |" in text
+    assert "The settling alone (process CPU time around `builder.settle_stones`, 1 packings)" in text
+    assert "1 of 1 packings came to rest" in text
