@@ -71,8 +71,11 @@ def test_without_the_key_the_build_is_the_former_one():
     assert "settle" not in list(a.profile.names)
 
 
-def test_a_resumed_run_does_not_settle_again_and_ends_bit_for_bit(tmp_path, monkeypatch):
-    scene = _scene().replace(end_time=1.5)
+@pytest.mark.parametrize("stop_after", [3, 12])
+def test_a_resumed_run_does_not_settle_again_and_ends_bit_for_bit(tmp_path, monkeypatch, stop_after):
+    """Stopped during the hold (snapshot 3, t = 1 s) and after the release at 5 s (snapshot 12, t = 5.5 s:
+    the resumed stones keep the accelerations their checkpoint carries)."""
+    scene = _scene().replace(end_time=6.5)
     calls = []
     real = builder.settle_stones
 
@@ -84,13 +87,13 @@ def test_a_resumed_run_does_not_settle_again_and_ends_bit_for_bit(tmp_path, monk
     opts = dict(progress=False, figures=False, animation=False, checkpoint_seconds=0.0, log=lambda *a: None)
     ref = run.run_scene(scene, tmp_path / "ref", **opts)
     assert len(calls) == 1
-    # stopped after its third snapshot (a checkpoint after each), then resumed
+    # stopped after a snapshot (a checkpoint after each), then resumed
     snap, seen = run._Loop.snapshot, []
 
     def stopping(self):
         snap(self)
         seen.append(1)
-        if len(seen) == 3:
+        if len(seen) == stop_after:
             run._stop_requested = True
 
     monkeypatch.setattr(run._Loop, "snapshot", stopping)
@@ -103,6 +106,8 @@ def test_a_resumed_run_does_not_settle_again_and_ends_bit_for_bit(tmp_path, monk
     a, b = RunData(ref.h5_path), RunData(res.h5_path)
     np.testing.assert_array_equal(a.times, b.times)
     np.testing.assert_array_equal(a.pos, b.pos)
+    for k in range(len(a.times)):
+        np.testing.assert_array_equal(a.fields(k)["F"], b.fields(k)["F"], err_msg=f"snapshot {k}")
     assert "settle" in (tmp_path / "cut" / "profile.md").read_text(encoding="utf-8")
 
 

@@ -313,7 +313,10 @@ class _Loop:
             self.fixed0, pos0 = data.fixed, data.pos[0]
             if self.hold:  # a checkpoint that held by fixing every stone (before DEMSystem.held) is let go as well
                 st.stone_fixed[:] = self.fixed0
-            st.held = self.hold
+            # only a held run holds: letting go of stones that are not held would drop the accelerations the
+            # checkpoint carries (DEMSystem.held = False recomputes them), and the resumed steps would differ
+            if self.hold:
+                st.held = True
             self.t_start = float(data.times[0])
             self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
         self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
