@@ -62,7 +62,8 @@ def test_bulk_mapping_gives_the_measured_mean_porosity_and_paper_is_unchanged():
     # the 5 cm x 2 cm grid); the paper mapping is checked with the same measure against its own formula.
     paper = _paper_grid_scene()
     bulk = _paper_grid_scene(porosity_mapping="bulk")
-    sim_p, sim_b = build_simulation(paper), build_simulation(bulk)
+    # the packed stones as mapped (not settled in the pool): the same stones as `direct` below
+    sim_p, sim_b = build_simulation(paper, settle=False), build_simulation(bulk, settle=False)
     stones, report = build_stones(paper)
     phi = solid_fraction(paper, stones)
     assert phi == pytest.approx(1.0 - report.porosity, abs=1e-12)  # the packing generator's own measure

@@ -46,6 +46,15 @@ void bind_coupler(py::module_& m) {
       .value("KERNEL", CouplingMapping::kKernel,
              "footprints and flow smoothed by a Gaussian exp(-r^2/b^2) of physical width b (kernel_smoothing.h)");
 
+  py::class_<SettleReport>(m, "SettleReport", "What Coupler.settle() did.")
+      .def_readonly("time", &SettleReport::time, "simulated time the stones stepped [s]")
+      .def_readonly("max_speed", &SettleReport::max_speed, "the largest free stone's speed at its end [m/s]")
+      .def_readonly("rested", &SettleReport::rested, "ended by the rest criterion (False: at max_time)")
+      .def("__repr__", [](const SettleReport& r) {
+        return "SettleReport(time=" + std::to_string(r.time) + ", max_speed=" + std::to_string(r.max_speed) +
+               ", rested=" + (r.rested ? std::string("True") : std::string("False")) + ")";
+      });
+
   py::class_<CouplerParams>(m, "CouplerParams", "Parameters of the VOF-DEM coupling (SI units; see coupler.h).")
       .def(py::init<>())
       .def_readwrite("flags", &CouplerParams::flags, "CouplerEffect bits")
@@ -137,6 +146,20 @@ void bind_coupler(py::module_& m) {
            "coupled steps of stable_dt() until time reaches t_end [s]; returns the steps; the GIL is released")
       .def("set_inflow_table", &Coupler::set_inflow_table, py::arg("times"), py::arg("discharge"),
            "inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the flow)")
+      .def(
+          "settle",
+          [](Coupler& c, double max_time, double rest_speed, double hold, double chunk) {
+            SettleParams p;
+            p.max_time = max_time, p.rest_speed = rest_speed, p.hold = hold, p.chunk = chunk;
+            return c.settle(p);
+          },
+          py::arg("max_time") = SettleParams().max_time, py::arg("rest_speed") = SettleParams().rest_speed,
+          py::arg("hold") = SettleParams().hold, py::arg("chunk") = SettleParams().chunk,
+          py::call_guard<py::gil_scoped_release>(),
+          "the stones settle in the still water before the first step: the DEM alone steps, each stone buoyant by "
+          "the water it sits in, the flow frozen, until every free stone has been slower than rest_speed [m/s], "
+          "(0, 1], for hold [s], [0, 10] (checked every chunk [s], (0, 1]) or for max_time [s], (0, 600]. Returns a "
+          "SettleReport; call update_porosity() after it to map the settled stones")
       .def("update_porosity", &Coupler::update_porosity, py::arg("keep_water_volume") = true,
            "maps the stones onto the porosity now; keep_water_volume: True keeps n F V per cell (displaced water moves to neighbours), False keeps F (scene set-up)")
       .def("update_fluid_forces", &Coupler::update_fluid_forces,

@@ -189,6 +189,9 @@ void bind_system(py::module_& m) {
            "touching stone-wall contacts at the last force evaluation")
       .def_property_readonly("neighbour_builds", &DEMSystem::neighbour_builds,
            "how often the neighbour (Verlet) list was built")
+      .def("max_speed", &DEMSystem::max_speed,
+           "the largest speed of a free, active stone [m/s]: its centre's or its spin times its radius (3D stones: "
+           "across the flume and about every axis too)")
       .def("energy", &DEMSystem::energy,
            "the energy account (DEMEnergy) [J] at the last evaluation")
       .def("mass", &DEMSystem::mass, py::arg("i"),

@@ -414,10 +414,12 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     return p
 
 
-def build_simulation(scene: Scene, packing: Optional[dict] = None):
+def build_simulation(scene: Scene, packing: Optional[dict] = None, settle: Optional[bool] = None):
     """The coupled simulation of a scene: the flow (build_fluid), the packed weir (build_stones) and the
     Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones.
-    packing: a dict that receives the packing's report under 'report' (None for explicit stones)."""
+    packing: a dict that receives the packing's report under 'report' (None for explicit stones), and the
+    settling's (settle_stones) under 'settle'. settle: the stones settle in the still water
+    (settle_stones); None: as the scene says (hydrograph.settle_in_still_water); a resumed run passes False."""
     fluid = build_fluid(scene)
     stones, report = build_stones(scene)
     if packing is not None:
@@ -429,4 +431,19 @@ def build_simulation(scene: Scene, packing: Optional[dict] = None):
     # 'rest': the pores below the level hold water; keeping the box's volume instead piles the water the
     # stones displace over the weir, up to the domain's top (0.385 m in the Maeno scene)
     sim.update_porosity(keep_water_volume=scene.flume.initial_water == "displaced")
+    if scene.hydrograph.settle_in_still_water if settle is None else settle:
+        report = settle_stones(sim, scene)
+        if packing is not None:
+            packing["settle"] = report
     return sim
+
+
+def settle_stones(sim, scene: Scene):
+    """The packed stones settle in the still pool before the first flow step (Coupler.settle): the DEM
+    alone, each stone lighter by the water it sits in (rho_w V w g, w its share under the still level),
+    the flow frozen, until every free stone has been slower than the packing's rest speed (1e-3 m/s) for
+    0.2 s or for hydrograph.settle_time_max; the porosity is then mapped from the settled stones as at
+    the build. Returns the SettleReport (time [s], max_speed [m/s], rested)."""
+    report = sim.settle(max_time=scene.hydrograph.settle_time_max)
+    sim.update_porosity(keep_water_volume=scene.flume.initial_water == "displaced")
+    return report

@@ -118,7 +118,8 @@ class Hydrograph(_Section):
     """Inflow discharge Q(t) at x = 0.
 
     kind 'ramp' (the paper's): a spin-up at `discharge_start_lps` for `spin_up_duration` seconds (the
-    flow settles to a steady state over the weir, stones held in place if `hold_stones_during_spin_up`),
+    flow settles to a steady state over the weir, stones held in place if `hold_stones_during_spin_up`;
+    before it, if `settle_in_still_water`, the packed stones settle in the still pool: builder.settle_stones),
     then a linear rise to `discharge_end_lps` over `ramp_duration`. The clock of the rise starts at the
     ramp: clock = simulation time - spin_up_duration (`ramp_start`).
     kind 'table': piecewise-linear through (`times` [s], `discharge_lps` [l/s]), spin-up included.
@@ -142,6 +143,11 @@ class Hydrograph(_Section):
     ramp_duration: float = _p(120.0, "time", 0.0, 1e5, "duration of the linear rise [s]; paper 120", "(]")
     spin_up_duration: float = _p(20.0, "time", 0.0, 1e4, "time at the start discharge before the ramp [s]")
     hold_stones_during_spin_up: bool = _flag(True, "stones do not move during the spin-up")
+    settle_in_still_water: bool = _flag(True, "before the first flow step the packed stones settle in the still "
+                                        "water (each buoyant by the water it sits in, the flow frozen) until "
+                                        "at rest or settle_time_max")
+    settle_time_max: float = _p(5.0, "time", 0.0, 600.0, "cap on the settling in still water [s] (simulated time "
+                                "of the stones alone)", "(]")
     times: List[float] = field(default_factory=list, metadata=dict(doc="table times [s] (kind = 'table'; 'csv': "
                                                                        "the file's, from its first row)"))
     discharge_lps: List[float] = field(default_factory=list, metadata=dict(doc="table discharges [l/s]"))

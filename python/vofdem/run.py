@@ -73,11 +73,11 @@ class RunResult:
         return self.wall_seconds / self.simulated_seconds if self.simulated_seconds > 0 else float("nan")
 
 
-def build_simulation(scene: Scene, packing: Optional[dict] = None):
+def build_simulation(scene: Scene, packing: Optional[dict] = None, settle: Optional[bool] = None):
     """Builds the coupled simulation of a scene (see builder.build_simulation)."""
     from .builder import build_simulation as build
 
-    return build(scene, packing)
+    return build(scene, packing, settle)
 
 
 def grid_faces(grid):
@@ -217,7 +217,8 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     if ck is None:  # a grading report of an earlier run in this directory is not this one's
         (out / "grading.md").unlink(missing_ok=True)
     if sim is None:
-        sim = build(scene) if build is not None else build_simulation(scene, packing)
+        # a resumed run's stones settled before its checkpoint: they are not settled again
+        sim = build(scene) if build is not None else build_simulation(scene, packing, settle=False if ck else None)
     if ck is None and getattr(packing.get("report"), "zone", None) is not None:
         _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
@@ -312,7 +313,10 @@ class _Loop:
             self.fixed0, pos0 = data.fixed, data.pos[0]
             if self.hold:  # a checkpoint that held by fixing every stone (before DEMSystem.held) is let go as well
                 st.stone_fixed[:] = self.fixed0
-            st.held = self.hold
+            # only a held run holds: letting go of stones that are not held would drop the accelerations the
+            # checkpoint carries (DEMSystem.held = False recomputes them), and the resumed steps would differ
+            if self.hold:
+                st.held = True
             self.t_start = float(data.times[0])
             self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
         self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
@@ -366,8 +370,11 @@ class _Loop:
             return None
         names, seconds, calls = own
         base = self.base_profile
-        return (names, [s + base.get(n, (0.0, 0))[0] for n, s in zip(names, seconds)],
-                [c + base.get(n, (0.0, 0))[1] for n, c in zip(names, calls)])
+        # stages the killed run had and this one has not (the settling before its checkpoint) are kept
+        extra = [n for n in base if n not in names]
+        return (names + extra, [s + base.get(n, (0.0, 0))[0] for n, s in zip(names, seconds)] +
+                [base[n][0] for n in extra], [c + base.get(n, (0.0, 0))[1] for n, c in zip(names, calls)] +
+                [base[n][1] for n in extra])
 
     def profile(self):
         names, seconds, calls = self.profile_tuple()

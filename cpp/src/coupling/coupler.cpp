@@ -360,11 +360,12 @@ std::string Coupler::non_finite_cell(int count, const int* cells) const {
   return "";
 }
 
-void Coupler::stage_fluid_forces() {
+void Coupler::stage_fluid_forces() { stage_fluid_forces(params_.flags); }
+
+void Coupler::stage_fluid_forces(unsigned fl) {
   ScopedStage timer(profile_, st_forces_);
   // one-way coupling: the stones' cell lists without touching the flow's porosity
   if (!csr_current_) map_stones();
-  const unsigned fl = params_.flags;
   const FlowParams& fp = fluid_->params();
   const std::vector<int>& off = mapper_->stone_cell_offsets();
   const std::vector<int>& idx = mapper_->stone_cell_index();

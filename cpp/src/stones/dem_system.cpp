@@ -637,6 +637,22 @@ void DEMSystem::sleep_update(double dt) {
   }
 }
 
+double DEMSystem::max_speed() const {
+  double v2 = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (!stone_active[i] || stone_fixed[i]) continue;
+    const double vx = stone_vel[2 * i], vz = stone_vel[2 * i + 1];
+    const double vy = three_d_ ? stone_vel_y[i] : 0.0;
+    double w2 = stone_omega[i] * stone_omega[i];
+    if (three_d_) {
+      const double* w = &stone_omega_3d[3 * i];
+      w2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    }
+    v2 = std::max(v2, std::max(vx * vx + vy * vy + vz * vz, w2 * stone_radius[i] * stone_radius[i]));
+  }
+  return std::sqrt(v2);
+}
+
 DEMEnergy DEMSystem::energy() const {
   const DEMParams& p = params_;
   DEMEnergy e;

@@ -45,6 +45,15 @@
 // a snapshot every step. The interval doubles after each one without a failure and falls back to 1 at
 // a failure; a retried step thus replays at most the steps of one interval.
 //
+// Settling in still water (settle(), before the first step; coupler_settle.cpp): the stones alone step in
+// the flow's water as it stands, each loaded by its weight less its buoyancy (eq. 9),
+//   F_z = -(rho_s - w rho_w) V g,   w the stone's wet fraction in the still water (wet_fraction.h),
+// w measured once by the force stage's own sampling (only kCoupleWetFraction: no drag, no pressure
+// gradient) and followed over the substeps through the level it implies; the flow frozen, the coupler's
+// time kept (the stones' own clock runs). It ends when every free stone has been slower than rest_speed
+// for `hold` seconds (the weir packing's criterion, weir_packing.h) or at max_time; the stones' state and
+// contact springs stay for the run. Timed as the stage "settle" (added at its first call).
+//
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using a
 // VOF-DEM coupled model, ICHE 2008, Nagoya.
 #pragma once
@@ -142,6 +151,24 @@ struct CouplerParams {
   void validate() const;
 };
 
+// the stones' settling in still water before the first step (Coupler::settle), SI units
+struct SettleParams {
+  double max_time = 5.0;     // simulated settling time allowed [s], (0, 600]; 5
+  double rest_speed = 1e-3;  // at rest below this speed of every free stone, spin times radius included [m/s],
+                             // (0, 1]; 1e-3 (the packing's WeirSpec::rest_speed)
+  double hold = 0.2;         // ... for this long [s], [0, 10]; 0.2
+  double chunk = 0.01;       // the speed is checked every chunk of simulated time [s], (0, 1]; 0.01
+  // throws std::invalid_argument naming the first bad parameter
+  void validate() const;
+};
+
+// what a settling did
+struct SettleReport {
+  double time = 0.0;       // simulated time the stones stepped [s]
+  double max_speed = 0.0;  // the largest free stone's speed at its end [m/s]
+  bool rested = false;     // ended by the rest criterion (false: at max_time, or nothing to settle)
+};
+
 // the whole coupled state as one typed value: the flow's, the stones' and the coupler's own (time,
 // the exchanged forces, the base porosity). Copying it is a copy of arrays (a reused CouplerState
 // allocates nothing once sized): the guard's snapshot, and a user's branch point
@@ -199,6 +226,13 @@ class Coupler {
   // VOFGrid::advance); returns the number of steps. progress (optional) is called
   // after every step with the time [s] (C++ callers; the Python front polls time between calls)
   long long advance(double t_end, const std::function<void(double)>& progress = nullptr);
+
+  // the stones settle in the still water before the first step (header comment): the DEM alone steps,
+  // buoyant by the water each stone sits in, until rest or max_time. Nothing to do (a report of zeros)
+  // without stones or with kCoupleDEM off; a held system does not move. The flow's porosity follows the
+  // settled stones at update_porosity() or the first step's mapping. Throws std::invalid_argument for
+  // bad parameters, std::runtime_error if the DEM fails (its state restored by the DEM)
+  SettleReport settle(const SettleParams& p = SettleParams());
 
   // inflow hydrograph Q(t): times [s] (increasing), discharge Q [m^3/s] (forwarded to the fluid)
   void set_inflow_table(const std::vector<double>& times, const std::vector<double>& discharge);
@@ -262,6 +296,7 @@ class Coupler {
   DragForce kernel_bed_drag(int j, double* slope) const;
   void stage_porosity(bool keep_water_volume = true);
   void stage_fluid_forces();
+  void stage_fluid_forces(unsigned flags);  // with these effects instead of params_.flags
   void overflow_loads(double rho);
   void apply_overflow_reaction(double dt);
   std::string non_finite_cell(int count, const int* cells) const;
@@ -342,6 +377,7 @@ class Coupler {
   int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_, st_stable_dt_;
   int st_kernel_ = -1;  // added with the first kernel
   int st_overflow_ = -1;  // added with the first overflow load
+  int st_settle_ = -1;    // added with the first settle()
   // the overflow load's scratch: each stone's extents, the approach bands' cells (CSR) and weights l_c F_c,
   // the pore velocity at them; the reaction waits for the step's dt
   std::vector<StoneExtent> stone_extent_;

@@ -239,6 +239,9 @@ class DEMSystem {
   int wall_contact_count() const { return nwall_contact_; }
   int neighbour_builds() const { return nbuilds_; }
   DEMEnergy energy() const;
+  // the largest speed of a free, active stone [m/s]: its centre's, or its spin times its radius (3D stones:
+  // the velocity across the flume and the spin about every axis included); 0 without one
+  double max_speed() const;
 
   // ---- the stone model (stone_model.h): the shape of every stone ----
   const StoneModel& model() const { return *model_; }
