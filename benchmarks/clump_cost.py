@@ -35,7 +35,7 @@ def bed(model, n, seed=0):
     nx, ny = 13, 3
     cells = [(k % nx, (k // nx) % ny, k // (nx * ny)) for k in range(n)]
     pos = np.array([[0.025 + 0.044 * i + 0.002 * g.random(), 0.03 + 0.044 * k] for i, _, k in cells])
-    s = vofdem.DEMSystem(p, pos=pos, radius=np.full(n, 0.5 * D_EQ))
+    s = vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=np.full(n, 0.5 * D_EQ))
     if model == "clump":
         names = _core.quarried_stone_names()
         shapes = [_core.quarried_stone(names[k % len(names)], D_EQ) for k in range(n)]

@@ -15,6 +15,7 @@ import numpy as np
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
 REPEATS = 5
 OUT = Path(__file__).resolve().parent / "results" / "coupler_overhead.md"
@@ -22,7 +23,7 @@ OUT = Path(__file__).resolve().parent / "results" / "coupler_overhead.md"
 
 def fluid_scene():
     grid = vofdem.Grid2D.uniform(80, 40, 0.8, 0.4)
-    f = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    f = vofdem.VOFGrid(grid, tank_params())
     f.fill_water_box(0.0, 0.2, 0.0, 0.3)
     f.set_hydrostatic_pressure()
     return f
@@ -34,7 +35,7 @@ def stone_scene(n=200):
     dp.add_flume(0.0, 0.6, 0.0)
     cols = 10
     pos = np.array([[0.04 + 0.055 * (j % cols) + 0.004 * rng.random(), 0.04 + 0.055 * (j // cols)] for j in range(n)])
-    return vofdem.DEMSystem(dp, pos=pos, radius=np.full(n, 0.024))
+    return vofdem.DEMSystem(dp, pos=pos, density=[2650.0], radius=np.full(n, 0.024))
 
 
 def timed(fn):
@@ -77,7 +78,7 @@ def run_stones(T=1.0):
 
 def coupled_profile(T=0.4):
     grid = vofdem.Grid2D.uniform(40, 50, 0.4, 0.5)
-    fp = vofdem.FlowParams()
+    fp = tank_params()
     fp.flags |= vofdem.FlowEffect.RELATIVE_VELOCITY  # two-way: resistance relative to the stones
     f = vofdem.VOFGrid(grid, fp)
     f.fill_water_below(0.25)
@@ -86,7 +87,7 @@ def coupled_profile(T=0.4):
     dp.submerged = True  # the Coupler hands the stones the flow's medium
     dp.add_flume(0.0, 0.4, 0.0)
     pos = np.array([[0.12 + 0.06 * (j % 3) + 0.003 * j, 0.32 + 0.06 * (j // 3)] for j in range(6)])
-    s = vofdem.DEMSystem(dp, pos=pos, radius=np.full(6, 0.024))
+    s = vofdem.DEMSystem(dp, pos=pos, density=[2650.0], radius=np.full(6, 0.024))
     sim = _core.Coupler(f, s)
     wall = timed(lambda: sim.advance(T))
     p = sim.profile

@@ -66,7 +66,7 @@ def cpu_per_particle_step(s, steps):
 
 def measure(n, steps, rounds):
     pos, r, width = lattice(n)
-    start = vofdem.DEMSystem(params(False, 0.0, width), pos=pos, radius=r)
+    start = vofdem.DEMSystem(params(False, 0.0, width), pos=pos, density=[2650.0], radius=r)
     settle0 = {k: v.copy() for k, v in start.export_state().items()}
     start.advance(3.0)  # a heap at rest: every stone on its neighbours
     heap0 = {k: v.copy() for k, v in start.export_state().items()}
@@ -84,7 +84,7 @@ def measure(n, steps, rounds):
 def heap_off(n, steps, rounds):
     """CPU ns per particle-step of the heap at rest with the model off (the build imported here)."""
     pos, r, width = lattice(n)
-    s = vofdem.DEMSystem(params(False, 0.0, width), pos=pos, radius=r)
+    s = vofdem.DEMSystem(params(False, 0.0, width), pos=pos, density=[2650.0], radius=r)
     s.advance(3.0)
     state = {k: v.copy() for k, v in s.export_state().items()}
     return float(np.median([cpu_per_particle_step(system(state, False, 0.0, width), steps) for _ in range(rounds)]))

@@ -24,7 +24,7 @@ def wall_impact(vx, vz, e, mu=0.3, kn=1e5, steps_per_contact=400):
     p.restitution = e
     p.tangential_damping_factor = 0.0
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=mu)]
-    s = vofdem.DEMSystem(p, pos=np.array([[0.5, R + 0.001]]), radius=np.array([R]))
+    s = vofdem.DEMSystem(p, pos=np.array([[0.5, R + 0.001]]), density=[2650.0], radius=np.array([R]))
     s.stone_vel[0] = [vx, vz]
     zeta = vofdem.damping_ratio_from_restitution(e)
     tc = vofdem.contact_duration(kn, M, zeta)
@@ -43,14 +43,14 @@ def wall_impact(vx, vz, e, mu=0.3, kn=1e5, steps_per_contact=400):
 def incline(theta, mu, rotation=True, f=0.4, mu_r=0.0, hold=False):
     p = vofdem.DEMParams()
     p.rolling_friction_wall = mu_r
-    p.gravity = [9.81 * math.sin(theta), -9.81 * math.cos(theta)]
+    p.medium.gravity = [9.81 * math.sin(theta), -9.81 * math.cos(theta)]
     p.stiffness_normal = 1e5
     p.inertia_factor = f
     if not rotation:
         p.flags &= ~vofdem.DEM_ROTATION
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=mu)]
     delta = M * 9.81 * math.cos(theta) / 1e5
-    s = vofdem.DEMSystem(p, pos=np.array([[0.0, R - delta]]), radius=np.array([R]))
+    s = vofdem.DEMSystem(p, pos=np.array([[0.0, R - delta]]), density=[2650.0], radius=np.array([R]))
     if hold:
         s.advance(2.0)
         return s.stone_vel[0, 0], s.stone_pos[0, 0]
@@ -68,7 +68,7 @@ def rolling_box(frac, mu_r=0.3):
     p.stiffness_normal, p.restitution = 2e5, 0.3
     p.rolling_friction_stone = p.rolling_friction_wall = mu_r
     pos = np.array([[0.03 + 0.055 * (k % 8) + 0.002 * rng.random(), 0.03 + 0.055 * (k // 8)] for k in range(60)])
-    s = vofdem.DEMSystem(p, pos=pos, radius=R * (0.9 + 0.2 * rng.random(60)))
+    s = vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=R * (0.9 + 0.2 * rng.random(60)))
     dt = frac * s.stable_dt()
     e0 = s.energy().total
     for _ in range(int(0.5 / dt)):

@@ -25,8 +25,9 @@ def packed(seed):
     p = vofdem.DEMParams()
     p.add_flume(0.0, 1.4, 0.0)
     p.dt, p.contact_steps = SCENE_DT, 50.0
-    s, _, _ = vofdem.pack_weir(height=0.25, crest=0.2, slope_up_deg=27, slope_down_deg=27, x_toe=0.2, z_bed=0.0,
-                               d_mean=0.048, d_spread=0.1, density=2650.0, seed=seed, params=p, shape="polygon")
+    spec = vofdem.WeirSpec()  # the Maeno weir's slopes and stones (4.8 cm +- 10 %, 2650 kg/m^3)
+    spec.shape, spec.height, spec.crest, spec.x_toe, spec.seed = "polygon", 0.25, 0.2, 0.2, seed
+    s, _ = vofdem.pack_weir(spec, p)
     return s
 
 

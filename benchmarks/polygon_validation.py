@@ -34,7 +34,7 @@ def box_system(p, x, z):
 
 def flat_impact(e, steps_per_contact):
     p = vofdem.DEMParams()
-    p.gravity = [0.0, 0.0]
+    p.medium.gravity = [0.0, 0.0]
     p.restitution = e
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=0.5)]
     zeta = vofdem.damping_ratio_from_restitution(e)
@@ -57,7 +57,7 @@ def flat_impact(e, steps_per_contact):
 def incline(ratio, mu=0.5):
     th = math.atan(ratio * mu)
     p = vofdem.DEMParams()
-    p.gravity = [G * math.sin(th), -G * math.cos(th)]
+    p.medium.gravity = [G * math.sin(th), -G * math.cos(th)]
     p.stiffness_normal = 1e5
     p.dt = 5e-5
     p.walls = [vofdem.DEMWall(point=[0.0, 0.0], normal=[0.0, 1.0], friction=mu)]
@@ -74,7 +74,10 @@ def pack(seed, shape):
     if shape == "polygon":
         p.dt, p.contact_steps = 4e-5, 50.0
     t0 = time.perf_counter()
-    s, r, spec = vofdem.pack_weir(seed=seed, params=p, shape=shape)
+    spec = vofdem.WeirSpec()  # the Maeno trapezoid of 4.8 cm stones +- 10 %, 2650 kg/m^3
+    spec.height, spec.crest, spec.slope_up_deg, spec.slope_down_deg, spec.x_toe = 0.25, 0.20, 27.0, 27.0, 1.0
+    spec.d_mean, spec.d_spread, spec.density, spec.seed, spec.shape = 0.048, 0.1, 2650.0, seed, shape
+    s, r = vofdem.pack_weir(spec, p)
     return s, r, spec, time.perf_counter() - t0
 
 

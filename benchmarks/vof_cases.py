@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vofdem import _core
-from vofdem.flow import dam_break
+from vofdem.flow import dam_break, tank_params
 
 __all__ = [
     "MM_A", "MM_T", "MM_Z", "MM_TIME_SHIFT", "front_from_row", "dam_break_params", "dam_break_front",
@@ -68,7 +68,7 @@ def dam_break_params(cfl: float = 0.5, solver: str = "multigrid", walls: str = "
     """The peers' dam-break fluids: water 1000 kg/m^3, nu 1e-6; air 1 kg/m^3, nu 1.48e-5; g 9.81.
     scheme: the convection's time scheme, "adams_bashforth2" (the default) or "euler"; pressure_tol:
     the pressure solve's relative tolerance (the C++ default 1e-8; the scenes run at 1e-5)."""
-    p = _core.FlowParams()
+    p = tank_params()
     p.pressure_tol = pressure_tol
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[scheme]
@@ -312,7 +312,7 @@ def broad_crested_weir(q: float = 0.02, crest_height: float = 0.1, crest_length:
     nx = int(round(length / dx))
     nz = int(round(height / dz))
     grid = _core.Grid2D.uniform(nx, nz, length, height)
-    p = _core.FlowParams()
+    p = tank_params()
     p.cfl = cfl
     p.inlet = _core.InletBoundary.DISCHARGE
     p.outlet = _core.OutletBoundary.FREE_OVERFALL

@@ -20,6 +20,7 @@ import numpy as np
 
 import vofdem
 from vofdem import flow as vflow
+from vofdem.flow import tank_params
 
 ROOT = Path(__file__).resolve().parents[1]
 SOLVERS = [("Eigen LDLT", vofdem.PressureSolverKind.EIGEN_DIRECT),
@@ -27,14 +28,14 @@ SOLVERS = [("Eigen LDLT", vofdem.PressureSolverKind.EIGEN_DIRECT),
 
 
 def dam_break(cells_per_a: int, kind) -> vofdem.VOFGrid:
-    p = vofdem.FlowParams()
+    p = tank_params()
     p.pressure_solver = kind
     return vflow.dam_break(cells_per_a=cells_per_a, length_in_a=5.0, height_in_a=2.5, params=p)
 
 
 def weir_flume(kind) -> vofdem.VOFGrid:
     # 4 m flume, 0.4 m high; a trapezoidal mound 0.2 m high (crest 0.2 m, slopes 1:2) at x = 2 m
-    p = vofdem.FlowParams()
+    p = tank_params()
     p.pressure_solver = kind
     p.inlet = vofdem.InletBoundary.DISCHARGE
     p.outlet = vofdem.OutletBoundary.FREE_OVERFALL

@@ -57,7 +57,7 @@ def test_small_heaps_at_rest_and_steeper_with_rolling_resistance():
 def lone_stone(mu_r, f=0.4):
     """One 4.8 cm stone at rest on the flat bed, with the scene's stone model and the pull's force input."""
     s = scene(mu_r)
-    p = builder.dem_params(s, fluid_density=0.0)
+    p = builder.dem_params(s, submerged=False)
     p.flags = int(p.flags | vofdem.DEM_EXTERNAL_FORCE)
     p.inertia_factor = f
     m = 2650.0 * math.pi * 0.048**3 / 6.0
@@ -175,7 +175,7 @@ def test_pull_of_a_lone_polygon_on_the_bed_by_hand():
     s = polygon_scene()
     setup = cal.PullSetup(spring=50.0, speed=0.02, max_travel=0.12)
     g, k, v = builder.GRAVITY, setup.spring, setup.speed
-    p = builder.dem_params(s, fluid_density=0.0)
+    p = builder.dem_params(s, submerged=False)
     p.flags = int(p.flags | vofdem.DEM_EXTERNAL_FORCE)
     box = (np.array([[-0.03, -0.015], [0.03, -0.015], [0.03, 0.015], [-0.03, 0.015]]), np.array([0, 4]))
     sys_ = builder.stone_system(s, p, [[0.5, 0.015]], [0.048], [0], shapes=box)

@@ -7,6 +7,7 @@ import pytest
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
 
 def heap(n=12, width=0.06, seed=0):
@@ -19,7 +20,7 @@ def heap(n=12, width=0.06, seed=0):
     p.dt = 1e-5
     g = np.random.default_rng(seed)
     pos = np.array([[0.025 + 0.037 * (k % 4) + 0.003 * g.random(), 0.03 + 0.045 * (k // 4)] for k in range(n)])
-    s = vofdem.DEMSystem(p, pos=pos, radius=np.full(n, 0.02))
+    s = vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=np.full(n, 0.02))
     names = _core.quarried_stone_names()
     shapes = [_core.quarried_stone(names[k % len(names)], 0.03) for k in range(n)]
     offset = np.concatenate([[0], np.cumsum([len(c) for c in shapes])]).astype(int)
@@ -70,7 +71,7 @@ def test_what_clumps_cannot_do_yet_is_refused_with_the_key_named():
     with pytest.raises(ValueError, match="d_eq"):
         _core.quarried_stone("pair_2", -1.0)
     grid = vofdem.Grid2D.uniform(10, 20, 0.16, 0.3)
-    fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    fluid = vofdem.VOFGrid(grid, tank_params())
     cp = _core.CouplerParams()
     cp.n_exp = 0.0
     with pytest.raises(ValueError, match="stones.shape = 'clump' cannot be coupled to the flow yet"):

@@ -7,11 +7,12 @@ import pytest
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
 
 def scene(n_stones=3, flags=None):
     grid = vofdem.Grid2D.uniform(20, 40, 0.2, 0.4)
-    fp = vofdem.FlowParams()
+    fp = tank_params()
     if flags is None or flags & _core.COUPLE_POROSITY:
         fp.flags |= vofdem.FlowEffect.RELATIVE_VELOCITY  # two-way: resistance relative to the stones
     fluid = vofdem.VOFGrid(grid, fp)
@@ -21,7 +22,7 @@ def scene(n_stones=3, flags=None):
     dp.submerged = True
     dp.add_flume(0.0, 0.2, 0.0)
     pos = np.array([[0.1 + 0.002 * j, 0.2 + 0.05 * j] for j in range(n_stones)])
-    stones = vofdem.DEMSystem(dp, pos=pos, radius=np.full(n_stones, 0.024))
+    stones = vofdem.DEMSystem(dp, pos=pos, density=[2650.0], radius=np.full(n_stones, 0.024))
     cp = _core.CouplerParams()
     if flags is not None:
         cp.flags = flags
@@ -100,11 +101,11 @@ def test_guards_and_bad_input():
 
 
 def test_the_stones_take_the_flows_medium():
-    fp = vofdem.FlowParams()
+    fp = tank_params()
     fp.medium.rho_water = 1025.0  # sea water
     fp.medium.gravity = [0.3, -9.8]
     fluid = vofdem.VOFGrid(vofdem.Grid2D.uniform(4, 4, 0.2, 0.2), fp)
-    dry = vofdem.DEMSystem(vofdem.DEMParams(), pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
+    dry = vofdem.DEMSystem(vofdem.DEMParams(), pos=np.array([[0.1, 0.1]]), density=[2650.0], radius=np.array([0.024]))
     _core.Coupler(fluid, dry)
     assert dry.params.submerged and dry.params.medium == fp.medium
     assert dry.params.water_density == 1025.0
@@ -114,12 +115,12 @@ def test_the_stones_take_the_flows_medium():
 def test_scenes_with_one_module():
     dp = vofdem.DEMParams()
     dp.add_flume(0.0, 0.3, 0.0)
-    stones = vofdem.DEMSystem(dp, pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
+    stones = vofdem.DEMSystem(dp, pos=np.array([[0.1, 0.1]]), density=[2650.0], radius=np.array([0.024]))
     sim = _core.Coupler(None, stones)
     assert sim.fluid is None
     sim.advance(0.2)
     assert stones.stone_pos[0, 1] == pytest.approx(0.024, abs=1e-3)  # landed on the bed
-    fluid = vofdem.VOFGrid(vofdem.Grid2D.uniform(8, 8, 0.2, 0.2), vofdem.FlowParams())
+    fluid = vofdem.VOFGrid(vofdem.Grid2D.uniform(8, 8, 0.2, 0.2), tank_params())
     fluid.fill_water_below(0.1)
     sim = _core.Coupler(fluid, None)
     sim.advance(0.05)

@@ -13,7 +13,7 @@ D = 0.048
 def falling_pair():
     p = vofdem.DEMParams()
     p.add_flume(0.0, 1.0, 0.0)
-    return vofdem.DEMSystem(p, pos=np.array([[0.3, 0.1], [0.33, 0.2]]), radius=np.array([0.024, 0.02]))
+    return vofdem.DEMSystem(p, pos=np.array([[0.3, 0.1], [0.33, 0.2]]), density=[2650.0], radius=np.array([0.024, 0.02]))
 
 
 def state_hash(s):
@@ -40,8 +40,8 @@ def test_views_are_zero_copy_and_keep_the_owner_alive():
 
 def test_wet_defaults_and_sphere_properties():
     p = vofdem.DEMParams()
-    p.fluid_density = 1000.0
-    s = vofdem.DEMSystem(p, pos=np.zeros((1, 2)), radius=np.array([0.024]))
+    p.submerged, p.medium.rho_water = True, 1000.0
+    s = vofdem.DEMSystem(p, pos=np.zeros((1, 2)), density=[2650.0], radius=np.array([0.024]))
     assert s.stone_wet[0] == 1.0
     assert s.volume(0) == pytest.approx(np.pi * D**3 / 6)
     assert s.mass(0) == pytest.approx(2650 * np.pi * D**3 / 6)
@@ -62,7 +62,7 @@ def test_bad_input_is_a_value_error_naming_the_parameter():
         s.params = p
     assert s.params.friction_stone == pytest.approx(0.577)
     with pytest.raises(ValueError, match="stone_radius"):
-        vofdem.DEMSystem(vofdem.DEMParams(), pos=np.zeros((1, 2)), radius=np.array([0.0]))
+        vofdem.DEMSystem(vofdem.DEMParams(), pos=np.zeros((1, 2)), density=[2650.0], radius=np.array([0.0]))
 
 
 def test_checkpoint_restart_is_bit_for_bit():
@@ -106,7 +106,7 @@ def heap(n_free=300, seed=1):
     fixed = [1] * len(bed) + [0] * n_free
     p = vofdem.DEMParams()
     p.add_flume(-2.5, 2.5, 0.0, 0.176)
-    return vofdem.DEMSystem(p, pos=pos, radius=rad, fixed=fixed)
+    return vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=rad, fixed=fixed)
 
 
 def surface_angles(s):

@@ -5,9 +5,18 @@ import pytest
 import vofdem
 
 
+def packed(**keys):
+    """(DEMSystem, WeirPackingReport, WeirSpec) of a WeirSpec with these keys set, the rest its defaults."""
+    spec = vofdem.WeirSpec()
+    for k, v in keys.items():
+        setattr(spec, k, v)
+    return (*vofdem.pack_weir(spec), spec)
+
+
 @pytest.fixture(scope="module")
 def weir():
-    return vofdem.pack_weir(height=0.25, crest=0.20, slope_up_deg=27, slope_down_deg=27, x_toe=1.0, seed=0)
+    return packed(height=0.25, crest=0.20, slope_up_deg=27, slope_down_deg=27, x_toe=1.0, d_mean=0.048, d_spread=0.1,
+                  density=2650.0, seed=0)
 
 
 def test_weir_matches_the_trapezoid_within_one_diameter(weir):
@@ -44,9 +53,9 @@ def test_weir_porosity_is_reported(weir):
 
 
 def test_weir_is_reproducible_from_its_seed():
-    a, ra, _ = vofdem.pack_weir(seed=3, height=0.15, crest=0.1)
-    b, rb, _ = vofdem.pack_weir(seed=3, height=0.15, crest=0.1)
-    c, _, _ = vofdem.pack_weir(seed=4, height=0.15, crest=0.1)
+    a, ra, _ = packed(seed=3, height=0.15, crest=0.1, d_mean=0.048, d_spread=0.1)
+    b, rb, _ = packed(seed=3, height=0.15, crest=0.1, d_mean=0.048, d_spread=0.1)
+    c, _, _ = packed(seed=4, height=0.15, crest=0.1, d_mean=0.048, d_spread=0.1)
     assert ra.n_stones == rb.n_stones
     assert np.array_equal(a.stone_pos, b.stone_pos) and np.array_equal(a.stone_radius, b.stone_radius)
     assert a.n != c.n or not np.array_equal(a.stone_radius, c.stone_radius)
@@ -56,6 +65,6 @@ def test_weir_is_reproducible_from_its_seed():
 
 def test_weir_rejects_bad_geometry():
     with pytest.raises(ValueError, match="slope_down_deg"):
-        vofdem.pack_weir(slope_down_deg=95)
+        packed(slope_down_deg=95)
     with pytest.raises(ValueError, match="height"):
-        vofdem.pack_weir(height=0.05)
+        packed(height=0.05)

@@ -68,7 +68,7 @@ def test_polygons_refuse_the_discs_rolling_resistance():
     p.rolling_friction_stone = 0.4
     box = np.array([[-0.02, -0.01], [0.02, -0.01], [0.02, 0.01], [-0.02, 0.01]])
     with pytest.raises(ValueError, match="rolling_friction_stone"):
-        vofdem.DEMSystem(p, np.zeros((1, 2)), [0.03]).set_polygons(box, [0, 4])
+        vofdem.DEMSystem(p, np.zeros((1, 2)), [0.03], [2650.0]).set_polygons(box, [0, 4])
 
 
 def test_scene_file_is_the_paper_scene_with_polygons():
@@ -113,7 +113,7 @@ def test_explicit_polygon_stones_and_views_tied_to_the_owner():
     gc.collect()
     assert view[0, 0] == first  # the view keeps its owner alive
     with pytest.raises(ValueError, match="stone 0"):
-        vofdem.DEMSystem(vofdem.DEMParams(), np.zeros((1, 2)), [0.03]).set_polygons(
+        vofdem.DEMSystem(vofdem.DEMParams(), np.zeros((1, 2)), [0.03], [2650.0]).set_polygons(
             np.array([[-1.0, -1.0], [-1.0, 1.0], [1.0, 1.0], [1.0, -1.0]]), [0, 4])
 
 
@@ -183,8 +183,9 @@ def test_packed_polygon_weir_at_rest_keeps_its_energy_at_the_stable_step():
     p = vofdem.DEMParams()
     p.add_flume(0.0, 1.4, 0.0)
     p.dt, p.contact_steps = 4e-5, 50.0
-    s, _, _ = vofdem.pack_weir(height=0.15, crest=0.1, slope_up_deg=27, slope_down_deg=27, x_toe=0.4, z_bed=0.0,
-                               d_mean=0.048, d_spread=0.1, density=2650.0, seed=1, params=p, shape="polygon")
+    spec = vofdem.WeirSpec()  # the Maeno weir's slopes and stones (4.8 cm +- 10 %, 2650 kg/m^3)
+    spec.shape, spec.height, spec.crest, spec.x_toe, spec.seed = "polygon", 0.15, 0.1, 0.4, 1
+    s, _ = vofdem.pack_weir(spec, p)
     dt = s.stable_dt()
     s.step(dt)
     e0 = s.energy().total

@@ -25,13 +25,13 @@ def state_hash(s):
 def incline(theta, mu_r, f=0.4):
     """A stone at its static overlap on a bed, gravity tilted by theta: an incline."""
     p = vofdem.DEMParams()
-    p.gravity = [9.81 * math.sin(theta), -9.81 * math.cos(theta)]
+    p.medium.gravity = [9.81 * math.sin(theta), -9.81 * math.cos(theta)]
     p.stiffness_normal = 1e5
     p.inertia_factor = f
     p.rolling_friction_wall = mu_r
     p.walls = [vofdem.DEMWall([0.0, 0.0], [0.0, 1.0], 0.577)]
     delta = M * 9.81 * math.cos(theta) / 1e5
-    return vofdem.DEMSystem(p, pos=np.array([[0.0, R - delta]]), radius=np.array([R]))
+    return vofdem.DEMSystem(p, pos=np.array([[0.0, R - delta]]), density=[2650.0], radius=np.array([R]))
 
 
 def test_parameters_and_flag_are_bound():
@@ -76,7 +76,7 @@ def pile(mu_r):
     p.add_flume(0.0, 0.5, 0.0)
     rng = np.random.default_rng(2)
     pos = np.array([[0.04 + 0.055 * (k % 8) + 0.002 * rng.random(), 0.03 + 0.055 * (k // 8)] for k in range(40)])
-    return vofdem.DEMSystem(p, pos=pos, radius=R * (0.9 + 0.2 * rng.random(40)))
+    return vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=R * (0.9 + 0.2 * rng.random(40)))
 
 
 def test_rolling_springs_are_checkpointed_and_restart_bit_for_bit():
@@ -101,7 +101,7 @@ def test_energy_bookkeeping_includes_the_rolling_springs():
     p.stiffness_normal, p.restitution = 2e5, 0.3
     p.rolling_friction_stone = p.rolling_friction_wall = 0.3
     pos = np.array([[0.03 + 0.055 * (k % 8) + 0.002 * rng.random(), 0.03 + 0.055 * (k // 8)] for k in range(60)])
-    s = vofdem.DEMSystem(p, pos=pos, radius=R * (0.9 + 0.2 * rng.random(60)))
+    s = vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=R * (0.9 + 0.2 * rng.random(60)))
     p.dt = 0.5 * s.stable_dt()
     s.params = p
     e0 = s.energy().total

@@ -8,6 +8,7 @@ import pytest
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
 
 def heap(n=12, width=0.1, seed=0, submerged=False):
@@ -20,7 +21,7 @@ def heap(n=12, width=0.1, seed=0, submerged=False):
     p.restitution = 0.3
     g = np.random.default_rng(seed)
     pos = np.array([[0.03 + 0.05 * (k % 4) + 0.004 * g.random(), 0.03 + 0.05 * (k // 4)] for k in range(n)])
-    s = vofdem.DEMSystem(p, pos=pos, radius=np.full(n, 0.024))
+    s = vofdem.DEMSystem(p, pos=pos, density=[2650.0], radius=np.full(n, 0.024))
     s.set_model("sphere")
     s.stone_y[:] = 0.025 + (width - 0.05) * g.random(n)
     return s
@@ -62,7 +63,7 @@ def test_a_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
 def test_spheres_under_the_flow_keep_the_water():
     stones = heap(n=4, submerged=True)
     grid = vofdem.Grid2D.uniform(25, 30, 0.25, 0.3)
-    fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    fluid = vofdem.VOFGrid(grid, tank_params())
     fluid.fill_water_below(0.2)  # below the open top, which lets water out when it reaches it
     fluid.set_hydrostatic_pressure()
     cp = _core.CouplerParams()
@@ -80,14 +81,14 @@ def test_spheres_under_the_flow_keep_the_water():
 
 def test_what_spheres_cannot_do_yet_is_refused_with_the_key_named():
     p = vofdem.DEMParams()
-    s = vofdem.DEMSystem(p, pos=np.array([[0.1, 0.1]]), radius=np.array([0.024]))
+    s = vofdem.DEMSystem(p, pos=np.array([[0.1, 0.1]]), density=[2650.0], radius=np.array([0.024]))
     with pytest.raises(ValueError, match="width"):
         s.set_model("sphere")
     assert s.shape == "disc"
     # coupled to the flow, their footprint is their volume: eq. (11)'s packing porosity must be 0
     stones = heap(n=2)
     grid = vofdem.Grid2D.uniform(10, 20, 0.25, 0.3)
-    fluid = vofdem.VOFGrid(grid, vofdem.FlowParams())
+    fluid = vofdem.VOFGrid(grid, tank_params())
     sim = _core.Coupler(fluid, stones, _core.CouplerParams())
     with pytest.raises(ValueError, match=r"n_exp = 0.41 is outside the allowed range \[0, 0\] with 3D stones"):
         sim.advance(0.01)

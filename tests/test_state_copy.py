@@ -6,11 +6,12 @@ import pytest
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
 
 def scene(polygons=False):
     grid = vofdem.Grid2D.uniform(20, 40, 0.2, 0.4)
-    fp = vofdem.FlowParams()
+    fp = tank_params()
     fp.flags |= vofdem.FlowEffect.TURBULENCE | vofdem.FlowEffect.RELATIVE_VELOCITY
     fluid = vofdem.VOFGrid(grid, fp)
     fluid.fill_water_box(0.0, 0.12, 0.0, 0.25)  # a dam break over the stones: everything moves
@@ -20,7 +21,7 @@ def scene(polygons=False):
     if polygons:
         dp.contact_steps = 40  # the polygons' stable step stays above the DEM step
     pos = np.array([[0.1 + 0.002 * j, 0.03 + 0.05 * j] for j in range(3)])
-    stones = vofdem.DEMSystem(dp, pos=pos, radius=np.full(3, 0.024))
+    stones = vofdem.DEMSystem(dp, pos=pos, density=[2650.0], radius=np.full(3, 0.024))
     if polygons:
         stones.set_polygons(*_core.random_polygons(np.full(3, 0.048), seed=2))
     return _core.Coupler(fluid, stones, _core.CouplerParams())
@@ -68,7 +69,7 @@ def test_a_state_of_another_scene_is_refused_and_changes_nothing():
     sim = scene()
     sim.advance(0.02)
     before = sim.export_state()
-    other = vofdem.VOFGrid(vofdem.Grid2D.uniform(10, 10, 0.1, 0.1), vofdem.FlowParams())
+    other = vofdem.VOFGrid(vofdem.Grid2D.uniform(10, 10, 0.1, 0.1), tank_params())
     with pytest.raises(ValueError, match="cell_p"):
         sim.fluid.set_state(other.copy_state())
     few = vofdem.DEMSystem(vofdem.DEMParams(), 2)

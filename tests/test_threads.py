@@ -11,6 +11,7 @@ import vofdem
 from vofdem import _core
 from vofdem.cli import main
 from vofdem.ensemble import run_ensemble
+from vofdem.flow import tank_params
 
 needs_two = pytest.mark.skipif(not _core.built_with_openmp(), reason="built without OpenMP: one thread only")
 
@@ -26,7 +27,7 @@ def restore_threads():
 def flume(turbulence=True, scheme=None):
     """Water fed through the inlet over a porous block into a free overfall, stones dropped on it
     (scheme: the k-epsilon transport's KEpsilonTimeScheme, None: the default)."""
-    fp = vofdem.FlowParams()
+    fp = tank_params()
     if scheme is not None:
         fp.turbulence_time_scheme = scheme
     fp.inlet = _core.InletBoundary.DISCHARGE
@@ -43,7 +44,7 @@ def flume(turbulence=True, scheme=None):
     dp.submerged = True
     dp.add_flume(0.0, 0.6, 0.0)
     pos = np.array([[0.3 + 0.03 * j, 0.2 + 0.03 * j] for j in range(3)])
-    stones = vofdem.DEMSystem(dp, pos=pos, radius=np.full(3, 0.012))
+    stones = vofdem.DEMSystem(dp, pos=pos, density=[2650.0], radius=np.full(3, 0.012))
     sim = _core.Coupler(fluid, stones, _core.CouplerParams())
     sim.set_inflow_table(np.array([0.0, 10.0]), np.array([0.01, 0.01]))
     return sim

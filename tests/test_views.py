@@ -10,6 +10,7 @@ import pytest
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
 FLUID_VIEWS = {"face_u", "face_w", "cell_p", "cell_F", "cell_porosity", "face_x_porosity", "face_z_porosity",
                "cell_stone_diameter", "cell_nut", "cell_k", "cell_eps", "face_x_solid_u", "face_z_solid_w"}
@@ -63,7 +64,7 @@ class Held:
 
 
 def flow():
-    f = vofdem.VOFGrid(vofdem.Grid2D.uniform(20, 40, 0.2, 0.4), vofdem.FlowParams())
+    f = vofdem.VOFGrid(vofdem.Grid2D.uniform(20, 40, 0.2, 0.4), tank_params())
     f.fill_water_below(0.2)
     f.set_hydrostatic_pressure()
     return f
@@ -74,7 +75,7 @@ def stones(n=3):
     dp.submerged = True
     dp.add_flume(0.0, 0.2, 0.0)
     pos = np.array([[0.1 + 0.002 * j, 0.2 + 0.05 * j] for j in range(n)])
-    return vofdem.DEMSystem(dp, pos=pos, radius=np.full(n, 0.024))
+    return vofdem.DEMSystem(dp, pos=pos, density=[2650.0], radius=np.full(n, 0.024))
 
 
 def test_views_stay_live_through_every_operation():

@@ -48,17 +48,6 @@ void bind_params(py::module_& m) {
                      "the stones lie in the medium's water (buoyancy, added mass); False: dry")
       .def_property_readonly("water_density", &DEMParams::water_density,
                              "rho_w of buoyancy and added mass [kg/m^3]: medium.rho_water if submerged, else 0")
-      // older scripts' names
-      .def_property(
-          "gravity", [](const DEMParams& p) { return p.medium.gravity; },
-          [](DEMParams& p, const std::array<double, 2>& g) { p.medium.gravity = g; }, "alias of medium.gravity")
-      .def_property(
-          "fluid_density", [](const DEMParams& p) { return p.water_density(); },
-          [](DEMParams& p, double rho) {
-            p.submerged = rho != 0.0;
-            if (p.submerged) p.medium.rho_water = rho;
-          },
-          "alias: 0 sets submerged False, another value submerged True and medium.rho_water [kg/m^3]")
       .def_readwrite("added_mass_coefficient", &DEMParams::added_mass_coefficient)
       .def_readwrite("dt", &DEMParams::dt)
       .def_readwrite("stiffness_normal", &DEMParams::stiffness_normal)
@@ -153,7 +142,7 @@ void bind_system(py::module_& m) {
                        const std::vector<std::uint8_t>& fixed) {
              return new DEMSystem(p, flat_pos(pos), flat_pos(radius), flat_pos(density), fixed);
            }),
-           py::arg("params"), py::arg("pos"), py::arg("radius"), py::arg("density") = A(py::cast(2650.0)),
+           py::arg("params"), py::arg("pos"), py::arg("radius"), py::arg("density"),
            py::arg("fixed") = std::vector<std::uint8_t>{})
       .def_property_readonly("n", &DEMSystem::n,
            "number of stones (removed ones included; see stone_active)")
@@ -377,7 +366,7 @@ void bind_packing(py::module_& m) {
                ", max_speed=" + std::to_string(r.max_speed) +
                ", outline_error=" + std::to_string(r.outline_error) + ")";
       });
-  // the weir packer: one C++ packer, a WeirSpec in; the keyword form (older scripts) makes the spec
+  // the weir packer: one C++ packer, a WeirSpec in (its defaults written once, in weir_packing.h)
   auto pack = [](const WeirSpec& spec, const DEMParams& params) {
     WeirPackingReport report;
     std::unique_ptr<DEMSystem> sys;
@@ -396,41 +385,6 @@ void bind_packing(py::module_& m) {
       "Packs the trapezoidal rubble mound weir `spec` with the contact law of `params`; returns (DEMSystem, "
       "WeirPackingReport).",
       py::arg("spec"), py::arg("params") = DEMParams());
-  m.def(
-      "pack_weir",
-      [pack](double height, double crest, double slope_up_deg, double slope_down_deg, double x_toe, double z_bed,
-             double d_mean, double d_spread, double density, std::uint64_t seed, double settle_time_max,
-             double rest_speed, const DEMParams& params, const std::string& shape, int vertices_min, int vertices_max,
-             double aspect_ratio, double radial_jitter) {
-        WeirSpec spec;
-        spec.shape = shape;
-        spec.polygon.vertices_min = vertices_min;
-        spec.polygon.vertices_max = vertices_max;
-        spec.polygon.aspect_ratio = aspect_ratio;
-        spec.polygon.radial_jitter = radial_jitter;
-        spec.height = height;
-        spec.crest = crest;
-        spec.slope_up_deg = slope_up_deg;
-        spec.slope_down_deg = slope_down_deg;
-        spec.x_toe = x_toe;
-        spec.z_bed = z_bed;
-        spec.d_mean = d_mean;
-        spec.d_spread = d_spread;
-        spec.density = density;
-        spec.seed = seed;
-        spec.settle_time_max = settle_time_max;
-        spec.rest_speed = rest_speed;
-        auto [sys, report] = pack(spec, params);
-        return std::make_tuple(std::move(sys), report, spec);
-      },
-      "The older keyword form: the WeirSpec made from the keywords; returns (DEMSystem, WeirPackingReport, "
-      "WeirSpec).",
-      py::arg("height") = 0.25, py::arg("crest") = 0.20, py::arg("slope_up_deg") = 27.0,
-      py::arg("slope_down_deg") = 27.0, py::arg("x_toe") = 1.0, py::arg("z_bed") = 0.0, py::arg("d_mean") = 0.048,
-      py::arg("d_spread") = 0.1, py::arg("density") = 2650.0, py::arg("seed") = 0, py::arg("settle_time_max") = 6.0,
-      py::arg("rest_speed") = 1e-3, py::arg("params") = DEMParams(), py::arg("shape") = "disc",
-      py::arg("polygon_vertices_min") = 5, py::arg("polygon_vertices_max") = 8, py::arg("aspect_ratio") = 1.5,
-      py::arg("radial_jitter") = 0.2);
   m.def(
       "random_polygons",
       [](const A& diameters, std::uint64_t seed, int vertices_min, int vertices_max, double aspect_ratio,

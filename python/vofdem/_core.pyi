@@ -442,26 +442,10 @@ class DEMParams:
     def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def fluid_density(self) -> float:
-        """
-        alias: 0 sets submerged False, another value submerged True and medium.rho_water [kg/m^3]
-        """
-    @fluid_density.setter
-    def fluid_density(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
     def friction_stone(self) -> float:
         ...
     @friction_stone.setter
     def friction_stone(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def gravity(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
-        """
-        alias of medium.gravity
-        """
-    @gravity.setter
-    def gravity(self, arg1: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
         ...
     @property
     def inertia_factor(self) -> float:
@@ -664,7 +648,7 @@ class DEMSystem:
     def __init__(self, params: DEMParams, n: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @typing.overload
-    def __init__(self, params: DEMParams, pos: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], radius: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], density: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = ..., fixed: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> None:
+    def __init__(self, params: DEMParams, pos: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], radius: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], density: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], fixed: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> None:
         ...
     def advance(self, duration: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
@@ -3106,15 +3090,9 @@ def max_threads() -> int:
     """
     The most threads set_threads accepts (1 when built without OpenMP).
     """
-@typing.overload
 def pack_weir(spec: WeirSpec, params: DEMParams = ...) -> tuple[DEMSystem, WeirPackingReport]:
     """
     Packs the trapezoidal rubble mound weir `spec` with the contact law of `params`; returns (DEMSystem, WeirPackingReport).
-    """
-@typing.overload
-def pack_weir(height: typing.SupportsFloat | typing.SupportsIndex = 0.25, crest: typing.SupportsFloat | typing.SupportsIndex = 0.2, slope_up_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, slope_down_deg: typing.SupportsFloat | typing.SupportsIndex = 27.0, x_toe: typing.SupportsFloat | typing.SupportsIndex = 1.0, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, d_mean: typing.SupportsFloat | typing.SupportsIndex = 0.048, d_spread: typing.SupportsFloat | typing.SupportsIndex = 0.1, density: typing.SupportsFloat | typing.SupportsIndex = 2650.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, settle_time_max: typing.SupportsFloat | typing.SupportsIndex = 6.0, rest_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, params: DEMParams = ..., shape: str = 'disc', polygon_vertices_min: typing.SupportsInt | typing.SupportsIndex = 5, polygon_vertices_max: typing.SupportsInt | typing.SupportsIndex = 8, aspect_ratio: typing.SupportsFloat | typing.SupportsIndex = 1.5, radial_jitter: typing.SupportsFloat | typing.SupportsIndex = 0.2) -> tuple[DEMSystem, WeirPackingReport, WeirSpec]:
-    """
-    The older keyword form: the WeirSpec made from the keywords; returns (DEMSystem, WeirPackingReport, WeirSpec).
     """
 def permeability(n: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], d: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], k1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64] = 200.0) -> typing.Any:
     """

@@ -20,6 +20,42 @@ WATER_DENSITY = _core.Medium().rho_water  # kg/m^3, 998.2 at 20 C
 GRAVITY = -_core.Medium().gravity[1]  # m/s^2, 9.81
 
 
+# each struct's effect bits, by the scene's condition that sets them (the bits always on are named in
+# the struct's builder); one table per struct, so that a key's mapping is written once
+_FLOW_EFFECTS = {
+    "POROUS_RESISTANCE": lambda s: s.effects.porous_resistance,
+    "TURBULENCE": lambda s: s.effects.turbulence,
+    # resistance relative to the stones' velocity: the stones move the flow's porosity only two-way
+    "RELATIVE_VELOCITY": lambda s: s.effects.relative_velocity_resistance and s.effects.two_way,
+}
+_DEM_EFFECTS = {
+    "ROTATION": lambda s: s.effects.rotation,
+    "FRICTION": lambda s: s.effects.friction,
+    "ROLLING_RESISTANCE": lambda s: s.effects.rolling_resistance,
+    "ADDED_MASS": lambda s: s.effects.added_mass,
+    "BUOYANCY": lambda s: s.effects.buoyancy,
+    "EXTERNAL_FORCE": lambda s: s.effects.drag or s.effects.pressure_gradient,
+}
+_COUPLER_EFFECTS = {
+    "DEM": lambda s: s.effects.dem,
+    "POROSITY": lambda s: s.effects.two_way,
+    "DRAG": lambda s: s.effects.drag,
+    "PRESSURE_GRADIENT": lambda s: s.effects.pressure_gradient,
+    "WET_FRACTION": lambda s: s.effects.buoyancy or s.effects.added_mass,
+    "LOOKUP_POROSITY": lambda s: s.numerics.porosity_method == "lookup",
+    "OVERFLOW_LOAD": lambda s: s.numerics.overflow_load == "drag_lift",
+}
+
+
+def _flags(enum, always, effects, scene: Scene) -> int:
+    """The bits of `enum` always on and those whose condition holds in the scene, as an int."""
+    names = list(always) + [name for name, on in effects.items() if on(scene)]
+    flags = 0
+    for name in names:
+        flags |= int(getattr(enum, name))
+    return flags
+
+
 def gravity(scene: Scene):
     """(g_x, g_z) [m/s^2] in flume coordinates: along and normal to a bed of slope S0 = sin(angle)."""
     s = scene.flume.bed_slope
@@ -34,20 +70,18 @@ def medium(scene: Scene):
     return m
 
 
-def dem_params(scene: Scene, submerged: bool = True, fluid_density: Optional[float] = None):
+def dem_params(scene: Scene, submerged: bool = True):
     """DEMParams of a scene: contact law, friction, added mass, walls, removal box, effect flags.
-    submerged: in the medium's water (False: dry, as the packing); fluid_density: older callers' name
-    (0: dry, else submerged in water of that density [kg/m^3])."""
-    st, fx = scene.stones, scene.effects
+    submerged: in the medium's water (False: dry, as the packing)."""
+    st = scene.stones
     p = _core.DEMParams()
     p.medium = medium(scene)
     p.submerged = submerged
-    if fluid_density is not None:
-        p.fluid_density = fluid_density
     p.added_mass_coefficient = st.added_mass_coefficient
     p.dt = scene.numerics.dem_dt
     p.contact_steps = scene.numerics.dem_contact_steps
     p.friction_stone = st.friction_stone
+    p.side_wall_friction = st.friction_wall  # the side walls of 3D stones, as the bed and the end wall
     p.rolling_friction_stone = st.rolling_friction
     p.rolling_friction_wall = st.rolling_friction_wall
     p.rolling_damping = st.rolling_damping
@@ -57,20 +91,7 @@ def dem_params(scene: Scene, submerged: bool = True, fluid_density: Optional[flo
     # stones leaving the flume (past its end, or falling below the bed level there) are removed
     p.domain_min = [-0.5 * scene.flume.length, -0.5 * scene.flume.height]
     p.domain_max = [scene.flume.length, 4.0 * scene.flume.height]
-    flags = _core.DEMFlag.GRAVITY | _core.DEMFlag.DAMPING | _core.DEMFlag.REMOVAL
-    if fx.rotation:
-        flags |= _core.DEMFlag.ROTATION
-    if fx.friction:
-        flags |= _core.DEMFlag.FRICTION
-    if fx.rolling_resistance:
-        flags |= _core.DEMFlag.ROLLING_RESISTANCE
-    if fx.added_mass:
-        flags |= _core.DEMFlag.ADDED_MASS
-    if fx.buoyancy:
-        flags |= _core.DEMFlag.BUOYANCY
-    if fx.drag or fx.pressure_gradient:
-        flags |= _core.DEMFlag.EXTERNAL_FORCE
-    p.flags = int(flags)
+    p.flags = _flags(_core.DEMFlag, ("GRAVITY", "DAMPING", "REMOVAL"), _DEM_EFFECTS, scene)
     # 3D stones lie across the flume between its side walls
     if front(st.shape).dimensions == 3:
         p.width = scene.flume.width
@@ -205,7 +226,7 @@ def build_stones(scene: Scene):
 
 def flow_params(scene: Scene):
     """FlowParams of a scene: fluid, gravity along a sloping bed, CFL, porous law, boundaries, effects."""
-    f, n, fx, st = scene.flume, scene.numerics, scene.effects, scene.stones
+    f, n, st = scene.flume, scene.numerics, scene.stones
     p = _core.FlowParams()
     p.medium = medium(scene)
     p.cfl = n.cfl
@@ -246,16 +267,7 @@ def flow_params(scene: Scene):
         p.tailwater_level = f.tailwater_level
     else:
         p.outlet = _core.OutletBoundary.FREE_OVERFALL
-    E = _core.FlowEffect
-    flags = int(E.FREE_SURFACE) | int(E.VISCOSITY) | int(E.GRAVITY) | int(E.CONVECTION)
-    if fx.porous_resistance:
-        flags |= int(E.POROUS_RESISTANCE)
-    if fx.turbulence:
-        flags |= int(E.TURBULENCE)
-    # resistance relative to the stones' velocity: the stones move the flow's porosity only two-way
-    if fx.relative_velocity_resistance and fx.two_way:
-        flags |= int(E.RELATIVE_VELOCITY)
-    p.flags = flags
+    p.flags = _flags(_core.FlowEffect, ("FREE_SURFACE", "VISCOSITY", "GRAVITY", "CONVECTION"), _FLOW_EFFECTS, scene)
     return p
 
 
@@ -381,7 +393,6 @@ _STONE_DRAG = {"sphere": "SPHERE", "bed": "BED"}
 def coupler_params(scene: Scene, n_exp: float | None = None):
     """CouplerParams of a scene: which couplings run, the drag model, n_exp, porosity method. n_exp:
     the porosity inside each disc of eq. (11) (disc_porosity; default the scene's n_exp)."""
-    fx = scene.effects
     p = _core.CouplerParams()
     p.n_exp = scene.stones.n_exp if n_exp is None else float(n_exp)
     p.stone_drag = getattr(_core.StoneDragModel, _STONE_DRAG[scene.stones.drag_model])
@@ -392,25 +403,10 @@ def coupler_params(scene: Scene, n_exp: float | None = None):
     p.mapping = {"cell": _core.CouplingMapping.CELL, "kernel": _core.CouplingMapping.KERNEL}[scene.numerics.coupling_mapping]
     # unset: 0, the coupler's own default (the stones' mean nominal diameter)
     p.bandwidth = scene.numerics.coupling_bandwidth or 0.0
-    flags = _core.CouplerEffect.FLUID | _core.CouplerEffect.CHECKS
-    if fx.dem:
-        flags |= _core.CouplerEffect.DEM
-    if fx.two_way:
-        flags |= _core.CouplerEffect.POROSITY
-    if fx.drag:
-        flags |= _core.CouplerEffect.DRAG
-    if fx.pressure_gradient:
-        flags |= _core.CouplerEffect.PRESSURE_GRADIENT
-    if fx.buoyancy or fx.added_mass:
-        flags |= _core.CouplerEffect.WET_FRACTION
-    if scene.numerics.porosity_method == "lookup":
-        flags |= _core.CouplerEffect.LOOKUP_POROSITY
-    if scene.numerics.overflow_load == "drag_lift":
-        flags |= _core.CouplerEffect.OVERFLOW_LOAD
     p.overflow_drag_coefficient = scene.numerics.overflow_drag_coefficient
     p.overflow_lift_coefficient = scene.numerics.overflow_lift_coefficient
     p.overflow_band_height = scene.numerics.overflow_band_height
-    p.flags = int(flags)
+    p.flags = _flags(_core.CouplerEffect, ("FLUID", "CHECKS"), _COUPLER_EFFECTS, scene)
     return p
 
 

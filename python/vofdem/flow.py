@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["discharge_table", "linear_ramp", "paper_discharge_ramp", "set_discharge", "dam_break"]
+__all__ = ["discharge_table", "linear_ramp", "paper_discharge_ramp", "set_discharge", "dam_break", "tank_params"]
 
 
 def linear_ramp(q0: float, q1: float, t0: float, t1: float) -> _core.DischargeTable:
@@ -54,18 +54,32 @@ def set_discharge(flow: _core.VOFGrid, q, t_end: float | None = None, dt: float 
     return table
 
 
+def tank_params() -> _core.FlowParams:
+    """FlowParams of the classical flow cases in a closed tank (the dam break, the validation's and the
+    cost studies' tanks): walls at both ends, laminar, CFL 0.4 and a pressure tolerance of 1e-8 (the
+    cases measure the VOF and the projection themselves), k-epsilon point-implicit when switched on. A
+    scene's flow takes the core's defaults instead (its options, docs/scenario.md)."""
+    p = _core.FlowParams()
+    p.cfl, p.pressure_tol = 0.4, 1e-8
+    E = _core.FlowEffect
+    p.flags = int(E.FREE_SURFACE | E.POROUS_RESISTANCE | E.VISCOSITY | E.GRAVITY | E.CONVECTION)
+    p.outlet = _core.OutletBoundary.WALL
+    p.turbulence_time_scheme = _core.KEpsilonTimeScheme.POINT_IMPLICIT
+    return p
+
+
 def dam_break(a: float = 0.05715, cells_per_a: int = 8, length_in_a: float = 5.0, height_in_a: float = 2.5,
               params: _core.FlowParams | None = None) -> _core.VOFGrid:
     """The Martin & Moyce (1952) dam break: a water column a wide and 2a high in a closed tank.
 
     a [m]: column width; cells_per_a: resolution; the tank is length_in_a * a long and
     height_in_a * a high (open top), in int(length_in_a * cells_per_a) by int(height_in_a * cells_per_a)
-    cells. Returns a VOFGrid at rest with the column filled. The one dam-break set-up (the validation's
-    dam_break_front runs it).
+    cells. Returns a VOFGrid at rest with the column filled. params: default `tank_params()`. The one
+    dam-break set-up (the validation's dam_break_front runs it).
     """
     nx = int(length_in_a * cells_per_a)
     nz = int(height_in_a * cells_per_a)
     grid = _core.Grid2D.uniform(nx, nz, length_in_a * a, height_in_a * a)
-    flow = _core.VOFGrid(grid, params if params is not None else _core.FlowParams())
+    flow = _core.VOFGrid(grid, params if params is not None else tank_params())
     flow.fill_water_box(0.0, a, 0.0, 2.0 * a)
     return flow

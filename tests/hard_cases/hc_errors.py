@@ -6,6 +6,7 @@ import vofdem
 from vofdem import _core
 
 from hc_harness import D, RHO_W, case, couple, dem_params, stones, tank
+from vofdem.flow import tank_params
 
 
 def coupled_tank():
@@ -118,7 +119,7 @@ def density_mismatch():
       "a ValueError naming the parameter and its allowed range for each, before anything runs")
 def bad_parameters():
     checks = 0
-    fp = vofdem.FlowParams()
+    fp = tank_params()
     fp.cfl = -0.3
     with pytest.raises(ValueError, match=r"cfl = -0.3"):
         fp.validate()
@@ -134,7 +135,7 @@ def bad_parameters():
         stones(dp, [[0.1, 0.05]])
     checks += 1
     with pytest.raises(ValueError, match="stone_radius"):
-        vofdem.DEMSystem(dem_params(0.0, 0.2), pos=np.array([[0.1, 0.05]]), radius=np.array([0.0]))
+        vofdem.DEMSystem(dem_params(0.0, 0.2), pos=np.array([[0.1, 0.05]]), density=[2650.0], radius=np.array([0.0]))
     checks += 1
     cp = _core.CouplerParams()
     cp.stone_cfl = 5.0

@@ -15,8 +15,9 @@ import numpy as np
 
 import vofdem
 from vofdem import _core
+from vofdem.flow import tank_params
 
-RHO_W = vofdem.FlowParams().rho_water
+RHO_W = tank_params().rho_water
 G = 9.81
 D = 0.048  # the paper's stone [m]
 
@@ -48,7 +49,7 @@ def case(name: str, group: str, hard: str, must_hold: str, xfail: Optional[str] 
 
 # ---------------------------------------------------------------------------------------- scenes
 def flow_params(**kw):
-    p = vofdem.FlowParams()
+    p = tank_params()
     for k, v in kw.items():
         setattr(p, k, v)
     return p

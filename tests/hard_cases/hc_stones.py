@@ -137,8 +137,10 @@ def overlapping_start():
 
 def dry_weir(seed=0, **params):
     p = dem_params(0.0, 1.4, wet=False, **params)
-    s, rep, _ = _core.pack_weir(height=0.15, crest=0.1, slope_up_deg=27, slope_down_deg=27, x_toe=0.4, z_bed=0.0,
-                                d_mean=D, d_spread=0.1, density=2650.0, seed=seed, params=p)
+    spec = _core.WeirSpec()
+    spec.height, spec.crest, spec.slope_up_deg, spec.slope_down_deg = 0.15, 0.1, 27.0, 27.0
+    spec.x_toe, spec.z_bed, spec.d_mean, spec.d_spread, spec.density, spec.seed = 0.4, 0.0, D, 0.1, 2650.0, seed
+    s, rep = _core.pack_weir(spec, p)
     return s
 
 

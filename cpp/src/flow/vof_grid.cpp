@@ -105,7 +105,8 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   cell_porosity_prev_.assign(nc, 1.0);
   face_x_porosity.assign(nfx, 1.0);
   face_z_porosity.assign(nfz, 1.0);
-  cell_stone_diameter.assign(nc, 0.048);
+  // no stone size of its own: the stones or the scene give it (a porous cell without one is refused)
+  cell_stone_diameter.assign(nc, 0.0);
   cell_nut.assign(nc, 0.0);
   face_x_solid_u.assign(nfx, 0.0);
   face_z_solid_w.assign(nfz, 0.0);
@@ -116,8 +117,8 @@ VOFGrid::VOFGrid(const Grid2D& grid, const FlowParams& params)
   cell_nu_.assign(nc, 0.0);
   face_x_rho_.assign(nfx, 0.0);
   face_z_rho_.assign(nfz, 0.0);
-  face_x_diameter_.assign(nfx, 0.048);
-  face_z_diameter_.assign(nfz, 0.048);
+  face_x_diameter_.assign(nfx, 0.0);
+  face_z_diameter_.assign(nfz, 0.0);
   face_x_beta_.assign(nfx, 0.0);
   face_z_beta_.assign(nfz, 0.0);
   u_star_.assign(nfx, 0.0);
@@ -201,6 +202,13 @@ void VOFGrid::set_porosity(const std::vector<double>& porosity, bool displace) {
 
 namespace {
 
+// a porous cell's stone diameter is not the core's to assume (the paper's 4.8 cm is a scene's value)
+std::string missing_diameter(int c, double n, double d) {
+  return "cell_stone_diameter[" + std::to_string(c) + "] = " + std::to_string(d) + " m at porosity " +
+         std::to_string(n) + " must be a finite value > 0 m: the stone diameter D of eq. (7) is given by the " +
+         "scene (stones.diameter), set_porosity_box's d, or a Coupler mapping the stones";
+}
+
 // count faces of a row between cells na[i] and nb[i]: as open as the tighter one, with its stone
 // diameter (the mean of both when they are as open); a closed face carries no velocity. Selects without
 // a branch; the rows never overlap the face arrays (restrict: GCC would version the loop for 12 pairs)
@@ -238,7 +246,7 @@ void VOFGrid::update_face_porosity(bool displace) {
   for (int c = 0; bad.load() && c < grid_.ncell(); ++c) {
     if (!(n[c] >= 0.0 && n[c] <= 1.0)) require_in_closed("cell_porosity", n[c], 0.0, 1.0);
     if (n[c] > 0.0 && n[c] < 1.0 && !(d[c] > 0.0 && d[c] <= std::numeric_limits<double>::max()))
-      require_positive("cell_stone_diameter", d[c]);
+      throw std::invalid_argument(missing_diameter(c, n[c], d[c]));
   }
   // a boundary face has its one cell on both sides
   detail::parallel_for(nz, sx, [&](int k0, int k1) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "vofdem/common/check.h"
 #include "vofdem/stones/dem_contact.h"
@@ -70,7 +71,7 @@ void DEMSystem::resize(int n) {
   stone_angle.assign(un, 0.0);
   stone_omega.assign(un, 0.0);
   stone_radius.assign(un, 0.0);
-  stone_density.assign(un, 2650.0);
+  stone_density.assign(un, 0.0);  // none: the stones give it (an active stone without one is refused)
   stone_fixed.assign(un, 0);
   stone_active.assign(un, 1);
   stone_force_ext.assign(2 * un, 0.0);
@@ -187,7 +188,10 @@ void DEMSystem::check_stones() const {
   for (int i = 0; i < n_; ++i) {
     if (!stone_active[i]) continue;
     require_positive("stone_radius", stone_radius[i]);
-    require_positive("stone_density", stone_density[i]);
+    if (!(stone_density[i] > 0.0 && std::isfinite(stone_density[i])))
+      throw std::invalid_argument("stone_density[" + std::to_string(i) + "] = " + std::to_string(stone_density[i]) +
+                                  " kg/m^3 must be a finite value > 0: the stones' density is given by the scene "
+                                  "(stones.density) or DEMSystem's density argument");
     require_in_closed("stone_wet", stone_wet[i], 0.0, 1.0);
     require_finite("stone_pos", stone_pos[2 * i]);
     require_finite("stone_pos", stone_pos[2 * i + 1]);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "vofdem/coupling/coupler.h"
+#include "common/pinned_params.h"
 
 namespace vofdem::test {
 
@@ -35,7 +36,7 @@ struct Scene {
 inline DEMParams wet_dem(double x0, double x1) {
   DEMParams p;
   p.submerged = true;
-  p.medium.rho_water = FlowParams().medium.rho_water;
+  p.medium.rho_water = test::pinned_flow_params().medium.rho_water;
   p.add_flume(x0, x1, 0.0);
   return p;
 }
@@ -52,11 +53,14 @@ inline void resist_relative_to_stones(VOFGrid& f) {
 // a tank width x height [m] of square cells h [m], water below `level` [m], stones at pos (x, z pairs)
 // of radius r [m] (density 2650); a two-way coupling (kCouplePorosity) resists relative to the stones
 inline Scene tank(double width, double height, double h, double level, const std::vector<double>& pos, double r,
-                  unsigned flags, const FlowParams& fp = FlowParams()) {
+                  unsigned flags, const FlowParams& fp = test::pinned_flow_params()) {
   Scene s;
   const Grid2D g = Grid2D::uniform(static_cast<int>(std::lround(width / h)), static_cast<int>(std::lround(height / h)),
                                    width, height);
   s.fluid = std::make_unique<VOFGrid>(g, fp);
+  // the stone diameter of the cells without stones the pins were taken with (the core's former
+  // default, now given): it enters no porous cell here, only the exported state
+  s.fluid->cell_stone_diameter.assign(s.fluid->cell_stone_diameter.size(), 0.048);
   s.fluid->fill_water_below(level);
   s.fluid->set_hydrostatic_pressure();
   const std::size_t n = pos.size() / 2;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/coupler_scenes.h"
+#include "common/pinned_params.h"
 
 namespace vofdem {
 namespace {
@@ -56,7 +57,7 @@ std::string moved(const Buffers& held, const Buffers& now) {
 
 TEST(BufferStability, ViewsOfFlowAndStonesSurviveEveryOperation) {
   const Grid2D g = Grid2D::uniform(20, 40, 0.2, 0.4);
-  auto fluid = std::make_unique<VOFGrid>(g, FlowParams());
+  auto fluid = std::make_unique<VOFGrid>(g, test::pinned_flow_params());
   fluid->fill_water_below(0.2);
   fluid->set_hydrostatic_pressure();
   const std::vector<double> pos = {0.1, 0.2, 0.102, 0.25, 0.104, 0.3};

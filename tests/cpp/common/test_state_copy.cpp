@@ -4,12 +4,13 @@
 
 #include "common/coupler_scenes.h"
 #include "common/pin_hash.h"
+#include "common/pinned_params.h"
 
 namespace vofdem {
 namespace {
 
 TEST(StateCopy, CoupledRunBranchesBitForBit) {
-  FlowParams fp;
+  FlowParams fp = test::pinned_flow_params();
   fp.flags |= kFlowTurbulence;
   auto s = test::tank(0.2, 0.4, 0.01, 0.2, {0.1, 0.2, 0.102, 0.25, 0.104, 0.3}, 0.024, kCoupleDefault, fp);
   s.sim->advance(0.05);
@@ -30,7 +31,7 @@ TEST(StateCopy, AStepFailingLateInTheFlowRestoresTheCoupledStateAndGoesOnAsIfNev
   // in the VOF advection, the flow's last stage, after the others have written velocities, pressure,
   // k and epsilon (and the DEM its stones); the coupler's guard restores them all (the flow's own
   // snapshot then holds u^n and w^n only)
-  FlowParams fp;
+  FlowParams fp = test::pinned_flow_params();
   fp.flags |= kFlowTurbulence;
   auto s = test::tank(0.2, 0.4, 0.01, 0.15, {0.06, 0.024, 0.15, 0.024}, 0.024, kCoupleDefault, fp);
   s.sim->advance(0.05);

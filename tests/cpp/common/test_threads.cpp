@@ -8,6 +8,7 @@
 #include "common/coupler_scenes.h"
 #include "common/pin_hash.h"
 #include "vofdem/common/threads.h"
+#include "common/pinned_params.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -50,7 +51,7 @@ bool two_threads_run() {
 // a flume 0.6 m long fed by the inlet over a porous block, free overfall, k-epsilon with wall functions
 // and the filtered pore strain, all four diffusions implicit, Adams-Bashforth 2; dx x dz [m]
 std::map<std::string, std::vector<double>> flume_state(double dx, double dz) {
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
   p.flume_width = 0.5;
@@ -99,7 +100,7 @@ TEST(Threads, ACoupledRunIsTheSameBitsOnOneAndTwoThreads) {
   if (!two_threads_run()) GTEST_SKIP() << "no team of two threads (built without OpenMP?)";
   // stones falling into a tank with turbulence: porosity, forces, DEM, every stage of the flow
   auto run_steps = [](int steps) {
-    FlowParams fp;
+    FlowParams fp = test::pinned_flow_params();
     fp.flags |= kFlowTurbulence;
     auto s = test::tank(0.3, 0.3, 0.01, 0.2, {0.1, 0.25, 0.16, 0.22, 0.2, 0.05}, 0.02, kCoupleDefault, fp);
     for (int k = 0; k < steps; ++k) s.sim->step();

@@ -8,6 +8,7 @@
 #include "common/coupler_scenes.h"
 #include "vofdem/coupling/bed_drag.h"
 #include "vofdem/flow/porous_resistance.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -84,7 +85,7 @@ TEST(Coupler, BedDragAndPressureGradientCarryThePressureDropOfTheBulk) {
   // volume V / (1 - n) they stand for. Tolerance 1 %: the flow after 0.5 s matches the law within 1 %
   // (PorousResistanceUsesTheMolecularViscosityNotTheEddyViscosity).
   const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection;
   p.flume_width = 0.3;
   p.inlet = InletBoundary::kDischarge;

@@ -9,6 +9,7 @@
 #include "common/coupler_scenes.h"
 #include "vofdem/coupling/fluid_forces.h"
 #include "vofdem/flow/water_redistribution.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -34,7 +35,7 @@ double ode_velocity(double d, double rho_s, double rho, double nu, double cm, do
 
 // releases one stone of diameter d in a still tank (cells h) and checks its fall against the force balance
 void check_terminal_velocity(double d, double h, double width, double height, double t_end) {
-  const FlowParams fp;
+  const FlowParams fp = test::pinned_flow_params();
   Scene s = tank(width, height, h, height - 0.05, {0.5 * width, height - 0.15}, 0.5 * d, kCoupleOneWay);
   const double vt = terminal_velocity(d, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 9.81);
   double ode_dev = 0.0;
@@ -122,7 +123,7 @@ namespace {
 double pocket_stone_displacement(double U, double duration) {
   const double r = 0.024, d = 2 * r;
   const Grid2D g = Grid2D::uniform(60, 20, 0.6, 0.2);
-  VOFGrid fluid(g, FlowParams());
+  VOFGrid fluid(g, test::pinned_flow_params());
   fluid.fill_water_below(0.2);
   fluid.set_hydrostatic_pressure();
   std::vector<double> pos = {0.2, r, 0.2 + d, r, 0.2 + 2 * d, r, 0.2 + 1.5 * d, r + d * std::sqrt(0.75)};
@@ -204,7 +205,7 @@ TEST(Coupler, StoneColumnDroppedIntoATankConservesWater) {
 TEST(Coupler, StoneWashedOutLeavesPorosityOne) {
   // a stone on the bed under a frozen 3 m/s current rolls out of the flume end and is removed
   const Grid2D g = Grid2D::uniform(40, 15, 0.4, 0.15);
-  VOFGrid fluid(g, FlowParams());
+  VOFGrid fluid(g, test::pinned_flow_params());
   fluid.fill_water_below(0.12);
   fluid.set_hydrostatic_pressure();
   DEMParams dp = wet_dem(0.0, 0.4);
@@ -305,7 +306,7 @@ TEST(Coupler, RestartWithTurbulenceIsBitForBit) {
   // model are state that the next step reads, so the checkpoint must carry them
   std::vector<double> pos;
   for (int j = 0; j < 3; ++j) pos.push_back(0.06 + 0.04 * j), pos.push_back(0.15 + 0.02 * j);
-  FlowParams fp;
+  FlowParams fp = test::pinned_flow_params();
   fp.flags |= kFlowTurbulence;
   auto build = [&] { return tank(0.2, 0.3, 0.01, 0.25, pos, 0.012, kCoupleTwoWay, fp); };
   Scene a = build();
@@ -328,7 +329,7 @@ TEST(Coupler, RestartWithTurbulenceWhileCellsFillIsBitForBit) {
   // restart runs a few steps beside the uninterrupted run
   std::vector<double> pos;
   for (int j = 0; j < 3; ++j) pos.push_back(0.06 + 0.04 * j), pos.push_back(0.15 + 0.02 * j);
-  FlowParams fp;
+  FlowParams fp = test::pinned_flow_params();
   fp.flags |= kFlowTurbulence;
   auto build = [&] { return tank(0.2, 0.3, 0.01, 0.25, pos, 0.012, kCoupleTwoWay, fp); };
   Scene a = build();
@@ -373,7 +374,7 @@ TEST(Coupler, NonFiniteStoneStateIsCaughtAndTheStateKept) {
 
 TEST(Coupler, SceneWithoutStonesIsTheBareFluid) {
   const Grid2D g = Grid2D::uniform(20, 10, 0.4, 0.2);
-  FlowParams fp;
+  FlowParams fp = test::pinned_flow_params();
   VOFGrid a(g, fp), b(g, fp);
   for (VOFGrid* f : {&a, &b}) f->fill_water_box(0.0, 0.1, 0.0, 0.15);
   Coupler sim(&a, nullptr, CouplerParams());
@@ -400,7 +401,7 @@ TEST(Coupler, SceneWithoutWaterIsTheBareDEM) {
 
 TEST(Coupler, BadInputIsRefused) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.2, 0.2);
-  VOFGrid fluid(g, FlowParams());
+  VOFGrid fluid(g, test::pinned_flow_params());
   DEMParams dp;
   DEMSystem stones(dp, {0.1, 0.1}, {0.024}, {2650});
   CouplerParams retired;
@@ -415,7 +416,7 @@ TEST(Coupler, BadInputIsRefused) {
 
 TEST(Coupler, TheStonesTakeTheFlowsMediumAndTheFlowKeepsItsFlags) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.2, 0.2);
-  FlowParams fp;
+  FlowParams fp = test::pinned_flow_params();
   fp.medium.rho_water = 1000.0;
   fp.medium.gravity = {0.5, -9.8};
   VOFGrid fluid(g, fp);

@@ -10,6 +10,7 @@
 
 #include "common/coupler_scenes.h"
 #include "vofdem/coupling/fluid_forces.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -23,7 +24,7 @@ Scene box_tank(double width, double height, double h, double level, const std::v
   Scene s;
   const Grid2D g = Grid2D::uniform(static_cast<int>(std::lround(width / h)), static_cast<int>(std::lround(height / h)),
                                    width, height);
-  s.fluid = std::make_unique<VOFGrid>(g, FlowParams());
+  s.fluid = std::make_unique<VOFGrid>(g, test::pinned_flow_params());
   s.fluid->fill_water_below(level);
   s.fluid->set_hydrostatic_pressure();
   const std::size_t n = pos.size() / 2;
@@ -86,7 +87,7 @@ TEST(CouplerPolygon, FlatStoneFallsAtTheTerminalVelocityOfItsProjectedArea) {
   // V = (4/3) A r_A, Re on d = 2 r_A; force balance 1/2 rho A_p (0.4 v^2 + 24 nu v / d) = (rho_s - rho) V g
   const double a = 0.03, b = 0.015;
   Scene s = box_tank(0.3, 1.5, 0.01, 1.45, {0.15, 1.3}, a, b, kCoupleOneWay);
-  const FlowParams fp;
+  const FlowParams fp = test::pinned_flow_params();
   const double area = 4 * a * b, rA = std::sqrt(area / kPi), d = 2 * rA;
   const double Ap = 0.5 * kPi * rA * 2 * a, V = 4.0 / 3.0 * area * rA;
   const double W = (2650.0 - fp.medium.rho_water) * V * 9.81;

@@ -8,6 +8,7 @@
 
 #include "common/coupler_scenes.h"
 #include "vofdem/coupling/drag_exchange.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -144,7 +145,7 @@ struct Relaxation {
 
 Relaxation relax(double U, double steps_per_tau, double t_end_tau, bool implicit) {
   const Grid2D g = Grid2D::uniform(240, 4, 12.0, 0.2);
-  VOFGrid fluid(g, FlowParams());
+  VOFGrid fluid(g, test::pinned_flow_params());
   fluid.fill_water_below(0.2);
   std::fill(fluid.face_u.begin(), fluid.face_u.end(), U);
   DEMParams dp;

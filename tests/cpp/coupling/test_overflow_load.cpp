@@ -8,6 +8,7 @@
 
 #include "common/coupler_scenes.h"
 #include "vofdem/coupling/overflow_load.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -104,7 +105,7 @@ TEST(OverflowLoad, BadCoefficientsAreRefusedByName) {
 }
 
 TEST(Coupler, ProtrudingDiscInUniformOverflowGetsTheHandForce) {
-  const double u = 0.4, rho = FlowParams().medium.rho_water;
+  const double u = 0.4, rho = test::pinned_flow_params().medium.rho_water;
   Scene s = row_in_uniform_flow(0.15, u);
   const double p = middle_protrusion_by_hand(), phi = segment_share(1.0 - p / kR);
   EXPECT_NEAR(s.sim->stone_exposed_share[1], phi, 1e-14);

@@ -14,6 +14,7 @@
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/coupling/slab_volume.h"
 #include "vofdem/stones/dem_system.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -29,7 +30,7 @@ Scene sphere_tank(double width, double height, double h, double level, const std
   Scene s;
   const Grid2D g = Grid2D::uniform(static_cast<int>(std::lround(width / h)), static_cast<int>(std::lround(height / h)),
                                    width, height);
-  s.fluid = std::make_unique<VOFGrid>(g, FlowParams());
+  s.fluid = std::make_unique<VOFGrid>(g, test::pinned_flow_params());
   s.fluid->fill_water_below(level);
   s.fluid->set_hydrostatic_pressure();
   DEMParams p = wet_dem(0.0, width);
@@ -89,7 +90,7 @@ TEST(SphereCoupling, FallsInStillWaterAtTheForceBalancesVelocity) {
   // buoyancy and added mass give the terminal velocity of the force balance, as the discs do
   Scene s = sphere_tank(0.2, 1.5, 0.01, 1.45, {0.1, 1.35}, 0.2, kCoupleOneWay);
   s.stones->stone_y[0] = 0.1;
-  const FlowParams fp;
+  const FlowParams fp = test::pinned_flow_params();
   const double vt = terminal_velocity(2.0 * kR, 2650.0, fp.medium.rho_water, fp.medium.nu_water, 9.81);
   s.sim->advance(1.0);
   EXPECT_NEAR(-s.stones->stone_vel[1], vt, 0.03 * vt) << "v_t = " << vt;

@@ -5,6 +5,7 @@
 
 #include "vofdem/flow/inflow.h"
 #include "vofdem/flow/vof_grid.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 
@@ -71,7 +72,7 @@ namespace {
 // inlet column holds a trace F = 0.01 from 0.2 to 0.3 m (0.1 cells of water at the start)
 double most_water_above(InletProfile profile) {
   const Grid2D g = Grid2D::uniform(40, 30, 0.8, 0.3);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.inlet = InletBoundary::kDischarge;
   p.inlet_profile = profile;
   p.outlet = OutletBoundary::kFreeOverfall;

@@ -13,12 +13,14 @@
 
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
+#include "common/pinned_params.h"
 
 using vofdem::Grid2D;
 using vofdem::KEpsilonBoundaries;
 using vofdem::KEpsilonBoundary;
 using vofdem::KEpsilonModel;
 using vofdem::KEpsilonParams;
+using vofdem::test::pinned_k_epsilon_params;
 
 namespace {
 
@@ -82,7 +84,7 @@ TEST(KEpsilon, WallShearVelocitySolvesTheLogLaw) {
 }
 
 TEST(KEpsilon, InflowValuesFromIntensityAndLengthScale) {
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.inflow_intensity = 0.1;
   p.inflow_length_scale = 0.02;
   const KEpsilonModel m(Grid2D::uniform(2, 2, 1.0, 1.0), p);
@@ -98,7 +100,7 @@ TEST(KEpsilon, HomogeneousDecayMatchesTheAnalyticSolution) {
   const Grid2D g = Grid2D::graded(3, 0.3, 0.05, 0.01, 0.005, 0.02);  // dz 0.005 then 0.01
   const double k0 = 1e-2, eps0 = 1e-3, tau = k0 / eps0;            // tau = 10 s
   auto run = [&](double dt, double t_end) {
-    KEpsilonModel m(g, {}, closed_to_flux());
+    KEpsilonModel m(g, pinned_k_epsilon_params(), closed_to_flux());
     m.initialize(k0, eps0, kNu);
     Flow f(g);
     for (int i = 0; i < g.nx(); ++i) f.F[g.cell(i, g.nz() - 1)] = 0.0;  // an air row
@@ -127,7 +129,7 @@ TEST(KEpsilon, StaysPositiveUnderHugeStepsAndExtremeStrain) {
   std::uniform_real_distribution<double> vel(-100.0, 100.0), unit(0.0, 1.0), expo(-12.0, 3.0);
   for (int sweeps : {1, 3}) {
     for (double dt : {1e-6, 1e2, 1e6}) {
-      KEpsilonParams p;
+      KEpsilonParams p = pinned_k_epsilon_params();
       p.sweeps = sweeps;
       KEpsilonModel m(g, p, KEpsilonBoundaries{});
       for (int c = 0; c < g.ncell(); ++c) {
@@ -155,7 +157,7 @@ TEST(KEpsilon, StaysPositiveUnderHugeStepsAndExtremeStrain) {
 // no mean flow in a walled box: k and eps only decay (their maxima never grow), stay positive
 TEST(KEpsilon, ZeroVelocityDecaysAndStaysBounded) {
   const Grid2D g = Grid2D::graded(8, 0.2, 0.1, 0.01, 0.005, 0.02);
-  KEpsilonModel m(g, {}, walled_box());
+  KEpsilonModel m(g, pinned_k_epsilon_params(), walled_box());
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int c = 0; c < g.ncell(); ++c) {
@@ -191,7 +193,7 @@ TEST(KEpsilon, ZeroVelocityDecaysAndStaysBounded) {
 double log_layer_residual(int nz) {
   const double h = 0.1, u_tau = 0.02, nu = 1e-12;
   const Grid2D g = Grid2D::uniform(3, nz, 0.1, h);
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.kappa = std::sqrt((p.c2 - p.c1) * p.sigma_eps * std::sqrt(p.c_mu));  // 0.4327
   KEpsilonBoundaries b;
   b.left = b.right = KEpsilonBoundary::kZeroGradient;
@@ -240,7 +242,7 @@ TEST(KEpsilon, OpenChannelWallFunctionAndNearWallEddyViscosity) {
   const int nz = g.nz();
   KEpsilonBoundaries b;
   b.left = b.right = KEpsilonBoundary::kZeroGradient;
-  KEpsilonModel m(g, {}, b);
+  KEpsilonModel m(g, pinned_k_epsilon_params(), b);
   m.initialize(1e-4, 1e-5, kNu);
   Flow f(g);
   std::vector<double> u(nz), lo(nz), di(nz), up(nz), rhs(nz);
@@ -306,7 +308,7 @@ TEST(KEpsilon, OpenChannelWallFunctionAndNearWallEddyViscosity) {
 TEST(KEpsilon, JacobiSweepsConvergeToTheDenseBackwardEulerSolution) {
   const Grid2D g = Grid2D::graded(5, 0.5, 0.06, 0.02, 0.01, 0.02);  // rows 0.01, 0.01, 0.02, 0.02
   const int nx = g.nx(), nz = g.nz(), n = g.ncell();
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.flags = vofdem::kKEpsAdvection | vofdem::kKEpsDiffusion;
   p.sweeps = 400;
   KEpsilonBoundaries b = closed_to_flux();
@@ -385,7 +387,7 @@ TEST(KEpsilon, JacobiSweepsConvergeToTheDenseBackwardEulerSolution) {
 // faces of solid cells are walls: the cells beside a solid block get wall-law values and a wall shear
 TEST(KEpsilon, SolidCellsActAsWalls) {
   const Grid2D g = Grid2D::uniform(6, 5, 0.6, 0.5);
-  KEpsilonModel m(g, {}, closed_to_flux());
+  KEpsilonModel m(g, pinned_k_epsilon_params(), closed_to_flux());
   m.initialize(1e-4, 1e-5, kNu);
   Flow f(g);
   const int solid = g.cell(3, 2);
@@ -422,7 +424,7 @@ TEST(KEpsilon, SideWallValuesDoNotDependOnASolidCellElsewhere) {
   Flow with_solid = f;
   const int solid = g.cell(4, 3);
   with_solid.porosity[solid] = 0.0;
-  KEpsilonModel a(g, {}, walled_box()), b(g, {}, walled_box());
+  KEpsilonModel a(g, pinned_k_epsilon_params(), walled_box()), b(g, pinned_k_epsilon_params(), walled_box());
   a.initialize(1e-4, 1e-5, kNu);
   b.initialize(1e-4, 1e-5, kNu);
   a.step(1e-3, f.face_u, f.face_w, f.porosity, f.F, f.nu);
@@ -454,7 +456,7 @@ TEST(KEpsilon, SideWallValuesDoNotDependOnASolidCellElsewhere) {
 // wall functions off clears the wall outputs
 TEST(KEpsilon, EndWallShearOpposesTheFlowAndClearsWhenSwitchedOff) {
   const Grid2D g = Grid2D::uniform(4, 6, 0.4, 0.3);  // dx 0.1
-  KEpsilonModel m(g, {}, walled_box());
+  KEpsilonModel m(g, pinned_k_epsilon_params(), walled_box());
   m.initialize(1e-4, 1e-5, kNu);
   Flow f(g);
   for (int k = 1; k < g.nz(); ++k) f.face_w[g.face_z(0, k)] = -0.2;  // down along the left wall
@@ -472,7 +474,7 @@ TEST(KEpsilon, EndWallShearOpposesTheFlowAndClearsWhenSwitchedOff) {
 // inflow side: k, eps from intensity and length scale are carried in; downstream they decay
 TEST(KEpsilon, InflowFeedsTheDomain) {
   const Grid2D g = Grid2D::uniform(20, 1, 2.0, 0.1);
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.flags = vofdem::kKEpsAdvection | vofdem::kKEpsDiffusion;
   KEpsilonBoundaries b = closed_to_flux();
   b.left = KEpsilonBoundary::kInflow;
@@ -488,7 +490,7 @@ TEST(KEpsilon, InflowFeedsTheDomain) {
 
 TEST(KEpsilon, DisabledEffectsAreNotEntered) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.4, 0.4);
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.flags = vofdem::kKEpsAdvection | vofdem::kKEpsDiffusion;
   KEpsilonModel m(g, p);
   Flow f(g);
@@ -501,7 +503,7 @@ TEST(KEpsilon, DisabledEffectsAreNotEntered) {
 
 TEST(KEpsilon, StableDtIsTheExplicitLimit) {
   const Grid2D g = Grid2D::uniform(5, 4, 0.5, 0.2);  // dx 0.1, dz 0.05
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.flags = vofdem::kKEpsAdvection;
   KEpsilonModel m(g, p, closed_to_flux());
   Flow f(g);
@@ -556,13 +558,13 @@ TEST(KEpsilon, NonFiniteInputThrowsNamingTheCellAndRestores) {
 
 TEST(KEpsilon, RefusesBadInput) {
   const Grid2D g = Grid2D::uniform(3, 3, 0.3, 0.3);
-  KEpsilonParams bad;
+  KEpsilonParams bad = pinned_k_epsilon_params();
   bad.c2 = 1.0;
   EXPECT_THROW(KEpsilonModel(g, bad), std::invalid_argument);
-  bad = KEpsilonParams{};
+  bad = pinned_k_epsilon_params();
   bad.sweeps = -1;
   EXPECT_THROW(KEpsilonModel(g, bad), std::invalid_argument);
-  bad = KEpsilonParams{};
+  bad = pinned_k_epsilon_params();
   bad.k_min = 0.0;
   EXPECT_THROW(KEpsilonModel(g, bad), std::invalid_argument);
   KEpsilonModel m(g);
@@ -577,7 +579,7 @@ TEST(KEpsilon, RefusesBadInput) {
   EXPECT_NO_THROW(m.step(0.1, f.face_u, f.face_w, f.porosity, {}, f.nu));
   expect_all_positive_finite(m);
   try {
-    KEpsilonParams p;
+    KEpsilonParams p = pinned_k_epsilon_params();
     p.cfl = 2.0;
     KEpsilonModel bad_model(g, p);
     FAIL();

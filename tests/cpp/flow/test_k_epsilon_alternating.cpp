@@ -18,12 +18,14 @@
 
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
+#include "common/pinned_params.h"
 
 using vofdem::Grid2D;
 using vofdem::KEpsilonBoundaries;
 using vofdem::KEpsilonBoundary;
 using vofdem::KEpsilonModel;
 using vofdem::KEpsilonParams;
+using vofdem::test::pinned_k_epsilon_params;
 using vofdem::KEpsilonTimeScheme;
 
 namespace {
@@ -38,7 +40,7 @@ struct Flow {
 };
 
 KEpsilonParams scheme(KEpsilonTimeScheme s) {
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.time_scheme = s;
   return p;
 }
@@ -180,7 +182,7 @@ TEST(KEpsilonAlternating, StableDtIsTheHorizontalAdvectionsLimitAlone) {
 
 TEST(KEpsilonAlternating, ValidationNamesTheSchemes) {
   const Grid2D g = Grid2D::uniform(3, 3, 0.3, 0.3);
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.time_scheme = static_cast<KEpsilonTimeScheme>(3);
   try {
     KEpsilonModel m(g, p);
@@ -200,7 +202,7 @@ TEST(KEpsilonAlternating, DiffersFromBackwardEulerBySecondOrderSplitting) {
   // change d, of order dt^2 where dt is small against every face's explicit limit (the point-implicit
   // scheme's, dt0 below): halving dt there divides it by about 4 (3 to 5)
   RandomCase rc;
-  KEpsilonModel point = rc.model(KEpsilonParams{});
+  KEpsilonModel point = rc.model(pinned_k_epsilon_params());
   const double dt0 = point.stable_dt(rc.f.face_u, rc.f.face_w, rc.f.porosity, rc.f.F, rc.f.nu) / 0.5;
   double prev = splitting_error(rc, dt0);
   std::printf("[ info     ] error over the change at 1 x the all-faces limit: %.3e\n", prev);
@@ -264,7 +266,7 @@ TEST(KEpsilonAlternating, HomogeneousDecayMatchesTheAnalyticSolution) {
   const double k0 = 1e-2, eps0 = 1e-3, tau = k0 / eps0, t_end = 3.0 * tau, dt = tau / 200.0;
   KEpsilonBoundaries b;
   b.left = b.right = b.bottom = b.top = KEpsilonBoundary::kZeroGradient;
-  KEpsilonModel m(g, alternating(), b), point(g, {}, b);
+  KEpsilonModel m(g, alternating(), b), point(g, pinned_k_epsilon_params(), b);
   m.initialize(k0, eps0, kNu);
   point.initialize(k0, eps0, kNu);
   Flow f(g);

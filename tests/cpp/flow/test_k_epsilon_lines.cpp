@@ -16,12 +16,14 @@
 
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
+#include "common/pinned_params.h"
 
 using vofdem::Grid2D;
 using vofdem::KEpsilonBoundaries;
 using vofdem::KEpsilonBoundary;
 using vofdem::KEpsilonModel;
 using vofdem::KEpsilonParams;
+using vofdem::test::pinned_k_epsilon_params;
 using vofdem::KEpsilonTimeScheme;
 
 namespace {
@@ -36,7 +38,7 @@ struct Flow {
 };
 
 KEpsilonParams lines() {
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.time_scheme = KEpsilonTimeScheme::kVerticalLines;
   return p;
 }
@@ -274,7 +276,7 @@ TEST(KEpsilonLines, HomogeneousDecayMatchesTheAnalyticSolution) {
   const double k0 = 1e-2, eps0 = 1e-3, tau = k0 / eps0, t_end = 3.0 * tau, dt = tau / 200.0;
   KEpsilonBoundaries b;
   b.left = b.right = b.bottom = b.top = KEpsilonBoundary::kZeroGradient;
-  KEpsilonModel m(g, lines(), b), point(g, {}, b);
+  KEpsilonModel m(g, lines(), b), point(g, pinned_k_epsilon_params(), b);
   m.initialize(k0, eps0, kNu);
   point.initialize(k0, eps0, kNu);
   Flow f(g);
@@ -301,7 +303,7 @@ TEST(KEpsilonLines, OpenChannelReachesThePointImplicitSteadyStateAtLargerSteps) 
   auto steady = [&](KEpsilonParams p, double factor) {
     KEpsilonModel m(g, p, b);
     m.initialize(1e-4, 1e-5, kNu);
-    KEpsilonModel point(g, {}, b);  // its limit sets the step of both runs
+    KEpsilonModel point(g, pinned_k_epsilon_params(), b);  // its limit sets the step of both runs
     double change = 1.0;
     int it = 0;
     for (; it < 40000 && change > 1e-12; ++it) {
@@ -316,6 +318,6 @@ TEST(KEpsilonLines, OpenChannelReachesThePointImplicitSteadyStateAtLargerSteps) 
     std::printf("[ info     ] steady after %d steps at %.0f x the point-implicit limit\n", it, factor);
     return m.cell_nut;
   };
-  const std::vector<double> ref = steady(KEpsilonParams{}, 1.0), got = steady(lines(), 20.0);
+  const std::vector<double> ref = steady(pinned_k_epsilon_params(), 1.0), got = steady(lines(), 20.0);
   for (int k = 0; k < g.nz(); ++k) EXPECT_NEAR(got[k], ref[k], 1e-8 * ref[k]) << "row " << k;
 }

@@ -14,12 +14,14 @@
 #include "common/pin_hash.h"
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
+#include "common/pinned_params.h"
 
 using vofdem::Grid2D;
 using vofdem::KEpsilonBoundaries;
 using vofdem::KEpsilonBoundary;
 using vofdem::KEpsilonModel;
 using vofdem::KEpsilonParams;
+using vofdem::test::pinned_k_epsilon_params;
 using vofdem::KEpsilonTimeScheme;
 
 namespace {
@@ -44,7 +46,7 @@ std::map<std::string, std::vector<double>> pinned_run(KEpsilonTimeScheme scheme,
     for (int i = 0; i <= g.nx(); ++i) u[g.face_x(i, k)] = 0.3 * (0.5 + unit(rng));
   for (int k = 1; k < g.nz(); ++k)
     for (int i = 0; i < g.nx(); ++i) w[g.face_z(i, k)] = 0.1 * (unit(rng) - 0.5);
-  KEpsilonParams p;
+  KEpsilonParams p = pinned_k_epsilon_params();
   p.time_scheme = scheme;
   p.sweeps = sweeps;
   p.bed_roughness = 0.01;

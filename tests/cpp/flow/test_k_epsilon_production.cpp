@@ -11,6 +11,7 @@
 
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 
@@ -99,7 +100,7 @@ TEST(KEpsilonProduction, LimiterCapsProductionAtTenDissipations) {
   EXPECT_GT(k_lim - k0, 0.5 * dt * 9.0 * eps0);
   EXPECT_GT(k_std - k0, 0.5 * dt * 0.09);
   EXPECT_EQ(step_k(g, high_p, s.u, s.w, dt), k_std);
-  KEpsilonParams bad;
+  KEpsilonParams bad = test::pinned_k_epsilon_params();
   bad.production_limit = -1.0;
   EXPECT_THROW(check_k_epsilon_params(bad), std::invalid_argument);
 }
@@ -115,7 +116,7 @@ TEST(KEpsilonProduction, MatchesTheCellByCellReferenceBitForBit) {
       for (double limit : {0.0, 10.0})
         for (auto form : {KEpsilonPoreStrain::kNeighbours, KEpsilonPoreStrain::kLocal, KEpsilonPoreStrain::kFiltered}) {
           const Grid2D g = Grid2D::graded(nx, 0.04 * nx, 0.08, 0.02, 0.01, 0.02);
-          KEpsilonParams p;
+          KEpsilonParams p = test::pinned_k_epsilon_params();
           p.production = kind;
           p.production_limit = limit;
           p.pore_strain = form;
@@ -240,7 +241,7 @@ TEST(KEpsilonProduction, PoreStrainsOfACellInsideAStoneByHand) {
                                                          {KEpsilonPoreStrain::kLocal, 4.0 * gr},
                                                          {KEpsilonPoreStrain::kFiltered, gr * 9.0 / 8.25}};
   for (const auto& [form, dudz] : cases) {
-    KEpsilonParams p;
+    KEpsilonParams p = test::pinned_k_epsilon_params();
     p.pore_strain = form;
     p.pore_filter_length = 0.075;
     KEpsilonModel m(g, p, closed_box());
@@ -321,7 +322,7 @@ TEST(KEpsilonProduction, FilteredPorosityOverAGradedColumnByHand) {
 }
 
 TEST(KEpsilonProduction, FilteredPoreStrainNeedsItsLength) {
-  KEpsilonParams p;
+  KEpsilonParams p = test::pinned_k_epsilon_params();
   p.pore_strain = KEpsilonPoreStrain::kFiltered;
   EXPECT_THROW(check_k_epsilon_params(p), std::invalid_argument);
   p.pore_filter_length = 0.048;

@@ -16,6 +16,7 @@
 
 #include "vofdem/flow/momentum.h"
 #include "vofdem/flow/vof_grid.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 
@@ -309,7 +310,7 @@ TEST(ImplicitViscosity, EnergyBoundHoldsForTheSplitSchemeOnly) {
   Column c(g, 1e-3);
   std::vector<double> cm;
   EXPECT_THROW(viscous_stable_dt(g, c.fields(), cm, false, ViscousBound::kEnergy), std::invalid_argument);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   EXPECT_EQ(p.step_bound(), ViscousBound::kEnergy);
   for (ViscousScheme scheme : {ViscousScheme::kExplicit, ViscousScheme::kImplicitVerticalFromStart}) {
     p.viscous_scheme = scheme;
@@ -415,7 +416,7 @@ TEST(ViscousSubsteps, FlowStepLimitIsTheSubstepsTimesTheExplicitLimit) {
   // a turbulent-like water column (nu = 1e-3 m^2/s): the reported viscous limit is viscous_substeps
   // times the explicit bound; 1 gives the bound itself; out of [1, 64] is refused naming the field
   const Grid2D g = Grid2D::uniform(10, 20, 0.25, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   EXPECT_EQ(p.viscous_substeps, 8);
   p.flags = kFlowViscosity | kFlowGravity;
   p.medium.nu_water = 1e-3;
@@ -439,7 +440,7 @@ TEST(ImplicitViscosity, FlowParamsSelectTheSchemeAndTheStepLimit) {
   // the same laminar no-slip water column under both schemes: explicit limit ~ dz^2 / (4 nu) is the
   // smaller; default is the implicit vertical scheme
   const Grid2D g = Grid2D::uniform(10, 20, 0.25, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   EXPECT_EQ(p.viscous_scheme, ViscousScheme::kImplicitVertical);
   p.flags = kFlowViscosity | kFlowGravity;
   p.walls = WallCondition::kNoSlip;
@@ -711,7 +712,7 @@ TEST(ImplicitRows, WholeStepStableFarAboveTheSplitSchemesLimit) {
 
 TEST(ImplicitRows, FlowHasNoViscousStepLimitAndRefusesUnknownSchemes) {
   const Grid2D g = Grid2D::uniform(10, 20, 0.25, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags = kFlowViscosity | kFlowGravity;
   p.walls = WallCondition::kNoSlip;
   p.medium.nu_water = 1e-3;

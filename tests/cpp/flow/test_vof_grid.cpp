@@ -10,6 +10,7 @@
 #include <string>
 
 #include "vofdem/flow/porous_resistance.h"
+#include "common/pinned_params.h"
 #include "vofdem/flow/vof_grid.h"
 
 using namespace vofdem;
@@ -31,7 +32,7 @@ INSTANTIATE_TEST_SUITE_P(Solvers, VOFGridBySolver,
 TEST_P(VOFGridBySolver, StillWaterWithPorousBlockStaysStill) {
   // 0.4 m x 0.3 m tank, water 0.2 m deep, a porous block (n = 0.4, D = 4.8 cm) on the bed
   const Grid2D g = Grid2D::uniform(20, 15, 0.4, 0.3);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.pressure_solver = GetParam();
   VOFGrid flow(g, p);
   flow.fill_water_below(0.2);
@@ -49,7 +50,7 @@ TEST_P(VOFGridBySolver, StillWaterWithPorousBlockStaysStill) {
 TEST_P(VOFGridBySolver, SteadyFlowThroughPorousBlockFollowsClosureLaw) {
   // single-phase channel 1 m x 0.1 m under a slip lid; a porous block fills x in [0.3, 0.7]
   const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.pressure_solver = GetParam();
   p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection;  // no free surface, no gravity
   p.inlet = InletBoundary::kDischarge;
@@ -75,7 +76,7 @@ TEST_P(VOFGridBySolver, SteadyFlowThroughPorousBlockFollowsClosureLaw) {
 TEST_P(VOFGridBySolver, SloshingInAClosedBoxConservesWater) {
   // a tilted free surface sloshes in a 0.3 m x 0.2 m box; water volume conserved to round-off
   const Grid2D g = Grid2D::uniform(24, 16, 0.3, 0.2);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.pressure_solver = GetParam();
   VOFGrid flow(g, p);
   for (int i = 0; i < g.nx(); ++i) {
@@ -97,7 +98,7 @@ TEST_P(VOFGridBySolver, SloshingInAClosedBoxConservesWater) {
 TEST(VOFGrid, NearlyClosedCellNextToFastFlowStaysBounded) {
   // water released from a column rushes past a cell of porosity 1e-6 on the bed
   const Grid2D g = Grid2D::uniform(30, 20, 0.6, 0.4);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_box(0.0, 0.2, 0.0, 0.2);
   flow.set_porosity_box(0.29, 0.31, 0.0, 0.02, 1e-6, 0.02);
   const double v0 = flow.water_volume();
@@ -115,7 +116,7 @@ TEST(VOFGrid, NearlyClosedCellNextToFastFlowStaysBounded) {
 TEST(VOFGrid, PlungingJetIntoAPoolStaysBounded) {
   // an inflow at 0.3 m/s superficial over 2 cm falls over a step into a pool: bounded, water balance
   const Grid2D g = Grid2D::uniform(32, 20, 0.64, 0.4);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.inlet = InletBoundary::kDischarge;
   p.flume_width = 0.3;
   VOFGrid flow(g, p);
@@ -138,7 +139,7 @@ TEST(VOFGrid, PlungingJetIntoAPoolStaysBounded) {
 
 TEST(VOFGrid, NaNIsCaughtWithStageCellAndTime) {
   const Grid2D g = Grid2D::uniform(10, 10, 0.1, 0.1);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_below(0.05);
   flow.advance(0.01);
   const double t = flow.time();
@@ -166,7 +167,7 @@ TEST(VOFGrid, EveryNonFiniteValueOfTheStateIsRefusedBeforeTheStep) {
                         -std::numeric_limits<double>::infinity()};
   for (int which = 0; which < 3; ++which) {
     for (double v : bad) {
-      VOFGrid flow(g, FlowParams{});
+      VOFGrid flow(g, test::pinned_flow_params());
       flow.fill_water_below(0.05);
       std::vector<double>& a = which == 0 ? flow.face_u : which == 1 ? flow.face_w : flow.cell_F;
       for (std::size_t j : {std::size_t{0}, a.size() / 2, a.size() - 1}) {
@@ -185,11 +186,34 @@ TEST(VOFGrid, EveryNonFiniteValueOfTheStateIsRefusedBeforeTheStep) {
   }
 }
 
+TEST(VOFGrid, PorousCellsWithoutAStoneDiameterAreRefusedNamingTheField) {
+  // the core assumes no stone size (the paper's 4.8 cm is a scene's value): a porous cell needs its D of
+  // eq. (7) given; water (n = 1) and solid (n = 0) cells need none
+  const Grid2D g = Grid2D::uniform(6, 4, 0.3, 0.2);
+  VOFGrid flow(g, FlowParams{});
+  EXPECT_EQ(flow.cell_stone_diameter, std::vector<double>(g.ncell(), 0.0));
+  flow.cell_porosity[g.cell(0, 0)] = 0.0;
+  EXPECT_NO_THROW(flow.update_face_porosity());
+  flow.cell_porosity[g.cell(2, 1)] = 0.4;
+  try {
+    flow.update_face_porosity();
+    FAIL() << "a porous cell without a stone diameter was taken";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cell_stone_diameter[" + std::to_string(g.cell(2, 1)) + "] = 0"), std::string::npos) << what;
+    EXPECT_NE(what.find("stones.diameter"), std::string::npos) << what;
+  }
+  flow.cell_stone_diameter[g.cell(2, 1)] = 0.03;
+  EXPECT_NO_THROW(flow.update_face_porosity());
+  flow.fill_water_below(0.1);
+  EXPECT_NO_THROW(flow.step(1e-3));
+}
+
 TEST(VOFGrid, FlowSampledAtListedCellsEqualsTheWholeGridsAndLeavesTheRest) {
   // a flow with porous, solid and water/air cells; the listed cells (repeats, solids, edges, corners)
   // take the whole-grid values bit for bit, every other entry keeps what it held
   const Grid2D g = Grid2D::uniform(12, 9, 0.3, 0.18);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_below(0.1);
   flow.set_porosity_box(0.1, 0.2, 0.0, 0.06, 0.4, 0.01);
   flow.set_porosity_box(0.25, 0.3, 0.0, 0.03, 0.0, 0.01);
@@ -216,7 +240,7 @@ TEST(VOFGrid, FlowSampledAtListedCellsEqualsTheWholeGridsAndLeavesTheRest) {
 
 TEST(VOFGrid, CflBreachIsRefused) {
   const Grid2D g = Grid2D::uniform(10, 10, 0.1, 0.1);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_below(0.05);
   flow.face_u[g.face_x(5, 2)] = 1.0;
   EXPECT_THROW(flow.step(0.05), std::runtime_error);
@@ -226,7 +250,7 @@ TEST(VOFGrid, CflBreachIsRefused) {
 
 TEST(VOFGrid, SwitchedOffEffectsAreNotEntered) {
   const Grid2D g = Grid2D::uniform(8, 8, 0.1, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags = kFlowGravity | kFlowViscosity;  // single phase, no resistance
   VOFGrid flow(g, p);
   flow.set_porosity_box(0.0, 0.05, 0.0, 0.05, 0.4, 0.01);
@@ -244,14 +268,14 @@ TEST(VOFGrid, SwitchedOffEffectsAreNotEntered) {
 
 TEST(VOFGrid, BadParametersAreRefused) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.1, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   for (double cfl : {1.5, 0.51, 0.0}) {
     p.cfl = cfl;
     EXPECT_THROW(VOFGrid(g, p), std::invalid_argument) << cfl;
   }
   p.cfl = 0.5;
   EXPECT_NO_THROW(VOFGrid(g, p));
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   std::vector<double> n(g.ncell(), 1.2);
   EXPECT_THROW(flow.set_porosity(n), std::invalid_argument);
   EXPECT_THROW(flow.set_discharge(DischargeTable{{1.0, 0.5}, {0.0, 0.01}}), std::invalid_argument);
@@ -267,7 +291,7 @@ TEST(VOFGrid, DischargeRampOfThePaper) {
 TEST(VOFGrid, SmallDamBreakRunsAndIsDeterministic) {
   const Grid2D g = Grid2D::uniform(40, 15, 0.4, 0.15);
   auto run = [&]() {
-    VOFGrid flow(g, FlowParams{});
+    VOFGrid flow(g, test::pinned_flow_params());
     flow.fill_water_box(0.0, 0.05715, 0.0, 0.1143);
     const double v0 = flow.water_volume();
     flow.advance(0.15);
@@ -282,7 +306,7 @@ TEST(VOFGrid, SmallDamBreakRunsAndIsDeterministic) {
 TEST(VOFGrid, TurbulentOpenChannelRunsWithEddyViscosityInTheWater) {
   // 10 l/s per 0.3 m (q = 0.033 m^2/s) over a rough bed into a free overfall, k-epsilon on
   const Grid2D g = Grid2D::graded(30, 1.5, 0.2, 0.01, 0.005, 0.02);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags |= kFlowTurbulence;
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
@@ -429,7 +453,7 @@ TEST(Momentum, InteriorConvectionMatchesASlowReference) {
 TEST(VOFGrid, StonesDisplacingWaterConserveItsVolume) {
   // a submerged porous block compacts (n 0.5 -> 0.35) then loosens (-> 0.45) while the water sloshes
   const Grid2D g = Grid2D::uniform(20, 16, 0.4, 0.32);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_below(0.2);
   flow.set_porosity_box(0.1, 0.3, 0.0, 0.1, 0.5, 0.03);
   const double v0 = flow.water_volume();
@@ -452,7 +476,7 @@ TEST(VOFGrid, StonesDisplacingWaterConserveItsVolume) {
   // the displaced water went up: the free surface rose while the block was compact, then fell
   EXPECT_GT(max_abs(flow.face_w), 1e-5);
   // without displacement the same change would have destroyed water: dV = sum F V dn
-  VOFGrid plain(g, FlowParams{});
+  VOFGrid plain(g, test::pinned_flow_params());
   plain.fill_water_below(0.2);
   plain.set_porosity_box(0.1, 0.3, 0.0, 0.1, 0.35, 0.03);
   EXPECT_LT(plain.water_volume(), v0 - 0.1 * 0.2 * 0.1 * 0.9);
@@ -461,7 +485,7 @@ TEST(VOFGrid, StonesDisplacingWaterConserveItsVolume) {
 TEST(VOFGrid, TailwaterAtTheStillWaterLevelKeepsItStill) {
   // water 0.1 m deep against an open end held at a tailwater level of 0.1 m: nothing moves
   const Grid2D g = Grid2D::uniform(20, 20, 0.4, 0.2);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.outlet = OutletBoundary::kTailwater;
   p.tailwater_level = 0.1;
   VOFGrid flow(g, p);
@@ -494,7 +518,7 @@ TEST(VOFGrid, RelativeVelocityResistanceUsesTheStonesVelocity) {
   // the channel of the closure-law test; the stones move downstream at half the pore velocity, so
   // the resistance acts on u - n u_s = u / 2
   const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection | kFlowRelativeVelocity;
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
@@ -531,7 +555,7 @@ TEST(VOFGrid, PorousResistanceUsesTheMolecularViscosityNotTheEddyViscosity) {
   // under overflow): one step from the steady flow must still give -dp/dx = rho u R'(nu) (within 1 %).
   // Counting nu + nu_t in the Darcy term multiplied the pressure gradient by about 200 here.
   const Grid2D g = Grid2D::uniform(40, 5, 1.0, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags = kFlowPorousResistance | kFlowViscosity | kFlowConvection | kFlowTurbulence;
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
@@ -556,7 +580,7 @@ TEST(VOFGrid, AMultigridSolveThatCannotConvergeIsRedoneByTheDirectSolver) {
   // a tolerance below the round-off floor of the residual: every multigrid-CG solve fails, each is
   // redone by the direct solver and counted, and the flow is the direct solver's
   auto make = [](PressureSolverKind kind) {
-    FlowParams p;
+    FlowParams p = test::pinned_flow_params();
     p.pressure_solver = kind;
     p.pressure_tol = 1e-16;
     auto flow = std::make_unique<VOFGrid>(Grid2D::uniform(32, 16, 0.64, 0.32), p);
@@ -583,7 +607,7 @@ TEST(VOFGrid, FacePorosityMatchesTheFaceByFaceReferenceBitForBit) {
   const double levels[] = {0.0, 0.35, 0.6, 1.0};
   for (int case_ = 0; case_ < 8; ++case_) {
     const Grid2D g = Grid2D::uniform(case_ == 0 ? 1 : 7 + case_, 5, 0.4, 0.2);
-    FlowParams p;
+    FlowParams p = test::pinned_flow_params();
     p.inlet = case_ % 2 ? InletBoundary::kDischarge : InletBoundary::kWall;
     p.outlet = static_cast<OutletBoundary>(case_ % 3);
     p.top = case_ % 4 < 2 ? TopBoundary::kOpen : TopBoundary::kWall;
@@ -619,7 +643,7 @@ TEST(VOFGrid, FacePorosityMatchesTheFaceByFaceReferenceBitForBit) {
     EXPECT_EQ(flow.face_w, w_ref) << "case " << case_;
   }
   // a porous cell without a stone diameter, and a porosity above 1: refused, naming the field
-  VOFGrid flow(Grid2D::uniform(6, 4, 0.3, 0.2), FlowParams{});
+  VOFGrid flow(Grid2D::uniform(6, 4, 0.3, 0.2), test::pinned_flow_params());
   auto expect_refused = [&](const char* field) {
     try {
       flow.update_face_porosity();

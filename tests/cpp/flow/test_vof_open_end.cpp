@@ -10,6 +10,7 @@
 #include "vofdem/flow/momentum.h"
 #include "vofdem/flow/projection.h"
 #include "vofdem/flow/vof_grid.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 
@@ -23,7 +24,7 @@ double max_abs_open(const std::vector<double>& a) {
 
 // a 0.4 m x 0.2 m box of air with an open right end and an open top
 VOFGrid air_box(OutletBoundary outlet, double tailwater_level) {
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.outlet = outlet;
   p.tailwater_level = tailwater_level;
   return VOFGrid(Grid2D::uniform(20, 10, 0.4, 0.2), p);
@@ -55,7 +56,7 @@ TEST(VOFOpenEnd, StillWaterAtTheTailwaterLevelStaysStill) {
 TEST(VOFOpenEnd, BoundaryBudgetAccountsForTheWaterLeavingAFreeOverfall) {
   // a pool draining over the free overfall while the inlet feeds it: the stored water changes by
   // exactly what the advection carried through the boundary faces
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
   p.flume_width = 0.5;
@@ -76,7 +77,7 @@ TEST(VOFOpenEnd, DilatationCountsTheWaterOfAResidualDivergence) {
   // the same draining pool with a loose pressure solve: the residual divergence makes water through the
   // advection's divergence correction, dilatation_volume counts it and the budget closes again
   auto run = [](double tol) {
-    FlowParams p;
+    FlowParams p = test::pinned_flow_params();
     p.inlet = InletBoundary::kDischarge;
     p.outlet = OutletBoundary::kFreeOverfall;
     p.flume_width = 0.5;
@@ -145,7 +146,7 @@ TEST(VOFOpenEnd, OutflowMomentumIsImplicitInTheEndFace) {
 TEST(VOFOpenEnd, WaterLeavingSetsTheStepAtHalfItsCourantNumber) {
   // the end face carrying 2 m/s out of a 0.02 m cell bounds the step at cfl 0.02 / (2 / 2); the same
   // speed drawn in, or on an interior face, at cfl 0.02 / 2
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.outlet = OutletBoundary::kFreeOverfall;
   p.cfl = 0.4;
   VOFGrid flow(Grid2D::uniform(20, 10, 0.4, 0.2), p);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/coupler_scenes.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
@@ -19,7 +20,7 @@ namespace {
 // the stream function psi = sin^2(pi x) sin^2(pi z) / pi; returns the x-velocities after T [s]
 std::vector<double> vortex(MomentumTimeScheme scheme, int nsteps, double T = 0.5, int n = 16) {
   const Grid2D g = Grid2D::uniform(n, n, 1.0, 1.0);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags = kFlowConvection;
   p.top = TopBoundary::kWall;
   p.time_scheme = scheme;
@@ -64,7 +65,7 @@ TEST(VOFTimeScheme, FirstStepAndClearedHistoryAreEuler) {
                             b = vortex(MomentumTimeScheme::kAdamsBashforth2, 1, 0.02);
   EXPECT_EQ(a, b);
   const Grid2D g = Grid2D::uniform(4, 4, 1.0, 1.0);
-  VOFGrid f(g, FlowParams());
+  VOFGrid f(g, test::pinned_flow_params());
   EXPECT_EQ(f.prev_dt(), 0.0);
   f.fill_water_below(0.5);
   f.step(1e-3);

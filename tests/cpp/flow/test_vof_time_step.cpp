@@ -14,6 +14,7 @@
 #include "vofdem/coupling/coupler.h"
 #include "vofdem/common/step_retry.h"
 #include "vofdem/flow/vof_grid.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 
@@ -37,7 +38,7 @@ const Grid2D& wall_grid() {
 TEST(VOFTimeStep, FirstStepOfMaxDtFromRestBreachesTheCfl) {
   // the old rule (no growth limit, first step max_dt = 0.01 s): the velocities created in the first
   // step cross 3.7 cells of the wall's pores
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.initial_dt = p.max_dt;
   p.max_dt_growth = 10.0;
   VOFGrid flow(wall_grid(), p);
@@ -64,7 +65,7 @@ TEST(VOFTimeStep, CflBreachesNameTheTooLongStepOrTheNewVelocity) {
     return "no exception";
   };
   // at the step's start: 0.2 m/s through pores of 0.05 cross 8 cells of 5 mm in 0.01 s
-  VOFGrid a(wall_grid(), FlowParams{});
+  VOFGrid a(wall_grid(), test::pinned_flow_params());
   column_against_wall(a);
   a.face_u[wall_grid().face_x(40, 0)] = 0.2;
   EXPECT_EQ(breach(a).rfind("VOFGrid stage 'step': CFL breach: dt = 0.01 s gives a Courant number 8 (pore velocity) "
@@ -72,7 +73,7 @@ TEST(VOFTimeStep, CflBreachesNameTheTooLongStepOrTheNewVelocity) {
                             0),
             0u);
   // at its end (no free surface, so no advection to meet it first): the inflow made in the step
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.flags &= ~kFlowFreeSurface;
   p.inlet = InletBoundary::kDischarge;
   p.outlet = OutletBoundary::kFreeOverfall;
@@ -127,7 +128,7 @@ TEST(VOFTimeStep, RetriesGiveUpWithTheLastBreachAndTheirCount) {
 
 TEST(VOFTimeStep, AdvanceRetriesABreachingStepShorterAndStaysBounded) {
   // the first step of max_dt that breaches the CFL above: advance takes it again, shorter
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.initial_dt = p.max_dt;
   p.max_dt_growth = 10.0;
   VOFGrid flow(wall_grid(), p);
@@ -142,14 +143,14 @@ TEST(VOFTimeStep, AdvanceRetriesABreachingStepShorterAndStaysBounded) {
     EXPECT_LE(F, 1.0 + 1e-9);
   }
   // the default start needs none: the retry costs nothing where the step holds
-  VOFGrid calm(wall_grid(), FlowParams{});
+  VOFGrid calm(wall_grid(), test::pinned_flow_params());
   column_against_wall(calm);
   calm.advance(0.05);
   EXPECT_EQ(calm.retried_steps(), 0);
 }
 
 TEST(VOFTimeStep, CouplerRetriesABreachingStepAndCountsIt) {
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.initial_dt = p.max_dt;
   p.max_dt_growth = 10.0;
   VOFGrid flow(wall_grid(), p);
@@ -173,7 +174,7 @@ TEST(VOFTimeStep, CouplerRetriesABreachingStepAndCountsIt) {
 }
 
 TEST(VOFTimeStep, StartsAtInitialDtAndGrowsByAtMostTheFactor) {
-  VOFGrid flow(wall_grid(), FlowParams{});
+  VOFGrid flow(wall_grid(), test::pinned_flow_params());
   column_against_wall(flow);
   const double v0 = flow.water_volume();
   EXPECT_EQ(flow.last_dt(), 0.0);
@@ -197,7 +198,7 @@ TEST(VOFTimeStep, StartsAtInitialDtAndGrowsByAtMostTheFactor) {
 
 TEST(VOFTimeStep, AdvanceCutToItsEndKeepsTheStableStepForTheGrowth) {
   const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_below(0.05);
   flow.advance(1e-3 + 1e-4);  // 1e-3, then cut to 1e-4 (the stable step is 1.2e-3)
   EXPECT_DOUBLE_EQ(flow.last_dt(), 1.2e-3);
@@ -207,7 +208,7 @@ TEST(VOFTimeStep, AdvanceCutToItsEndKeepsTheStableStepForTheGrowth) {
 TEST(VOFTimeStep, AdvanceSplitsTheLastIntervalEvenly) {
   // stable steps 1e-3, 1.2e-3, 1.44e-3 from rest: 1e-3, then the 1.5e-3 left in two halves
   const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_below(0.05);
   EXPECT_EQ(flow.advance(2.5e-3), 3);
   EXPECT_DOUBLE_EQ(flow.time(), 2.5e-3);
@@ -217,7 +218,7 @@ TEST(VOFTimeStep, AdvanceSplitsTheLastIntervalEvenly) {
 
 TEST(VOFTimeStep, ACollapsedStepIsAFailureThatNamesItsTerms) {
   const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
-  FlowParams p;
+  FlowParams p = test::pinned_flow_params();
   p.min_dt = 2e-3;  // above the first step, 1e-3
   VOFGrid flow(g, p);
   flow.fill_water_below(0.05);
@@ -249,12 +250,12 @@ TEST(VOFTimeStep, ACollapsedStepIsAFailureThatNamesItsTerms) {
 TEST(VOFTimeStep, BadParametersAreRefused) {
   const Grid2D g = Grid2D::uniform(4, 4, 0.1, 0.1);
   for (double v : {0.0, -1e-3}) {
-    FlowParams p;
+    FlowParams p = test::pinned_flow_params();
     p.initial_dt = v;
     EXPECT_THROW(VOFGrid(g, p), std::invalid_argument);
   }
   for (double v : {0.99, 10.5}) {
-    FlowParams p;
+    FlowParams p = test::pinned_flow_params();
     p.max_dt_growth = v;
     try {
       VOFGrid flow(g, p);
@@ -263,7 +264,7 @@ TEST(VOFTimeStep, BadParametersAreRefused) {
       EXPECT_NE(std::string(e.what()).find("max_dt_growth"), std::string::npos) << e.what();
     }
   }
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   EXPECT_THROW(flow.set_last_dt(-1.0), std::invalid_argument);
 }
 
@@ -302,7 +303,7 @@ void reference_advective(const VOFGrid& flow, double& limit, int& cell) {
 TEST(VOFTimeStep, AdvectiveLimitIsTheFaceByFaceReferenceBitForBit) {
   const Grid2D g = Grid2D::graded(13, 0.325, 0.11, 0.01, 0.004, 0.02);
   for (OutletBoundary outlet : {OutletBoundary::kWall, OutletBoundary::kFreeOverfall}) {
-    FlowParams p;
+    FlowParams p = test::pinned_flow_params();
     p.outlet = outlet;
     VOFGrid flow(g, p);
     unsigned seed = 3;
@@ -333,13 +334,13 @@ TEST(VOFTimeStep, AdvanceMeasuresItsFirstLimitAfreshAfterTheFieldsWereWritten) {
   // within advance() a step's end Courant rate is the next step's advective limit; a new advance() must
   // not take the last one's, as the fields may have been written through the views in between
   const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
-  VOFGrid flow(g, FlowParams{});
+  VOFGrid flow(g, test::pinned_flow_params());
   flow.fill_water_box(0.0, 0.08, 0.0, 0.08);
   flow.advance(0.05);
   for (double& u : flow.face_u) u *= 10.0;  // as a user would through the view: the advective limit binds
   FlowState written;
   flow.export_state(written);
-  VOFGrid fresh(g, FlowParams{});  // nothing measured before
+  VOFGrid fresh(g, test::pinned_flow_params());  // nothing measured before
   fresh.import_state(written);
   flow.advance(0.07);
   fresh.advance(0.07);
@@ -360,7 +361,7 @@ TEST(VOFTimeStep, CouplerReplaysFromASparseSnapshotToTheSameBits) {
   // every step
   auto run = [](int interval, std::map<std::string, std::vector<double>>& state, long long& retries,
                 long long& replayed) {
-    FlowParams fp;
+    FlowParams fp = test::pinned_flow_params();
     fp.inlet = InletBoundary::kDischarge;
     fp.flume_width = 0.1;
     std::vector<double> pos;

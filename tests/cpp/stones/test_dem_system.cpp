@@ -7,6 +7,8 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "vofdem/stones/dem_system.h"
 #include "common/pin_hash.h"
@@ -245,6 +247,25 @@ TEST(DEMSystem, RefusesBadInput) {
 // A heap held while the flow spins up keeps its contacts: the pairs and their tangential and rolling
 // springs after a held second are those of before, the stones where they were; let go, it steps on from
 // that state. Fixing every stone instead (the former hold) drops the pairs of two fixed stones.
+TEST(DEMSystem, StonesWithoutADensityAreRefusedNamingTheField) {
+  // the core assumes no stone density (the paper's 2650 kg/m^3 is a scene's value): stones made by
+  // count carry none until given, and the first step refuses them
+  DEMParams p;
+  DEMSystem s(p, 2);
+  s.stone_pos = {0.0, 0.1, 0.3, 0.1};
+  s.stone_radius = {0.024, 0.024};
+  EXPECT_EQ(s.stone_density, std::vector<double>(2, 0.0));
+  try {
+    s.advance(1e-3);
+    FAIL() << "stepped stones without a density";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("stone_density[0] = 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("stones.density"), std::string::npos) << e.what();
+  }
+  s.stone_density = {2650.0, 2650.0};
+  EXPECT_NO_THROW(s.advance(1e-3));
+}
+
 TEST(DEMSystem, HoldingKeepsTheContactsAndTheirSprings) {
   DEMParams p;
   p.rolling_friction_stone = 0.3;

@@ -9,6 +9,7 @@
 #include "common/coupler_scenes.h"
 #include "common/pin_hash.h"
 #include "vofdem/stones/weir_packing.h"
+#include "common/pinned_params.h"
 
 using namespace vofdem;
 
@@ -72,7 +73,7 @@ TEST(DiscPins, CoupledDiscsInATank) {
                          Pin{ViscousScheme::kImplicitVerticalFromStart, tol, 5962126411014851550ull},
                          Pin{ViscousScheme::kImplicitVertical, 0.0, 10472922950744682249ull},
                          Pin{ViscousScheme::kImplicitVertical, tol, 5539174150878618620ull}}) {
-    FlowParams fp;
+    FlowParams fp = test::pinned_flow_params();
     fp.viscous_scheme = pin.scheme;
     auto sc = test::tank(0.3, 0.3, 0.01, 0.2, {0.1, 0.15, 0.16, 0.12, 0.2, 0.05}, 0.02, kCoupleDefault, fp);
     CouplerParams cp = sc.sim->params();

@@ -151,7 +151,7 @@ struct KEpsilonParams {
   double water_fraction_min = 0.1;  // [-] cells with F below this are air (not solved), usual 0.1
   int sweeps = 1;                   // [-] Jacobi sweeps after the predictor, in [0, 1000], usual 0-4
   double cfl = 0.5;                 // [-] safety factor of stable_dt(), in (0, 1], usual 0.5
-  KEpsilonTimeScheme time_scheme = KEpsilonTimeScheme::kPointImplicit;  // kVerticalLines: columns implicit
+  KEpsilonTimeScheme time_scheme = KEpsilonTimeScheme::kVerticalLines;  // columns implicit (the scenes')
   // kVerticalLines, kAlternatingLines: stable_dt() returns the horizontal faces' explicit limit (the
   // advection's alone with kAlternatingLines) (true) or none (false:
   // above that limit a cell's horizontal faces are lagged-implicit, k and eps stay positive and bounded

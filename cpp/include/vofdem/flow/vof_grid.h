@@ -80,7 +80,9 @@ enum FlowEffect : std::uint32_t {
   kFlowRelativeVelocity = 1u << 6,    // porous resistance on the velocity relative to the stones
   kFlowConvection = 1u << 7,          // momentum convection
   kFlowPorousResistance = kFlowPorousDarcy | kFlowPorousForchheimer,
-  kFlowDefault = kFlowFreeSurface | kFlowPorousResistance | kFlowViscosity | kFlowGravity | kFlowConvection,
+  // the scenes' effects (python/vofdem/scene.py Effects): everything but the relative velocity
+  kFlowDefault = kFlowFreeSurface | kFlowPorousResistance | kFlowTurbulence | kFlowViscosity | kFlowGravity |
+                 kFlowConvection,
 };
 
 enum class InletBoundary { kWall = 0, kDischarge = 1 };
@@ -118,7 +120,7 @@ constexpr double kMaxFlowCfl = 0.5;
 // parameters of the flow, constant while stepping (SI units)
 struct FlowParams {
   Medium medium;               // water, air and gravity (medium.h); shared with the stones by a Coupler
-  double cfl = 0.4;            // target advective Courant number (pore velocity) [-], (0, kMaxFlowCfl]
+  double cfl = 0.5;            // target advective Courant number (pore velocity) [-], (0, kMaxFlowCfl], 0.5
   double max_dt = 0.01;        // largest time step [s], 0.01
   // first step [s] (from rest the velocity terms impose no limit yet), 1e-3: a gravity wave of a
   // 0.5 m deep flow, sqrt(g h) = 2.2 m/s, crosses 0.44 of a 5 mm cell in it
@@ -130,11 +132,11 @@ struct FlowParams {
   double k2 = 2.8;             // quadratic resistance coefficient of eq. (7) [-], 2.8 (Ergun 1.75)
   double flume_width = 0.5;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.5 (the scenes')
   PressureSolverKind pressure_solver = PressureSolverKind::kMultigridCG;  // projection solver (Eigen: reference)
-  double pressure_tol = 1e-8;   // relative residual of the iterative pressure solve [-], 1e-8
+  double pressure_tol = 1e-5;   // relative residual of the iterative pressure solve [-], > 0, 1e-5
   InletBoundary inlet = InletBoundary::kWall;          // left end (x = x0)
   // the discharge's spread over the inlet rows (inflow.h); kWaterFraction: the former profile
   InletProfile inlet_profile = InletProfile::kEquivalentDepth;
-  OutletBoundary outlet = OutletBoundary::kWall;       // right end (x = x0 + length)
+  OutletBoundary outlet = OutletBoundary::kFreeOverfall;  // right end (x = x0 + length)
   double tailwater_level = 0.0;                        // water level [m] at the right end for kTailwater
   TopBoundary top = TopBoundary::kOpen;                // top of the domain
   WallCondition walls = WallCondition::kSlip;          // bed and end walls
@@ -219,7 +221,9 @@ class VOFGrid {
   std::vector<double> cell_porosity;        // n [-] in [0, 1], 0 = solid; call update_face_porosity()
   std::vector<double> face_x_porosity;      // n_f on x-faces (derived: min of the two cells)
   std::vector<double> face_z_porosity;      // n_f on z-faces (derived)
-  std::vector<double> cell_stone_diameter;  // D_sp of eq. (7) [m], > 0 where 0 < n < 1; 0.048
+  // D_sp of eq. (7) [m], > 0 where 0 < n < 1; 0 (none) until the stones or the scene give it: a porous
+  // cell without one is refused by update_face_porosity
+  std::vector<double> cell_stone_diameter;
   std::vector<double> cell_nut;             // eddy viscosity nu_t [m^2/s], 0 when turbulence is off
   // the k-epsilon model (its cell_k [m^2/s^2] and cell_eps [m^2/s^3]); advanced when kFlowTurbulence is on
   KEpsilonModel& turbulence() { return *turbulence_; }

@@ -185,7 +185,7 @@ DEMState dem_state_from_map(const std::map<std::string, std::vector<double>>& s,
 
 class DEMSystem {
  public:
-  // n stones, all at the origin with zero radius: fill the arrays before stepping
+  // n stones, all at the origin with zero radius and density: fill the arrays before stepping
   DEMSystem(const DEMParams& params, int n);
   // stones at pos (x, z pairs) [m] with radius [m], density [kg/m^3], fixed flags (empty: none fixed)
   DEMSystem(const DEMParams& params, const std::vector<double>& pos, const std::vector<double>& radius,
@@ -300,7 +300,7 @@ class DEMSystem {
   std::vector<double> stone_angle;           // rotation angle, counter-clockwise in (x, z) [rad], n
   std::vector<double> stone_omega;           // angular velocity [rad/s], n
   std::vector<double> stone_radius;          // radius d/2 [m], n (usual 0.024)
-  std::vector<double> stone_density;         // rho_s [kg/m^3], n (usual 2650)
+  std::vector<double> stone_density;         // rho_s [kg/m^3], n, > 0 (given; usual 2650)
   std::vector<std::uint8_t> stone_fixed;     // 1: never moves (bed layer), n
   std::vector<std::uint8_t> stone_active;    // 0: left the domain (kept, not integrated), n
   std::vector<double> stone_force_ext;       // external (fluid) force F_x, F_z [N], 2n; held until changed
