@@ -20,7 +20,7 @@ LAYERS = [
     {"scene", "flood", "grading", "stone_models"},
     {"builder", "outline_packing"},
     {"analysis", "io", "plots", "checkpoint", "reports"},
-    {"run", "calibration", "ensemble", "study"},
+    {"run", "calibration", "calibration_3d", "ensemble", "study"},
     {"cli", "__main__", "__init__"},
 ]
 LAYER = {m: k for k, layer in enumerate(LAYERS) for m in layer}

@@ -208,7 +208,7 @@ def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optio
     setup = (setup or ReposeSetup()).validate()
     if front(scene.stones.shape).dimensions == 3:
         from .calibration_3d import pour_cone
-        return pour_cone(scene, seed, submerged, setup, log)
+        return pour_cone(scene, seed, submerged, setup, lambda half: repose_params(scene, submerged, half), log)
     st = scene.stones
     g = st.grading()  # a sieve curve: its d50 and stones drawn from it by mass (grading.py)
     d = st.diameter if g is None else g.d(0.5)

@@ -135,9 +135,9 @@ def rough_base(radius: float, sizes, d: float, spread: float):
     return x, y, np.asarray(sizes(len(x)), float)
 
 
-def pour_cone(scene: Scene, seed: int, submerged: bool, setup, log=None) -> ConeResult:
-    """Pours setup.n_stones of the scene's 3D stones from a funnel onto a rough disc and fits the cone."""
-    from .calibration import repose_params
+def pour_cone(scene: Scene, seed: int, submerged: bool, setup, heap_params, log=None) -> ConeResult:
+    """Pours setup.n_stones of the scene's 3D stones from a funnel onto a rough disc and fits the cone;
+    heap_params(half_width) gives the heap's DEMParams (calibration.repose_params, dry or submerged)."""
     from .stone_models import front_of
 
     st = scene.stones
@@ -151,7 +151,7 @@ def pour_cone(scene: Scene, seed: int, submerged: bool, setup, log=None) -> Cone
     xb, yb, db = rough_base(r_base, sizes, d, st.diameter_spread)
     nb = len(xb)
     half = r_base + 2.0 * d  # end walls and side walls beyond the base
-    p = repose_params(scene, submerged, half)
+    p = heap_params(half)
     p.width = 2.0 * half
     yc = half
     diam = np.r_[db, sizes(setup.n_stones)]

@@ -26,10 +26,10 @@ class StoneFront:
     outline packer usable."""
 
     name = "disc"
-    dimensions = 2  # 3: stones that also move across the flume's width (DEMParams.width = flume.width)
+    dimensions = 2  # 3: stones that also move across the flume's width (DEMParams.width = flume.width;
+                    # run.h5's output_3d.py series)
     lookup_table = True  # the paper's porosity lookup table (numerics.porosity_method = 'lookup') maps them
     outline_packer = True  # outline_packing.py places them (own outlines, zones, sieve curves)
-    dimensions = 2  # 3: the stones move across the flume too (run.h5's output_3d.py series)
 
     def label(self, stones) -> str:
         """The model in words for tables: 'discs' or 'discs, mu_r = 0.5'."""
