@@ -1,6 +1,7 @@
-// The kernels of sphere_contact.h's law, inline so that the contact loops of sphere_model.cpp and
-// clump_model.cpp compile them into their loops (no call, no ~25-double result written through memory for
-// what the loop does not read); sphere_contact.cpp's public functions call the same code, so the bits agree.
+// The kernels of sphere_contact.h's law (its equations and sources are there), inline so that the contact
+// and wall loops of sphere_model.cpp compile them in (no call, no ~25-double result written through memory
+// for what the loop does not read); sphere_contact.cpp's public functions call the same code, so the bits
+// agree.
 #pragma once
 
 #include <algorithm>
@@ -46,7 +47,7 @@ struct Geometry {
 
 // the tangential spring's update and the Coulomb cap; returns f_t on i
 VOFDEM_SPHERE_INLINE Vec3 tangential(const Geometry& g, const Vec3& vt, double fn, double kt, double ct, double dt,
-                SphereContactHistory& h, SphereContactLoads& out) {
+                                     SphereContactHistory& h, SphereContactLoads& out) {
   onto_tangent_plane(h.spring, g.n);
   h.spring += vt * dt;
   Vec3 ft = -kt * h.spring - ct * vt;
@@ -64,8 +65,8 @@ VOFDEM_SPHERE_INLINE Vec3 tangential(const Geometry& g, const Vec3& vt, double f
 }
 
 // the type-C rolling spring-dashpot (rolling_resistance.h in 3D); returns M_r on i
-VOFDEM_SPHERE_INLINE Vec3 rolling(const Geometry& g, double fn, double kt, double eta, double dt, SphereContactHistory& h,
-             SphereContactLoads& out) {
+VOFDEM_SPHERE_INLINE Vec3 rolling(const Geometry& g, double fn, double kt, double eta, double dt,
+                                  SphereContactHistory& h, SphereContactLoads& out) {
   const Vec3 wr = g.w_rel - g.w_rel.dot(g.n) * g.n;  // twisting is not resisted
   const double kr = kt * g.r_eff * g.r_eff;
   const double cr = 2.0 * eta * std::sqrt(g.roll_inertia * kr);
@@ -88,8 +89,9 @@ VOFDEM_SPHERE_INLINE Vec3 rolling(const Geometry& g, double fn, double kt, doubl
 }
 
 // the law at one contact: forces on i, torques on i and j about their centres of mass
-VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const Vec3& arm_i, const Vec3& arm_j, SphereContactHistory& h,
-                             const SphereContactLaw& law, double zeta, double dt) {
+VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const Vec3& arm_i, const Vec3& arm_j,
+                                                  SphereContactHistory& h, const SphereContactLaw& law,
+                                                  double zeta, double dt) {
   SphereContactLoads out;
   out.touching = true;
   out.normal = g.n;
@@ -116,8 +118,9 @@ VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const Vec3&
 }
 
 // sphere_sphere_contact_unchecked's body (sphere_contact.h)
-VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair(const SphereOfBody& i, const SphereOfBody& j, SphereContactHistory& h,
-                                      const SphereContactLaw& law, double zeta, double dt) {
+VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair(const SphereOfBody& i, const SphereOfBody& j,
+                                                    SphereContactHistory& h, const SphereContactLaw& law, double zeta,
+                                                    double dt) {
   const Vec3 d = j.centre - i.centre;
   const double dist = d.norm();
   const double delta = i.radius + j.radius - dist;
@@ -146,8 +149,9 @@ VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair(const SphereOfBody& i, const
 }
 
 // sphere_plane_contact_unchecked's body (sphere_contact.h)
-VOFDEM_SPHERE_INLINE SphereContactLoads sphere_plane(const SphereOfBody& i, const ContactPlane& plane, SphereContactHistory& h,
-                                       const SphereContactLaw& law, double zeta, double dt) {
+VOFDEM_SPHERE_INLINE SphereContactLoads sphere_plane(const SphereOfBody& i, const ContactPlane& plane,
+                                                     SphereContactHistory& h, const SphereContactLaw& law,
+                                                     double zeta, double dt) {
   const double delta = i.radius - (i.centre - plane.point).dot(plane.normal);
   if (!(delta > 0.0)) {
     h = SphereContactHistory();

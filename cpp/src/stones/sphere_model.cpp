@@ -112,7 +112,8 @@ ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
   ContactTally t;
   auto touch = [&](int i, std::size_t w) {
     SphereContactHistory& h = wall_history_[static_cast<std::size_t>(i) * np + w];
-    const SphereContactLoads f = sphere_kernels::sphere_plane(sphere_of(s, inertia, i, m_eff[i]), plane[w], h, law, zeta, dt);
+    const SphereContactLoads f =
+        sphere_kernels::sphere_plane(sphere_of(s, inertia, i, m_eff[i]), plane[w], h, law, zeta, dt);
     if (f.touching) apply(s, i, -1, f, t, dt);
   };
   // the plane's walls: the stones near each (the neighbour build's candidates)
