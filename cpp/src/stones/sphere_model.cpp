@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/state_fields.h"
+#include "stones/sphere_kernels.h"
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/coupling/porosity_map.h"
@@ -22,6 +23,20 @@ using sphere_loads::apply;
 using sphere_loads::at3;
 using sphere_loads::push3;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// stone i as a sphere of its body (inertia: the principal moments, 3 per stone), with the mass its
+// contacts' dashpots use (+inf: fixed); a local inline function, which the contact loops compile in
+inline SphereOfBody sphere_of(const DEMSystem& s, const double* inertia, int i, double mass) {
+  SphereOfBody b;
+  b.centre = {s.stone_pos[2 * i], s.stone_y[i], s.stone_pos[2 * i + 1]};
+  b.com = b.centre;
+  b.radius = s.stone_radius[i];
+  b.vel = {s.stone_vel[2 * i], s.stone_vel_y[i], s.stone_vel[2 * i + 1]};
+  b.omega = {s.stone_omega_3d[3 * i], s.stone_omega_3d[3 * i + 1], s.stone_omega_3d[3 * i + 2]};
+  b.mass = mass;
+  b.inertia = inertia[3 * i];
+  return b;
+}
 
 }  // namespace
 
@@ -53,15 +68,7 @@ void SphereModel::prepare(DEMSystem& s) {
 
 // stone i as a sphere of its body, with the mass its contacts' dashpots use (+inf: fixed)
 SphereOfBody SphereModel::body(const DEMSystem& s, int i, double mass) const {
-  SphereOfBody b;
-  b.centre = {s.stone_pos[2 * i], s.stone_y[i], s.stone_pos[2 * i + 1]};
-  b.com = b.centre;
-  b.radius = s.stone_radius[i];
-  b.vel = {s.stone_vel[2 * i], s.stone_vel_y[i], s.stone_vel[2 * i + 1]};
-  b.omega = {s.stone_omega_3d[3 * i], s.stone_omega_3d[3 * i + 1], s.stone_omega_3d[3 * i + 2]};
-  b.mass = mass;
-  b.inertia = inertia_3d(s)[3 * i];
-  return b;
+  return sphere_of(s, inertia_3d(s).data(), i, mass);
 }
 
 ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
@@ -74,6 +81,7 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
   const double* pos = s.stone_pos.data();
   const double* y = s.stone_y.data();
   const double* radius = s.stone_radius.data();
+  const double* inertia = inertia_3d(s).data();
   ContactTally t;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const int i = list[k].i, j = list[k].j;
@@ -83,8 +91,10 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
       pair_history_[k] = SphereContactHistory();
       continue;
     }
-    const SphereContactLoads f = sphere_sphere_contact_unchecked(body(s, i, 1.0 / inv_m[i]), body(s, j, 1.0 / inv_m[j]),
-                                                                 pair_history_[k], law, zeta, dt);
+    // the kernel inline: the loop reads only the loads it adds
+    const SphereContactLoads f = sphere_kernels::sphere_pair(sphere_of(s, inertia, i, 1.0 / inv_m[i]),
+                                                             sphere_of(s, inertia, j, 1.0 / inv_m[j]),
+                                                             pair_history_[k], law, zeta, dt);
     apply(s, i, j, f, t, dt);
   }
   return t;
@@ -98,10 +108,12 @@ ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
   const std::vector<double>& inv_m = inv_mass(s);
   const std::vector<double>& m_eff = mass_eff(s);
   const WallCandidates cand = wall_candidates(s);
+  const double* inertia = inertia_3d(s).data();
   ContactTally t;
   auto touch = [&](int i, std::size_t w) {
     SphereContactHistory& h = wall_history_[static_cast<std::size_t>(i) * np + w];
-    const SphereContactLoads f = sphere_plane_contact_unchecked(body(s, i, m_eff[i]), plane[w], h, law, zeta, dt);
+    const SphereContactLoads f =
+        sphere_kernels::sphere_plane(sphere_of(s, inertia, i, m_eff[i]), plane[w], h, law, zeta, dt);
     if (f.touching) apply(s, i, -1, f, t, dt);
   };
   // the plane's walls: the stones near each (the neighbour build's candidates)

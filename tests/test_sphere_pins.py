@@ -1,0 +1,57 @@
+"""Pinned final states of 3D sphere runs (sphere_model.h, sphere_contact.h): a speed-up of the contact loops
+must keep every bit. The pins were taken before the sphere kernels were compiled into the loops (the
+out-of-line sphere_*_contact_unchecked calls); a change of the law or of its order of operations changes
+them, and must then say so."""
+
+import hashlib
+import os
+import sys
+
+import numpy as np
+
+import vofdem
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "benchmarks"))
+import dem_settle3d_peer as settle3d  # noqa: E402
+from test_spheres import heap  # noqa: E402
+
+
+def state_hash(s):
+    """sha256 over the exported state's keys and arrays, in sorted order."""
+    h = hashlib.sha256()
+    for key, a in sorted(s.export_state().items()):
+        h.update(key.encode())
+        h.update(np.ascontiguousarray(a).tobytes())
+    return h.hexdigest()
+
+
+def test_a_heap_between_the_side_walls_keeps_its_pinned_state():
+    s = heap()
+    s.advance(0.4)
+    assert s.wall_contact_count > 0 and s.contact_count > 0  # both loops ran
+    assert state_hash(s) == PINS["heap"]
+
+
+def test_a_heap_with_rolling_resistance_keeps_its_pinned_state():
+    s = heap(seed=3)
+    p = s.params
+    p.rolling_friction_stone = p.rolling_friction_wall = 0.2
+    s.params = p
+    s.advance(0.3)
+    assert np.abs(s.export_state()["sphere_contact_rolling"]).max() > 0.0  # the rolling springs worked
+    assert state_hash(s) == PINS["rolling"]
+
+
+def test_the_settling_of_the_peer_benchmark_keeps_its_pinned_state():
+    s = settle3d.spheres(100, 5, False)  # 100 spheres, 5 across, the 3D list
+    s.advance(0.2)
+    assert s.contact_count > 50
+    assert state_hash(s) == PINS["settle"]
+
+
+# taken with the out-of-line kernels (the same bits since)
+PINS = {
+    "heap": "563995149b5a0696159b11c1915a05d6e39baf02a7b93bc9ca829e8b8ca2ff55",
+    "rolling": "f3591c85ddd32494cefe0aff3a4e536d467c171c97676258311056d4e6fc479b",
+    "settle": "73bf42686a6d71b8c2a37e0fcd79099be4a4ecc1af9f7c0ca7dcef48f12c1c54",
+}
