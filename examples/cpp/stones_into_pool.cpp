@@ -12,7 +12,9 @@
 int main() {
   using namespace vofdem;
   const Grid2D grid = Grid2D::uniform(40, 50, 0.4, 0.5);
-  FlowParams flow;
+  FlowParams flow;                      // the scenes' flow model (k-epsilon, CFL 0.5), in a closed tank:
+  flow.outlet = OutletBoundary::kWall;  // no outflow at x = 0.4 m (the default is a free overfall)
+  flow.pressure_tol = 1e-8;             // the projection's tolerance that keeps the water volume to round-off
   flow.flags |= kFlowRelativeVelocity;  // the porous resistance on the water's velocity relative to the stones
   VOFGrid fluid(grid, flow);
   fluid.fill_water_below(0.25);
