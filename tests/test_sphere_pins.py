@@ -3,7 +3,6 @@ must keep every bit. The pins were taken before the sphere kernels were compiled
 out-of-line sphere_*_contact_unchecked calls); a change of the law or of its order of operations changes
 them, and must then say so."""
 
-import hashlib
 import os
 import sys
 
@@ -13,16 +12,8 @@ import vofdem
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "benchmarks"))
 import dem_settle3d_peer as settle3d  # noqa: E402
+from test_dem import state_hash  # noqa: E402  (sha256 over the exported state's keys and arrays)
 from test_spheres import heap  # noqa: E402
-
-
-def state_hash(s):
-    """sha256 over the exported state's keys and arrays, in sorted order."""
-    h = hashlib.sha256()
-    for key, a in sorted(s.export_state().items()):
-        h.update(key.encode())
-        h.update(np.ascontiguousarray(a).tobytes())
-    return h.hexdigest()
 
 
 def test_a_heap_between_the_side_walls_keeps_its_pinned_state():
