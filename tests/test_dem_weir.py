@@ -45,6 +45,20 @@ def test_weir_is_at_rest_and_stays_at_rest_for_ten_seconds(weir):
     assert s.removed_count == 0
 
 
+@pytest.mark.parametrize("seed", [0, 2, 3, 6, 9])
+def test_no_free_stone_lies_on_the_bed_beyond_the_fixed_layer(seed):
+    """The free stones stand on the fixed layer or on each other: none is laid on the bed at a toe's tip,
+    where it would rest against one fixed stone and wash away in the first flow (these seeds laid one
+    at the downstream tip before the hand-laying kept above the fixed layer)."""
+    s, _, spec = packed(height=0.25, crest=0.20, slope_up_deg=27, slope_down_deg=27, x_toe=0.6, d_mean=0.048,
+                        d_spread=0.1, density=2650.0, seed=seed)
+    fixed = s.stone_fixed == 1
+    x_fixed = s.stone_pos[fixed, 0]
+    on_bed = (s.stone_fixed == 0) & (s.stone_pos[:, 1] < spec.z_bed + 0.75 * spec.d_mean)
+    outside = on_bed & ((s.stone_pos[:, 0] > x_fixed.max()) | (s.stone_pos[:, 0] < x_fixed.min()))
+    assert not outside.any(), s.stone_pos[outside]
+
+
 def test_weir_porosity_is_reported(weir):
     _, report, spec = weir
     # 2D area porosity of discs in the trapezoid (the paper's 3D value is 0.41)

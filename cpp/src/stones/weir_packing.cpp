@@ -141,7 +141,7 @@ double segment_distance(double x, double z, double ax, double az, double bx, dou
   return std::hypot(x - ax - t * ex, z - az - t * ez);
 }
 
-double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz);
+double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz, double z_min = -INFINITY);
 
 struct Trapezoid {
   double px[4], pz[4];  // corners counter-clockwise: toe, upstream crest, downstream crest, downstream toe
@@ -243,10 +243,12 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
     weir = make(q, pile);
     t_total += settle(weir, spec, 0.5);
   }
-  // (6) stones laid by hand into the largest remaining hollows of the slopes and crest
+  // (6) stones laid by hand into the largest remaining hollows of the slopes and crest, above the fixed
+  // layer: a stone laid on the bed at a toe's tip would rest against one fixed stone, loose in the first flow
+  const double z_laid = spec.z_bed + spec.d_mean;
   for (int k = 0; k < 12; ++k) {
     double px = 0.0, pz = 0.0;
-    if (largest_gap(weir, spec, px, pz) < 0.5 * spec.d_mean) break;
+    if (largest_gap(weir, spec, px, pz, z_laid) < 0.5 * spec.d_mean) break;
     PackedStone stone = packing->draw(draw_diameter(rng, spec));
     const double rc = stone.radius;
     pile.take(weir);
@@ -267,17 +269,17 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
 
   // (7) stones that rolled off a toe onto the bed beyond it (centre more than half a diameter outside
   // the trapezoid) are not part of the weir, for the models whose stones roll that far
-  if (packing->drop_toe_rollers()) {
+  // (the mound settles again after each removal, and another stone may roll off: up to three rounds)
+  for (int round = 0; round < 3 && packing->drop_toe_rollers(); ++round) {
     const Trapezoid trap(spec);
     PackedStones kept_on;
     for (int i = 0; i < weir.n(); ++i)
       if (weir.stone_fixed[i] || trap.distance(weir.stone_pos[2 * i], weir.stone_pos[2 * i + 1]) < 0.5 * spec.d_mean)
         kept_on.copy_stone(weir, pile, i);
-    if (kept_on.size() < static_cast<std::size_t>(weir.n())) {
-      pile = kept_on;
-      weir = make(q, pile);
-      t_total += settle(weir, spec, 0.3);
-    }
+    if (kept_on.size() == static_cast<std::size_t>(weir.n())) break;
+    pile = kept_on;
+    weir = make(q, pile);
+    t_total += settle(weir, spec, 0.3);
   }
 
   report.n_stones = weir.n();
@@ -293,7 +295,7 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
 
 namespace {
 // the point of the slopes and crest farthest from every disc; returns that distance [m]
-double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz) {
+double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, double& gz, double z_min) {
   const Trapezoid trap(spec);
   const StoneModel& model = sys.model();
   double worst = 0.0;
@@ -305,6 +307,7 @@ double largest_gap(const DEMSystem& sys, const WeirSpec& spec, double& gx, doubl
       const double t = static_cast<double>(s) / m;
       const double x = trap.px[a] + t * (trap.px[b] - trap.px[a]);
       const double z = trap.pz[a] + t * (trap.pz[b] - trap.pz[a]);
+      if (z < z_min) continue;
       double gap = INFINITY;
       for (int i = 0; i < sys.n(); ++i) {
         if (!sys.stone_active[i]) continue;

@@ -50,9 +50,11 @@ TEST(DiscPins, PackedDiscWeir) {
   DEMSystem s = pack_weir(spec, DEMParams{}, r);
   const auto state = s.export_state();
   EXPECT_TRUE(test::rolling_springs_zero(state));
-  EXPECT_EQ(test::pin_hash(state), 12875397040209891258ull);
-  EXPECT_EQ(r.porosity, 0.21092099704267009);
-  EXPECT_EQ(r.outline_error, 0.041679925299481661);
+  // taken again when the stones laid by hand stayed above the fixed layer (no stone on the bed at a toe's
+  // tip) and the toe rollers were removed in up to three rounds (weir_packing.cpp, steps 6 and 7)
+  EXPECT_EQ(test::pin_hash(state), 5021742067675759621ull);
+  EXPECT_EQ(r.porosity, 0.21451204055766793);
+  EXPECT_EQ(r.outline_error, 0.03489373339692101);
 }
 
 TEST(DiscPins, CoupledDiscsInATank) {
