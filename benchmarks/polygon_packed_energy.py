@@ -25,7 +25,8 @@ def packed(seed):
     p = vofdem.DEMParams()
     p.add_flume(0.0, 1.4, 0.0)
     p.dt, p.contact_steps = SCENE_DT, 50.0
-    spec = vofdem.WeirSpec()  # the Maeno weir's slopes and stones (4.8 cm +- 10 %, 2650 kg/m^3)
+    spec = vofdem.WeirSpec()  # the Maeno weir's slopes; its stones (4.8 cm +- 10 %, 2650 kg/m^3) set here
+    spec.d_mean, spec.density = 0.048, 2650.0
     spec.shape, spec.height, spec.crest, spec.x_toe, spec.seed = "polygon", 0.25, 0.2, 0.2, seed
     s, _ = vofdem.pack_weir(spec, p)
     return s
