@@ -220,36 +220,12 @@ def _drop_off_the_base(system, nb: int, yc: float, r_base: float, base_top: floa
 
 
 def slope_surface_stones_3d(system, scene: Scene, setup, wall_clearance: float = 1.5) -> List[int]:
-    """Surface stones of the downstream slope (as calibration.slope_surface_stones: centres between z_low and
-    z_high of the weir's height, free, none lying outward of them, the neighbours counted in 3D) whose
-    centres are at least wall_clearance of their diameters from both side walls; from the toe up."""
-    from .stone_models import stone_diameters
+    """Surface stones of the downstream slope (calibration.slope_surface_stones, the neighbours counted in
+    the slope's plane across the flume) whose centres are at least wall_clearance of their diameters from
+    both side walls; from the toe up."""
+    from .calibration import slope_surface_stones
 
-    w = scene.weir
-    a = math.radians(w.downstream_slope_deg)
-    n = np.array([math.sin(a), math.cos(a)])
-    t = np.array([-math.cos(a), math.sin(a)])
-    P, Y = np.asarray(system.stone_pos), np.asarray(system.stone_y)
-    R = 0.5 * stone_diameters(system)
-    width = float(system.params.width)
-    on = np.asarray(system.stone_active).astype(bool)
-    free = on & (np.asarray(system.stone_fixed) == 0)
-    s = (P - [w.x_toe_down, 0.0]) @ n
-    u = (P - [w.x_toe_down, 0.0]) @ t
-    x_mid = 0.5 * (w.x_crest_up + w.x_crest_down)
-    cand = []
-    for i in np.flatnonzero(free & (P[:, 0] > x_mid)):
-        if not setup.z_low <= P[i, 1] / w.height <= setup.z_high:
-            continue
-        if min(Y[i], width - Y[i]) < 2.0 * wall_clearance * R[i]:
-            continue
-        reach = R[i] + R
-        # a stone lies outward if it is farther out along the normal and near in the slope's plane (u, y)
-        outward = on & (s - s[i] > 0.5 * reach) & (np.hypot(u - u[i], Y - Y[i]) < 0.75 * reach)
-        outward[i] = False
-        if not outward.any():
-            cand.append(int(i))
-    return sorted(cand, key=lambda i: P[i, 1])
+    return slope_surface_stones(system, scene, setup, wall_clearance=wall_clearance)
 
 
 # ------------------------------------------------------------------------------------------------
