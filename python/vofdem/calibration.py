@@ -364,6 +364,11 @@ class PullResult:
     force: np.ndarray = field(repr=False)   # spring force [N] at each update
 
 
+# stones across a flume: the pulled stones' centres at least this many of their diameters from either side
+# wall [-], so that the walls do not hold them
+SIDE_WALL_CLEARANCE = 1.5
+
+
 def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None,
                          wall_clearance: Optional[float] = None) -> List[int]:
     """Stones an experimenter would pull: free stones of the downstream slope beyond the crest's middle
@@ -404,12 +409,11 @@ def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None
 
 
 def surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None) -> List[int]:
-    """The stones an experimenter would pull: slope_surface_stones, or for stones that move in 3D
-    calibration_3d.slope_surface_stones_3d (away from the side walls)."""
+    """The stones an experimenter would pull: slope_surface_stones, for stones that move in 3D those
+    SIDE_WALL_CLEARANCE diameters or more from the side walls."""
     setup = setup or PullSetup()
     if front_of(system).dimensions == 3:
-        from .calibration_3d import slope_surface_stones_3d
-        return slope_surface_stones_3d(system, scene, setup)
+        return slope_surface_stones(system, scene, setup, wall_clearance=SIDE_WALL_CLEARANCE)
     return slope_surface_stones(system, scene, setup)
 
 

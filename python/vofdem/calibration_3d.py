@@ -12,7 +12,7 @@
   difference shows how round the cone is).
 * **Pull-out test**: calibration.pull_test on the 3D-packed weir; the pulls act in the x-z plane (zero
   across the width), the stones pulled are surface stones of the downstream slope at least
-  `wall_clearance` diameters from either side wall (`slope_surface_stones_3d`).
+  `SIDE_WALL_CLEARANCE` diameters from either side wall (`calibration.slope_surface_stones`).
 
 The drag of still water on the falling stones is neglected, as in the 2D heap.
 """
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import List, Optional
+from typing import Optional
 
 import numpy as np
 
@@ -217,15 +217,6 @@ def _drop_off_the_base(system, nb: int, yc: float, r_base: float, base_top: floa
     off = (np.hypot(P[:, 0], Y - yc) > r_base) & (P[:, 1] < base_top)
     off[:nb] = False
     system.stone_active[off] = 0
-
-
-def slope_surface_stones_3d(system, scene: Scene, setup, wall_clearance: float = 1.5) -> List[int]:
-    """Surface stones of the downstream slope (calibration.slope_surface_stones, the neighbours counted in
-    the slope's plane across the flume) whose centres are at least wall_clearance of their diameters from
-    both side walls; from the toe up."""
-    from .calibration import slope_surface_stones
-
-    return slope_surface_stones(system, scene, setup, wall_clearance=wall_clearance)
 
 
 # ------------------------------------------------------------------------------------------------
