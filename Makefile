@@ -28,15 +28,15 @@ ensemble-demo: install
 
 # the whole scene over 30 packings (about 46 CPU-seconds per member: 12 minutes on 2 free cores; resumes where it stopped)
 maeno-fragility: install
-	$(PY) benchmarks/maeno2008_fragility.py --seeds 0-29
+	$(PY) studies/maeno2008_fragility.py --seeds 0-29
 
 # the prediction study: the verdict over 30 packings, the width sweep and accuracy against cost (hours; resumes)
 verdict: install
-	$(PY) benchmarks/maeno2008_verdict.py
+	$(PY) studies/maeno2008_verdict.py
 
 # its small version: the quick scenes over 6 packings, one or two settings per knob (minutes on 2 cores)
 verdict-small: install
-	$(PY) benchmarks/maeno2008_verdict.py --small
+	$(PY) studies/maeno2008_verdict.py --small
 
 test: install test-cpp test-py docs
 

@@ -40,7 +40,8 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
+# the cases and their measured data live with the validation cases
+sys.path.insert(0, os.path.join(HERE, "..", "validation"))
 import vof_cases as val  # noqa: E402
 
 sys.path.insert(0, HERE)

@@ -18,12 +18,15 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import os
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-import vof_cases as val
+# the cases and their measured data live with the validation cases
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
+import vof_cases as val  # noqa: E402
 from vofdem.builder import build_simulation
 from vofdem.scene import load_scene
 

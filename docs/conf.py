@@ -1,8 +1,8 @@
 """Sphinx configuration of vofdem's documentation site (`make docs`).
 
 The site is built from the repository's root (`sphinx-build -c docs . build/docs/html`) so that the
-guide's pages in docs/, the results files in benchmarks/results/ they link to and the notebooks in
-notebooks/ are all pages of it, each at its path in the repository; only the files matched by
+guide's pages in docs/, the index pages and results files of benchmarks/ (speed and cost), validation/ and
+studies/ (the prediction studies) they link to and the notebooks in notebooks/ are all pages of it, each at its path in the repository; only the files matched by
 `include_patterns` are read. The API reference (docs/api.md) is generated from the docstrings of the
 installed package `vofdem` and of its pybind11 extension `vofdem._core`. The notebooks are rendered
 as committed, without executing them (the test suite executes them).
@@ -18,7 +18,8 @@ release = version = vofdem.__version__
 
 extensions = ["myst_nb", "sphinx.ext.autodoc", "sphinx.ext.mathjax"]
 root_doc = "docs/index"
-include_patterns = ["docs/*.md", "benchmarks/results/*.md", "notebooks/*.ipynb", "CHANGELOG.md"]
+include_patterns = ["docs/*.md", "notebooks/*.ipynb", "CHANGELOG.md"] + [
+    f"{folder}/{page}" for folder in ("benchmarks", "validation", "studies") for page in ("README.md", "results/*.md")]
 exclude_patterns = ["build", "out", ".git", "**/.ipynb_checkpoints"]
 
 # markdown: MyST; headings get anchors so that links to a page's section resolve

@@ -56,7 +56,8 @@ def main(argv=None):
     os.makedirs(args.out, exist_ok=True)
 
     spec = vofdem.WeirSpec()
-    spec.x_toe, spec.seed = 0.20, args.seed  # the paper's trapezoid and stones are the spec's defaults
+    spec.x_toe, spec.seed = 0.20, args.seed  # the paper's trapezoid is the spec's default
+    spec.d_mean, spec.density = 0.048, 2650.0  # the paper's stones: the core has no stone default
     stones, _ = vofdem.pack_weir(spec)
     pos = np.asarray(stones.stone_pos)
     x, z, r = pos[:, 0].copy(), pos[:, 1].copy(), np.asarray(stones.stone_radius).copy()

@@ -6,8 +6,10 @@ import vofdem
 
 
 def packed(**keys):
-    """(DEMSystem, WeirPackingReport, WeirSpec) of a WeirSpec with these keys set, the rest its defaults."""
+    """(DEMSystem, WeirPackingReport, WeirSpec) of a WeirSpec with these keys set, the rest its defaults and
+    the Maeno weir's stones (the core has no stone default)."""
     spec = vofdem.WeirSpec()
+    spec.d_mean, spec.density = 0.048, 2650.0
     for k, v in keys.items():
         setattr(spec, k, v)
     return (*vofdem.pack_weir(spec), spec)

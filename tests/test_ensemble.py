@@ -253,9 +253,9 @@ def test_a_member_of_an_older_version_without_new_default_keys_is_the_same_scene
 
 
 def test_the_maeno_fragility_script_at_a_tiny_size(tmp_path):
-    """benchmarks/maeno2008_fragility.py, which makes docs/results.md's 30-seed figure, on 1 seed of the quick
+    """studies/maeno2008_fragility.py, which makes docs/results.md's 30-seed figure, on 1 seed of the quick
     variant for 2 s."""
-    mod = load_script("benchmarks/maeno2008_fragility.py")
+    mod = load_script("studies/maeno2008_fragility.py")
     md = mod.main(["--quick", "--seeds", "0", "--end-time", "2", "--workers", "0", "--out", str(tmp_path / "ens"),
                    "--results", str(tmp_path), "--figures", str(tmp_path)])
     text = md.read_text()
@@ -283,9 +283,9 @@ def test_the_dashboard_link_is_printed_only_where_a_dashboard_is_served(monkeypa
 
 
 def test_the_stone_models_script_at_a_tiny_size(tmp_path):
-    """benchmarks/stone_models_weir.py (each stone model and coupling over packings) on 1 seed of two
+    """studies/stone_models_weir.py (each stone model and coupling over packings) on 1 seed of two
     quick scenes for 2 s, in this process."""
-    mod = load_script("benchmarks/stone_models_weir.py")
+    mod = load_script("studies/stone_models_weir.py")
     md = mod.main(["--quick", "--seeds", "0", "--end-time", "2", "--workers", "0", "--scenes", "maeno2008",
                    "maeno2008_rolling_consistent", "--out", str(tmp_path / "ens"), "--results", str(tmp_path),
                    "--figures", str(tmp_path)])

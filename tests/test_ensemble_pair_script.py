@@ -1,9 +1,9 @@
-"""benchmarks/ensemble_pair.py: two small ensembles' tables paired by member, its counts by hand."""
+"""studies/ensemble_pair.py: two small ensembles' tables paired by member, its counts by hand."""
 import csv
 
 from script_loader import load_script
 
-ep = load_script("benchmarks/ensemble_pair.py")
+ep = load_script("studies/ensemble_pair.py")
 FIELDS = ["member", "seed", "status", "first_removal_lps", "first_discharge_lps", "stage1_lps", "stage1_stones",
           "stages", "removed", "cpu_seconds"]
 

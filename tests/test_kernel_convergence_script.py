@@ -1,4 +1,4 @@
-"""benchmarks/kernel_convergence.py, the source of docs/coupler.md's convergence of the kernel mapping with the
+"""studies/kernel_convergence.py, the source of docs/coupler.md's convergence of the kernel mapping with the
 grid: its grids and its fixed-bed columns by hand, and the script at a tiny size."""
 import json
 from types import SimpleNamespace
@@ -10,7 +10,7 @@ from script_loader import load_script
 
 @pytest.fixture(scope="module")
 def conv():
-    return load_script("benchmarks/kernel_convergence.py")
+    return load_script("studies/kernel_convergence.py")
 
 
 def test_the_grids_by_hand(conv):

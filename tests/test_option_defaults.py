@@ -76,6 +76,9 @@ FEEDS = {
     "stones.density": (WEIR, "density", None),
     "stones.shape": (WEIR, "shape", None),
 }
+# the fields the core leaves unset (0, refused by its check with the key named): the stones' material has
+# no default in the core and comes from the scene alone
+REQUIRED_BY_THE_CORE = {WEIR: {"d_mean", "density"}}
 # keys another key must be given with before they can move
 GIVEN_WITH = {"flume.outflow": {"flume.tailwater_level": 0.2}}
 
@@ -141,6 +144,9 @@ def test_scene_default_equals_the_core_default(key):
     what, field, bit = FEEDS[key]
     fed = _read(_structs(Scene())[what], field, bit)
     core = _read(_defaults()[what], field, bit)
+    if field in REQUIRED_BY_THE_CORE.get(what, ()):
+        assert core == 0.0 and fed > 0.0, f"{key}: the core's {field} = {core!r} (must be unset), the scene's {fed!r}"
+        return
     assert _same(fed, core), (f"{key}: the scene's default gives {what} {field}{'/' + bit if bit else ''} = {fed!r}, "
                               f"the core's default is {core!r}")
 
@@ -155,6 +161,14 @@ def test_key_feeds_its_field(key):
     before = _read(_structs(Scene())[what], field, bit)
     after = _read(_structs(moved)[what], field, bit)
     assert not _same(before, after), f"{key} moved to {_other_value(key)!r} leaves {what} {field} at {after!r}"
+
+
+@pytest.mark.parametrize("field", sorted(REQUIRED_BY_THE_CORE[WEIR]))
+def test_the_core_refuses_an_unset_stone_field_naming_it(field):
+    spec = builder.weir_spec(Scene())
+    setattr(spec, field, getattr(_core.WeirSpec(), field))
+    with pytest.raises(ValueError, match=field):
+        _core.pack_weir(spec)
 
 
 @pytest.mark.parametrize("what", [FLOW, DEM, COUPLER, WEIR])

@@ -183,7 +183,8 @@ def test_packed_polygon_weir_at_rest_keeps_its_energy_at_the_stable_step():
     p = vofdem.DEMParams()
     p.add_flume(0.0, 1.4, 0.0)
     p.dt, p.contact_steps = 4e-5, 50.0
-    spec = vofdem.WeirSpec()  # the Maeno weir's slopes and stones (4.8 cm +- 10 %, 2650 kg/m^3)
+    spec = vofdem.WeirSpec()  # the Maeno weir's slopes; its stones (4.8 cm +- 10 %, 2650 kg/m^3) set here
+    spec.d_mean, spec.density = 0.048, 2650.0
     spec.shape, spec.height, spec.crest, spec.x_toe, spec.seed = "polygon", 0.15, 0.1, 0.4, 1
     s, _ = vofdem.pack_weir(spec, p)
     dt = s.stable_dt()

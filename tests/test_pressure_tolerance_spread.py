@@ -1,4 +1,4 @@
-"""benchmarks/pressure_tolerance_spread.py, the source of docs/accuracy_cost.md's pressure-tolerance row: its
+"""studies/pressure_tolerance_spread.py, the source of docs/accuracy_cost.md's pressure-tolerance row: its
 permutation test by hand, and the script at a tiny size."""
 import re
 
@@ -8,7 +8,7 @@ from script_loader import load_script
 
 @pytest.fixture(scope="module")
 def spread():
-    return load_script("benchmarks/pressure_tolerance_spread.py")
+    return load_script("studies/pressure_tolerance_spread.py")
 
 
 def test_the_permutation_p_value_by_hand(spread):

@@ -2,7 +2,7 @@
 it stands, and every number it quotes found in the results file it links to.
 
 A number is quoted from a results file when the paragraph or table row it sits in links to a file under
-benchmarks/results/ (a table row without a link of its own takes the links of the paragraph just above
+benchmarks/results/, validation/results/ or studies/results/ (a table row without a link of its own takes the links of the paragraph just above
 the table). Every such number must appear, as a number, in one of the linked files, and every paragraph
 or table of the README's "Results" section that holds a number must link its file."""
 from __future__ import annotations
@@ -16,7 +16,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
-RESULTS = "benchmarks/results/"
+RESULTS = ("benchmarks/results/", "validation/results/", "studies/results/")
 
 # a number as a reader sees it: 19.62, 16,968, 2.5e-3; not the digits inside a name (maeno2008, v1912, L1)
 NUMBER = re.compile(r"(?<![\w.])(\d{1,3}(?:,\d{3})+|\d+(?:\.\d+)?(?:e[-+]?\d+)?)(?![\d]|\.\d)")
@@ -131,8 +131,9 @@ def test_every_quoted_number_is_in_its_results_file():
 def test_each_linked_results_file_names_a_committed_script():
     for link in sorted({f for _, links, _ in quoted(README.read_text(encoding="utf-8"))[0] for f in links}):
         head = (ROOT / link).read_text(encoding="utf-8")[:2000]
-        named = [s for s in re.findall(r"benchmarks/[\w./-]+\.py", head) if (ROOT / s).is_file()]
-        writers = [p for p in (ROOT / "benchmarks").glob("*.py") if Path(link).name in p.read_text(encoding="utf-8")]
+        named = [s for s in re.findall(r"(?:benchmarks|validation|studies)/[\w./-]+\.py", head) if (ROOT / s).is_file()]
+        writers = [p for d in ("benchmarks", "validation", "studies") for p in (ROOT / d).glob("*.py")
+                   if Path(link).name in p.read_text(encoding="utf-8")]
         assert named or writers, f"{link}: no committed script writes it"
 
 

@@ -114,7 +114,7 @@ def test_a_resumed_run_does_not_settle_again_and_ends_bit_for_bit(tmp_path, monk
 def test_the_benchmark_pairs_the_settle_off_and_on_at_a_tiny_size(tmp_path):
     from script_loader import load_script
 
-    bench = load_script("benchmarks/settle_still_water.py")
+    bench = load_script("studies/settle_still_water.py")
     md = bench.main(["--quick", "--seeds", "0", "--end-time", "0.2", "--out", str(tmp_path / "ens"),
                      "--results", str(tmp_path / "settle.md")])
     text = md.read_text(encoding="utf-8")

@@ -1,4 +1,4 @@
-"""benchmarks/stone_loads_grid.py, the source of docs/accuracy_cost.md's loads on the held stones on two grids: its
+"""studies/stone_loads_grid.py, the source of docs/accuracy_cost.md's loads on the held stones on two grids: its
 per-stone comparison by hand, and the script at a tiny size."""
 
 import numpy as np
@@ -10,7 +10,7 @@ from vofdem.scene import load_scene
 
 @pytest.fixture(scope="module")
 def loads():
-    return load_script("benchmarks/stone_loads_grid.py")
+    return load_script("studies/stone_loads_grid.py")
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""The prediction study (benchmarks/maeno2008_verdict.py, vofdem.study): the censored statistics and the
+"""The prediction study (studies/maeno2008_verdict.py, vofdem.study): the censored statistics and the
 paired bootstrap of a shift against hand values, the study end to end in this process with a test
 double whose stones go at known discharges (its tables against a hand computation; a second call runs
 nothing), the study with the real solver at a tiny size, and the fidelity presets."""
@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _script():
-    return load_script("benchmarks/maeno2008_verdict.py")
+    return load_script("studies/maeno2008_verdict.py")
 
 
 def _frame(seeds, first, last=25.0, stages=None):

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-import vof_cases as val  # noqa: E402  (the cases live with the studies, outside the package)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
+import vof_cases as val  # noqa: E402  (the cases live in validation/, outside the package)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -12,13 +12,14 @@ namespace py = pybind11;
 namespace vofdem::bind {
 
 void bind_common(py::module_& m) {
+  m.attr("GRADED_MERGE_FRACTION") = kGradedMergeFraction;  // Grid2D.graded's default [-]
   py::class_<Grid2D>(m, "Grid2D", "Staggered 2D vertical grid: uniform in x, free spacing in z (SI units).")
       .def(py::init<int, double, std::vector<double>, double>(), py::arg("nx"), py::arg("dx"), py::arg("z_faces"),
            py::arg("x0") = 0.0)
       .def_static("uniform", &Grid2D::uniform, py::arg("nx"), py::arg("nz"), py::arg("length_x"),
                   py::arg("height_z"), py::arg("x0") = 0.0, py::arg("z0") = 0.0)
       .def_static("graded", &Grid2D::graded, py::arg("nx"), py::arg("length_x"), py::arg("height_z"), py::arg("dz"),
-                  py::arg("dz_bed"), py::arg("z_bed_top"), py::arg("merge_fraction") = 0.5)
+                  py::arg("dz_bed"), py::arg("z_bed_top"), py::arg("merge_fraction") = kGradedMergeFraction)
       .def_property_readonly("nx", &Grid2D::nx,
            "columns [-]")
       .def_property_readonly("nz", &Grid2D::nz,

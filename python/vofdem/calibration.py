@@ -364,17 +364,30 @@ class PullResult:
     force: np.ndarray = field(repr=False)   # spring force [N] at each update
 
 
-def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None) -> List[int]:
-    """Stones an experimenter would pull: free stones of the downstream slope whose centres lie between
-    z_low and z_high of the weir's height (not the toe, not the shoulder) with no stone lying outward of
-    them (none whose centre is more than half a contact distance farther out along the slope's normal
-    within 0.75 of a contact distance along it); ordered from the toe up."""
+# stones across a flume: the pulled stones' centres at least this many of their diameters from either side
+# wall [-], so that the walls do not hold them
+SIDE_WALL_CLEARANCE = 1.5
+
+
+def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None,
+                         wall_clearance: Optional[float] = None) -> List[int]:
+    """Stones an experimenter would pull: free stones of the downstream slope beyond the crest's middle
+    whose centres lie between z_low and z_high of the weir's height (not the toe, not the shoulder) with
+    no stone lying outward of them (none whose centre is more than half a contact distance farther out
+    along the slope's normal within 0.75 of a contact distance in the slope's plane); ordered from the
+    toe up. wall_clearance [-] (stones across a flume, 3D): only centres at least this many of their
+    diameters from both side walls, the neighbours' distance in the slope's plane taken along the slope
+    and across the flume; None: stones in the plane (no walls, along the slope alone)."""
     setup = setup or PullSetup()
     w = scene.weir
     a = math.radians(w.downstream_slope_deg)
     n = np.array([math.sin(a), math.cos(a)])   # outward normal of the downstream slope
     t = np.array([-math.cos(a), math.sin(a)])  # up the slope
     P, R = np.asarray(system.stone_pos), 0.5 * stone_diameters(system)  # polygons: nominal radii
+    across = wall_clearance is not None
+    # in the plane every stone sits at y = 0: hypot(du, 0) is exactly abs(du)
+    Y = np.asarray(system.stone_y) if across else np.zeros(len(P))
+    width = float(system.params.width) if across else math.inf
     on = np.asarray(system.stone_active).astype(bool)
     free = on & (np.asarray(system.stone_fixed) == 0)
     s = (P - [w.x_toe_down, 0.0]) @ n
@@ -385,8 +398,10 @@ def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None
         z = P[i, 1] / w.height
         if not setup.z_low <= z <= setup.z_high:
             continue
+        if across and min(Y[i], width - Y[i]) < 2.0 * wall_clearance * R[i]:
+            continue
         reach = R[i] + R
-        outward = on & (s - s[i] > 0.5 * reach) & (np.abs(u - u[i]) < 0.75 * reach)
+        outward = on & (s - s[i] > 0.5 * reach) & (np.hypot(u - u[i], Y - Y[i]) < 0.75 * reach)
         outward[i] = False
         if not outward.any():
             cand.append(int(i))
@@ -394,12 +409,11 @@ def slope_surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None
 
 
 def surface_stones(system, scene: Scene, setup: Optional[PullSetup] = None) -> List[int]:
-    """The stones an experimenter would pull: slope_surface_stones, or for stones that move in 3D
-    calibration_3d.slope_surface_stones_3d (away from the side walls)."""
+    """The stones an experimenter would pull: slope_surface_stones, for stones that move in 3D those
+    SIDE_WALL_CLEARANCE diameters or more from the side walls."""
     setup = setup or PullSetup()
     if front_of(system).dimensions == 3:
-        from .calibration_3d import slope_surface_stones_3d
-        return slope_surface_stones_3d(system, scene, setup)
+        return slope_surface_stones(system, scene, setup, wall_clearance=SIDE_WALL_CLEARANCE)
     return slope_surface_stones(system, scene, setup)
 
 

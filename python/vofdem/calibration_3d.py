@@ -12,7 +12,7 @@
   difference shows how round the cone is).
 * **Pull-out test**: calibration.pull_test on the 3D-packed weir; the pulls act in the x-z plane (zero
   across the width), the stones pulled are surface stones of the downstream slope at least
-  `wall_clearance` diameters from either side wall (`slope_surface_stones_3d`).
+  `SIDE_WALL_CLEARANCE` diameters from either side wall (`calibration.slope_surface_stones`).
 
 The drag of still water on the falling stones is neglected, as in the 2D heap.
 """
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import List, Optional
+from typing import Optional
 
 import numpy as np
 
@@ -217,39 +217,6 @@ def _drop_off_the_base(system, nb: int, yc: float, r_base: float, base_top: floa
     off = (np.hypot(P[:, 0], Y - yc) > r_base) & (P[:, 1] < base_top)
     off[:nb] = False
     system.stone_active[off] = 0
-
-
-def slope_surface_stones_3d(system, scene: Scene, setup, wall_clearance: float = 1.5) -> List[int]:
-    """Surface stones of the downstream slope (as calibration.slope_surface_stones: centres between z_low and
-    z_high of the weir's height, free, none lying outward of them, the neighbours counted in 3D) whose
-    centres are at least wall_clearance of their diameters from both side walls; from the toe up."""
-    from .stone_models import stone_diameters
-
-    w = scene.weir
-    a = math.radians(w.downstream_slope_deg)
-    n = np.array([math.sin(a), math.cos(a)])
-    t = np.array([-math.cos(a), math.sin(a)])
-    P, Y = np.asarray(system.stone_pos), np.asarray(system.stone_y)
-    R = 0.5 * stone_diameters(system)
-    width = float(system.params.width)
-    on = np.asarray(system.stone_active).astype(bool)
-    free = on & (np.asarray(system.stone_fixed) == 0)
-    s = (P - [w.x_toe_down, 0.0]) @ n
-    u = (P - [w.x_toe_down, 0.0]) @ t
-    x_mid = 0.5 * (w.x_crest_up + w.x_crest_down)
-    cand = []
-    for i in np.flatnonzero(free & (P[:, 0] > x_mid)):
-        if not setup.z_low <= P[i, 1] / w.height <= setup.z_high:
-            continue
-        if min(Y[i], width - Y[i]) < 2.0 * wall_clearance * R[i]:
-            continue
-        reach = R[i] + R
-        # a stone lies outward if it is farther out along the normal and near in the slope's plane (u, y)
-        outward = on & (s - s[i] > 0.5 * reach) & (np.hypot(u - u[i], Y - Y[i]) < 0.75 * reach)
-        outward[i] = False
-        if not outward.any():
-            cand.append(int(i))
-    return sorted(cand, key=lambda i: P[i, 1])
 
 
 # ------------------------------------------------------------------------------------------------

@@ -2,7 +2,7 @@
 scene key ``numerics.fidelity``).
 
 A preset fixes the grid (the knob that sets most of a run's cost) and the numerical options the
-accuracy-against-cost study varies around it (benchmarks/maeno2008_verdict.py, docs/verdict.md):
+accuracy-against-cost study varies around it (studies/maeno2008_verdict.py, docs/verdict.md):
 
 =========  ==================================  =====  ========
 preset     grid dx x dz, bed row dz_bed [cm]    CFL    porosity

@@ -317,7 +317,7 @@ class GridSpec(_Section):
     dz: float = _p(0.010, "length", 0.0005, 0.5, "cell height [m]; paper 0.010", "(]")
     dz_bed: float = _p(0.005, "length", 0.0005, 0.5, "cell height next to the bed [m]; paper 0.005", "(]")
     bed_layer_height: float = _p(0.005, "length", 0.0, 1.0, "thickness of the fine bed layer [m]")
-    merge_fraction: float = _p(0.5, None, 0.0, 1.0, "a last row of the bed layer or of the domain of at most this "
+    merge_fraction: float = _p(_core.GRADED_MERGE_FRACTION, None, 0.0, 1.0, "a last row of the bed layer or of the domain of at most this "
                                "fraction of its row height joins the row below [-]; 0: every remainder is a row "
                                "(a sliver row under the open top binds the step by the air through it)", "[)")
 

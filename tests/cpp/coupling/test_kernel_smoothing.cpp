@@ -208,6 +208,13 @@ TEST(KernelSmoothing, RefusesBadParameters) {
       EXPECT_NE(std::string(e.what()).find("(0, 1]"), std::string::npos) << e.what();
     }
   }
+  // the width has no default (no stone size in the core): left unset it is refused with the key named
+  try {
+    KernelSmoother s(g, KernelParams{});
+    ADD_FAILURE() << "an unset bandwidth accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bandwidth"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(KernelSmoother(g, kernel(0.05, 0)), std::invalid_argument);
   EXPECT_THROW(KernelSmoother(g, kernel(0.05, 65)), std::invalid_argument);
   KernelSmoother s(g, kernel(0.05));

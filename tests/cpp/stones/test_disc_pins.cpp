@@ -46,6 +46,8 @@ TEST(DiscPins, PackedDiscWeir) {
   spec.crest = 0.08;
   spec.seed = 3;
   spec.settle_time_max = 1.0;
+  spec.d_mean = 0.048;  // the Maeno weir's stones
+  spec.density = 2650.0;
   WeirPackingReport r;
   DEMSystem s = pack_weir(spec, DEMParams{}, r);
   const auto state = s.export_state();

@@ -99,6 +99,8 @@ TEST(StoneModel, ThePackingGeneratorRefusesAModelWithoutAPackingAndNamesTheKey) 
   ASSERT_TRUE(kRegistered);
   WeirSpec spec;
   WeirPackingReport report;
+  spec.d_mean = 0.048;
+  spec.density = 2650.0;
   spec.shape = "frictionless_disc";
   try {
     pack_weir(spec, DEMParams{}, report);

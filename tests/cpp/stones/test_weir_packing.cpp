@@ -3,13 +3,24 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "vofdem/stones/weir_packing.h"
 
 using namespace vofdem;
 
-TEST(WeirPacking, TrapezoidGeometryByHand) {
+namespace {
+// the Maeno weir's stones (the core has no stone default: the scene gives them)
+WeirSpec maeno_stones() {
   WeirSpec s;
+  s.d_mean = 0.048;
+  s.density = 2650.0;
+  return s;
+}
+}  // namespace
+
+TEST(WeirPacking, TrapezoidGeometryByHand) {
+  WeirSpec s = maeno_stones();
   s.height = 0.25;
   s.crest = 0.2;
   s.slope_up_deg = s.slope_down_deg = 45.0;
@@ -23,7 +34,7 @@ TEST(WeirPacking, TrapezoidGeometryByHand) {
 }
 
 TEST(WeirPacking, SmallWeirIsPackedAtRestAndReproducible) {
-  WeirSpec s;
+  WeirSpec s = maeno_stones();
   s.height = 0.15;
   s.crest = 0.1;
   s.seed = 2;
@@ -44,17 +55,38 @@ TEST(WeirPacking, SmallWeirIsPackedAtRestAndReproducible) {
 }
 
 TEST(WeirPacking, RefusesBadSpecs) {
-  WeirSpec s;
+  WeirSpec s = maeno_stones();
   s.slope_up_deg = 0.0;
   WeirPackingReport r;
   EXPECT_THROW(pack_weir(s, DEMParams{}, r), std::invalid_argument);
-  WeirSpec t;
+  WeirSpec t = maeno_stones();
   t.d_spread = 0.9;
   EXPECT_THROW(pack_weir(t, DEMParams{}, r), std::invalid_argument);
 }
 
-TEST(WeirPacking, SmallPolygonWeirIsPackedAtRestInsideTheOutlineAndReproducible) {
+// the stones' size and density have no default in the core: unset, they are refused with the key named
+TEST(WeirPacking, RefusesUnsetStoneDiameterAndDensityNamingTheKey) {
   WeirSpec s;
+  WeirPackingReport r;
+  try {
+    pack_weir(s, DEMParams{}, r);
+    FAIL() << "packed stones of no diameter";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("d_mean"), std::string::npos) << e.what();
+  }
+  s.d_mean = 0.048;
+  try {
+    check_weir_spec(s);
+    FAIL() << "accepted stones of no density";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("density"), std::string::npos) << e.what();
+  }
+  s.density = 2650.0;
+  EXPECT_NO_THROW(check_weir_spec(s));
+}
+
+TEST(WeirPacking, SmallPolygonWeirIsPackedAtRestInsideTheOutlineAndReproducible) {
+  WeirSpec s = maeno_stones();
   s.height = 0.12;
   s.crest = 0.08;
   s.seed = 5;

@@ -20,6 +20,7 @@ WeirSpec small_weir(std::uint64_t seed) {
   s.height = 0.08;
   s.crest = 0.06;
   s.d_mean = 0.03;
+  s.density = 2650.0;
   s.shape = "sphere";
   s.seed = seed;
   return s;
@@ -100,6 +101,7 @@ TEST(WeirPacking3D, PorosityAndStonesAcrossOfHandPlacedSpheres) {
   s.slope_up_deg = s.slope_down_deg = 45.0;
   s.x_toe = 0.0;
   s.d_mean = 0.04;
+  s.density = 2650.0;
   DEMParams p = flume(0.05);
   DEMSystem sys(p, {0.15, 0.05}, {0.02}, {2650.0});
   sys.set_model("sphere");

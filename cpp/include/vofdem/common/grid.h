@@ -14,6 +14,10 @@
 
 namespace vofdem {
 
+// Grid2D::graded's default: a last row of at most half its row size joins the row below (one definition:
+// the binding and the scene's grid.merge_fraction take it from here)
+inline constexpr double kGradedMergeFraction = 0.5;
+
 // the two cells beside a face (Grid2D::face_x_cells, face_z_cells)
 struct FaceCells {
   int a, b;  // left and right of an x-face, below and above a z-face
@@ -30,7 +34,7 @@ class Grid2D {
   // differ: a remainder of at most merge_fraction [-] of its row size, in [0, 1), joins the row below
   // (0.5: rows in (0.5, 1.5] of their size; 0: every remainder is a row of its own)
   static Grid2D graded(int nx, double length_x, double height_z, double dz, double dz_bed, double z_bed_top,
-                       double merge_fraction = 0.5);
+                       double merge_fraction = kGradedMergeFraction);
 
   int nx() const { return nx_; }
   int nz() const { return nz_; }

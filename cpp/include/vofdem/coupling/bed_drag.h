@@ -38,6 +38,7 @@
 #pragma once
 
 #include "vofdem/coupling/drag.h"
+#include "vofdem/flow/porous_resistance.h"
 
 namespace vofdem {
 
@@ -45,8 +46,8 @@ namespace vofdem {
 struct BedDragParams {
   double rho_w = 998.2;     // water density [kg/m^3]
   double nu_w = 1.004e-6;   // molecular kinematic viscosity of the water [m^2/s] (never nu + nu_t)
-  double k1 = 200.0;        // eq. (7) [-]
-  double k2 = 2.8;          // eq. (7) [-]
+  double k1 = kPaperK1;     // eq. (7) [-]
+  double k2 = kPaperK2;     // eq. (7) [-]
   bool linear = true;       // Darcy term a of the flow's resistance on
   bool quadratic = true;    // Forchheimer term b |u| on
   bool relative = true;     // the flow's resistance acts on u - n u_p (stones' velocity)

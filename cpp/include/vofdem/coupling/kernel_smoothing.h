@@ -42,7 +42,9 @@
 namespace vofdem {
 
 struct KernelParams {
-  double bandwidth = 0.048;  // Gaussian width b of exp(-r^2/b^2) [m], (0, 1]; usual 1 stone diameter
+  // Gaussian width b of exp(-r^2/b^2) [m], (0, 1]; required (0: unset, refused): the caller gives it, usually
+  // about one stone diameter (the coupler: CouplerParams::bandwidth or the stones' mean diameter)
+  double bandwidth = 0.0;
   int steps = 4;             // backward Euler steps in pseudo-time [-], [1, 64]; 4
   // throws std::invalid_argument naming the bad parameter and its range
   void validate() const;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "vofdem/common/grid.h"
+#include "vofdem/flow/porous_resistance.h"
 
 namespace vofdem {
 
@@ -45,8 +46,8 @@ struct PorousStageTerms {
   bool linear = true;      // the Darcy term a (kFlowPorousDarcy)
   bool quadratic = true;   // the Forchheimer term b |u| (kFlowPorousForchheimer)
   bool relative = false;   // on u - n u_s (kFlowRelativeVelocity)
-  double k1 = 200.0;       // eq. (7) [-]
-  double k2 = 2.8;         // eq. (7) [-]
+  double k1 = kPaperK1;  // eq. (7) [-]
+  double k2 = kPaperK2;  // eq. (7) [-]
 };
 
 // applies the resistance to u*, w* (sizes nface_x, nface_z) and divides the projection coefficients

@@ -60,6 +60,7 @@
 #include "vofdem/flow/k_epsilon.h"
 #include "vofdem/common/medium.h"
 #include "vofdem/flow/momentum.h"
+#include "vofdem/flow/porous_resistance.h"
 #include "vofdem/flow/pressure_solver.h"
 #include "vofdem/common/profile.h"
 #include "vofdem/flow/vof_advection.h"
@@ -128,8 +129,8 @@ struct FlowParams {
   // growth limit of the step [-]: dt <= max_dt_growth * the last step, 1.2 (range [1, 10])
   double max_dt_growth = 1.2;
   double min_dt = 1e-8;        // a stable step below this [s] is a failure (velocity blow-up), 1e-8
-  double k1 = 200.0;           // linear resistance coefficient of eq. (7) [-], 200 (Ergun 150)
-  double k2 = 2.8;             // quadratic resistance coefficient of eq. (7) [-], 2.8 (Ergun 1.75)
+  double k1 = kPaperK1;        // linear resistance coefficient of eq. (7) [-], > 0 (Ergun 150)
+  double k2 = kPaperK2;        // quadratic resistance coefficient of eq. (7) [-], >= 0 (Ergun 1.75)
   double flume_width = 0.5;    // flume width B [m] dividing Q(t) into a discharge per unit width, 0.5 (the scenes')
   PressureSolverKind pressure_solver = PressureSolverKind::kMultigridCG;  // projection solver (Eigen: reference)
   double pressure_tol = 1e-5;   // relative residual of the iterative pressure solve [-], > 0, 1e-5

@@ -33,9 +33,12 @@ struct WeirSpec {
   double slope_down_deg = 27.0; // downstream slope [deg] (paper: 27)
   double x_toe = 1.0;           // upstream toe [m] along the flume
   double z_bed = 0.0;           // bed height [m]
-  double d_mean = 0.048;        // mean stone diameter [m] (paper: 4.8 cm)
+  // the stones' material: no default (0: unset, refused by check_weir_spec); the scene's stones.diameter
+  // and stones.density give them. The trapezoid above keeps the Maeno weir's shape as a default: a shape
+  // packs any stones alike, while a default size or density would silently set every stone's weight
+  double d_mean = 0.0;          // mean stone diameter [m], > 0, required
   double d_spread = 0.1;        // half-width of the uniform diameter distribution, relative [-]
-  double density = 2650.0;      // stone density [kg/m^3]
+  double density = 0.0;         // stone density [kg/m^3], > 0, required
   std::uint64_t seed = 0;       // random seed of the diameters and lattice jitter
   double settle_time_max = 6.0; // simulated time allowed for each settling phase [s]
   double rest_speed = 1e-3;     // packing is at rest when every stone is slower [m/s]

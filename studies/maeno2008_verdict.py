@@ -1,0 +1,605 @@
+"""The prediction study of the Maeno 2008 weir: at what discharge it fails and in how many stages, over
+packings, and what the accuracy of that answer costs.
+
+Two parts, every ensemble on Dask (run_ensemble; one client for all), each resumable: a second call
+runs only the members not finished (one directory per ensemble under --out).
+
+* **The verdict**: per configuration (a scene of scenes/: by default the discs with the calibrated
+  rolling resistance, the paper's and the consistent coupling; polygon scenes by name when present)
+  over the seeds, per event the Kaplan-Meier median and 16-84 % band of its discharge (members in
+  which it never happened censored at the run's last discharge; vofdem.study) with the lognormal fit
+  beside it, the shares of members with a removal and failing in 2+ / 3+ separate stages, and the crest
+  lowering at the run's end (25 l/s), next to the scene's [reference] data (the experiment's and the
+  paper's model's discharges). Then the width sweep: one configuration over flume widths (the
+  ensemble's `vary` of flume.width; the scene's own width is its verdict ensemble), in a domain raised
+  where a narrower flume's water would reach the top (`sweep_height`).
+* **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
+  (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up); per
+  setting the shift of each event's median from the reference's, with its paired bootstrap interval,
+  against the CPU time per member (its ratio to the reference's members at the same seeds, run again
+  just before the settings', so that a drift of the machine's speed between the verdict and this part
+  does not enter) and the steps per member (the same on any machine); the packings' own spread (the
+  reference's 16-84 % band) beside it.
+
+Writes studies/results/maeno2008_verdict<suffix>.md (+ _verdict.csv, _width.csv, _cost.csv) and
+docs/figures/maeno2008_verdict<suffix>_cost.png and _fragility.png; suffix '' (full), '_small', '_tiny'.
+
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py            # the full study: 30 seeds (hours)
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --small    # the small version (minutes)
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --scheduler tcp://host:8786   # on a cluster
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --scenes maeno2008_rolling maeno2008_polygons
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --redraw-cost   # the cost figure from its CSV
+"""
+import argparse
+import contextlib
+import math
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from vofdem.builder import peak_discharge, upstream_level
+from vofdem.cluster import default_workers, ensemble_client
+from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble
+from vofdem.fragility import EVENTS, fig_fragility, figure_legend, fragility_of
+from vofdem.scene import load_scene
+from vofdem.fidelity import PRESETS
+from vofdem.study import (KNOBS, coupling, event_summary, knob_settings, median_shift, preset_of, spread,
+                          stage_fractions, stone_model)
+
+ROOT = Path(__file__).resolve().parents[1]
+# the first is the width sweep's and the cost part's reference: the consistent coupling, chosen on physics (the
+# stones take the momentum the porous resistance removes; the weir's mean porosity is the measured one)
+SCENES = ("maeno2008_rolling_consistent", "maeno2008_rolling")
+# per size: seeds, the scenes' quick variant, the end time [s] (None: the hydrograph's end), widths [m]
+SIZES = {"full": dict(seeds="0-29", quick=False, end_time=None, widths=(0.3, 0.4, 0.5)),
+         "small": dict(seeds="0-5", quick=True, end_time=None, widths=(0.3, 0.4, 0.5)),
+         "tiny": dict(seeds="0-1", quick=True, end_time=3.0, widths=(0.4, 0.5))}
+SUFFIX = {"full": "", "small": "_small", "tiny": "_tiny"}
+PARTS = ("verdict", "width", "cost")
+
+
+def _parser():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    size = p.add_mutually_exclusive_group()
+    size.add_argument("--small", action="store_true", help="the small version: 6 seeds of the quick scenes, "
+                      "one setting per knob (minutes on 2 cores)")
+    size.add_argument("--tiny", action="store_true", help="the test suite's size: 2 seeds, 3 s, two knobs")
+    p.add_argument("--scenes", nargs="+", default=list(SCENES), help="configurations: scene names in scenes/")
+    p.add_argument("--width-scene", default=None, help="the configuration of the width sweep (default the first)")
+    p.add_argument("--cost-scene", default=None, help="the reference of accuracy against cost (default the first)")
+    p.add_argument("--widths", type=float, nargs="+", default=None, help="flume widths [m] of the sweep")
+    p.add_argument("--knobs", nargs="+", default=None, choices=KNOBS, help="knobs of the cost part (default all)")
+    p.add_argument("--seeds", default=None, help="packings (default 0-29; --small 0-5; --tiny 0-1)")
+    p.add_argument("--width-seeds", default=None, help="packings of the width sweep (default --seeds)")
+    p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
+                   "the reference's members at these seeds are paired with each setting's)")
+    p.add_argument("--no-run", action="store_true", help="run no member: the tables of the members finished so far "
+                   "(an ensemble cut short says how many of its members it holds)")
+    p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
+                   help="parts to run (default all; the verdict's ensembles always run: the others are "
+                        "measured against them)")
+    p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s]")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default one per core; 0: "
+                   "in this process, no Dask)")
+    p.add_argument("--scheduler", default=None, help="an existing Dask cluster's address instead")
+    p.add_argument("--n-boot", type=int, default=1000, help="bootstrap resamples (default 1000)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="ensembles' directory (default out/maeno2008_verdict<suffix>)")
+    p.add_argument("--results", type=Path, default=ROOT / "studies" / "results")
+    p.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
+    p.add_argument("--redraw-cost", action="store_true", help="run nothing: draw the cost figure again from the "
+                   "_cost.csv in --results (of the size chosen)")
+    return p
+
+
+def sweep_height(scene, widths) -> float:
+    """The domain's height [m] for the width sweep: the scene's, raised by as much as the narrowest flume's
+    level at the run's peak discharge (builder.upstream_level) lies above the scene's own (rounded up to
+    the cm), so that every width keeps the scene's headroom over the water. Narrower flumes carry more
+    discharge per metre: in the 0.38 m domain a 0.3 m flume's water reached the top row (Maeno scenes at
+    25 l/s: 0.3449 m at 0.5 m, 0.3837 m at 0.3 m -> 0.42 m)."""
+    peak = peak_discharge(scene)
+    own = upstream_level(scene, peak)
+    rise = max([upstream_level(scene.with_value("flume.width", w), peak) - own for w in widths] + [0.0])
+    return scene.flume.height if rise <= 0.0 else math.ceil(round((scene.flume.height + rise) * 100, 6)) / 100
+
+
+def _scene(name: str, quick: bool, end_time):
+    scene = load_scene(ROOT / "scenes" / f"{name}.toml")
+    if quick:
+        scene = scene.quick()
+    return scene if end_time is None else scene.replace(end_time=end_time)
+
+
+@contextlib.contextmanager
+def _client(workers, scheduler):
+    """One Dask client for every ensemble of the study (None: in this process)."""
+    if workers == 0 and scheduler is None:
+        yield None
+        return
+    with ensemble_client(None, scheduler, workers) as c:
+        yield c
+
+
+def _size(args) -> str:
+    return "tiny" if args.tiny else "small" if args.small else "full"
+
+
+def run_study(args, build=None, log=print):
+    """Runs (or resumes) every ensemble of the study; returns the outcome tables:
+    {'verdict': {scene name: frame}, 'width': frame or None, 'cost': {setting name: frame}}, with
+    the scenes, the width scene's name and the settings."""
+    size = _size(args)
+    d = SIZES[size]
+    end_time = args.end_time if args.end_time is not None else d["end_time"]
+    seeds = parse_seeds(args.seeds or d["seeds"])
+    width_seeds, knob_seeds = (parse_seeds(a) if a else seeds for a in (args.width_seeds, args.knob_seeds))
+    scenes = {n: _scene(n, d["quick"], end_time) for n in args.scenes}
+    width_name, cost_name = args.width_scene or args.scenes[0], args.cost_scene or args.scenes[0]
+    for n in (width_name, cost_name):
+        if n not in scenes:
+            raise ValueError(f"{n!r} is not one of the study's scenes ({', '.join(scenes)})")
+    settings = knob_settings(scenes[cost_name], size, args.knobs) if "cost" in args.parts else []
+    base_width = scenes[width_name].flume.width
+    widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
+    widths = widths if "width" in args.parts else []
+    out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
+    height = sweep_height(scenes[width_name], widths)
+    res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes,
+           "width_scene": width_name, "cost_scene": cost_name,
+           "settings": settings, "base_width": base_width, "sweep_height": height, "out": out, "found": _finished(out)}
+    with _client(0 if args.no_run else args.workers, None if args.no_run else args.scheduler) as client:
+        kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
+                  progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
+        ens = (lambda s, sd, d, vary=None: finished_outcomes(s, sd, d, vary)) if args.no_run else \
+            (lambda s, sd, d, vary=None: run_ensemble(s, sd, d, vary=vary, **kw))
+        res["verdict"] = {n: ens(s, seeds, out / "verdict" / n) for n, s in scenes.items()}
+        res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, _width_vary(res, widths))
+                        if widths else None)
+        ref = scenes[cost_name]
+        # the reference rerun at the knob seeds just before the settings: its CPU time is measured beside theirs
+        res["cost_reference"] = ens(ref, knob_seeds, out / "cost" / "reference") if settings else None
+        res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
+    return res
+
+
+def _width_vary(res, widths) -> dict:
+    """The width sweep's `vary`: the widths, and the raised domain's height where it is raised."""
+    vary = {"flume.width": widths}
+    if _raised(res):
+        vary["flume.height"] = [res["sweep_height"]]
+    return vary
+
+
+def _raised(res) -> bool:
+    """Whether the width sweep's narrower flumes run in a domain higher than the scene's own."""
+    return res["sweep_height"] > res["scenes"][res["width_scene"]].flume.height
+
+
+def _seed_range(seeds) -> str:
+    return f"{seeds[0]}-{seeds[-1]}" if list(seeds) == list(range(seeds[0], seeds[-1] + 1)) else \
+        ", ".join(map(str, seeds))
+
+
+def _finished(out: Path) -> int:
+    """Members finished in the study's directory (an outcome file each)."""
+    return len(list(Path(out).glob("**/outcome.json"))) if Path(out).exists() else 0
+
+
+# ---------------------------------------------------------------------------- tables
+def _q(v, fmt="{:.2f}") -> str:
+    return "-" if v is None or (isinstance(v, float) and not math.isfinite(v)) else fmt.format(v)
+
+
+def _band(lo, med, hi, censored=None) -> str:
+    """'16.20 [14.10-18.00]'; a quantile not reached is '> Q' (above the runs' last discharge)."""
+    nr = f"> {_q(censored)}" if censored is not None else "not reached"
+    return f"{nr if med is None else _q(med)} [{nr if lo is None else _q(lo)} to {nr if hi is None else _q(hi)}]"
+
+
+def verdict_rows(name, scene, df):
+    """CSV rows of one configuration: one per event."""
+    ref = scene.reference
+    rows = []
+    for ev in EVENTS:
+        s = event_summary(df, ev)
+        obs, mod = ref.event_lps(ev) if ref.given else (None, None)
+        rows.append({"scene": name, "stones": stone_model(scene), "coupling": coupling(scene),
+                     "width_m": scene.flume.width, **s, "observed_lps": obs, "model_lps": mod})
+    return rows
+
+
+def _config_md(name, scene, df) -> list:
+    done = df[df["status"] == "completed"]
+    fr = stage_fractions(df)
+    crest = spread(done["crest_lowering_mm"].astype(float))
+    q_end = spread(done["last_discharge_lps"].astype(float))[1]
+    cpu = spread(done["cpu_seconds"].astype(float))[1]
+    lines = [f"**{name}** ({stone_model(scene)}, {coupling(scene)} coupling, B = {scene.flume.width:g} m): "
+             f"{len(done)} of {len(df)} members completed; with a removal {fr['with_removal']:.0%}, failing in "
+             f"2+ separate stages {fr['stages_2plus']:.0%}, 3+ {fr['stages_3plus']:.0%}; crest lowering at "
+             f"{_q(q_end)} l/s (the run's end) {_band(*[None if v is None else v for v in crest])} mm "
+             f"(median [16-84 %]); CPU {_q(cpu, '{:.1f}')} s per member.", "",
+             "| event | happened in (at the first discharge) | Kaplan-Meier median [16-84 %] [l/s] | lognormal "
+             "median [16-84 %] [l/s] | observed [l/s] | paper's model [l/s] |", "|---|---|---|---|---|---|"]
+    for r in verdict_rows(name, scene, df):
+        cens = r["censored_at_lps"]
+        fit = ("no fit" if r["fit_median_lps"] is None
+               else _band(r["fit_q16_lps"], r["fit_median_lps"], r["fit_q84_lps"]))
+        lines.append(f"| {EVENTS[r['event']][1]} | {r['happened']} of {r['members']} ({r['at_first_discharge']}) | "
+                     f"{_band(r['km_q16_lps'], r['km_median_lps'], r['km_q84_lps'], cens)} | {fit} | "
+                     f"{_q(r['observed_lps'], '{:g}')} | {_q(r['model_lps'], '{:g}')} |")
+    return lines + [""]
+
+
+def width_frames(res):
+    """{width [m]: outcome frame} of the width sweep, the scene's own width from its verdict ensemble (its
+    members at the sweep's seeds)."""
+    base = res["verdict"][res["width_scene"]]
+    out = {res["base_width"]: base[base["seed"].isin(res["width_seeds"])]}
+    wide = res["width"]
+    if wide is not None:
+        for w, g in wide.groupby("flume.width"):
+            out[float(w)] = g
+    return dict(sorted(out.items()))
+
+
+def width_rows(res):
+    rows = []
+    for w, df in width_frames(res).items():
+        fr = stage_fractions(df)
+        for ev in EVENTS:
+            rows.append({"width_m": w, **event_summary(df, ev), "stages_2plus": fr["stages_2plus"],
+                         "crest_lowering_mm_median": spread(df["crest_lowering_mm"].astype(float))[1]})
+    return rows
+
+
+def _height_note(res) -> str:
+    if not _raised(res):
+        return ""
+    own = res["scenes"][res["width_scene"]].flume.height
+    return (f"; the narrower flumes in a domain {res['sweep_height']:g} m high (`sweep_height`: raised by the rise of "
+            f"the weir formula's level at the peak discharge), the scene's own width in its {own:g} m")
+
+
+def _width_md(res) -> list:
+    lines = ["| B [m] | " + " | ".join(f"{EVENTS[e][1]}: KM median [16-84 %] [l/s]" for e in EVENTS)
+             + " | 2+ stages | crest lowering [mm] |", "|---|" + "---|" * (len(EVENTS) + 2)]
+    rows = width_rows(res)
+    for w in dict.fromkeys(r["width_m"] for r in rows):
+        rs = [r for r in rows if r["width_m"] == w]
+        cells = [_band(r["km_q16_lps"], r["km_median_lps"], r["km_q84_lps"], r["censored_at_lps"]) for r in rs]
+        lines.append(f"| {w:g} | " + " | ".join(cells) + f" | {rs[0]['stages_2plus']:.0%} | "
+                     f"{_q(rs[0]['crest_lowering_mm_median'], '{:.2f}')} |")
+    return lines + [""]
+
+
+def cost_rows(res, n_boot: int):
+    """One row per setting and event: the shift of the median, its interval, the CPU per member."""
+    ref_df = res["verdict"][res["cost_scene"]]
+    cpu_df = _cpu_reference(res)
+    entries = [("reference", "-", "the reference", ref_df)]
+    entries += [(st.name, st.knob, st.label, res["cost"][st.name]) for st in res["settings"]]
+    rows = []
+    for name, knob, label, df in entries:
+        cpu = _median(cpu_df if name == "reference" else df, "cpu_seconds")
+        # the ratio is paired: the reference's members at the seeds this setting completed
+        done = df.loc[df["status"] == "completed", "seed"] if "seed" in df else []
+        ref_cpu = _median(cpu_df[cpu_df["seed"].isin(done)], "cpu_seconds") if len(done) else math.nan
+        # steps do not depend on the machine's speed: a cost measure where the CPU times drift
+        steps, ref_steps = _median(df, "steps"), _median(ref_df[ref_df["seed"].isin(done)], "steps")
+        for ev in EVENTS:
+            sh = median_shift(ref_df, df, ev, n_boot=n_boot)
+            s = event_summary(ref_df, ev)
+            rows.append({"setting": name, "knob": knob, "label": label, "event": ev,
+                         "completed": int((df["status"] == "completed").sum()), "members": len(df),
+                         "cpu_s_per_member": cpu, "wall_s_per_member": _median(df, "wall_seconds"),
+                         "cost_ratio": cpu / ref_cpu if ref_cpu > 0 else math.nan, "steps_per_member": steps,
+                         "steps_ratio": steps / ref_steps if ref_steps > 0 else math.nan, "median_lps": sh.setting,
+                         "reference_median_lps": sh.reference, "shift_lps": sh.shift, "shift_lo_lps": sh.lo,
+                         "shift_hi_lps": sh.hi, "boot_left_out": sh.left_out, "seeds": sh.seeds,
+                         "spread_lo_lps": _minus(s["km_q16_lps"], s["km_median_lps"]),
+                         "spread_hi_lps": _minus(s["km_q84_lps"], s["km_median_lps"])})
+    return rows
+
+
+def _rerun(res):
+    """The reference's rerun at the knob seeds when any of its members completed, else None."""
+    rerun = res.get("cost_reference")
+    return rerun if rerun is not None and (rerun["status"] == "completed").any() else None
+
+
+def _cpu_reference(res):
+    """The reference's members whose CPU time the settings are measured against: its rerun at the knob
+    seeds when it ran (the same machine state as the settings'), else its verdict members."""
+    rerun = _rerun(res)
+    return res["verdict"][res["cost_scene"]] if rerun is None else rerun
+
+
+def _rerun_md(res) -> list:
+    """Whether the reference's rerun removed the same stones as its verdict members of the same seeds."""
+    rerun = _rerun(res)
+    if rerun is None:
+        return ["The CPU ratios are against the reference's verdict members (no rerun at the knob seeds).", ""]
+    ref = res["verdict"][res["cost_scene"]].set_index("seed")
+    done = rerun[rerun["status"] == "completed"]
+    same = sum(int(s in ref.index and ref.at[s, "stones_hash"] == h) for s, h in zip(done["seed"], done["stones_hash"]))
+    return [f"The CPU ratios are against the reference rerun at the knob seeds just before the settings "
+            f"(`cost/reference`; CPU {_median(done, 'cpu_seconds'):.1f} s per member, its verdict members of the same "
+            f"seeds {_median(ref[ref.index.isin(done['seed'])].reset_index(), 'cpu_seconds'):.1f} s). The rerun "
+            f"removed the same stones as the verdict's members in {same} of {len(done)} seeds.", ""]
+
+
+def _shown(path: Path) -> str:
+    """A path relative to the project when inside it, else its last part only (no machine's path in a
+    committed page)."""
+    try:
+        return str(Path(path).resolve().relative_to(ROOT))
+    except ValueError:
+        return Path(path).name
+
+
+def _median(df, col) -> float:
+    v = df.loc[df["status"] == "completed", col].astype(float).to_numpy() if col in df else np.array([])
+    v = v[np.isfinite(v)]
+    return float(np.median(v)) if v.size else math.nan
+
+
+def _minus(a, b):
+    return None if a is None or b is None else a - b
+
+
+def _shift_cell(r) -> str:
+    if r["completed"] == 0:
+        return "not run"
+    if r["shift_lps"] is None:
+        return "median not reached" if r["median_lps"] is None or r["reference_median_lps"] is None else "-"
+    band = "" if math.isnan(r["shift_lo_lps"]) else f" [{r['shift_lo_lps']:+.2f} to {r['shift_hi_lps']:+.2f}]"
+    return f"{r['shift_lps']:+.2f}{band}"
+
+
+def _ref_cell(r) -> str:
+    m = r["reference_median_lps"]
+    return "median not reached" if m is None else f"median {m:.2f}"
+
+
+def _cost_md(rows) -> list:
+    lines = ["| setting | members | CPU s per member (x reference) | steps per member (x reference) | " + " | ".join(
+        f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|---|" + "---|" * len(EVENTS)]
+    for name in dict.fromkeys(r["setting"] for r in rows):
+        rs = [r for r in rows if r["setting"] == name]
+        r0 = rs[0]
+        cell = _ref_cell if name == "reference" else _shift_cell
+        lines.append(f"| {name if name == 'reference' else r0['knob'] + ': ' + r0['label']} | {r0['completed']} of "
+                     f"{r0['members']} | {_q(r0['cpu_s_per_member'], '{:.1f}')} (x{_q(r0['cost_ratio'], '{:.2f}')}) | "
+                     f"{_q(r0['steps_per_member'], '{:.0f}')} (x{_q(r0['steps_ratio'], '{:.2f}')}) | "
+                     + " | ".join(cell(r) for r in rs) + " |")
+    ref = [r for r in rows if r["setting"] == "reference"]
+    nr = "not reached"
+    lines += ["", "The packings' own spread (the reference's Kaplan-Meier 16-84 % band about its median): "
+              + "; ".join(f"{EVENTS[r['event']][1]} " + (nr if r["spread_lo_lps"] is None else
+                          f"{r['spread_lo_lps']:+.2f}") + " to " + (nr if r["spread_hi_lps"] is None else
+                          f"{r['spread_hi_lps']:+.2f} l/s") for r in ref) + ".", ""]
+    return lines
+
+
+def _presets_md(res, rows) -> list:
+    """The fidelity presets among the reference and the settings: their cost and shifts."""
+    ref = res["scenes"][res["cost_scene"]]
+    scenes = {"reference": ref, **{st.name: st.scene(ref) for st in res["settings"]}}
+    found = {}
+    for n, s in scenes.items():  # the first that holds a preset's values: the reference before the settings
+        if preset_of(s) is not None:
+            found.setdefault(preset_of(s), n)
+    lines = ["| preset | run as | CPU s per member (x reference) | " + " | ".join(
+        f"{EVENTS[e][1]}: shift [l/s]" for e in EVENTS) + " |", "|---|---|---|" + "---|" * len(EVENTS)]
+    for name in PRESETS:
+        if name not in found:
+            lines.append(f"| {name} | not in this study's settings | - |" + " - |" * len(EVENTS))
+            continue
+        rs = [r for r in rows if r["setting"] == found[name]]
+        cell = _ref_cell if found[name] == "reference" else _shift_cell
+        lines.append(f"| {name} | {found[name]} | {_q(rs[0]['cpu_s_per_member'], '{:.1f}')} "
+                     f"(x{_q(rs[0]['cost_ratio'], '{:.2f}')}) | " + " | ".join(cell(r) for r in rs) + " |")
+    return lines + [""]
+
+
+def fig_cost(rows, path: Path):
+    """Shift of each event's median against the CPU time per member, one point per setting, the
+    packings' spread (the reference's 16-84 % band about its median) as a grey band; saved to path and
+    returned."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(9.0, 6.4), layout="constrained")
+    FigureCanvasAgg(fig)  # a renderer to measure the labels with
+    axes = fig.subplots(2, 2, sharex=True).ravel()
+    knobs = list(dict.fromkeys(r["knob"] for r in rows))
+    labels = {}
+    for ax, ev in zip(axes, EVENTS):
+        rs = [r for r in rows if r["event"] == ev]
+        shown = [r for r in rs if r["shift_lps"] is not None and math.isfinite(r["cpu_s_per_member"])]
+        labels[ax] = []
+        for r in shown:
+            lo, hi = r["shift_lo_lps"], r["shift_hi_lps"]
+            err = None if math.isnan(lo) else [[r["shift_lps"] - lo], [hi - r["shift_lps"]]]
+            if r["setting"] == "reference":
+                # a marker of its own on top, named by the legend: a text label was placed by the
+                # separation among the knobs' labels, where it could read as a knob's
+                ax.plot([r["cpu_s_per_member"]], [r["shift_lps"]], "k*", ms=11, zorder=5, label="reference")
+                continue
+            c = f"C{knobs.index(r['knob']) % 10}"
+            ax.errorbar([r["cpu_s_per_member"]], [r["shift_lps"]], yerr=err, fmt="o", color=c, capsize=3,
+                        label=r["knob"])
+            labels[ax].append(ax.annotate(r["setting"], (r["cpu_s_per_member"], r["shift_lps"]),
+                                          textcoords="offset points", xytext=(4, 4), fontsize=7,
+                                          arrowprops=dict(arrowstyle="-", color="0.6", lw=0.5, shrinkA=0, shrinkB=3)))
+        ax.axhline(0.0, color="0.5", lw=0.8)
+        _spread_band(ax, next(r for r in rs if r["setting"] == "reference"))
+        _not_reached(ax, rs, shown)
+        ax.set_title(EVENTS[ev][1])
+        ax.grid(alpha=0.3)
+    cpu = [r["cpu_s_per_member"] for r in rows if math.isfinite(r["cpu_s_per_member"]) and r["cpu_s_per_member"] > 0]
+    if cpu and max(cpu) > 4 * min(cpu):
+        axes[0].set_xscale("log")  # shared: the coarse and the fine grid lie an order of magnitude apart
+    for ax in axes[2:]:
+        ax.set_xlabel("CPU time per member [s]")
+    for ax in axes[::2]:
+        ax.set_ylabel("shift of the median [l/s]")
+    figure_legend(fig, axes, 4)
+    fig.canvas.draw()  # the layout first: the labels are separated where they will be drawn
+    for texts in labels.values():
+        separate_labels(fig, texts)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=90)
+    return fig
+
+
+# the cost rows' values that are None where an event is not reached (an empty cell in the CSV)
+_NONE_WHEN_EMPTY = ("median_lps", "reference_median_lps", "shift_lps", "spread_lo_lps", "spread_hi_lps")
+
+
+def cost_rows_from_csv(path: Path):
+    """The rows of cost_rows (as fig_cost takes them) from the _cost.csv that write_results wrote."""
+    frame = pd.read_csv(path, dtype={"setting": str, "knob": str, "label": str, "event": str})
+    rows = frame.to_dict("records")
+    for r in rows:
+        for k in _NONE_WHEN_EMPTY:
+            if math.isnan(r[k]):
+                r[k] = None
+    return rows
+
+
+def _not_reached(ax, rows, shown) -> None:
+    """Names the settings without a shift: their median (or the reference's) lies beyond the runs' end."""
+    if not shown:
+        ax.text(0.5, 0.5, "the reference's median is not reached\n(beyond the runs' end): no shift",
+                transform=ax.transAxes, ha="center", va="center", fontsize=8)
+        ax.set_yticks([])
+        return
+    text = []
+    for label, names in (("median not reached", [r["setting"] for r in rows if r not in shown and r["completed"]]),
+                         ("not run", [r["setting"] for r in rows if not r["completed"]])):
+        if names:
+            text.append(f"{label}: " + "\n".join(", ".join(names[i:i + 3]) for i in range(0, len(names), 3)))
+    if text:
+        ax.text(0.02, 0.02, "; ".join(text), transform=ax.transAxes, fontsize=7, va="bottom")
+
+
+def separate_labels(fig, texts, step_pt: float = 9.0, tries: int = 12, pad_px: float = 4.0) -> None:
+    """Moves labels (annotations placed in offset points) apart, from the cheapest point on: each takes
+    the first offset of 0, -1, +1, -2, ... steps of `step_pt` points at which it comes no nearer than
+    `pad_px` pixels to a label placed before it (its own place when none is free within `tries` steps)."""
+    from matplotlib.text import Text
+
+    renderer = fig.canvas.get_renderer()
+    box = lambda t: Text.get_window_extent(t, renderer).padded(pad_px)  # noqa: E731 (the text's, not its line's)
+    placed = []
+    for t in sorted(texts, key=lambda t: t.xy[0]):
+        x0, y0 = t.xyann
+        for k in range(2 * tries + 1):
+            t.xyann = (x0, y0 + step_pt * ((k + 1) // 2) * (-1 if k % 2 else 1))
+            if not any(box(t).overlaps(p) for p in placed):
+                break
+        else:
+            t.xyann = (x0, y0)
+        placed.append(box(t))
+
+
+def _spread_band(ax, ref) -> None:
+    """The reference's 16-84 % band about its median, open-ended where a quantile is not reached."""
+    lo, hi = ref["spread_lo_lps"], ref["spread_hi_lps"]
+    if lo is None and hi is None:
+        return
+    y0, y1 = ax.get_ylim()
+    span = max(y1 - y0, 1.0)
+    ax.axhspan(y0 - 10 * span if lo is None else lo, y1 + 10 * span if hi is None else hi, color="0.85", zorder=0,
+               label="packings' spread (16-84 %; open where not reached)")
+    ax.set_ylim(min(y0, lo if lo is not None else y0) - 0.1 * span, max(y1, hi if hi is not None else y1) + 0.1 * span)
+
+
+def write_results(res, args, wall: float) -> Path:
+    """The tables (markdown and CSV) and the two figures."""
+    size, sfx = res["size"], SUFFIX[res["size"]]
+    args.results.mkdir(parents=True, exist_ok=True)
+    args.figures.mkdir(parents=True, exist_ok=True)
+    base = args.results / f"maeno2008_verdict{sfx}"
+    vrows = [r for n, s in res["scenes"].items() for r in verdict_rows(n, s, res["verdict"][n])]
+    pd.DataFrame(vrows).to_csv(f"{base}_verdict.csv", index=False, lineterminator="\n")
+    pd.DataFrame(width_rows(res)).to_csv(f"{base}_width.csv", index=False, lineterminator="\n")
+    crows = cost_rows(res, args.n_boot)
+    pd.DataFrame(crows).to_csv(f"{base}_cost.csv", index=False, lineterminator="\n")
+    cost_png, frag_png = (args.figures / f"maeno2008_verdict{sfx}_{k}.png" for k in ("cost", "fragility"))
+    fig_cost(crows, cost_png)
+    by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
+    fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
+    frames = [*res["verdict"].values(), *res["cost"].values()] + [
+        df for df in (res["width"], res.get("cost_reference")) if df is not None]
+    n_members = sum(len(df) for df in frames)
+    cpu = sum(float(df.loc[df["status"] == "completed", "cpu_seconds"].astype(float).sum()) for df in frames)
+    ran = _finished(res["out"]) - res["found"]
+    where = (f"on the cluster at {args.scheduler}" if args.scheduler else "in this process" if args.workers == 0
+             else f"on {args.workers or default_workers()} local worker process(es)")
+    flag = {"full": "", "small": " --small", "tiny": " --tiny"}[size] + "".join(
+        f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "knob_seeds")
+        if getattr(args, k))
+    if args.no_run:
+        where = "(--no-run: tables of the members finished so far)"
+    scene0 = next(iter(res["scenes"].values()))
+    text = [f"# The Maeno 2008 weir: the verdict and what its accuracy costs ({size} version)", "",
+            f"Written by `PYTHONPATH=python python3 studies/maeno2008_verdict.py{flag}`: {len(res['seeds'])} "
+            f"seeds ({_seed_range(res['seeds'])}), {n_members} members, "
+            f"{'the quick variants of ' if size != 'full' else ''}scenes {', '.join(res['scenes'])}, "
+            f"{scene0.duration:g} s simulated per member, {cpu / 60:.1f} CPU-minutes in all. The last call ran {ran} "
+            f"members (found {res['found']} finished) in {wall / 60:.1f} min {where} ({os.cpu_count()} cores, load "
+            f"average {os.getloadavg()[0]:.1f} at the end). Ensembles in "
+            f"`{_shown(res['out'])}/` (resumable). Figures: `docs/figures/{cost_png.name}`, "
+            f"`docs/figures/{frag_png.name}`.",
+            "", "## The verdict", "",
+            "Per event: members in which it happened (in brackets those in which it happened at the first discharge "
+            "a run could see it, when the stones were released), the Kaplan-Meier median and 16-84 % band (members "
+            "in which it never happened are censored at their last discharge; '> Q': not reached by the runs' end), "
+            "the lognormal fit, and the scene's reference data.", ""]
+    for n, s in res["scenes"].items():
+        text += _config_md(n, s, res["verdict"][n])
+    text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by B; "
+             f"the paper does not give it), seeds {_seed_range(res['width_seeds'])}" + _height_note(res) + ".", ""]
+    text += _width_md(res)
+    ref_scene = res["scenes"][res["cost_scene"]]
+    text += ["## Accuracy against cost", "",
+             f"Reference: `{res['cost_scene']}` (grid {ref_scene.grid.dx * 100:g} x {ref_scene.grid.dz * 100:g} cm, "
+             f"CFL {ref_scene.numerics.cfl:g}, porosity {ref_scene.numerics.porosity_method}, "
+             f"{ref_scene.numerics.dem_contact_steps:g} DEM steps per contact, ramp "
+             f"{ref_scene.hydrograph.ramp_duration:g} s, spin-up {ref_scene.hydrograph.spin_up_duration:g} s). "
+             f"One knob at a time over the same seeds ({_seed_range(res['knob_seeds'])}): the shift of each event's "
+             "Kaplan-Meier median from the "
+             "reference's [l/s], with its paired bootstrap 16-84 % interval over the seeds, and the median CPU time "
+             "per member (its ratio to the reference's median over the same seeds).", ""] + _rerun_md(res) + _cost_md(crows)
+    text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "
+             "vofdem/fidelity.py) that the reference or a setting of this study ran, with their measured cost and "
+             "shift from the reference:", ""] + _presets_md(res, crows)
+    md = Path(f"{base}.md")
+    md.write_text("\n".join(text), encoding="utf-8")
+    return md
+
+
+def main(argv=None, build=None, log=print) -> Path:
+    args = _parser().parse_args(argv)
+    if args.redraw_cost:
+        sfx = SUFFIX[_size(args)]
+        png = args.figures / f"maeno2008_verdict{sfx}_cost.png"
+        fig_cost(cost_rows_from_csv(args.results / f"maeno2008_verdict{sfx}_cost.csv"), png)
+        log(f"wrote {png}")
+        return png
+    t0 = time.perf_counter()
+    res = run_study(args, build=build, log=log)
+    md = write_results(res, args, time.perf_counter() - t0)
+    log(f"wrote {md}")
+    return md
+
+
+if __name__ == "__main__":
+    main()
