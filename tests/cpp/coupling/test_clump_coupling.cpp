@@ -44,10 +44,10 @@ std::vector<double> rows(const Clump& c) {
   return out;
 }
 
-double sum_parts(const PorosityMapper& m, int j) {
-  PorosityMapper& mm = const_cast<PorosityMapper&>(m);
+// the areas of stone j's cells [m^2]
+double sum_parts(PorosityMapper& m, int j) {
   double a = 0.0;
-  for (int p = mm.stone_cell_offsets()[j]; p < mm.stone_cell_offsets()[j + 1]; ++p) a += mm.stone_cell_area()[p];
+  for (int p = m.stone_cell_offsets()[j]; p < m.stone_cell_offsets()[j + 1]; ++p) a += m.stone_cell_area()[p];
   return a;
 }
 
