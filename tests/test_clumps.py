@@ -1,5 +1,6 @@
 """Clump stones from Python (clump_model.h): library shapes set on a DEMSystem, a heap that settles between
-the side walls and restarts bit for bit, and the refusals (bad shapes, the coupling, a scene)."""
+the side walls and restarts bit for bit, library clumps coupled to a VOFGrid through a Coupler, and the
+refusals (bad shapes, a packing porosity in the coupling, a scene)."""
 from pathlib import Path
 
 import numpy as np
@@ -62,6 +63,28 @@ def test_a_clump_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
     assert e.dissipated > 0.0 and e.total == r.energy().total
 
 
+def test_library_clumps_coupled_to_the_flow_fall_and_keep_the_water():
+    stones = heap(n=4)
+    grid = vofdem.Grid2D.uniform(16, 30, 0.16, 0.3)
+    fluid = vofdem.VOFGrid(grid, tank_params())
+    fluid.fill_water_below(0.2)
+    fluid.set_hydrostatic_pressure()
+    cp = _core.CouplerParams()
+    cp.n_exp = 0.0
+    sim = _core.Coupler(fluid, stones, cp)
+    sim.update_porosity(True)
+    v0 = sim.water_volume()
+    z0 = np.array(stones.stone_pos[:, 1])
+    volume = sum(stones.volume(i) for i in range(stones.n))
+    solid = float(np.sum(1.0 - np.asarray(fluid.cell_porosity))) * 0.01 * 0.01 * 0.06
+    assert solid == pytest.approx(volume, rel=1e-12)  # each clump's union volume over the width
+    sim.advance(0.1)
+    assert sim.water_volume() == pytest.approx(v0, rel=1e-9)
+    assert np.all(np.asarray(stones.stone_wet) == 1.0)  # under water: buoyed by their whole volume
+    assert np.all(stones.stone_pos[:, 1] < z0) and np.isfinite(np.asarray(stones.stone_pos)).all()
+    assert np.all(np.abs(sim.stone_force_drag[:, 1]) > 0.0)  # the flow drags on each as it falls
+
+
 def test_what_clumps_cannot_do_yet_is_refused_with_the_key_named():
     s = heap(n=2)
     with pytest.raises(ValueError, match=r"allowed range \[1, 8\]"):
@@ -72,10 +95,9 @@ def test_what_clumps_cannot_do_yet_is_refused_with_the_key_named():
         _core.quarried_stone("pair_2", -1.0)
     grid = vofdem.Grid2D.uniform(10, 20, 0.16, 0.3)
     fluid = vofdem.VOFGrid(grid, tank_params())
-    cp = _core.CouplerParams()
-    cp.n_exp = 0.0
-    with pytest.raises(ValueError, match="stones.shape = 'clump' cannot be coupled to the flow yet"):
-        sim = _core.Coupler(fluid, s, cp)
+    sim = _core.Coupler(fluid, s, _core.CouplerParams())  # n_exp = 0.41: their footprint is their volume
+    with pytest.raises(ValueError, match=r"n_exp = 0.41 is outside the allowed range \[0, 0\] with 3D stones "
+                                         r"\(stones.shape = 'clump'\)"):
         sim.advance(0.01)
     scene = vofdem.load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008.toml")
     with pytest.raises(ValueError, match="stones.shape = 'clump' is not allowed in a scene yet"):

@@ -165,8 +165,8 @@ class SphereFront(StoneFront):
 
 class ClumpFront(StoneFront):
     """Rigid clumps of 1 to 8 overlapping spheres across the flume's width (clump_model.h): run by a DEMSystem
-    (``set_clumps``, library shapes from ``quarried_stone``), not yet coupled to the flow nor packed into a
-    weir, so a scene refuses them."""
+    (``set_clumps``, library shapes from ``quarried_stone``) and coupled to the flow by a Coupler (their volume
+    in each cell's slab, CouplerParams.n_exp = 0), not yet packed into a weir, so a scene refuses them."""
 
     name = "clump"
     lookup_table = False
@@ -176,9 +176,10 @@ class ClumpFront(StoneFront):
         return np.array([system.nominal_diameter(i) for i in range(system.n)])
 
     def check(self, stones, prefix: str) -> None:
-        raise ValueError(f"{prefix}.shape = 'clump' is not allowed in a scene yet: clumps are neither packed into a "
-                         "weir nor coupled to the flow (allowed: 'disc', 'polygon'); a DEMSystem runs them "
-                         "(set_clumps with DEMParams.width)")
+        raise ValueError(f"{prefix}.shape = 'clump' is not allowed in a scene yet: the packing generator does not "
+                         "pack clumps into a weir (allowed: 'disc', 'polygon', 'sphere'); a DEMSystem runs them "
+                         "(set_clumps with DEMParams.width) and a Coupler couples them to a VOFGrid "
+                         "(CouplerParams.n_exp = 0)")
 
 
 _FRONTS: Dict[str, StoneFront] = {}

@@ -459,7 +459,7 @@ void Coupler::stage_fluid_forces(unsigned fl) {
       const double w = snapped_wet_fraction(std::clamp(s.wet, 0.0, 1.0), params_.wet_fraction_tolerance);
       stones_->set_wet_fraction(j, w);
       stones_->stone_water_level[j] =
-          water_level_of_wet_fraction(stones_->stone_pos[2 * j + 1], stones_->stone_radius[j], w, wet_law);
+          water_level_of_wet_fraction(stones_->stone_pos[2 * j + 1], stones_->wet_radius(j), w, wet_law);
     }
   }
 }

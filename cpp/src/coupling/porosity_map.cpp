@@ -96,6 +96,7 @@ PorosityMapper::PorosityMapper(const Grid2D& grid, const PorosityParams& params)
   stone_cell_index_.assign(static_cast<std::size_t>(params_.max_discs) * max_cells_per_disc_, 0);
   stone_cell_area_.assign(stone_cell_index_.size(), 0.0);
   poly_scratch_.assign(16 * kPolygonMaxVertices + 64, 0.0);
+  clump_patch_.assign(static_cast<std::size_t>(max_cells_per_disc_), 0.0);
   stage_map_ = profile_.add_stage("porosity_map");
 }
 

@@ -14,6 +14,10 @@
 #include "common/state_fields.h"
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
+#include "vofdem/coupling/drag.h"
+#include "vofdem/coupling/drag_exchange.h"
+#include "vofdem/coupling/fluid_forces.h"
+#include "vofdem/coupling/porosity_map.h"
 #include "vofdem/stones/clump.h"
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
@@ -326,7 +330,8 @@ void ClumpModel::import_state(DEMSystem& s, const DEMState& t) {
     volume_[i] = t.clump_property[4 * i];
     for (int k = 0; k < 3; ++k) moment_[3 * i + k] = t.clump_property[4 * i + 1 + k];
     for (int g = offset_[i]; g < offset_[i + 1]; ++g)
-      bound_[i] = std::max(bound_[i], std::hypot(sphere_[4 * g], sphere_[4 * g + 1], sphere_[4 * g + 2]) +
+      // as set_shapes computes it (the same bits: a restart's radii are the run's)
+      bound_[i] = std::max(bound_[i], Eigen::Vector3d(sphere_[4 * g], sphere_[4 * g + 1], sphere_[4 * g + 2]).norm() +
                                           sphere_[4 * g + 3]);
   }
   shaped_ = true;
@@ -375,12 +380,32 @@ void ClumpModel::state_from_map(const StateMap& m, std::size_t n, std::size_t nw
   t.clump_wall_rolling = entry(m, "clump_wall_rolling", 3 * ns * (nwalls + 2));
 }
 
-// ---- the flow's view: refused (clump_model.h)
+// ---- the flow's view: the union's volume in each cell's slab, the drag of the volume-equivalent sphere
 
-void ClumpModel::map_footprint(const DEMSystem&, PorosityMapper&, const double*, const double*) const {
-  throw std::invalid_argument(
-      "stones.shape = 'clump' cannot be coupled to the flow yet: the porosity mapper keeps one cell list per stone "
-      "from one primitive, and a clump is several spheres (allowed with a Coupler: 'disc', 'polygon', 'sphere')");
+// shapes set: each stone's sub-spheres into one cell list; else (not prepared since the model was set,
+// or the stones resized) the spheres of stone_radius that prepare() makes the stones
+void ClumpModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const {
+  SphereModel::require_true_void_fraction(m, "clump");
+  if (!shaped_ || offset_.size() != static_cast<std::size_t>(s.n()) + 1) {
+    m.map_spheres(s.n(), x, z, s.stone_radius.data(), s.params().width, s.stone_active.data());
+    return;
+  }
+  m.map_clumps(s.n(), x, z, s.stone_quat.data(), sphere_.data(), offset_.data(), volume_.data(), s.params().width,
+               s.stone_active.data());
+}
+
+DragForce ClumpModel::drag(const DEMSystem& s, int i, const StoneFlowSample& f, double up, double wp, double rho,
+                           double nu, DragLaw law, double* slope) const {
+  const double d = nominal_diameter(s, i);
+  if (slope) *slope = sphere_drag_slope(f, up, wp, d, rho, nu, law);
+  return stone_drag(f, up, wp, d, rho, nu, law);
+}
+
+double ClumpModel::drag_relaxation_dt(const DEMSystem& s, int i, double relaxation, double mass, double vrel, double w,
+                                      double rho, double nu) const {
+  const double d = nominal_diameter(s, i);
+  const double slope = drag_slope(vrel, d, w * 0.5 * rho * projected_area(s, i), nu, DragLaw::kPaper);
+  return relaxation * (mass / slope);
 }
 
 std::unique_ptr<StonePacking> ClumpModel::packing(const WeirSpec&) const { return nullptr; }

@@ -274,7 +274,7 @@ void DEMSystem::change_wet_fraction(int i, double w) {
 // the drag's kick scale follows its new mass, so that the next half kicks integrate the linear drag
 // exactly with the added mass the stone now has (set_wet_fraction has kept its momentum)
 void DEMSystem::follow_water_level(int i) {
-  const double w = wet_law_.fraction((stone_water_level[i] - stone_pos[2 * i + 1]) / stone_radius[i]);
+  const double w = wet_law_.fraction((stone_water_level[i] - stone_pos[2 * i + 1]) / wet_radius(i));
   if (w == stone_wet[i]) return;
   change_wet_fraction(i, w);
   if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);

@@ -212,12 +212,16 @@ void SphereModel::state_from_map(const StateMap& m, std::size_t n, std::size_t n
 
 // ---- the flow's view: the exact volume in each cell's slab across the width, the true solid fraction
 
-void SphereModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const {
+void SphereModel::require_true_void_fraction(const PorosityMapper& m, const char* shape) {
   if (m.params().n_exp != 0.0)
     throw std::invalid_argument("n_exp = " + format_value(m.params().n_exp) +
-                                " is outside the allowed range [0, 0] with 3D stones (stones.shape = 'sphere'): their "
-                                "footprint is their volume, so the porosity is the true void fraction without eq. "
-                                "(11)'s packing porosity (CouplerParams.n_exp = 0)");
+                                " is outside the allowed range [0, 0] with 3D stones (stones.shape = '" + shape +
+                                "'): their footprint is their volume, so the porosity is the true void fraction "
+                                "without eq. (11)'s packing porosity (CouplerParams.n_exp = 0)");
+}
+
+void SphereModel::map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const {
+  require_true_void_fraction(m, "sphere");
   m.map_spheres(s.n(), x, z, s.stone_radius.data(), s.params().width, s.stone_active.data());
 }
 

@@ -15,6 +15,8 @@
 
 namespace vofdem {
 
+double StoneModel::wet_radius(const DEMSystem& s, int i) const { return s.stone_radius[i]; }
+
 namespace {
 template <class Model>
 std::unique_ptr<StoneModel> make_model() {

@@ -36,6 +36,10 @@
 // exact volume in its slab dx x dz x B over B (slab_volume.h), an area per unit width whose parts sum to
 // V / B; with n_exp = 0, eq. (11) is then the true solid fraction n = 1 - V_s / (dx dz B).
 //
+// 3D clumps of spheres (map_clumps, sphere_porosity.cpp): each sub-sphere's slab volumes scaled by
+// V_union / sum_k V_k (slab_volume.h), summed per cell into one cell list per stone, so a stone's parts
+// sum to its union volume / width and a cell reached by several of its sub-spheres is listed once.
+//
 // Reference: S. Maeno and A. Tomita (2008), Destruction prediction of a rubble mound weir using
 // VOF-DEM coupled model, ICHE 2008, Nagoya, section 2.4 and Fig. 3.
 #pragma once
@@ -118,6 +122,15 @@ class PorosityMapper {
   // radius outside [r_min, r_max]. Allocates nothing.
   void map_spheres(int n, const double* x, const double* z, const double* r, double width,
                    const std::uint8_t* active = nullptr);
+  // maps n 3D clumps across a flume of width [m] onto the same outputs: stone j at (x, z) [m] turned by
+  // quat[4j..4j+3] (w, x, y, z; principal frame to world) owns the sub-spheres sphere[4g..4g+3] (x, y, z, r
+  // [m] in its principal frame) for g in [offset[j], offset[j+1]), of union volume volume[j] [m^3]; each
+  // sub-sphere's slab volumes are scaled by volume[j] / sum_g V_g and summed per cell (one entry per cell,
+  // cells in the order of map_spheres). Throws std::invalid_argument for the lookup method, width <= 0,
+  // n > max_discs, a non-finite centre or quaternion, 1 > sub-spheres > 8, a volume outside (0, inf) or a
+  // clump reaching farther than r_max from its centre. Allocates nothing.
+  void map_clumps(int n, const double* x, const double* z, const double* quat, const double* sphere,
+                  const int* offset, const double* volume, double width, const std::uint8_t* active = nullptr);
 
   const Grid2D& grid() const { return grid_; }
   const PorosityParams& params() const { return params_; }
@@ -154,6 +167,8 @@ class PorosityMapper {
   int add_lookup(int j, double x, double z, double r, int p);
   int add_polygon(const double* world, int count, int p);
   int add_sphere(double x, double z, double r, double width, int p);
+  int add_clump(double x, double z, const double* quat, const double* sphere, int count, double volume, double width,
+                int p);
   void apply_eq11();
   // cell c gets area [m^2] of the stone being mapped: the cell's sum and the stone's CSR entry p; returns p + 1
   int append_cell(int c, double area, int p) {
@@ -201,6 +216,7 @@ class PorosityMapper {
   std::vector<double> node_phi_;  // scratch of the exact method: node values, then 3 lines of scratch_line_
   int scratch_line_ = 0;
   std::vector<double> poly_scratch_;  // scratch of map_polygons: world vertices, a strip, clip buffers
+  std::vector<double> clump_patch_;   // scratch of map_clumps: one stone's volumes on its stencil's cells
   int ndisc_ = 0;
 
   StageProfile profile_;

@@ -24,11 +24,18 @@
 //   bounding radius), and the disc model's dashpot bound. A sub-sphere has no mass of its own: every
 //   contact loads the whole rigid body, so its mass share would understate the mode's inertia.
 //
-// Coupling: refused (map_footprint throws, naming stones.shape). The mapper keeps one cell list per stone
-// and takes a stone's sub-spheres as one sphere each; mapping a clump's parts needs a list per stone
-// built from several primitives, which it has not. The drag and the wet law are the sphere's with r_eq
-// (the latter in DEMSystem's follow-the-water-level reads stone_radius, the bounding radius: noted in
-// docs/stone_models.md). The packing generator does not take 3D stones yet (refused with the key named).
+// Coupling to the 2D vertical flow (as the sphere model's, width-averaged): each cell's slab dx x dz x B
+// holds the stone's volume, each sub-sphere's exact slab volumes (slab_volume.h) scaled by
+//
+//   V_union / sum_k (4/3) pi r_k^3,
+//
+// so a stone's parts sum to its union volume (the overlaps spread over its sub-spheres), summed per cell
+// into one cell list per stone (PorosityMapper::map_clumps; n_exp = 0 required, the porosity the true void
+// fraction). The drag is the volume-equivalent sphere's (d_eq, A_p = pi d_eq^2 / 4, in x and z); buoyancy,
+// added mass and the pressure-gradient force act on V_union; the wet fraction at the free surface is a
+// sphere cap's with r_eq = d_eq / 2 (wet_radius: the level scaled by r_eq, not by the bounding radius).
+// The kernel mapping takes the same cell lists. The packing generator does not take clumps yet (refused
+// with the key named).
 //
 // References: Favier, J. F., Abbaspour-Fard, M. H., Kremmer, M. & Raji, A. O. (1999), Eng. Computations
 // 16(4), 467-480. Ferellec, J.-F. & McDowell, G. R. (2010), Granular Matter 12, 459-467. Cundall, P. A.
@@ -52,6 +59,7 @@ class ClumpModel final : public DiscModel {
   const char* name() const override { return "clump"; }
   int dimensions() const override { return 3; }
   WetLaw wet_law() const override { return kSphereWetLaw; }
+  double wet_radius(const DEMSystem& s, int i) const override { return 0.5 * nominal_diameter(s, i); }
   double volume(const DEMSystem& s, int i) const override;
   double inertia(const DEMSystem& s, int i, double mass) const override;
   std::array<double, 3> principal_inertia(const DEMSystem& s, int i, double mass) const override;
@@ -75,6 +83,10 @@ class ClumpModel final : public DiscModel {
 
   bool lookup_footprint() const override { return false; }
   void map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const override;
+  DragForce drag(const DEMSystem& s, int i, const StoneFlowSample& f, double up, double wp, double rho, double nu,
+                 DragLaw law, double* slope) const override;
+  double drag_relaxation_dt(const DEMSystem& s, int i, double relaxation, double mass, double vrel, double w,
+                            double rho, double nu) const override;
   std::unique_ptr<StonePacking> packing(const WeirSpec& spec) const override;
 
   // the stones' shapes: sphere holds (x, y, z, r) per sphere [m] in any frame, stone i owning spheres

@@ -263,6 +263,7 @@ class DEMSystem {
   double projected_area(int i) const { return model_->projected_area(*this, i); }
   // nominal diameter [m]: 2 r for a disc, the equal-area disc's diameter for a polygon
   double nominal_diameter(int i) const { return model_->nominal_diameter(*this, i); }
+  double wet_radius(int i) const { return model_->wet_radius(*this, i); }  // the wet law's radius [m]
   // projected area [m^2] of the 3D stone seen along the direction (ux, uz) in the flume's plane: pi r^2
   // for a disc; (pi / 2) r_A W for a polygon, W its width across the direction (an ellipsoid's exact rule)
   double projected_area(int i, double ux, double uz) const { return model_->projected_area(*this, i, ux, uz); }

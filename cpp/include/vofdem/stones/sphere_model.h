@@ -56,6 +56,9 @@ class SphereModel final : public DiscModel {
 
   // the planes the stones touch: DEMParams::walls across the flume, then y = 0 and y = width
   static std::vector<ContactPlane> planes(const DEMParams& p);
+  // 3D stones' footprint is their volume: refuses a mapper with a packing porosity (n_exp != 0), naming
+  // the key and stones.shape = shape
+  static void require_true_void_fraction(const PorosityMapper& m, const char* shape);
 
  private:
   SphereOfBody body(const DEMSystem& s, int i, double mass) const;

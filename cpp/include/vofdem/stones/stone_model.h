@@ -102,6 +102,9 @@ class StoneModel {
   // the share of the stone below a water level as a function of s = (level - z) / r (wet_fraction.h): the
   // disc's area share for the plane's models, a cap's volume for spheres
   virtual WetLaw wet_law() const { return kDiscWetLaw; }
+  // the radius [m] that scales s in the wet law for stone i: stone_radius (the stone's own, or its bounding
+  // radius); a clump's that of the volume-equivalent sphere
+  virtual double wet_radius(const DEMSystem& s, int i) const;
   virtual std::array<double, 3> principal_inertia(const DEMSystem& s, int i, double mass) const {
     const double inertia_i = inertia(s, i, mass);
     return {inertia_i, inertia_i, inertia_i};
