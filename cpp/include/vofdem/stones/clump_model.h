@@ -28,14 +28,18 @@
 // and takes a stone's sub-spheres as one sphere each; mapping a clump's parts needs a list per stone
 // built from several primitives, which it has not. The drag and the wet law are the sphere's with r_eq
 // (the latter in DEMSystem's follow-the-water-level reads stone_radius, the bounding radius: noted in
-// docs/stone_models.md). The packing generator does not take 3D stones yet (refused with the key named).
+// docs/stone_models.md). The 3D packing generator packs them (ClumpPacking, clump_packing.cpp: a mix of
+// library shapes, WeirSpec::clump); its diagnostics read the stone's x-z outline as the union of its
+// sub-spheres' discs (gap, covers, outline_max).
 //
 // References: Favier, J. F., Abbaspour-Fard, M. H., Kremmer, M. & Raji, A. O. (1999), Eng. Computations
 // 16(4), 467-480. Ferellec, J.-F. & McDowell, G. R. (2010), Granular Matter 12, 459-467. Cundall, P. A.
 // & Strack, O. D. L. (1979), Geotechnique 29(1), 47-65.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,6 +47,8 @@
 #include "vofdem/stones/sphere_contact.h"
 
 namespace vofdem {
+
+class Clump;
 
 // the most spheres one clump stone may have
 inline constexpr int kClumpMaxSpheres = 8;
@@ -76,11 +82,16 @@ class ClumpModel final : public DiscModel {
   bool lookup_footprint() const override { return false; }
   void map_footprint(const DEMSystem& s, PorosityMapper& m, const double* x, const double* z) const override;
   std::unique_ptr<StonePacking> packing(const WeirSpec& spec) const override;
+  double gap(const DEMSystem& s, int i, double x, double z) const override;
+  bool covers(const DEMSystem& s, int i, double x, double z) const override;
+  double outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const override;
 
   // the stones' shapes: sphere holds (x, y, z, r) per sphere [m] in any frame, stone i owning spheres
   // offset[i] .. offset[i+1]-1 (1 to kClumpMaxSpheres); each is stored in its principal frame. Checked
   // first (std::invalid_argument naming the stone); the stones' radii become the bounding radii
   void set_shapes(int n, const std::vector<double>& sphere, const std::vector<int>& offset);
+  // the same from clumps already integrated (one per stone, their principal frames kept)
+  void set_shapes(const std::vector<Clump>& clumps);
   const std::vector<double>& spheres() const { return sphere_; }  // principal frames, (x, y, z, r) each
   const std::vector<int>& offsets() const { return offset_; }
   const std::vector<double>& bounding_radii() const { return bound_; }
@@ -92,6 +103,9 @@ class ClumpModel final : public DiscModel {
     SphereContactHistory h;
   };
   void default_shapes(const DEMSystem& s);
+  void adopt(const std::vector<const Clump*>& of);
+  bool outlined(const DEMSystem& s) const;
+  std::array<double, 2> world_xz(const DEMSystem& s, int i, int g) const;
   void world_spheres(const DEMSystem& s);
   SphereOfBody body(const DEMSystem& s, int i, int g, double mass) const;
   std::size_t np() const { return planes_.size(); }
@@ -111,5 +125,7 @@ class ClumpModel final : public DiscModel {
 // makes every stone of s a clump of these spheres (ClumpModel::set_shapes; the model set anew, the
 // stones' radii their bounding radii). A refused set changes nothing
 void set_clumps(DEMSystem& s, const std::vector<double>& sphere, const std::vector<int>& offset);
+// the same from clumps already integrated, one per stone (std::invalid_argument naming clumps otherwise)
+void set_clumps(DEMSystem& s, const std::vector<Clump>& clumps);
 
 }  // namespace vofdem
