@@ -214,6 +214,30 @@ void bind_system(py::module_& m) {
           "[m] in any frame, each stone's stored in its principal frame (stone_pos, stone_y: its centre of mass); "
           "stone i owns rows offset[i]:offset[i+1] (1 to 8); stone_radius becomes each bounding radius. The "
           "out-of-plane state is made anew.")
+      .def_property_readonly(
+          "clump_sphere",
+          [](const DEMSystem& s) {
+            const auto* m = dynamic_cast<const ClumpModel*>(&s.model());
+            if (!m)
+              throw std::invalid_argument("clump_sphere: the stones are not clumps (shape '" +
+                                          std::string(s.model().name()) + "')");
+            const std::vector<double>& b = m->spheres();
+            py::array_t<double> out({static_cast<py::ssize_t>(b.size() / 4), py::ssize_t{4}});
+            std::copy(b.begin(), b.end(), out.mutable_data());
+            return out;
+          },
+          "clump stones' spheres (m, 4) rows (x, y, z, r) [m] in each stone's principal frame (a copy); stone i "
+          "owns rows clump_offset[i]:clump_offset[i + 1]")
+      .def_property_readonly(
+          "clump_offset",
+          [](const DEMSystem& s) {
+            const auto* m = dynamic_cast<const ClumpModel*>(&s.model());
+            if (!m)
+              throw std::invalid_argument("clump_offset: the stones are not clumps (shape '" +
+                                          std::string(s.model().name()) + "')");
+            return m->offsets();
+          },
+          "clump stones' first rows of clump_sphere (n + 1), a copy")
       .def_property_readonly("poly_vertex",
                              [](py::object self) { return view_pairs(self.cast<DEMSystem&>().poly_vertex, self); },
            "polygon stones' body-frame vertices (m, 2) [m], zero-copy view (set_polygons reallocates it)")
@@ -338,6 +362,17 @@ void bind_packing(py::module_& m) {
       .def_property(
           "radial_jitter", [](const WeirSpec& w) { return w.polygon.radial_jitter; },
           [](WeirSpec& w, double v) { w.polygon.radial_jitter = v; })
+      .def_property(
+          "clump_names", [](const WeirSpec& w) { return w.clump.names; },
+          [](WeirSpec& w, const std::vector<std::string>& v) { w.clump.names = v; },
+          "library shapes clump stones draw with equal chances (shape 'clump'; quarried_stone_names())")
+      .def_property(
+          "clump_ratio_intermediate", [](const WeirSpec& w) { return w.clump.ratio_intermediate; },
+          [](WeirSpec& w, double v) { w.clump.ratio_intermediate = v; },
+          "clumps' intermediate / long axis p [-], in [clump_ratio_short, 1]")
+      .def_property(
+          "clump_ratio_short", [](const WeirSpec& w) { return w.clump.ratio_short; },
+          [](WeirSpec& w, double v) { w.clump.ratio_short = v; }, "clumps' short / long axis q [-], in [0.55, 1]")
       .def("x_end", &WeirSpec::x_end)
       .def("top", &WeirSpec::top, py::arg("x"))
       .def("area", &WeirSpec::area);

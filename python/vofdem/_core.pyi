@@ -741,6 +741,16 @@ class DEMSystem:
         V_i [m^3] of stone i: that of the 3D stone its model stands for
         """
     @property
+    def clump_offset(self) -> list[int]:
+        """
+        clump stones' first rows of clump_sphere (n + 1), a copy
+        """
+    @property
+    def clump_sphere(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        clump stones' spheres (m, 4) rows (x, y, z, r) [m] in each stone's principal frame (a copy); stone i owns rows clump_offset[i]:clump_offset[i + 1]
+        """
+    @property
     def contact_count(self) -> int:
         """
         touching stone-stone contacts at the last force evaluation
@@ -969,6 +979,30 @@ class WeirSpec:
         ...
     @aspect_ratio.setter
     def aspect_ratio(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def clump_names(self) -> list[str]:
+        """
+        library shapes clump stones draw with equal chances (shape 'clump'; quarried_stone_names())
+        """
+    @clump_names.setter
+    def clump_names(self, arg1: collections.abc.Sequence[str]) -> None:
+        ...
+    @property
+    def clump_ratio_intermediate(self) -> float:
+        """
+        clumps' intermediate / long axis p [-], in [clump_ratio_short, 1]
+        """
+    @clump_ratio_intermediate.setter
+    def clump_ratio_intermediate(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def clump_ratio_short(self) -> float:
+        """
+        clumps' short / long axis q [-], in [0.55, 1]
+        """
+    @clump_ratio_short.setter
+    def clump_ratio_short(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def crest(self) -> float:

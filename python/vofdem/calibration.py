@@ -202,13 +202,19 @@ def _free_spot(pos, radius, active, x, z, r) -> bool:
 
 
 def pour_heap(scene: Scene, seed: int = 0, submerged: bool = False, setup: Optional[ReposeSetup] = None,
-              log=None) -> ReposeResult:
+              log=None, clumps=None) -> ReposeResult:
     """Pours setup.n_stones of the scene's stones from a funnel onto a rough base and measures the heap
-    (stones that move in 3D: a cone on a rough disc, calibration_3d.pour_cone)."""
+    (stones that move in 3D: a cone on a rough disc, calibration_3d.pour_cone). clumps: a
+    calibration_3d.ClumpMix to pour clumps of it instead, with the scene's other stone options (its stones
+    spheres)."""
     setup = (setup or ReposeSetup()).validate()
+    if clumps is not None and front(scene.stones.shape).dimensions != 3:
+        raise ValueError(f"clumps: the scene's stones.shape = {scene.stones.shape!r} does not move in 3D (allowed: "
+                         "'sphere', whose options the clumps take)")
     if front(scene.stones.shape).dimensions == 3:
         from .calibration_3d import pour_cone
-        return pour_cone(scene, seed, submerged, setup, lambda half: repose_params(scene, submerged, half), log)
+        return pour_cone(scene, seed, submerged, setup, lambda half: repose_params(scene, submerged, half), log,
+                         clumps=clumps)
     st = scene.stones
     g = st.grading()  # a sieve curve: its d50 and stones drawn from it by mass (grading.py)
     d = st.diameter if g is None else g.d(0.5)
@@ -424,10 +430,16 @@ def pick_evenly(candidates: Sequence[int], k: int) -> List[int]:
     return [candidates[int((j + 0.5) * len(candidates) / k)] for j in range(k)]
 
 
-def pull_weir(scene: Scene, seed: int):
-    """(DEMSystem, packed-state checkpoint): the scene's weir packed dry from `seed`, ready to pull."""
-    sys_, _ = builder.build_stones(scene.replace(seed=seed))
-    p = builder.dem_params(scene, submerged=False)
+def pull_weir(scene: Scene, seed: int, clumps=None):
+    """(DEMSystem, packed-state checkpoint): the scene's weir packed dry from `seed`, ready to pull; clumps: a
+    calibration_3d.ClumpMix to pack clumps of it instead (calibration_3d.pack_clump_weir)."""
+    if clumps is not None:
+        from .calibration_3d import pack_clump_weir
+        sys_, _ = pack_clump_weir(scene, seed, clumps)
+        p = sys_.params  # the packing's step, lowered for the clumps
+    else:
+        sys_, _ = builder.build_stones(scene.replace(seed=seed))
+        p = builder.dem_params(scene, submerged=False)
     p.flags = int(p.flags | _core.DEM_EXTERNAL_FORCE)
     sys_.params = p
     sys_.stone_wet[:] = 0.0
@@ -481,9 +493,10 @@ def pull_stone(system, state, stone: int, direction: np.ndarray, setup: Optional
 
 def pull_test(scene: Scene, seeds: Sequence[int] = (0, 1, 2, 3, 4), per_seed: int = 2,
               directions: Sequence[str] = ("vertical", "normal", "horizontal"), setup: Optional[PullSetup] = None,
-              log=None) -> List[PullResult]:
+              log=None, clumps=None) -> List[PullResult]:
     """Per seed, a weir is packed and `per_seed` slope stones (slope_surface_stones, pick_evenly) are
-    each pulled in every direction from the same packed state."""
+    each pulled in every direction from the same packed state; clumps: a calibration_3d.ClumpMix to pack
+    and pull clumps of it (pull_weir)."""
     setup = (setup or PullSetup()).validate()
     dirs = pull_directions(scene)
     for name in directions:
@@ -491,7 +504,7 @@ def pull_test(scene: Scene, seeds: Sequence[int] = (0, 1, 2, 3, 4), per_seed: in
             raise ValueError(f"direction {name!r} is not one of {', '.join(dirs)}")
     out = []
     for seed in seeds:
-        sys_, state = pull_weir(scene, seed)
+        sys_, state = pull_weir(scene, seed, clumps)
         stones = pick_evenly(surface_stones(sys_, scene, setup), per_seed)
         if not stones:
             raise ValueError(f"seed {seed}: no surface stone on the downstream slope between {setup.z_low} and "

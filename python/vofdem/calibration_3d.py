@@ -14,6 +14,12 @@
   across the width), the stones pulled are surface stones of the downstream slope at least
   `SIDE_WALL_CLEARANCE` diameters from either side wall (`calibration.slope_surface_stones`).
 
+Both take the stone model of the scene (spheres), or clumps of a mix of library shapes (`ClumpMix`, passed as
+`clumps=`: a scene refuses clumps until they are coupled to the flow): the same heap and weir with each
+stone a library clump of its nominal diameter drawn from the seed and turned at random (the weir from
+pack_weir with `WeirSpec.shape = 'clump'`), the contact stiffness the scene's and the DEM step lowered to
+the clumps' stable step (`clump_params`: more steps per contact at the same stiffness).
+
 The drag of still water on the falling stones is neglected, as in the 2D heap.
 """
 from __future__ import annotations
@@ -24,8 +30,92 @@ from typing import Optional
 
 import numpy as np
 
-from . import builder
+from . import _core, builder
 from .scene import Scene
+
+
+@dataclass
+class ClumpMix:
+    """Clump stones drawn from the library (clump.h quarried_stone): each stone one of `names` with equal
+    chances, aspect ratios 1 : ratio_intermediate : ratio_short [-]; the default, the 2-, 3- and 4-sphere
+    shapes, is pack_weir's (WeirSpec.clump_names)."""
+
+    names: tuple = ("pair_2", "triangle_3", "tetra_4")
+    ratio_intermediate: float = 0.8  # p [-], in [ratio_short, 1]
+    ratio_short: float = 0.6         # q [-], in [0.55, 1]
+    step_margin: float = 0.9         # the DEM step's fraction of the clumps' stable step [-], in (0, 1]
+
+    def validate(self) -> "ClumpMix":
+        if not 0.0 < self.step_margin <= 1.0:
+            raise ValueError(f"step_margin = {self.step_margin} is outside the allowed range (0, 1]")
+        self.unit_shapes()  # names and ratios checked by the library (ValueError naming the parameter)
+        return self
+
+    def unit_shapes(self) -> List[np.ndarray]:
+        """The mix's shapes at d_eq = 1 (k, 4) rows (x, y, z, r), principal frames."""
+        return [np.asarray(_core.quarried_stone(n, 1.0, self.ratio_intermediate, self.ratio_short))
+                for n in self.names]
+
+    def label(self) -> str:
+        return "clumps " + "/".join(self.names)
+
+
+def random_quaternions(rng, n: int) -> np.ndarray:
+    """n unit quaternions (w, x, y, z) uniform over the rotations (Shoemake 1992), as clump_packing.cpp."""
+    u1, u2, u3 = rng.random(n), rng.random(n), rng.random(n)
+    a, b = np.sqrt(1.0 - u1), np.sqrt(u1)
+    return np.c_[a * np.sin(2 * np.pi * u2), a * np.cos(2 * np.pi * u2), b * np.sin(2 * np.pi * u3),
+                 b * np.cos(2 * np.pi * u3)]
+
+
+def make_clumps(system, mix: ClumpMix, seed: int) -> None:
+    """Makes every stone of a 3D system a clump of the mix, of its nominal diameter 2 r, drawn and turned at
+    random from seed (centres of mass and y kept)."""
+    rng = np.random.default_rng([int(seed), 0xC1])
+    units = mix.unit_shapes()
+    d = 2.0 * np.asarray(system.stone_radius, float)
+    y = np.array(system.stone_y, float)
+    pick = rng.integers(len(units), size=len(d))
+    spheres = np.vstack([units[k] * d[i] for i, k in enumerate(pick)])
+    offset = np.r_[0, np.cumsum([len(units[k]) for k in pick])]
+    system.set_clumps(spheres, offset.tolist())
+    system.stone_y[:] = y
+    system.stone_quat[:] = random_quaternions(rng, len(d))
+
+
+def clump_params(params, mix: ClumpMix, d_mean: float, spread: float, density: float):
+    """params with the DEM step lowered to step_margin of the clumps' stable step (DEMSystem.stable_dt of the
+    mix's shapes at d_mean (1 -+ spread)) and the steps per contact raised by the same factor, so that the
+    contact stiffness stays the scene's; unchanged where the step is stable already."""
+    units = mix.unit_shapes()
+    sizes = [d_mean * (1.0 - spread), d_mean * (1.0 + spread)]
+    n = len(units) * len(sizes)
+    pos = np.c_[np.arange(n) * 2.0 * d_mean, np.full(n, 1.0)]
+    probe = _core.DEMSystem(params, pos, np.full(n, 0.5 * d_mean), np.full(n, density), [0] * n)
+    shapes = [u * d for u in units for d in sizes]
+    probe.set_clumps(np.vstack(shapes), np.r_[0, np.cumsum([len(u) for u in shapes])].tolist())
+    stable = float(probe.stable_dt())
+    p = params
+    if p.dt > mix.step_margin * stable:
+        f = p.dt / (mix.step_margin * stable)
+        p.dt /= f
+        p.contact_steps *= f
+    return p
+
+
+def pack_clump_weir(scene: Scene, seed: int, mix: ClumpMix):
+    """(DEMSystem, WeirPackingReport): the scene's weir packed dry by pack_weir as clumps of the mix from seed,
+    with the scene's contact stiffness (clump_params); the system keeps the packing's DEMParams."""
+    mix.validate()
+    sc = scene.replace(seed=seed)
+    spec = builder.weir_spec(sc)
+    spec.shape = "clump"
+    spec.clump_names = list(mix.names)
+    spec.clump_ratio_intermediate, spec.clump_ratio_short = mix.ratio_intermediate, mix.ratio_short
+    pack = builder.dem_params(sc, submerged=False)
+    pack.flags = int(pack.flags & ~_core.DEMFlag.EXTERNAL_FORCE)
+    pack = clump_params(pack, mix, spec.d_mean, spec.d_spread, spec.density)
+    return _core.pack_weir(spec, pack)
 
 
 def speeds_3d(system) -> np.ndarray:
@@ -135,9 +225,11 @@ def rough_base(radius: float, sizes, d: float, spread: float):
     return x, y, np.asarray(sizes(len(x)), float)
 
 
-def pour_cone(scene: Scene, seed: int, submerged: bool, setup, heap_params, log=None) -> ConeResult:
-    """Pours setup.n_stones of the scene's 3D stones from a funnel onto a rough disc and fits the cone;
-    heap_params(half_width) gives the heap's DEMParams (calibration.repose_params, dry or submerged)."""
+def pour_cone(scene: Scene, seed: int, submerged: bool, setup, heap_params, log=None,
+              clumps: Optional[ClumpMix] = None) -> ConeResult:
+    """Pours setup.n_stones of the scene's 3D stones (or clumps of the mix) from a funnel onto a rough disc of
+    the same stones and fits the cone; heap_params(half_width) gives the heap's DEMParams
+    (calibration.repose_params, dry or submerged)."""
     from .stone_models import front_of
 
     st = scene.stones
@@ -159,7 +251,11 @@ def pour_cone(scene: Scene, seed: int, submerged: bool, setup, heap_params, log=
     pos[:nb, 0], pos[:nb, 1] = xb, 0.5 * db
     pos[nb:, 1] = 2.0 * d
     fixed = np.r_[np.ones(nb, bool), np.zeros(setup.n_stones, bool)]
+    if clumps is not None:
+        p = clump_params(p, clumps.validate(), d, st.diameter_spread, st.density)
     sys_ = builder.stone_system(scene, p, pos, diam, fixed)
+    if clumps is not None:
+        make_clumps(sys_, clumps, seed)
     sys_.stone_y[:nb] = yb + yc
     sys_.stone_active[nb:] = 0
     tops = front_of(sys_).tops

@@ -165,21 +165,37 @@ class SphereFront(StoneFront):
 
 class ClumpFront(StoneFront):
     """Rigid clumps of 1 to 8 overlapping spheres across the flume's width (clump_model.h): run by a DEMSystem
-    (``set_clumps``, library shapes from ``quarried_stone``) and coupled to the flow by a Coupler (their volume
-    in each cell's slab, CouplerParams.n_exp = 0), not yet packed into a weir, so a scene refuses them."""
+    (``set_clumps``, library shapes from ``quarried_stone``), coupled to the flow by a Coupler (their volume
+    in each cell's slab, CouplerParams.n_exp = 0) and packed into a weir by pack_weir (``WeirSpec.shape =
+    'clump'``, a mix of library shapes: clump_packing.cpp); a scene refuses them until the packed clump weir is
+    tight at its edges (the calibration takes them as an argument: calibration_3d.ClumpMix)."""
 
     name = "clump"
+    dimensions = 3
     lookup_table = False
     outline_packer = False
 
     def diameters(self, system) -> np.ndarray:
         return np.array([system.nominal_diameter(i) for i in range(system.n)])
 
+    def tops(self, system) -> np.ndarray:
+        """Height of each stone's highest point [m]: the highest of its sub-spheres' tops."""
+        sph, off = np.asarray(system.clump_sphere), np.asarray(system.clump_offset)
+        q = np.asarray(system.stone_quat)
+        stone = np.repeat(np.arange(system.n), np.diff(off))
+        w, x, y, z = (q[stone, k] for k in range(4))
+        # the z row of the rotation matrix of each sub-sphere's stone
+        rz = np.c_[2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)]
+        top = np.asarray(system.stone_pos)[stone, 1] + np.sum(rz * sph[:, :3], axis=1) + sph[:, 3]
+        out = np.full(system.n, -np.inf)
+        np.maximum.at(out, stone, top)
+        return out
+
     def check(self, stones, prefix: str) -> None:
-        raise ValueError(f"{prefix}.shape = 'clump' is not allowed in a scene yet: the packing generator does not "
-                         "pack clumps into a weir (allowed: 'disc', 'polygon', 'sphere'); a DEMSystem runs them "
-                         "(set_clumps with DEMParams.width) and a Coupler couples them to a VOFGrid "
-                         "(CouplerParams.n_exp = 0)")
+        raise ValueError(f"{prefix}.shape = 'clump' is not allowed in a scene yet: the packed clump weir is still "
+                         "loose at its edges and top (docs/stones_3d.md; allowed: 'disc', 'polygon', 'sphere'); "
+                         "pack_weir packs them, a DEMSystem runs them (set_clumps with DEMParams.width) and a "
+                         "Coupler couples them to a VOFGrid (CouplerParams.n_exp = 0)")
 
 
 _FRONTS: Dict[str, StoneFront] = {}

@@ -280,6 +280,35 @@ Vec3 Clump::aspect_ratios() const {
   return e / e[0];
 }
 
+Clump Clump::scaled(double factor) const {
+  require(std::isfinite(factor) && factor > 0.0,
+          "factor: the scale must be finite and > 0 [-], got " + std::to_string(factor));
+  Clump c = *this;
+  for (ClumpSphere& s : c.spheres_) {
+    s.centre *= factor;
+    s.radius *= factor;
+  }
+  c.volume_ *= factor * factor * factor;
+  c.inertia_ *= factor * factor * factor * factor * factor;
+  c.centroid_ *= factor;
+  return c;
+}
+
+void check_clump_mix(const ClumpMix& mix) {
+  const std::vector<std::string> known = quarried_stone_names();
+  std::string list;
+  for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+  require(!mix.names.empty(), "clump_names: at least one library shape is needed (" + list + ")");
+  for (const std::string& n : mix.names)
+    require(std::find(known.begin(), known.end(), n) != known.end(),
+            "clump_names: unknown library shape '" + n + "'; allowed: " + list);
+  require(mix.ratio_short >= 0.55 && mix.ratio_short <= 1.0,
+          "clump_ratio_short: short / long must be in [0.55, 1] [-], got " + std::to_string(mix.ratio_short));
+  require(mix.ratio_intermediate >= mix.ratio_short && mix.ratio_intermediate <= 1.0,
+          "clump_ratio_intermediate: intermediate / long must be in [clump_ratio_short, 1] [-], got " +
+              std::to_string(mix.ratio_intermediate));
+}
+
 std::vector<std::string> quarried_stone_names() { return {"pair_2", "triangle_3", "tetra_4", "box_8"}; }
 
 namespace {

@@ -4,7 +4,9 @@
 #include "vofdem/stones/clump_model.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -12,6 +14,7 @@
 #include <string>
 
 #include "common/state_fields.h"
+#include "stones/clump_packing.h"
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/coupling/drag.h"
@@ -60,9 +63,9 @@ void check_layout(std::size_t n, const std::vector<double>& sphere, const std::v
 void ClumpModel::set_shapes(int n, const std::vector<double>& sphere, const std::vector<int>& offset) {
   const std::size_t un = static_cast<std::size_t>(n);
   check_layout(un, sphere, offset);
-  std::vector<double> out(sphere.size()), volume(un), moment(3 * un), bound(un);
   // stones of the same input shape share one integration (the quadrature dominates the cost)
   std::map<std::vector<double>, Clump> made;
+  std::vector<const Clump*> of(un);
   for (std::size_t i = 0; i < un; ++i) {
     const std::vector<double> key(sphere.begin() + 4 * offset[i], sphere.begin() + 4 * offset[i + 1]);
     auto it = made.find(key);
@@ -72,7 +75,31 @@ void ClumpModel::set_shapes(int n, const std::vector<double>& sphere, const std:
         parts.push_back({Eigen::Vector3d(key[g], key[g + 1], key[g + 2]), key[g + 3]});
       it = made.emplace(key, Clump(parts)).first;
     }
-    const Clump& c = it->second;
+    of[i] = &it->second;
+  }
+  adopt(of);
+}
+
+void ClumpModel::set_shapes(const std::vector<Clump>& clumps) {
+  std::vector<const Clump*> of(clumps.size());
+  for (std::size_t i = 0; i < clumps.size(); ++i) {
+    const int k = static_cast<int>(clumps[i].spheres().size());
+    if (k > kClumpMaxSpheres)
+      throw std::invalid_argument("clump stone " + std::to_string(i) + " has " + std::to_string(k) +
+                                  " spheres, allowed range [1, " + std::to_string(kClumpMaxSpheres) + "]");
+    of[i] = &clumps[i];
+  }
+  adopt(of);
+}
+
+// the stones' shapes, volumes, moments and bounding radii from their clumps (principal frames)
+void ClumpModel::adopt(const std::vector<const Clump*>& of) {
+  const std::size_t un = of.size();
+  std::vector<int> offset(un + 1, 0);
+  for (std::size_t i = 0; i < un; ++i) offset[i + 1] = offset[i] + static_cast<int>(of[i]->spheres().size());
+  std::vector<double> out(4 * static_cast<std::size_t>(offset[un])), volume(un), moment(3 * un), bound(un);
+  for (std::size_t i = 0; i < un; ++i) {
+    const Clump& c = *of[i];
     volume[i] = c.volume();
     for (int k = 0; k < 3; ++k) moment[3 * i + k] = c.principal_inertia()[k];
     for (std::size_t k = 0; k < c.spheres().size(); ++k) {
@@ -82,7 +109,7 @@ void ClumpModel::set_shapes(int n, const std::vector<double>& sphere, const std:
       bound[i] = std::max(bound[i], p.centre.norm() + p.radius);
     }
   }
-  sphere_.swap(out), offset_ = offset, volume_.swap(volume), moment_.swap(moment), bound_.swap(bound);
+  sphere_.swap(out), offset_.swap(offset), volume_.swap(volume), moment_.swap(moment), bound_.swap(bound);
   shaped_ = true;
 }
 
@@ -408,11 +435,70 @@ double ClumpModel::drag_relaxation_dt(const DEMSystem& s, int i, double relaxati
   return relaxation * (mass / slope);
 }
 
-std::unique_ptr<StonePacking> ClumpModel::packing(const WeirSpec&) const { return nullptr; }
+std::unique_ptr<StonePacking> ClumpModel::packing(const WeirSpec& spec) const { return make_clump_packing(spec); }
+
+// ---- outline, for the packing diagnostics: the union of the sub-spheres' sections by the plane y = y_i
+
+// whether the shapes and orientations are there (else, before the first step without shapes: the bounding
+// sphere's)
+bool ClumpModel::outlined(const DEMSystem& s) const {
+  const std::size_t n = static_cast<std::size_t>(s.n());
+  return offset_.size() == n + 1 && s.stone_quat.size() == 4 * n;
+}
+
+// the centre (x, z) of sub-sphere g of stone i in the world [m]
+std::array<double, 2> ClumpModel::world_xz(const DEMSystem& s, int i, int g) const {
+  const double* q = &s.stone_quat[4 * i];
+  const Eigen::Matrix3d r = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+  const Eigen::Vector3d c = r * Eigen::Vector3d(sphere_[4 * g], sphere_[4 * g + 1], sphere_[4 * g + 2]);
+  return {s.stone_pos[2 * i] + c[0], s.stone_pos[2 * i + 1] + c[2]};
+}
+
+double ClumpModel::gap(const DEMSystem& s, int i, double x, double z) const {
+  if (!outlined(s)) return DiscModel::gap(s, i, x, z);
+  double g_min = std::numeric_limits<double>::infinity();
+  for (int g = offset_[i]; g < offset_[i + 1]; ++g) {
+    const auto c = world_xz(s, i, g);
+    g_min = std::min(g_min, std::hypot(x - c[0], z - c[1]) - sphere_[4 * g + 3]);
+  }
+  return std::max(g_min, 0.0);
+}
+
+// the x-z outline (each sub-sphere's disc, the projection of the stone on the plane)
+bool ClumpModel::covers(const DEMSystem& s, int i, double x, double z) const {
+  if (!outlined(s)) return DiscModel::covers(s, i, x, z);
+  for (int g = offset_[i]; g < offset_[i + 1]; ++g) {
+    const auto c = world_xz(s, i, g);
+    const double dx = x - c[0], dz = z - c[1], r = sphere_[4 * g + 3];
+    if (dx * dx + dz * dz < r * r) return true;
+  }
+  return false;
+}
+
+double ClumpModel::outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const {
+  if (!outlined(s)) return DiscModel::outline_max(s, i, f);
+  double m = -std::numeric_limits<double>::infinity();
+  for (int g = offset_[i]; g < offset_[i + 1]; ++g) {
+    const auto c = world_xz(s, i, g);
+    m = std::max(m, f(c[0], c[1]) + sphere_[4 * g + 3]);
+  }
+  return m;
+}
 
 void set_clumps(DEMSystem& s, const std::vector<double>& sphere, const std::vector<int>& offset) {
   auto model = std::make_unique<ClumpModel>();
   model->set_shapes(s.n(), sphere, offset);
+  const std::vector<double> bound = model->bounding_radii();
+  s.set_model(std::move(model));
+  std::copy(bound.begin(), bound.end(), s.stone_radius.begin());
+}
+
+void set_clumps(DEMSystem& s, const std::vector<Clump>& clumps) {
+  if (clumps.size() != static_cast<std::size_t>(s.n()))
+    throw std::invalid_argument("clumps: " + std::to_string(clumps.size()) + " clumps for " + std::to_string(s.n()) +
+                                " stones; allowed: one per stone");
+  auto model = std::make_unique<ClumpModel>();
+  model->set_shapes(clumps);
   const std::vector<double> bound = model->bounding_radii();
   s.set_model(std::move(model));
   std::copy(bound.begin(), bound.end(), s.stone_radius.begin());

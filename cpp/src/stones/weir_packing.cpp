@@ -40,6 +40,7 @@ void check_weir_spec(const WeirSpec& s) {
   require_positive("settle_time_max", s.settle_time_max);
   require_positive("rest_speed", s.rest_speed);
   if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
+  check_clump_mix(s.clump);
 }
 
 namespace {
@@ -71,7 +72,7 @@ void PackedStones::add(double x, double z, const PackedStone& s, std::uint8_t fi
 void PackedStones::add(double x, double y_across, double z, const PackedStone& s, std::uint8_t fixed_flag) {
   add(x, z, s, fixed_flag);
   y.push_back(y_across);
-  quat.insert(quat.end(), {1.0, 0.0, 0.0, 0.0});
+  quat.insert(quat.end(), s.quat.begin(), s.quat.end());
 }
 
 void PackedStones::copy_stone(const DEMSystem& sys, const PackedStones& from, int i) {

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "stones/packing_random.h"
 #include "stones/packing_steps.h"
@@ -134,6 +136,10 @@ std::unique_ptr<StonePacking> model_packing(const WeirSpec& spec) {
 }
 }  // namespace
 
+double StonePacking::porosity_3d(const DEMSystem& sys, const WeirSpec& spec) const {
+  return weir_porosity_3d(sys, spec);
+}
+
 DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackingReport& report) {
   check_weir_spec(spec);
   const auto wall_start = std::chrono::steady_clock::now();
@@ -158,7 +164,7 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   const double off = 0.5 * spec.d_mean;  // the slope walls' offset outside the slopes
   double t_total = 0.0;
   DEMSystem box = make(p, pile);
-  for (int round = 0; round < 6; ++round) {
+  for (int round = 0; round < packing->pour_rounds(); ++round) {
     const int added = pour_round(spec, width, off, d_max, rng, *packing, pile);
     if (added == 0 && round > 0) break;
     box = make(p, pile);
@@ -192,7 +198,7 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   report.n_fixed = n_fixed;
   report.max_speed = max_speed_3d(weir);
   report.settle_time = t_total;
-  report.porosity = weir_porosity_3d(weir, spec);
+  report.porosity = packing->porosity_3d(weir, spec);
   report.stones_across = weir_stones_across(weir, spec);
   report.outline_error = weir_outline_error(weir, spec);
   report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -226,6 +232,40 @@ double weir_porosity_3d(const DEMSystem& sys, const WeirSpec& spec, double h) {
     for (int i = 0; i < nx; ++i)
       if (inside(spec, x0 + (i + 0.5) * h, spec.z_bed + (k + 0.5) * h)) solid += mapper.cell_solid_area()[grid.cell(i, k)];
   return 1.0 - solid / spec.area();
+}
+
+double weir_porosity_3d_spheres(const std::vector<double>& sphere, double width, const WeirSpec& spec, double h) {
+  require_positive("h", h);
+  require_positive("width", width);
+  const std::size_t ns = sphere.size() / 4;
+  const double x0 = spec.x_toe, lx = spec.x_end() - spec.x_toe;
+  const int nx = static_cast<int>(std::ceil(lx / h)), ny = static_cast<int>(std::ceil(width / h));
+  const int nz = static_cast<int>(std::ceil(spec.height / h));
+  // a point grid over the prism (cell centres), each point marked once however many spheres hold it
+  std::vector<std::uint8_t> solid(static_cast<std::size_t>(nx) * ny * nz, 0);
+  const auto index = [h](double lo, double v) { return static_cast<int>(std::floor((v - lo) / h - 0.5)); };
+  for (std::size_t g = 0; g < ns; ++g) {
+    const double cx = sphere[4 * g], cy = sphere[4 * g + 1], cz = sphere[4 * g + 2], r = sphere[4 * g + 3];
+    const int i0 = std::max(0, index(x0, cx - r)), i1 = std::min(nx - 1, index(x0, cx + r) + 1);
+    const int j0 = std::max(0, index(0.0, cy - r)), j1 = std::min(ny - 1, index(0.0, cy + r) + 1);
+    const int k0 = std::max(0, index(spec.z_bed, cz - r)), k1 = std::min(nz - 1, index(spec.z_bed, cz + r) + 1);
+    for (int k = k0; k <= k1; ++k)
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const double dx = x0 + (i + 0.5) * h - cx, dy = (j + 0.5) * h - cy, dz = spec.z_bed + (k + 0.5) * h - cz;
+          if (dx * dx + dy * dy + dz * dz <= r * r) solid[(static_cast<std::size_t>(k) * ny + j) * nx + i] = 1;
+        }
+  }
+  long long in = 0, full = 0;
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      if (!inside(spec, x0 + (i + 0.5) * h, spec.z_bed + (k + 0.5) * h)) continue;
+      for (int j = 0; j < ny; ++j) {
+        ++in;
+        full += solid[(static_cast<std::size_t>(k) * ny + j) * nx + i];
+      }
+    }
+  return in > 0 ? 1.0 - static_cast<double>(full) / in : 1.0;
 }
 
 double weir_stones_across(const DEMSystem& sys, const WeirSpec& spec, double h) {

@@ -89,6 +89,9 @@ class Clump {
   Eigen::Vector3d principal_extents() const;
   // the same sorted long >= intermediate >= short, over the long one (1, p, q) [-]
   Eigen::Vector3d aspect_ratios() const;
+  // the same clump scaled by factor > 0 about its centroid: lengths times f, volume f^3, moments f^5 (no
+  // new integration: the packing generator draws many sizes of a few shapes)
+  Clump scaled(double factor) const;
 
  private:
   std::vector<ClumpSphere> spheres_;
@@ -110,5 +113,18 @@ Clump quarried_stone(const std::string& name, double d_eq, double ratio_intermed
 
 // the names quarried_stone() accepts
 std::vector<std::string> quarried_stone_names();
+
+// a mix of library shapes for the weir's packing generator (weir_packing_3d.h, shape "clump"): each stone
+// draws one of `names` with equal chances, aspect ratios 1 : p : q. The default, the 2-, 3- and 4-sphere
+// shapes, spans elongated to blocky stones at 3 spheres per stone on average (box_8 doubles the contact
+// cost for a shape that tetra_4 already makes blocky)
+struct ClumpMix {
+  std::vector<std::string> names{"pair_2", "triangle_3", "tetra_4"};  // each one of quarried_stone_names()
+  double ratio_intermediate = 0.8;  // p [-], in [ratio_short, 1]
+  double ratio_short = 0.6;         // q [-], in [0.55, 1]
+};
+
+// throws std::invalid_argument naming the field (clump_names, clump_ratio_intermediate, clump_ratio_short)
+void check_clump_mix(const ClumpMix& mix);
 
 }  // namespace vofdem

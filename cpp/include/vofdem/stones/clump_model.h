@@ -34,15 +34,18 @@
 // fraction). The drag is the volume-equivalent sphere's (d_eq, A_p = pi d_eq^2 / 4, in x and z); buoyancy,
 // added mass and the pressure-gradient force act on V_union; the wet fraction at the free surface is a
 // sphere cap's with r_eq = d_eq / 2 (wet_radius: the level scaled by r_eq, not by the bounding radius).
-// The kernel mapping takes the same cell lists. The packing generator does not take clumps yet (refused
-// with the key named).
+// The kernel mapping takes the same cell lists. The 3D packing generator packs them (ClumpPacking,
+// clump_packing.cpp: a mix of library shapes, WeirSpec::clump); its diagnostics read the stone's x-z outline
+// as the union of its sub-spheres' discs (gap, covers, outline_max).
 //
 // References: Favier, J. F., Abbaspour-Fard, M. H., Kremmer, M. & Raji, A. O. (1999), Eng. Computations
 // 16(4), 467-480. Ferellec, J.-F. & McDowell, G. R. (2010), Granular Matter 12, 459-467. Cundall, P. A.
 // & Strack, O. D. L. (1979), Geotechnique 29(1), 47-65.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,6 +53,8 @@
 #include "vofdem/stones/sphere_contact.h"
 
 namespace vofdem {
+
+class Clump;
 
 // the most spheres one clump stone may have
 inline constexpr int kClumpMaxSpheres = 8;
@@ -88,11 +93,16 @@ class ClumpModel final : public DiscModel {
   double drag_relaxation_dt(const DEMSystem& s, int i, double relaxation, double mass, double vrel, double w,
                             double rho, double nu) const override;
   std::unique_ptr<StonePacking> packing(const WeirSpec& spec) const override;
+  double gap(const DEMSystem& s, int i, double x, double z) const override;
+  bool covers(const DEMSystem& s, int i, double x, double z) const override;
+  double outline_max(const DEMSystem& s, int i, const std::function<double(double, double)>& f) const override;
 
   // the stones' shapes: sphere holds (x, y, z, r) per sphere [m] in any frame, stone i owning spheres
   // offset[i] .. offset[i+1]-1 (1 to kClumpMaxSpheres); each is stored in its principal frame. Checked
   // first (std::invalid_argument naming the stone); the stones' radii become the bounding radii
   void set_shapes(int n, const std::vector<double>& sphere, const std::vector<int>& offset);
+  // the same from clumps already integrated (one per stone, their principal frames kept)
+  void set_shapes(const std::vector<Clump>& clumps);
   const std::vector<double>& spheres() const { return sphere_; }  // principal frames, (x, y, z, r) each
   const std::vector<int>& offsets() const { return offset_; }
   const std::vector<double>& bounding_radii() const { return bound_; }
@@ -104,6 +114,9 @@ class ClumpModel final : public DiscModel {
     SphereContactHistory h;
   };
   void default_shapes(const DEMSystem& s);
+  void adopt(const std::vector<const Clump*>& of);
+  bool outlined(const DEMSystem& s) const;
+  std::array<double, 2> world_xz(const DEMSystem& s, int i, int g) const;
   void world_spheres(const DEMSystem& s);
   SphereOfBody body(const DEMSystem& s, int i, int g, double mass) const;
   std::size_t np() const { return planes_.size(); }
@@ -123,5 +136,7 @@ class ClumpModel final : public DiscModel {
 // makes every stone of s a clump of these spheres (ClumpModel::set_shapes; the model set anew, the
 // stones' radii their bounding radii). A refused set changes nothing
 void set_clumps(DEMSystem& s, const std::vector<double>& sphere, const std::vector<int>& offset);
+// the same from clumps already integrated, one per stone (std::invalid_argument naming clumps otherwise)
+void set_clumps(DEMSystem& s, const std::vector<Clump>& clumps);
 
 }  // namespace vofdem

@@ -7,6 +7,7 @@
 // packed returns one from StoneModel::packing(); the generator never asks which model it holds.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -18,11 +19,12 @@ struct DEMParams;
 struct WeirSpec;
 
 // a stone drawn for the packing: its bounding radius [m], orientation [rad] and the model's body-frame
-// shape data (empty for a disc)
+// shape data (empty for a disc); 3D stones: its orientation as a unit quaternion (w, x, y, z)
 struct PackedStone {
   double radius = 0.0;
   double angle = 0.0;
   std::vector<double> shape{};
+  std::array<double, 4> quat{{1.0, 0.0, 0.0, 0.0}};
 };
 
 // the stones placed so far: centres (x, z) [m], bounding radii [m], orientations [rad], fixed flags and
@@ -34,7 +36,7 @@ struct PackedStones {
   std::vector<std::vector<double>> shape;
   std::vector<double> y, quat;
   void add(double x, double z, const PackedStone& s, std::uint8_t fixed_flag);
-  // a 3D stone at (x, y, z), unrotated
+  // a 3D stone at (x, y, z), turned by s.quat
   void add(double x, double y, double z, const PackedStone& s, std::uint8_t fixed_flag);
   // stone i of sys, whose shape is that of `from`'s stone i
   void copy_stone(const DEMSystem& sys, const PackedStones& from, int i);
@@ -59,11 +61,17 @@ class StonePacking {
   virtual bool fits(const PackedStones& pile, double x, double z, const PackedStone& s, double margin) const;
   // orientations tried, a sixth of a turn apart, where a stone is laid by hand into a hollow
   virtual int turns() const { return 1; }
+  // 3D models: the most rounds of the pour (each refills the room the settling left; they stop when one
+  // adds no stone)
+  virtual int pour_rounds() const { return 6; }
   // whether stones that rolled off a toe onto the bed are removed at the end (shapes that roll far)
   virtual bool drop_toe_rollers() const { return false; }
   // the DEM system of the placed stones (radii, density, fixed flags; the model and its shapes; for 3D
   // models their y and quaternions)
   virtual DEMSystem make(const DEMParams& p, const PackedStones& pile, double density) const = 0;
+  // 3D models: the porosity [-] of the packed weir's prism across the width (the default:
+  // weir_porosity_3d, from the model's footprint)
+  virtual double porosity_3d(const DEMSystem& sys, const WeirSpec& spec) const;
 };
 
 }  // namespace vofdem

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <string>
 
+#include "vofdem/stones/clump.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/polygon.h"
 
@@ -45,6 +46,7 @@ struct WeirSpec {
   // the stone model drawn (stone_model.h), by its registered name; the model must have a packing
   std::string shape = "disc";
   PolygonSpec polygon;          // how polygon stones are drawn (shape "polygon")
+  ClumpMix clump;               // which library shapes clump stones draw (shape "clump"; clump.h)
 
   double x_end() const;                 // downstream toe [m]
   double top(double x) const;           // trapezoid's height above the bed at x [m] (0 outside)

@@ -24,8 +24,11 @@
 // nominal diameter d (its bounding radius and shape), whether stones rolling off a toe are removed, and
 // the DEM system of the placed stones. Free sites are tested with bounding spheres; the volume in the
 // porosity is the model's footprint on a fine grid (StoneModel::map_footprint, each cell's slab across
-// the width).
+// the width) or the packing's own (StonePacking::porosity_3d: clumps sample their sub-spheres on a 3D
+// point grid, weir_porosity_3d_spheres).
 #pragma once
+
+#include <vector>
 
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/weir_packing.h"
@@ -41,6 +44,12 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
 // stones' volume in each cell of a grid of spacing h [m] from the model's footprint, cells counted
 // inside when their centre is
 double weir_porosity_3d(const DEMSystem& system, const WeirSpec& spec, double h = 0.002);
+
+// the same from stones given as spheres (x, y, z, r) [m] each (a clump's sub-spheres: their union counted
+// once): 1 - (points of a grid of spacing h [m] over the prism, y in [0, width], inside a sphere) / (points
+// of the grid inside the prism), the points at the cells' centres
+double weir_porosity_3d_spheres(const std::vector<double>& sphere, double width, const WeirSpec& spec,
+                                double h = 0.002);
 
 // the mean number of stones [-] a line across the flume through the trapezoid crosses: the stones'
 // x-z outlines (StoneModel::covers) counted at the points of a grid of spacing h [m] inside
