@@ -16,6 +16,26 @@
 
 namespace vofdem {
 
+namespace {
+// the sphere (x, z, r)'s volume [m^3] in the slab of each of the ni x nk cells from (i0, k0), handed to
+// visit(i, k, volume): the primitive at every node, so that each cell's volume is four reads and the parts
+// telescope; phi is the nodes' scratch
+template <class Visit>
+void sphere_cell_parts(const Grid2D& grid, std::vector<double>& phi, double x, double z, double r, int i0, int k0,
+                       int ni, int nk, Visit&& visit) {
+  for (int k = 0; k <= nk; ++k)
+    for (int i = 0; i <= ni; ++i)
+      phi[k * (ni + 1) + i] = sphere_corner_volume(grid.x_face(i0 + i) - x, grid.z_face(k0 + k) - z, r);
+  for (int k = 0; k < nk; ++k) {
+    for (int i = 0; i < ni; ++i) {
+      const double* lo = &phi[k * (ni + 1) + i];
+      const double* hi = lo + (ni + 1);
+      visit(i, k, std::max(0.0, (hi[1] - hi[0]) - (lo[1] - lo[0])));
+    }
+  }
+}
+}  // namespace
+
 int PorosityMapper::add_sphere(double x, double z, double r, double width, int p) {
   const double xend = grid_.x_face(grid_.nx());
   const double z0 = grid_.z_face(0), zend = grid_.z_face(grid_.nz());
@@ -25,19 +45,10 @@ int PorosityMapper::add_sphere(double x, double z, double r, double width, int p
   const int ni = i1 - i0 + 1, nk = k1 - k0 + 1;
   if (static_cast<std::size_t>(ni + 1) * (nk + 1) > node_phi_.size() || ni * nk > max_cells_per_disc_)
     throw std::logic_error("porosity_map: sphere stencil larger than its bound (r = " + format_value(r) + ")");
-  // the primitive at every node: each cell's volume is then four reads (and the parts telescope)
-  for (int k = 0; k <= nk; ++k)
-    for (int i = 0; i <= ni; ++i)
-      node_phi_[k * (ni + 1) + i] = sphere_corner_volume(grid_.x_face(i0 + i) - x, grid_.z_face(k0 + k) - z, r);
-  for (int k = 0; k < nk; ++k) {
-    for (int i = 0; i < ni; ++i) {
-      const double* lo = &node_phi_[k * (ni + 1) + i];
-      const double* hi = lo + (ni + 1);
-      const double area = std::max(0.0, (hi[1] - hi[0]) - (lo[1] - lo[0])) / width;
-      if (area <= 0.0) continue;
-      p = append_cell(grid_.cell(i0 + i, k0 + k), area, p);
-    }
-  }
+  sphere_cell_parts(grid_, node_phi_, x, z, r, i0, k0, ni, nk, [&](int i, int k, double volume) {
+    const double area = volume / width;
+    if (area > 0.0) p = append_cell(grid_.cell(i0 + i, k0 + k), area, p);
+  });
   return p;
 }
 
@@ -97,17 +108,9 @@ int PorosityMapper::add_clump(double x, double z, const double* quat, const doub
     const int na = a1 - a0 + 1, nb = b1 - b0 + 1;
     if (static_cast<std::size_t>(na + 1) * (nb + 1) > node_phi_.size())
       throw std::logic_error("porosity_map: sub-sphere stencil larger than its bound (r = " + format_value(r) + ")");
-    for (int k = 0; k <= nb; ++k)
-      for (int i = 0; i <= na; ++i)
-        node_phi_[k * (na + 1) + i] =
-            sphere_corner_volume(grid_.x_face(a0 + i) - cx[g], grid_.z_face(b0 + k) - cz[g], r);
-    for (int k = 0; k < nb; ++k) {
-      for (int i = 0; i < na; ++i) {
-        const double* lo = &node_phi_[k * (na + 1) + i];
-        const double* hi = lo + (na + 1);
-        clump_patch_[(b0 + k - k0) * ni + (a0 + i - i0)] += scale * std::max(0.0, (hi[1] - hi[0]) - (lo[1] - lo[0]));
-      }
-    }
+    sphere_cell_parts(grid_, node_phi_, cx[g], cz[g], r, a0, b0, na, nb, [&](int i, int k, double volume) {
+      clump_patch_[(b0 + k - k0) * ni + (a0 + i - i0)] += scale * volume;
+    });
   }
   for (int k = 0; k < nk; ++k) {
     for (int i = 0; i < ni; ++i) {

@@ -8,8 +8,8 @@
 // a unit quaternion uniform on the 3-sphere). The generator places and tests stones by their bounding
 // spheres; the pour lattice's pitch takes the mix's largest bounding diameter over d. The library shapes
 // are integrated once, at d = 1, and scaled (Clump::scaled), so a weir of hundreds of stones costs three
-// integrations. The porosity samples the stones' sub-spheres on a 3D point grid (weir_porosity_3d_spheres):
-// the clump model has no footprint for the flow yet.
+// integrations. The porosity samples the stones' sub-spheres on a 3D point grid (weir_porosity_3d_spheres),
+// independent of any flow grid.
 //
 // Reference: Shoemake, K. (1992), Uniform random rotations, Graphics Gems III, 124-132.
 #include "stones/clump_packing.h"
