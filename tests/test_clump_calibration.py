@@ -15,7 +15,7 @@ from vofdem.stone_models import front_of
 def small_spec(seed=3, shape="clump"):
     # the C++ test's low weir (test_clump_packing.cpp): 2 cm clumps, 8 cm high, across 0.1 m
     s = _core.WeirSpec()
-    s.height, s.crest, s.d_mean, s.shape, s.seed = 0.08, 0.06, 0.02, shape, seed
+    s.height, s.crest, s.d_mean, s.density, s.shape, s.seed = 0.08, 0.06, 0.02, 2650.0, shape, seed
     return s
 
 

@@ -27,6 +27,7 @@ WeirSpec small_weir(std::uint64_t seed) {
   s.height = 0.08;
   s.crest = 0.06;
   s.d_mean = 0.02;
+  s.density = 2650.0;
   s.shape = "clump";
   s.seed = seed;
   return s;
