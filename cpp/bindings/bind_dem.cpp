@@ -217,27 +217,23 @@ void bind_system(py::module_& m) {
       .def_property_readonly(
           "clump_sphere",
           [](const DEMSystem& s) {
+            // empty for stones of another model, as poly_vertex is for discs
             const auto* m = dynamic_cast<const ClumpModel*>(&s.model());
-            if (!m)
-              throw std::invalid_argument("clump_sphere: the stones are not clumps (shape '" +
-                                          std::string(s.model().name()) + "')");
-            const std::vector<double>& b = m->spheres();
+            const std::vector<double> none;
+            const std::vector<double>& b = m ? m->spheres() : none;
             py::array_t<double> out({static_cast<py::ssize_t>(b.size() / 4), py::ssize_t{4}});
             std::copy(b.begin(), b.end(), out.mutable_data());
             return out;
           },
-          "clump stones' spheres (m, 4) rows (x, y, z, r) [m] in each stone's principal frame (a copy); stone i "
-          "owns rows clump_offset[i]:clump_offset[i + 1]")
+          "clump stones' spheres (m, 4) rows (x, y, z, r) [m] in each stone's principal frame (a copy; empty for "
+          "other stones); stone i owns rows clump_offset[i]:clump_offset[i + 1]")
       .def_property_readonly(
           "clump_offset",
           [](const DEMSystem& s) {
             const auto* m = dynamic_cast<const ClumpModel*>(&s.model());
-            if (!m)
-              throw std::invalid_argument("clump_offset: the stones are not clumps (shape '" +
-                                          std::string(s.model().name()) + "')");
-            return m->offsets();
+            return m ? m->offsets() : std::vector<int>{};
           },
-          "clump stones' first rows of clump_sphere (n + 1), a copy")
+          "clump stones' first rows of clump_sphere (n + 1), a copy; empty for other stones")
       .def_property_readonly("poly_vertex",
                              [](py::object self) { return view_pairs(self.cast<DEMSystem&>().poly_vertex, self); },
            "polygon stones' body-frame vertices (m, 2) [m], zero-copy view (set_polygons reallocates it)")

@@ -743,12 +743,12 @@ class DEMSystem:
     @property
     def clump_offset(self) -> list[int]:
         """
-        clump stones' first rows of clump_sphere (n + 1), a copy
+        clump stones' first rows of clump_sphere (n + 1), a copy; empty for other stones
         """
     @property
     def clump_sphere(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        clump stones' spheres (m, 4) rows (x, y, z, r) [m] in each stone's principal frame (a copy); stone i owns rows clump_offset[i]:clump_offset[i + 1]
+        clump stones' spheres (m, 4) rows (x, y, z, r) [m] in each stone's principal frame (a copy; empty for other stones); stone i owns rows clump_offset[i]:clump_offset[i + 1]
         """
     @property
     def contact_count(self) -> int:
