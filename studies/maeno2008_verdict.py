@@ -14,7 +14,8 @@ runs only the members not finished (one directory per ensemble under --out).
   ensemble's `vary` of flume.width; the scene's own width is its verdict ensemble), in a domain raised
   where a narrower flume's water would reach the top (`sweep_height`).
 * **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
-  (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up); per
+  (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up, the
+  kernel mapping's width); per
   setting the shift of each event's median from the reference's, with its paired bootstrap interval,
   against the CPU time per member (its ratio to the reference's members at the same seeds, run again
   just before the settings', so that a drift of the machine's speed between the verdict and this part
@@ -76,6 +77,9 @@ def _parser():
     p.add_argument("--width-seeds", default=None, help="packings of the width sweep (default --seeds)")
     p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
                    "the reference's members at these seeds are paired with each setting's)")
+    p.add_argument("--no-reference-rerun", action="store_true", help="measure the settings' CPU time against the "
+                   "reference's verdict members instead of rerunning it at the knob seeds (cheaper; a drift of the "
+                   "machine's speed between the two then enters the ratios)")
     p.add_argument("--no-run", action="store_true", help="run no member: the tables of the members finished so far "
                    "(an ensemble cut short says how many of its members it holds)")
     p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
@@ -161,7 +165,8 @@ def run_study(args, build=None, log=print):
                         if widths else None)
         ref = scenes[cost_name]
         # the reference rerun at the knob seeds just before the settings: its CPU time is measured beside theirs
-        res["cost_reference"] = ens(ref, knob_seeds, out / "cost" / "reference") if settings else None
+        rerun = settings and not args.no_reference_rerun
+        res["cost_reference"] = ens(ref, knob_seeds, out / "cost" / "reference") if rerun else None
         res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
     return res
 

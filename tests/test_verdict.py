@@ -119,6 +119,10 @@ def test_knob_settings_are_scene_keys_relative_to_the_reference():
     assert by["porosity=lookup"].scene(ref).numerics.porosity_method == "lookup"
     # the table's sub-areas per side: m = 8 unless named
     assert [by[f"porosity={v}"].scene(ref).numerics.lookup_m for v in ("lookup4", "lookup", "lookup16")] == [4, 8, 16]
+    # the kernel mapping: at 1 d its default width (unset), else in metres from the nominal diameter (4.8 cm)
+    assert by["bandwidth=1d"].scene(ref).numerics.coupling_mapping == "kernel"
+    assert by["bandwidth=1d"].scene(ref).numerics.coupling_bandwidth is None
+    assert by["bandwidth=1.5d"].values == {"numerics.coupling_mapping": "kernel", "numerics.coupling_bandwidth": 0.072}
     with pytest.raises(ValueError, match="knobs: 'mesh' is not one of grid"):
         knob_settings(ref, "small", ["mesh"])
 

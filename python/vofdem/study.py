@@ -179,12 +179,13 @@ class Setting:
 
 
 # the knobs and their settings by study size: (knob, factor or value), relative to the reference
-KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up", "viscous_substeps")
+KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up", "viscous_substeps", "bandwidth")
 # the full size runs the grid last: its finer setting costs more than all the others together, and an
 # interrupted study then holds every other knob
 SIZES = {
     "full": {"ramp": [0.25, 0.5], "cfl": [0.25], "porosity": ["lookup4", "lookup", "lookup16"],
-             "dem_steps": [64.0], "spin_up": [0.5], "viscous_substeps": [1], "grid": [2.0, 0.5]},
+             "dem_steps": [64.0], "spin_up": [0.5], "viscous_substeps": [1], "bandwidth": [1.0, 0.75, 1.5],
+             "grid": [2.0, 0.5]},
     "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
               "spin_up": [0.5], "viscous_substeps": [1]},
     "tiny": {"cfl": [0.25], "porosity": ["lookup"]},
@@ -220,6 +221,13 @@ def setting(ref, knob: str, value) -> Setting:
         m = int(value)
         return Setting("viscous_substeps", f"{m}", f"{m} (the explicit stresses in one step)" if m == 1 else f"{m}",
                        {"numerics.viscous_substeps": m})
+    if knob == "bandwidth":  # the kernel mapping at a width in stone diameters d, from the cell mapping
+        f = float(value)
+        # 1 d: the width unset, the kernel's default (the packing's mean diameter); else f x the nominal d
+        b = None if f == 1.0 else round(ref.stones.diameter * f, 9)
+        label = f"kernel, b = {f:g} d" + ("" if b is None else f" ({b * 1000:g} mm)")
+        return Setting("bandwidth", f"{f:g}d", label,
+                       {"numerics.coupling_mapping": "kernel", "numerics.coupling_bandwidth": b})
     if knob == "spin_up":
         t = round(h.spin_up_duration * float(value), 9)
         return Setting("spin_up", f"{t:g}", f"{t:g} s", {"hydrograph.spin_up_duration": t})
