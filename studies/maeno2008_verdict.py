@@ -15,8 +15,7 @@ runs only the members not finished (one directory per ensemble under --out).
   where a narrower flume's water would reach the top (`sweep_height`).
 * **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
   (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up, the
-  kernel mapping's width); per
-  setting the shift of each event's median from the reference's, with its paired bootstrap interval,
+  kernel mapping's width, the overflow load); per setting the shift of each event's median from the reference's, with its paired bootstrap interval,
   against the CPU time per member (its ratio to the reference's members at the same seeds, run again
   just before the settings', so that a drift of the machine's speed between the verdict and this part
   does not enter) and the steps per member (the same on any machine); the packings' own spread (the

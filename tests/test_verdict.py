@@ -123,6 +123,7 @@ def test_knob_settings_are_scene_keys_relative_to_the_reference():
     assert by["bandwidth=1d"].scene(ref).numerics.coupling_mapping == "kernel"
     assert by["bandwidth=1d"].scene(ref).numerics.coupling_bandwidth is None
     assert by["bandwidth=1.5d"].values == {"numerics.coupling_mapping": "kernel", "numerics.coupling_bandwidth": 0.072}
+    assert by["overflow=drag_lift"].scene(ref).numerics.overflow_load == "drag_lift"
     with pytest.raises(ValueError, match="knobs: 'mesh' is not one of grid"):
         knob_settings(ref, "small", ["mesh"])
 

@@ -179,13 +179,13 @@ class Setting:
 
 
 # the knobs and their settings by study size: (knob, factor or value), relative to the reference
-KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up", "viscous_substeps", "bandwidth")
+KNOBS = ("grid", "ramp", "cfl", "porosity", "dem_steps", "spin_up", "viscous_substeps", "bandwidth", "overflow")
 # the full size runs the grid last: its finer setting costs more than all the others together, and an
 # interrupted study then holds every other knob
 SIZES = {
     "full": {"ramp": [0.25, 0.5], "cfl": [0.25], "porosity": ["lookup4", "lookup", "lookup16"],
              "dem_steps": [64.0], "spin_up": [0.5], "viscous_substeps": [1], "bandwidth": [1.0, 0.75, 1.5],
-             "grid": [2.0, 0.5]},
+             "overflow": ["drag_lift"], "grid": [2.0, 0.5]},
     "small": {"grid": [2.0, 0.5], "ramp": [0.5], "cfl": [0.25], "porosity": ["lookup"], "dem_steps": [64.0],
               "spin_up": [0.5], "viscous_substeps": [1]},
     "tiny": {"cfl": [0.25], "porosity": ["lookup"]},
@@ -228,6 +228,8 @@ def setting(ref, knob: str, value) -> Setting:
         label = f"kernel, b = {f:g} d" + ("" if b is None else f" ({b * 1000:g} mm)")
         return Setting("bandwidth", f"{f:g}d", label,
                        {"numerics.coupling_mapping": "kernel", "numerics.coupling_bandwidth": b})
+    if knob == "overflow":  # an effect switched on: the overflow's drag and lift on the protruding stones
+        return Setting("overflow", str(value), f"overflow load {value}", {"numerics.overflow_load": str(value)})
     if knob == "spin_up":
         t = round(h.spin_up_duration * float(value), 9)
         return Setting("spin_up", f"{t:g}", f"{t:g} s", {"hydrograph.spin_up_duration": t})
