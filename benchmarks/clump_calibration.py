@@ -152,13 +152,7 @@ def main():
              "points in x within 0.1 m of the crest's middle, 2 d from the side walls, z from 1.5 d to H - d). "
              f"Pulls: {a.per_seed} surface stones of the downstream slope per weir, 3 directions each, the stones "
              f"farther than {a.hold:g} d held. Spheres: `results/sphere_calibration.md`, "
-             "`results/weir_packing_3d.md`.", "",
-             "## Angle of repose, dry", "",
-             "| mu_r | heap (seed) | angle [deg] | halves [deg] | height [m] | lost | at rest | CPU [s] |",
-             "|---:|---:|---:|---|---:|---:|---|---:|"]
-    for m, r, c in heaps:
-        lines.append(f"| {m:g} | {r.seed} | {r.angle:.1f} | {r.left.angle:.1f} / {r.right.angle:.1f} | "
-                     f"{r.height:.3f} | {r.lost} | {'yes' if r.settled else 'no'} | {c:.0f} |")
+             "`results/weir_packing_3d.md`.", ""] + c3.heaps_markdown(heaps, lost=True)
     lines += ["", "## Packed weirs", "",
               "| mu_r | seed | stones | fixed | porosity (prism) | porosity (core) | stones across | outline error [m] | "
               "CPU packing [s] | CPU packing + pulls [s] |", "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]

@@ -30,6 +30,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from vofdem import calibration as cal
+from vofdem import calibration_3d as c3
 from vofdem.scene import load_scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -129,13 +130,7 @@ def main():
              "3D-packed weir (B = 0.5 m), surface stones of the downstream slope between 0.2 and 0.8 of "
              "the weir's height and at least 1.5 d from the side walls, spring 50 N/m, anchor 0.02 m/s, "
              f"directions in x-z, the stones farther than {a.hold:g} d from the pulled one held fixed during "
-             "its pull (0: none). CPU: each job's process time.", "",
-             "## Angle of repose, dry", "",
-             "| mu_r | heap (seed) | angle [deg] | halves [deg] | height [m] | at rest | CPU [s] |",
-             "|---:|---:|---:|---|---:|---|---:|"]
-    for m, r, c in heaps:
-        lines.append(f"| {m:g} | {r.seed} | {r.angle:.1f} | {r.left.angle:.1f} / {r.right.angle:.1f} | "
-                     f"{r.height:.3f} | {'yes' if r.settled else 'no'} | {c:.0f} |")
+             "its pull (0: none). CPU: each job's process time.", ""] + c3.heaps_markdown(heaps)
     lines += ["", "## Summary per mu_r (mean +- sample standard deviation; in brackets the ratio to the paper)", "",
               "| mu_r | angle [deg] (37-41) | vertical [N] (2.81) | normal [N] (3.04) | horizontal [N] (4.75) | "
               "horizontal / vertical (1.69) | pulls | meets all |", "|---:|---|---|---|---|---:|---:|---|"]
@@ -173,8 +168,7 @@ def main():
     i = cal.pick_evenly(cal.surface_stones(sys_, sc), a.per_seed)[0]
     fig = cal.fig_pull([r for mm, rr, _ in pulls if mm == m_fig for r in rr],
                        f"pull-out test of 3D spheres, mu_r = {m_fig:g}")
-    from vofdem.calibration_3d import fig_pull_3d
-    side = fig_pull_3d(sys_, state, i, sc, cal.pull_directions(sc)["horizontal"])
+    side = c3.fig_pull_3d(sys_, state, i, sc, cal.pull_directions(sc)["horizontal"])
     _stack(fig, side, os.path.join(res, "sphere_calibration_pull.png"))
     print("\n".join(lines))
 

@@ -122,3 +122,17 @@ def test_stones_beyond_the_hold_distance_are_held_and_freed_by_the_checkpoint():
     free = cal.pull_stone(sys_, state, 3, np.array([1.0, 0.0]), setup)
     held = cal.pull_stone(sys_, state, 3, np.array([1.0, 0.0]), cal.PullSetup(**{**setup.__dict__, "hold_beyond": 0.5}))
     assert np.array_equal(held.force, free.force)
+
+
+def test_the_heaps_table_of_both_calibration_scripts():
+    # one writer for the spheres' and the clumps' results files (benchmarks/*_calibration.py): the rows as
+    # those files hold them, the clumps' with the stones lost off the base
+    from types import SimpleNamespace as NS
+    heap = NS(seed=0, angle=20.54, left=NS(angle=20.31), right=NS(angle=20.66), height=0.2083, lost=3, settled=True)
+    assert c3.heaps_markdown([(0.0, heap, 18.4)]) == [
+        "## Angle of repose, dry", "", "| mu_r | heap (seed) | angle [deg] | halves [deg] | height [m] | at rest | CPU [s] |",
+        "|---:|---:|---:|---|---:|---|---:|", "| 0 | 0 | 20.5 | 20.3 / 20.7 | 0.208 | yes | 18 |"]
+    lines = c3.heaps_markdown([(0.2, heap, 93.0)], lost=True)
+    assert lines[2] == "| mu_r | heap (seed) | angle [deg] | halves [deg] | height [m] | lost | at rest | CPU [s] |"
+    assert lines[3] == "|---:|---:|---:|---|---:|---:|---|---:|"
+    assert lines[4] == "| 0.2 | 0 | 20.5 | 20.3 / 20.7 | 0.208 | 3 | yes | 93 |"

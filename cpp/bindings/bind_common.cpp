@@ -2,6 +2,7 @@
 #include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
+#include "fields.h"
 #include "vofdem/common/grid.h"
 #include "vofdem/common/medium.h"
 #include "vofdem/common/profile.h"
@@ -44,10 +45,10 @@ void bind_common(py::module_& m) {
                      "Water, air and gravity (SI units), one value for the flow and the stones: FlowParams.medium "
                      "owns it, a Coupler hands it to the stones (DEMParams.medium).")
       .def(py::init<>())
-      .def_readwrite("rho_water", &Medium::rho_water, "water density [kg/m^3], 998.2")
-      .def_readwrite("rho_air", &Medium::rho_air, "air density [kg/m^3], 1.204")
-      .def_readwrite("nu_water", &Medium::nu_water, "water kinematic viscosity [m^2/s], 1.004e-6")
-      .def_readwrite("nu_air", &Medium::nu_air, "air kinematic viscosity [m^2/s], 1.516e-5")
+      .def_readwrite("rho_water", &Medium::rho_water, with_default("water density [kg/m^3]", &Medium::rho_water).c_str())
+      .def_readwrite("rho_air", &Medium::rho_air, with_default("air density [kg/m^3]", &Medium::rho_air).c_str())
+      .def_readwrite("nu_water", &Medium::nu_water, with_default("water kinematic viscosity [m^2/s]", &Medium::nu_water).c_str())
+      .def_readwrite("nu_air", &Medium::nu_air, with_default("air kinematic viscosity [m^2/s]", &Medium::nu_air).c_str())
       .def_readwrite("gravity", &Medium::gravity, "gravitational acceleration (x along the flume, z up) [m/s^2]")
       .def("validate", &Medium::validate,
            "ValueError naming the field unless the densities are positive, the viscosities non-negative and the gravity finite")

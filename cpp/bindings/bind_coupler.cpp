@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 
+#include "fields.h"
 #include "flags.h"
 #include "state.h"
 #include "views.h"
@@ -58,41 +59,55 @@ void bind_coupler(py::module_& m) {
   py::class_<CouplerParams>(m, "CouplerParams", "Parameters of the VOF-DEM coupling (SI units; see coupler.h).")
       .def(py::init<>())
       .def_readwrite("flags", &CouplerParams::flags, "CouplerEffect bits")
-      .def_readwrite("n_exp", &CouplerParams::n_exp, "packing porosity of eq. (11) [-], 0.41")
-      .def_readwrite("lookup_m", &CouplerParams::lookup_m, "sub-areas per side of the lookup table [-], 8")
-      .def_readwrite("lookup_dr", &CouplerParams::lookup_dr, "radius spacing of the lookup tables [m], 5e-4")
+      .def_readwrite("n_exp", &CouplerParams::n_exp, with_default("packing porosity of eq. (11) [-]", &CouplerParams::n_exp).c_str())
+      .def_readwrite("lookup_m", &CouplerParams::lookup_m, with_default("sub-areas per side of the lookup table [-]", &CouplerParams::lookup_m).c_str())
+      .def_readwrite("lookup_dr", &CouplerParams::lookup_dr, with_default("radius spacing of the lookup tables [m]", &CouplerParams::lookup_dr).c_str())
       .def_readwrite("drag_law", &CouplerParams::drag_law, "DragLaw of the sphere drag")
-      .def_readwrite("stone_drag", &CouplerParams::stone_drag, "StoneDragModel of the drag on the stones, SPHERE")
-      .def_readwrite("max_dt", &CouplerParams::max_dt, "largest exchange step [s], 0.01")
-      .def_readwrite("stone_cfl", &CouplerParams::stone_cfl, "cells a stone crosses per step at most [-], 0.5")
+      .def_readwrite("stone_drag", &CouplerParams::stone_drag, with_default("StoneDragModel of the drag on the stones", &CouplerParams::stone_drag).c_str())
+      .def_readwrite("max_dt", &CouplerParams::max_dt, with_default("largest exchange step [s]", &CouplerParams::max_dt).c_str())
+      .def_readwrite("stone_cfl", &CouplerParams::stone_cfl, with_default("cells a stone crosses per step at most [-]", &CouplerParams::stone_cfl).c_str())
       .def_readwrite("implicit_drag", &CouplerParams::implicit_drag,
-                     "drag linearised in the stone's velocity and integrated implicitly by the DEM, True; "
-                     "False: held over the step (bounded by drag_relaxation)")
+                     with_default("drag linearised in the stone's velocity and integrated implicitly by the DEM (True) or held "
+                                  "over the step, bounded by drag_relaxation (False)",
+                                  &CouplerParams::implicit_drag)
+                         .c_str())
       .def_readwrite("drag_relaxation", &CouplerParams::drag_relaxation,
-                     "held drag: step at most this fraction of its relaxation time [-], 0.5")
-      .def_readwrite("min_dt", &CouplerParams::min_dt, "a stable step below this is a failure [s], 1e-7")
+                     with_default("held drag: step at most this fraction of its relaxation time [-]",
+                                  &CouplerParams::drag_relaxation)
+                         .c_str())
+      .def_readwrite("min_dt", &CouplerParams::min_dt, with_default("a stable step below this is a failure [s]", &CouplerParams::min_dt).c_str())
       .def_readwrite("wet_fraction_tolerance", &CouplerParams::wet_fraction_tolerance,
-                     "a stone measured this close to wet (dry) is taken as under water (in the air) [-], [0, 0.5], "
-                     "1e-6; 0: every measured wet fraction is followed")
+                     with_default("a stone measured this close to wet (dry) is taken as under water (in the air) [-], "
+                                  "[0, 0.5]; 0: every measured wet fraction is followed",
+                                  &CouplerParams::wet_fraction_tolerance)
+                         .c_str())
       .def_readwrite("max_snapshot_interval", &CouplerParams::max_snapshot_interval,
-                     "within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096], 32; "
-                     "a failing step replays the steps since it (the same bits); 1: every step")
-      .def_readwrite("mapping", &CouplerParams::mapping, "CouplingMapping of the exchanged fields, CELL")
+                     with_default("within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096]; "
+                                  "a failing step replays the steps since it (the same bits); 1: every step",
+                                  &CouplerParams::max_snapshot_interval)
+                         .c_str())
+      .def_readwrite("mapping", &CouplerParams::mapping, with_default("CouplingMapping of the exchanged fields", &CouplerParams::mapping).c_str())
       .def_readwrite("bandwidth", &CouplerParams::bandwidth,
                      "KERNEL: the Gaussian's width b in exp(-r^2/b^2) [m], (0, 1], sigma = b / sqrt(2); 0 = unset: "
                      "1.0 x the stones' mean nominal diameter")
       .def_property(
           "overflow_drag_coefficient", [](const CouplerParams& p) { return p.overflow.drag_coefficient; },
           [](CouplerParams& p, double v) { p.overflow.drag_coefficient = v; },
-          "OVERFLOW_LOAD: drag coefficient C_D of a stone's exposed part [-], (0, 5], 0.91 (Schmeeckle et al. 2007)")
+          with_default("OVERFLOW_LOAD: drag coefficient C_D of a stone's exposed part [-], (0, 5] (Schmeeckle et al. 2007)",
+                       &CouplerParams::overflow, &OverflowLoadParams::drag_coefficient)
+              .c_str())
       .def_property(
           "overflow_lift_coefficient", [](const CouplerParams& p) { return p.overflow.lift_coefficient; },
           [](CouplerParams& p, double v) { p.overflow.lift_coefficient = v; },
-          "OVERFLOW_LOAD: lift coefficient C_L [-], [0, 5], 0.178 (Einstein and El-Samni 1949)")
+          with_default("OVERFLOW_LOAD: lift coefficient C_L [-], [0, 5] (Einstein and El-Samni 1949)", &CouplerParams::overflow,
+                       &OverflowLoadParams::lift_coefficient)
+              .c_str())
       .def_property(
           "overflow_band_height", [](const CouplerParams& p) { return p.overflow.band_height; },
           [](CouplerParams& p, double v) { p.overflow.band_height = v; },
-          "OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5], 1")
+          with_default("OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5]",
+                       &CouplerParams::overflow, &OverflowLoadParams::band_height)
+              .c_str())
       .def("validate", &CouplerParams::validate);
 
   bind_state_class<CouplerState>(m, "CouplerState",

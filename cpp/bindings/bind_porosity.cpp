@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "fields.h"
 #include "views.h"
 #include "vofdem/coupling/porosity_map.h"
 
@@ -44,11 +45,11 @@ void bind_porosity(py::module_& m) {
   py::class_<PorosityParams>(m, "PorosityParams", "Parameters of the porosity mapping (SI units).")
       .def(py::init<>())
       .def_readwrite("method", &PorosityParams::method)
-      .def_readwrite("m", &PorosityParams::m, "sub-areas per side of the centre cell (lookup) [-]; usual 8")
-      .def_readwrite("n_exp", &PorosityParams::n_exp, "packing porosity of the stones [-]; 0.41")
+      .def_readwrite("m", &PorosityParams::m, with_default("sub-areas per side of the centre cell (lookup) [-]", &PorosityParams::m).c_str())
+      .def_readwrite("n_exp", &PorosityParams::n_exp, with_default("packing porosity of the stones [-]", &PorosityParams::n_exp).c_str())
       .def_readwrite("r_min", &PorosityParams::r_min, "smallest disc radius [m]")
       .def_readwrite("r_max", &PorosityParams::r_max, "largest disc radius [m]")
-      .def_readwrite("dr", &PorosityParams::dr, "radius node spacing of the lookup tables [m]; usual 1e-3")
+      .def_readwrite("dr", &PorosityParams::dr, with_default("radius node spacing of the lookup tables [m]", &PorosityParams::dr).c_str())
       .def_readwrite("max_discs", &PorosityParams::max_discs, "largest number of discs of one call [-]");
 
   py::class_<PorosityMapper>(m, "PorosityMapper",

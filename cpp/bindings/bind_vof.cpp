@@ -115,14 +115,14 @@ void bind_vof(py::module_& m) {
   py::class_<FlowParams> fp(m, "FlowParams", "Flow parameters, constant while stepping (SI units).");
   fp.def(py::init<>())
       .def_readwrite("medium", &FlowParams::medium, "water, air and gravity (Medium), shared with the stones")
-      .def_readwrite("cfl", &FlowParams::cfl, "target Courant number of the pore velocity [-], 0.4")
-      .def_readwrite("max_dt", &FlowParams::max_dt, "largest time step [s], 0.01")
-      .def_readwrite("initial_dt", &FlowParams::initial_dt, "first time step [s], 1e-3")
-      .def_readwrite("max_dt_growth", &FlowParams::max_dt_growth, "dt <= max_dt_growth * the last step [-], 1.2")
-      .def_readwrite("min_dt", &FlowParams::min_dt, "a stable step below this is a failure [s], 1e-8")
-      .def_readwrite("k1", &FlowParams::k1, "linear resistance coefficient of eq. (7) [-], 200")
-      .def_readwrite("k2", &FlowParams::k2, "quadratic resistance coefficient of eq. (7) [-], 2.8")
-      .def_readwrite("flume_width", &FlowParams::flume_width, "flume width B [m], 0.5")
+      .def_readwrite("cfl", &FlowParams::cfl, with_default("target Courant number of the pore velocity [-]", &FlowParams::cfl).c_str())
+      .def_readwrite("max_dt", &FlowParams::max_dt, with_default("largest time step [s]", &FlowParams::max_dt).c_str())
+      .def_readwrite("initial_dt", &FlowParams::initial_dt, with_default("first time step [s]", &FlowParams::initial_dt).c_str())
+      .def_readwrite("max_dt_growth", &FlowParams::max_dt_growth, with_default("dt <= max_dt_growth * the last step [-]", &FlowParams::max_dt_growth).c_str())
+      .def_readwrite("min_dt", &FlowParams::min_dt, with_default("a stable step below this is a failure [s]", &FlowParams::min_dt).c_str())
+      .def_readwrite("k1", &FlowParams::k1, with_default("linear resistance coefficient of eq. (7) [-]", &FlowParams::k1).c_str())
+      .def_readwrite("k2", &FlowParams::k2, with_default("quadratic resistance coefficient of eq. (7) [-]", &FlowParams::k2).c_str())
+      .def_readwrite("flume_width", &FlowParams::flume_width, with_default("flume width B [m]", &FlowParams::flume_width).c_str())
       .def_readwrite("pressure_solver", &FlowParams::pressure_solver)
       .def_readwrite("pressure_tol", &FlowParams::pressure_tol, "relative residual of the pressure solve [-]")
       .def_readwrite("inlet", &FlowParams::inlet)
@@ -154,7 +154,7 @@ void bind_vof(py::module_& m) {
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
                  "k-epsilon time stepping: POINT_IMPLICIT, VERTICAL_LINES or ALTERNATING_LINES");
   def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,
-                 "safety factor of the k-epsilon step limit [-], (0, 1], 0.5");
+                 with_default("safety factor of the k-epsilon step limit [-], (0, 1]", k_eps, &KEpsilonParams::cfl));
   def_part_field(fp, "turbulence_limit_step", k_eps, &KEpsilonParams::limit_step,
                  "VERTICAL_LINES, ALTERNATING_LINES: the explicit part's limit (the horizontal faces', or the "
                  "horizontal advection's alone) bounds the step (True) or not (False: not accurate in the weir, "
@@ -164,9 +164,9 @@ void bind_vof(py::module_& m) {
   def_part_field(fp, "turbulence_wall_roughness", k_eps, &KEpsilonParams::wall_roughness,
                  "k_s of end walls and solid cells [m]");
   def_part_field(fp, "turbulence_inflow_intensity", k_eps, &KEpsilonParams::inflow_intensity,
-                 "inflow turbulence intensity [-], 0.05");
+                 with_default("inflow turbulence intensity [-]", k_eps, &KEpsilonParams::inflow_intensity));
   def_part_field(fp, "turbulence_inflow_length_scale", k_eps, &KEpsilonParams::inflow_length_scale,
-                 "inflow length scale [m], 0.01");
+                 with_default("inflow length scale [m]", k_eps, &KEpsilonParams::inflow_length_scale));
   // older scripts' names of the medium's fields
   const auto medium = &FlowParams::medium;
   def_part_field(fp, "rho_water", medium, &Medium::rho_water, "alias of medium.rho_water [kg/m^3]");

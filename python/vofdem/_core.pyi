@@ -90,7 +90,7 @@ class Medium:
     @property
     def nu_air(self) -> float:
         """
-        air kinematic viscosity [m^2/s], 1.516e-5
+        air kinematic viscosity [m^2/s], default 1.516e-05
         """
     @nu_air.setter
     def nu_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -98,7 +98,7 @@ class Medium:
     @property
     def nu_water(self) -> float:
         """
-        water kinematic viscosity [m^2/s], 1.004e-6
+        water kinematic viscosity [m^2/s], default 1.004e-06
         """
     @nu_water.setter
     def nu_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -106,7 +106,7 @@ class Medium:
     @property
     def rho_air(self) -> float:
         """
-        air density [kg/m^3], 1.204
+        air density [kg/m^3], default 1.204
         """
     @rho_air.setter
     def rho_air(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -114,7 +114,7 @@ class Medium:
     @property
     def rho_water(self) -> float:
         """
-        water density [kg/m^3], 998.2
+        water density [kg/m^3], default 998.2
         """
     @rho_water.setter
     def rho_water(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -251,7 +251,7 @@ class PorosityParams:
     @property
     def dr(self) -> float:
         """
-        radius node spacing of the lookup tables [m]; usual 1e-3
+        radius node spacing of the lookup tables [m], default 0.001
         """
     @dr.setter
     def dr(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -259,7 +259,7 @@ class PorosityParams:
     @property
     def m(self) -> int:
         """
-        sub-areas per side of the centre cell (lookup) [-]; usual 8
+        sub-areas per side of the centre cell (lookup) [-], default 8
         """
     @m.setter
     def m(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -275,7 +275,7 @@ class PorosityParams:
     @property
     def n_exp(self) -> float:
         """
-        packing porosity of the stones [-]; 0.41
+        packing porosity of the stones [-], default 0.41
         """
     @n_exp.setter
     def n_exp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2018,7 +2018,7 @@ class FlowParams:
     @property
     def cfl(self) -> float:
         """
-        target Courant number of the pore velocity [-], 0.4
+        target Courant number of the pore velocity [-], default 0.5
         """
     @cfl.setter
     def cfl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2034,7 +2034,7 @@ class FlowParams:
     @property
     def flume_width(self) -> float:
         """
-        flume width B [m], 0.5
+        flume width B [m], default 0.5
         """
     @flume_width.setter
     def flume_width(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2058,7 +2058,7 @@ class FlowParams:
     @property
     def initial_dt(self) -> float:
         """
-        first time step [s], 1e-3
+        first time step [s], default 0.001
         """
     @initial_dt.setter
     def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2074,7 +2074,7 @@ class FlowParams:
     @property
     def k1(self) -> float:
         """
-        linear resistance coefficient of eq. (7) [-], 200
+        linear resistance coefficient of eq. (7) [-], default 200
         """
     @k1.setter
     def k1(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2082,7 +2082,7 @@ class FlowParams:
     @property
     def k2(self) -> float:
         """
-        quadratic resistance coefficient of eq. (7) [-], 2.8
+        quadratic resistance coefficient of eq. (7) [-], default 2.8
         """
     @k2.setter
     def k2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2090,7 +2090,7 @@ class FlowParams:
     @property
     def max_dt(self) -> float:
         """
-        largest time step [s], 0.01
+        largest time step [s], default 0.01
         """
     @max_dt.setter
     def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2098,7 +2098,7 @@ class FlowParams:
     @property
     def max_dt_growth(self) -> float:
         """
-        dt <= max_dt_growth * the last step [-], 1.2
+        dt <= max_dt_growth * the last step [-], default 1.2
         """
     @max_dt_growth.setter
     def max_dt_growth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2114,7 +2114,7 @@ class FlowParams:
     @property
     def min_dt(self) -> float:
         """
-        a stable step below this is a failure [s], 1e-8
+        a stable step below this is a failure [s], default 1e-08
         """
     @min_dt.setter
     def min_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2186,7 +2186,7 @@ class FlowParams:
     @property
     def turbulence_cfl(self) -> float:
         """
-        safety factor of the k-epsilon step limit [-], (0, 1], 0.5
+        safety factor of the k-epsilon step limit [-], (0, 1], default 0.5
         """
     @turbulence_cfl.setter
     def turbulence_cfl(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2194,7 +2194,7 @@ class FlowParams:
     @property
     def turbulence_inflow_intensity(self) -> float:
         """
-        inflow turbulence intensity [-], 0.05
+        inflow turbulence intensity [-], default 0.05
         """
     @turbulence_inflow_intensity.setter
     def turbulence_inflow_intensity(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2202,7 +2202,7 @@ class FlowParams:
     @property
     def turbulence_inflow_length_scale(self) -> float:
         """
-        inflow length scale [m], 0.01
+        inflow length scale [m], default 0.01
         """
     @turbulence_inflow_length_scale.setter
     def turbulence_inflow_length_scale(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2788,7 +2788,7 @@ class CouplerParams:
     @property
     def drag_relaxation(self) -> float:
         """
-        held drag: step at most this fraction of its relaxation time [-], 0.5
+        held drag: step at most this fraction of its relaxation time [-], default 0.5
         """
     @drag_relaxation.setter
     def drag_relaxation(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2804,7 +2804,7 @@ class CouplerParams:
     @property
     def implicit_drag(self) -> bool:
         """
-        drag linearised in the stone's velocity and integrated implicitly by the DEM, True; False: held over the step (bounded by drag_relaxation)
+        drag linearised in the stone's velocity and integrated implicitly by the DEM (True) or held over the step, bounded by drag_relaxation (False), default True
         """
     @implicit_drag.setter
     def implicit_drag(self, arg0: bool) -> None:
@@ -2812,7 +2812,7 @@ class CouplerParams:
     @property
     def lookup_dr(self) -> float:
         """
-        radius spacing of the lookup tables [m], 5e-4
+        radius spacing of the lookup tables [m], default 5e-04
         """
     @lookup_dr.setter
     def lookup_dr(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2820,7 +2820,7 @@ class CouplerParams:
     @property
     def lookup_m(self) -> int:
         """
-        sub-areas per side of the lookup table [-], 8
+        sub-areas per side of the lookup table [-], default 8
         """
     @lookup_m.setter
     def lookup_m(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2828,7 +2828,7 @@ class CouplerParams:
     @property
     def mapping(self) -> CouplingMapping:
         """
-        CouplingMapping of the exchanged fields, CELL
+        CouplingMapping of the exchanged fields, default CELL
         """
     @mapping.setter
     def mapping(self, arg0: CouplingMapping) -> None:
@@ -2836,7 +2836,7 @@ class CouplerParams:
     @property
     def max_dt(self) -> float:
         """
-        largest exchange step [s], 0.01
+        largest exchange step [s], default 0.01
         """
     @max_dt.setter
     def max_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2844,7 +2844,7 @@ class CouplerParams:
     @property
     def max_snapshot_interval(self) -> int:
         """
-        within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096], 32; a failing step replays the steps since it (the same bits); 1: every step
+        within advance(), the guard's snapshot at most this many steps apart [steps], [1, 4096]; a failing step replays the steps since it (the same bits); 1: every step, default 32
         """
     @max_snapshot_interval.setter
     def max_snapshot_interval(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2852,7 +2852,7 @@ class CouplerParams:
     @property
     def min_dt(self) -> float:
         """
-        a stable step below this is a failure [s], 1e-7
+        a stable step below this is a failure [s], default 1e-07
         """
     @min_dt.setter
     def min_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2860,7 +2860,7 @@ class CouplerParams:
     @property
     def n_exp(self) -> float:
         """
-        packing porosity of eq. (11) [-], 0.41
+        packing porosity of eq. (11) [-], default 0.41
         """
     @n_exp.setter
     def n_exp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2868,7 +2868,7 @@ class CouplerParams:
     @property
     def overflow_band_height(self) -> float:
         """
-        OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5], 1
+        OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5], default 1
         """
     @overflow_band_height.setter
     def overflow_band_height(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2876,7 +2876,7 @@ class CouplerParams:
     @property
     def overflow_drag_coefficient(self) -> float:
         """
-        OVERFLOW_LOAD: drag coefficient C_D of a stone's exposed part [-], (0, 5], 0.91 (Schmeeckle et al. 2007)
+        OVERFLOW_LOAD: drag coefficient C_D of a stone's exposed part [-], (0, 5] (Schmeeckle et al. 2007), default 0.91
         """
     @overflow_drag_coefficient.setter
     def overflow_drag_coefficient(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2884,7 +2884,7 @@ class CouplerParams:
     @property
     def overflow_lift_coefficient(self) -> float:
         """
-        OVERFLOW_LOAD: lift coefficient C_L [-], [0, 5], 0.178 (Einstein and El-Samni 1949)
+        OVERFLOW_LOAD: lift coefficient C_L [-], [0, 5] (Einstein and El-Samni 1949), default 0.178
         """
     @overflow_lift_coefficient.setter
     def overflow_lift_coefficient(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2892,7 +2892,7 @@ class CouplerParams:
     @property
     def stone_cfl(self) -> float:
         """
-        cells a stone crosses per step at most [-], 0.5
+        cells a stone crosses per step at most [-], default 0.5
         """
     @stone_cfl.setter
     def stone_cfl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -2900,7 +2900,7 @@ class CouplerParams:
     @property
     def stone_drag(self) -> StoneDragModel:
         """
-        StoneDragModel of the drag on the stones, SPHERE
+        StoneDragModel of the drag on the stones, default SPHERE
         """
     @stone_drag.setter
     def stone_drag(self, arg0: StoneDragModel) -> None:
@@ -2908,7 +2908,7 @@ class CouplerParams:
     @property
     def wet_fraction_tolerance(self) -> float:
         """
-        a stone measured this close to wet (dry) is taken as under water (in the air) [-], [0, 0.5], 1e-6; 0: every measured wet fraction is followed
+        a stone measured this close to wet (dry) is taken as under water (in the air) [-], [0, 0.5]; 0: every measured wet fraction is followed, default 1e-06
         """
     @wet_fraction_tolerance.setter
     def wet_fraction_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

@@ -168,6 +168,19 @@ class ConeResult:
         return self.cone.angle
 
 
+def heaps_markdown(heaps, lost: bool = False) -> List[str]:
+    """The dry heaps' section of a calibration's results file: one row per (mu_r, ConeResult, CPU [s]),
+    with the stones lost off the base when lost is True (the clumps' heaps)."""
+    head = "| mu_r | heap (seed) | angle [deg] | halves [deg] | height [m] |" + (" lost |" if lost else "")
+    lines = ["## Angle of repose, dry", "", head + " at rest | CPU [s] |",
+             "|---:|---:|---:|---|---:|" + ("---:|" if lost else "") + "---|---:|"]
+    for m, r, c in heaps:
+        lines.append(f"| {m:g} | {r.seed} | {r.angle:.1f} | {r.left.angle:.1f} / {r.right.angle:.1f} | "
+                     f"{r.height:.3f} |" + (f" {r.lost} |" if lost else "") +
+                     f" {'yes' if r.settled else 'no'} | {c:.0f} |")
+    return lines
+
+
 def _line(rho, z) -> ConeFit:
     slope, intercept = np.polyfit(rho, z, 1)
     return ConeFit(float(-slope), float(intercept), np.asarray(rho), np.asarray(z))

@@ -6,6 +6,15 @@
 
 namespace vofdem {
 
+BedDragParams::BedDragParams(const FlowParams& flow)
+    : rho_w(flow.medium.rho_water),
+      nu_w(flow.medium.nu_water),
+      k1(flow.k1),
+      k2(flow.k2),
+      linear(flow.flags & kFlowPorousDarcy),
+      quadratic(flow.flags & kFlowPorousForchheimer),
+      relative(flow.flags & kFlowRelativeVelocity) {}
+
 DragForce bed_drag(int count, const int* cells, const double* areas, const double* F, const double* n,
                    const double* D, const double* U, const double* W, double up, double wp, double volume,
                    const BedDragParams& p, double* slope) {

@@ -372,14 +372,8 @@ void Coupler::stage_fluid_forces(unsigned fl) {
   const double rho = fp.medium.rho_water, nu = fp.medium.nu_water;
   const bool bed = params_.stone_drag == StoneDragModel::kBed;
   const WetLaw wet_law = stones_->model().wet_law();
-  BedDragParams bp;
-  if (bed) {
-    // the flow's own closure law, terms and relative velocity: the reaction of what it removes
-    bp.rho_w = rho, bp.nu_w = nu, bp.k1 = fp.k1, bp.k2 = fp.k2;
-    bp.linear = fp.flags & kFlowPorousDarcy;
-    bp.quadratic = fp.flags & kFlowPorousForchheimer;
-    bp.relative = fp.flags & kFlowRelativeVelocity;
-  }
+  // the flow's own water, closure law, terms and relative velocity: the reaction of what it removes
+  const BedDragParams bp(fp);
   if (kernel_) {
     smooth_flow(bed && (fl & kCoupleDrag), bp);
   } else {

@@ -4,11 +4,11 @@
 #include <stdexcept>
 
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSchillerNaumannReMax = 1000.0;
 
 // C_D * Re / 24 of Schiller & Naumann; continuous at Re = 1000 to within 0.2 %

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
+#include "vofdem/common/numbers.h"
+
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 // the drag law's slope (drag.h) at the sample's relative speed, scaled by the wet fraction
 double sample_drag_slope(const StoneFlowSample& s, double up, double wp, double d, double half_rho_a, double nu_w,
                          DragLaw law) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/coupling/slab_volume.h"
 #include "vofdem/stones/clump_model.h"
@@ -52,13 +53,17 @@ int PorosityMapper::add_sphere(double x, double z, double r, double width, int p
   return p;
 }
 
-void PorosityMapper::map_spheres(int n, const double* x, const double* z, const double* r, double width,
-                                 const std::uint8_t* active) {
+void PorosityMapper::require_slab_mapping(const char* shape, double width) const {
   if (params_.method == PorosityMethod::kLookup)
-    throw std::invalid_argument(
-        "method = 1 (lookup): the paper's lookup table holds disc areas; 3D spheres need method = 0 (exact)");
+    throw std::invalid_argument(std::string("method = 1 (lookup): the paper's lookup table holds disc areas; 3D ") +
+                                shape + " need method = 0 (exact)");
   if (!(width > 0.0) || !std::isfinite(width))
     throw std::invalid_argument("width = " + format_value(width) + " m is outside the allowed range (0, inf)");
+}
+
+void PorosityMapper::map_spheres(int n, const double* x, const double* z, const double* r, double width,
+                                 const std::uint8_t* active) {
+  require_slab_mapping("spheres", width);
   map_each(
       n, active,
       [&](int j) {
@@ -68,10 +73,6 @@ void PorosityMapper::map_spheres(int n, const double* x, const double* z, const 
       },
       [&](int j, int p) { return add_sphere(x[j], z[j], r[j], width, p); });
 }
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 // the stencil is the box of the sub-spheres' boxes (cells reached by none are skipped as empty); each
 // sub-sphere's primitive at its own nodes, its parts scaled and added to the patch; the cells then in
@@ -124,11 +125,7 @@ int PorosityMapper::add_clump(double x, double z, const double* quat, const doub
 
 void PorosityMapper::map_clumps(int n, const double* x, const double* z, const double* quat, const double* sphere,
                                 const int* offset, const double* volume, double width, const std::uint8_t* active) {
-  if (params_.method == PorosityMethod::kLookup)
-    throw std::invalid_argument(
-        "method = 1 (lookup): the paper's lookup table holds disc areas; 3D clumps need method = 0 (exact)");
-  if (!(width > 0.0) || !std::isfinite(width))
-    throw std::invalid_argument("width = " + format_value(width) + " m is outside the allowed range (0, inf)");
+  require_slab_mapping("clumps", width);
   map_each(
       n, active,
       [&](int j) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/stone_model.h"
 #include "vofdem/stones/wet_fraction.h"
@@ -14,8 +15,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 const char* kStageNames[kDEMStageCount] = {"integrate", "removal", "neighbours", "body_forces",
                                             "contacts",  "walls",   "sleep",      "checks"};
 

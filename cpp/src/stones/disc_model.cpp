@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "vofdem/common/numbers.h"
 #include "vofdem/coupling/drag_exchange.h"
 #include "vofdem/coupling/fluid_forces.h"
 #include "vofdem/coupling/porosity_map.h"
@@ -14,10 +15,6 @@
 #include "vofdem/stones/weir_packing.h"
 
 namespace vofdem {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 double DiscModel::volume(const DEMSystem& s, int i) const {
   const double r = s.stone_radius[i];

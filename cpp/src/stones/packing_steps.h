@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "vofdem/common/numbers.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/stone_packing.h"
 #include "vofdem/stones/weir_packing.h"
@@ -17,7 +18,6 @@ namespace vofdem::packing_steps {
 // two slope walls half a mean diameter outside the slopes (stone centres end near the slope lines);
 // `final_walls` receives the walls the weir keeps once the slope walls are removed
 inline DEMParams pour_params(const DEMParams& params, const WeirSpec& spec, std::vector<DEMWall>& final_walls) {
-  constexpr double kPi = 3.14159265358979323846;
   const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
   DEMParams p = params;
   if (p.walls.empty()) p.walls.push_back({{spec.x_toe, spec.z_bed}, {0.0, 1.0}, 0.176});

@@ -8,12 +8,11 @@
 
 #include "stones/polygon_kernels.h"
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 double cross(double ax, double az, double bx, double bz) { return ax * bz - az * bx; }
 
 // convex hull of points (x, z pairs), counter-clockwise, collinear points dropped (monotone chain)

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/coupling/drag_exchange.h"
 #include "vofdem/coupling/fluid_forces.h"
@@ -20,7 +21,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSqrtHalf = 0.70710678118654752440;  // a point's share of the pair's mass: sqrt(1 / N), N = 2
 
 // checks the polygon arrays of n stones; throws std::invalid_argument naming the stone
@@ -154,7 +154,6 @@ double PolygonModel::stable_dt(const DEMSystem& s) const {
 }
 
 namespace {
-
 using PairCache = detail::PolygonPairCache;
 
 // the polygons of one force evaluation by raw pointers: body geometry, poses and the world geometry

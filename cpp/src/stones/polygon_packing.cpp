@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 
+#include "vofdem/common/numbers.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/polygon.h"
 #include "vofdem/stones/polygon_contact.h"
@@ -17,8 +18,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 class PolygonPacking final : public StonePacking {
  public:
   explicit PolygonPacking(const WeirSpec& s) : rng_(s.seed ^ 0x9e3779b97f4a7c15ull), spec_(s.polygon) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/stones/stone_model.h"
 #include "vofdem/stones/stone_packing.h"
 #include "vofdem/stones/weir_packing_3d.h"
@@ -20,8 +21,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 using packing_random::uniform01;
 double draw_diameter(std::mt19937_64& g, const WeirSpec& s) { return packing_random::diameter(g, s); }
 
@@ -44,7 +43,6 @@ void check_weir_spec(const WeirSpec& s) {
 }
 
 namespace {
-
 double max_speed(const DEMSystem& sys) {
   double v2 = 0.0;
   for (int i = 0; i < sys.n(); ++i) {

@@ -14,6 +14,7 @@
 #include "stones/packing_random.h"
 #include "stones/packing_steps.h"
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/common/grid.h"
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/stones/stone_model.h"
@@ -22,7 +23,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 using packing_random::uniform01;
 
 // largest speed of a free stone [m/s], spin included (|omega| r)

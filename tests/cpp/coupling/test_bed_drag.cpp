@@ -36,8 +36,10 @@ TEST(BedDrag, HandComputedCellsAndGuards) {
   const double areas[4] = {1e-4, 1e-4, 1e-4, 1e-4};
   const double F[4] = {1.0, 1.0, 1.0, 0.0}, n[4] = {0.4, 1.0, 0.0, 0.4}, D[4] = {0.02, 0.02, 0.02, 0.02};
   const double U[4] = {0.15, 0.5, 0.5, 0.5}, W[4] = {0.0, 0.3, 0.3, 0.3};
-  BedDragParams p;
-  p.rho_w = 1000.0, p.nu_w = 1.004e-6;
+  FlowParams fp;
+  fp.medium.rho_water = 1000.0, fp.medium.nu_water = 1.004e-6, fp.k1 = 200.0, fp.k2 = 2.8;
+  fp.flags = kFlowPorousResistance | kFlowRelativeVelocity;
+  BedDragParams p(fp);
   double slope = -1.0;
   DragForce f = bed_drag(4, cells, areas, F, n, D, U, W, 0.0, 0.0, 1e-5, p, &slope);
   EXPECT_NEAR(f.fx, 8.157375e-3, 1e-12);
@@ -60,6 +62,30 @@ TEST(BedDrag, HandComputedCellsAndGuards) {
   f = bed_drag(0, cells, areas, F, n, D, U, W, 0.0, 0.0, 1e-5, p, &slope);
   EXPECT_EQ(f.fx, 0.0);
   EXPECT_EQ(slope, 0.0);
+}
+
+TEST(BedDrag, ParamsAreTheFlowsWaterClosureLawAndTerms) {
+  // the water is defined once, in the flow's Medium: the bed drag has no density or viscosity of its own
+  FlowParams fp;
+  fp.medium.rho_water = 1025.0, fp.medium.nu_water = 1.19e-6, fp.k1 = 150.0, fp.k2 = 1.75;
+  fp.flags = kFlowPorousDarcy;
+  const BedDragParams a(fp);
+  EXPECT_EQ(a.rho_w, 1025.0);
+  EXPECT_EQ(a.nu_w, 1.19e-6);
+  EXPECT_EQ(a.k1, 150.0);
+  EXPECT_EQ(a.k2, 1.75);
+  EXPECT_TRUE(a.linear);
+  EXPECT_FALSE(a.quadratic);
+  EXPECT_FALSE(a.relative);
+  // the default flow: its Medium's water, the paper's (k1, k2), both terms, the stones' velocity not seen
+  const FlowParams d;
+  const BedDragParams b(d);
+  EXPECT_EQ(b.rho_w, Medium().rho_water);
+  EXPECT_EQ(b.nu_w, Medium().nu_water);
+  EXPECT_EQ(b.k1, kPaperK1);
+  EXPECT_EQ(b.k2, kPaperK2);
+  EXPECT_TRUE(b.linear && b.quadratic);
+  EXPECT_EQ(b.relative, static_cast<bool>(d.flags & kFlowRelativeVelocity));
 }
 
 TEST(BedDrag, ParamsDefaultToTheSphereDragAndRejectUnknownModels) {

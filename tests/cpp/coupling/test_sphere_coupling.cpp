@@ -81,8 +81,18 @@ TEST(SphereFootprint, PartsSumToTheVolumeOverTheWidthAndEachIsTheSlabVolume) {
   PorosityParams lookup = pp;
   lookup.method = PorosityMethod::kLookup;
   PorosityMapper ml(g, lookup);
-  EXPECT_THROW(ml.map_spheres(2, x, z, r, b), std::invalid_argument);
-  EXPECT_THROW(m.map_spheres(2, x, z, r, 0.0), std::invalid_argument);
+  // the slab mapping's two preconditions (require_slab_mapping), the shape and the key named
+  auto refused = [](auto&& call, const char* what) {
+    try {
+      call();
+      ADD_FAILURE() << what << ": no throw";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused([&] { ml.map_spheres(2, x, z, r, b); }, "3D spheres need method = 0 (exact)");
+  refused([&] { m.map_spheres(2, x, z, r, 0.0); }, "width = 0 m is outside the allowed range (0, inf)");
+  refused([&] { m.map_spheres(2, x, z, r, std::nan("")); }, "width = nan m");
 }
 
 TEST(SphereCoupling, FallsInStillWaterAtTheForceBalancesVelocity) {

@@ -39,18 +39,21 @@
 
 #include "vofdem/coupling/drag.h"
 #include "vofdem/flow/porous_resistance.h"
+#include "vofdem/flow/vof_grid.h"
 
 namespace vofdem {
 
-// what the bed drag needs of the flow's closure law (FlowParams, eqs. 5-7)
+// what the bed drag needs of the flow's closure law (eqs. 5-7), made from the flow's parameters only:
+// the water of its Medium, its (k1, k2) and its effect flags, so the stones take exactly what the flow's
+// resistance removes and the water is defined in one place (FlowParams::medium)
 struct BedDragParams {
-  double rho_w = 998.2;     // water density [kg/m^3]
-  double nu_w = 1.004e-6;   // molecular kinematic viscosity of the water [m^2/s] (never nu + nu_t)
-  double k1 = kPaperK1;     // eq. (7) [-]
-  double k2 = kPaperK2;     // eq. (7) [-]
-  bool linear = true;       // Darcy term a of the flow's resistance on
-  bool quadratic = true;    // Forchheimer term b |u| on
-  bool relative = true;     // the flow's resistance acts on u - n u_p (stones' velocity)
+  explicit BedDragParams(const FlowParams& flow);
+  double rho_w;     // water density [kg/m^3]: flow.medium.rho_water
+  double nu_w;      // molecular kinematic viscosity of the water [m^2/s]: flow.medium.nu_water (never nu + nu_t)
+  double k1, k2;    // eq. (7) [-]: flow.k1, flow.k2
+  bool linear;      // Darcy term a of the flow's resistance on (kFlowPorousDarcy)
+  bool quadratic;   // Forchheimer term b |u| on (kFlowPorousForchheimer)
+  bool relative;    // the flow's resistance acts on u - n u_p, the stones' velocity (kFlowRelativeVelocity)
 };
 
 // bed drag (*) on a stone of volume V [m^3] moving at (up, wp) [m/s] over count cells (indices cells,

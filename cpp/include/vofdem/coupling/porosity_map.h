@@ -166,6 +166,9 @@ class PorosityMapper {
   int add_exact(int j, double x, double z, double r, int p);
   int add_lookup(int j, double x, double z, double r, int p);
   int add_polygon(const double* world, int count, int p);
+  // the preconditions of mapping 3D stones (shape: "spheres", "clumps") over a slab of width [m]: the exact
+  // method and a finite positive width
+  void require_slab_mapping(const char* shape, double width) const;
   int add_sphere(double x, double z, double r, double width, int p);
   int add_clump(double x, double z, const double* quat, const double* sphere, int count, double volume, double width,
                 int p);
