@@ -35,20 +35,13 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 using packing_random::uniform01;
 
-// the bounding radius [m] about the centroid, as ClumpModel computes it
-double bounding_radius(const Clump& c) {
-  double b = 0.0;
-  for (const ClumpSphere& s : c.spheres()) b = std::max(b, s.centre.norm() + s.radius);
-  return b;
-}
-
 class ClumpPacking final : public StonePacking {
  public:
   explicit ClumpPacking(const WeirSpec& s) : rng_(s.seed ^ 0xc3a5c85c97cb3127ull), mix_(s.clump) {
     check_clump_mix(mix_);
     for (const std::string& name : mix_.names) {
       unit_.push_back(quarried_stone(name, 1.0, mix_.ratio_intermediate, mix_.ratio_short));
-      factor_ = std::max(factor_, 2.0 * bounding_radius(unit_.back()));
+      factor_ = std::max(factor_, 2.0 * unit_.back().bounding_radius());
     }
   }
 
@@ -61,7 +54,7 @@ class ClumpPacking final : public StonePacking {
     out.quat = {a * std::sin(2.0 * kPi * u2), a * std::cos(2.0 * kPi * u2), b * std::sin(2.0 * kPi * u3),
                 b * std::cos(2.0 * kPi * u3)};
     out.shape = {static_cast<double>(k), d};
-    out.radius = bounding_radius(unit_[k].scaled(d));
+    out.radius = unit_[k].scaled(d).bounding_radius();
     return out;
   }
 
