@@ -100,5 +100,7 @@ def test_what_clumps_cannot_do_yet_is_refused_with_the_key_named():
                                          r"\(stones.shape = 'clump'\)"):
         sim.advance(0.01)
     scene = vofdem.load_scene(Path(__file__).resolve().parents[1] / "scenes" / "maeno2008.toml")
-    with pytest.raises(ValueError, match="stones.shape = 'clump' is not allowed in a scene yet"):
-        vofdem.Scene.from_dict({**scene.to_dict(), "stones": {**scene.to_dict()["stones"], "shape": "clump"}})
+    # a scene takes clumps packed, not placed: explicit stones would need shapes drawn for them
+    stones = {**scene.to_dict()["stones"], "shape": "clump", "positions": [[0.55, 0.02]], "diameters": [0.048]}
+    with pytest.raises(ValueError, match=r"stones.positions is not allowed with stones.shape = 'clump'"):
+        vofdem.Scene.from_dict({**scene.to_dict(), "stones": stones})

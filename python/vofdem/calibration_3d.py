@@ -15,7 +15,7 @@
   `SIDE_WALL_CLEARANCE` diameters from either side wall (`calibration.slope_surface_stones`).
 
 Both take the stone model of the scene (spheres), or clumps of a mix of library shapes (`ClumpMix`, passed as
-`clumps=`: a scene refuses clumps while their packed weir is loose at its edges): the same heap and weir with each
+`clumps=`; a scene of `stones.shape = 'clump'` takes the default mix): the same heap and weir with each
 stone a library clump of its nominal diameter drawn from the seed and turned at random (the weir from
 pack_weir with `WeirSpec.shape = 'clump'`), the contact stiffness the scene's and the DEM step lowered to
 the clumps' stable step (`clump_params`: more steps per contact at the same stiffness).

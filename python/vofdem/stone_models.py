@@ -164,11 +164,14 @@ class SphereFront(StoneFront):
 
 
 class ClumpFront(StoneFront):
-    """Rigid clumps of 1 to 8 overlapping spheres across the flume's width (clump_model.h): run by a DEMSystem
-    (``set_clumps``, library shapes from ``quarried_stone``), coupled to the flow by a Coupler (their volume
-    in each cell's slab, CouplerParams.n_exp = 0) and packed into a weir by pack_weir (``WeirSpec.shape =
-    'clump'``, a mix of library shapes: clump_packing.cpp); a scene refuses them until the packed clump weir is
-    tight at its edges (the calibration takes them as an argument: calibration_3d.ClumpMix)."""
+    """Rigid clumps of 1 to 8 overlapping spheres across the flume's width (clump_model.h): a scene's weir of
+    them is packed in 3D by pack_weir (``WeirSpec.shape = 'clump'``: the default mix of library shapes,
+    pair_2 / triangle_3 / tetra_4 at 1 : 0.8 : 0.6, turned at random, poured on a lattice of their real
+    extent and lightly compacted: clump_packing.cpp) across ``flume.width``, and coupled with n_exp = 0 as
+    spheres are (their union's volume in each cell's slab). Trapezoids of uniform sizes only, packed only
+    (no explicit stones: they would need shapes drawn for them). Their stable DEM step is about 0.3 of the
+    spheres' at the same stiffness: a scene gives a numerics.dem_dt they allow (the DEMSystem refuses one
+    too long, naming it). The calibration takes other mixes as an argument (calibration_3d.ClumpMix)."""
 
     name = "clump"
     dimensions = 3
@@ -192,10 +195,9 @@ class ClumpFront(StoneFront):
         return out
 
     def check(self, stones, prefix: str) -> None:
-        raise ValueError(f"{prefix}.shape = 'clump' is not allowed in a scene yet: the packed clump weir is still "
-                         "loose at its edges and top (docs/stones_3d.md; allowed: 'disc', 'polygon', 'sphere'); "
-                         "pack_weir packs them, a DEMSystem runs them (set_clumps with DEMParams.width) and a "
-                         "Coupler couples them to a VOFGrid (CouplerParams.n_exp = 0)")
+        if stones.positions:
+            raise ValueError(f"{prefix}.positions is not allowed with {prefix}.shape = 'clump' (allowed: empty, the "
+                             "weir packed by pack_weir): explicit clump stones would need shapes drawn for them")
 
 
 _FRONTS: Dict[str, StoneFront] = {}

@@ -237,6 +237,12 @@ VolumeMoments union_moments(const std::vector<ClumpSphere>& spheres, int order) 
   return union_moments_quadrature(spheres, order);
 }
 
+double bounding_radius(const std::vector<ClumpSphere>& spheres) {
+  double b = 0.0;
+  for (const ClumpSphere& s : spheres) b = std::max(b, s.centre.norm() + s.radius);
+  return b;
+}
+
 Clump::Clump(const std::vector<ClumpSphere>& spheres, int order) {
   check_spheres(spheres);
   // moments about the mean centre (no cancellation far from the origin)
@@ -264,6 +270,8 @@ double Clump::sphere_volume_sum() const {
 }
 
 double Clump::equivalent_diameter() const { return std::cbrt(6.0 * volume_ / M_PI); }
+
+double Clump::bounding_radius() const { return vofdem::bounding_radius(spheres_); }
 
 Vec3 Clump::principal_extents() const {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);

@@ -106,8 +106,8 @@ void ClumpModel::adopt(const std::vector<const Clump*>& of) {
       const ClumpSphere& p = c.spheres()[k];
       double* o = &out[4 * (offset[i] + k)];
       o[0] = p.centre[0], o[1] = p.centre[1], o[2] = p.centre[2], o[3] = p.radius;
-      bound[i] = std::max(bound[i], p.centre.norm() + p.radius);
     }
+    bound[i] = c.bounding_radius();
   }
   sphere_.swap(out), offset_.swap(offset), volume_.swap(volume), moment_.swap(moment), bound_.swap(bound);
   shaped_ = true;
@@ -353,13 +353,15 @@ void ClumpModel::import_state(DEMSystem& s, const DEMState& t) {
   const std::size_t n = t.clump_offset.size() - 1;
   sphere_ = t.clump_sphere, offset_ = t.clump_offset;
   volume_.resize(n), moment_.resize(3 * n), bound_.assign(n, 0.0);
+  std::vector<ClumpSphere> parts;
   for (std::size_t i = 0; i < n; ++i) {
     volume_[i] = t.clump_property[4 * i];
     for (int k = 0; k < 3; ++k) moment_[3 * i + k] = t.clump_property[4 * i + 1 + k];
+    parts.clear();
     for (int g = offset_[i]; g < offset_[i + 1]; ++g)
-      // as set_shapes computes it (the same bits: a restart's radii are the run's)
-      bound_[i] = std::max(bound_[i], Eigen::Vector3d(sphere_[4 * g], sphere_[4 * g + 1], sphere_[4 * g + 2]).norm() +
-                                          sphere_[4 * g + 3]);
+      parts.push_back({Eigen::Vector3d(sphere_[4 * g], sphere_[4 * g + 1], sphere_[4 * g + 2]), sphere_[4 * g + 3]});
+    // as set_shapes takes it (the same bits: a restart's radii are the run's)
+    bound_[i] = bounding_radius(parts);
   }
   shaped_ = true;
   std::vector<ContactPair>& list = pairs(s);

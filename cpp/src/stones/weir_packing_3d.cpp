@@ -61,17 +61,6 @@ void bottom_layer(const WeirSpec& spec, double width, double d_max, std::mt19937
   }
 }
 
-// whether a stone of bounding radius r at (x, y, z) keeps more than margin [m] from every placed stone's
-// bounding sphere
-bool fits(const PackedStones& pile, double x, double y, double z, double r, double margin) {
-  for (std::size_t i = 0; i < pile.size(); ++i) {
-    const double dx = x - pile.pos[2 * i], dz = z - pile.pos[2 * i + 1], dy = y - pile.y[i];
-    const double reach = pile.radius[i] + r + margin;
-    if (dx * dx + dy * dy + dz * dz <= reach * reach) return false;
-  }
-  return true;
-}
-
 // the pour's fill above the crest, relative to the height [-]: the loose lattice (solid fraction ~0.5)
 // compacts by about a fifth as it settles
 constexpr double kOverfill = 0.3;
@@ -82,7 +71,7 @@ constexpr double kOverfill = 0.3;
 int pour_round(const WeirSpec& spec, double width, double off, double d_max, std::mt19937_64& rng,
                StonePacking& packing, PackedStones& pile) {
   const double au = spec.slope_up_deg * kPi / 180.0, ad = spec.slope_down_deg * kPi / 180.0;
-  const double pitch = 1.04 * d_max;
+  const double pitch = 1.04 * (spec.d_mean * (1.0 + spec.d_spread) * packing.lattice_factor());
   const double layer = pitch / std::sqrt(2.0);  // nearest sites of adjacent layers one pitch apart
   const double z_fill = spec.z_bed + (1.0 + kOverfill) * spec.height;
   int added = 0, k = 0;
@@ -96,7 +85,7 @@ int pour_round(const WeirSpec& spec, double width, double off, double d_max, std
         const double xj = xc + 0.02 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean;
         const double yj = yc + 0.02 * (2.0 * uniform01(rng) - 1.0) * spec.d_mean;
         const PackedStone stone = packing.draw(dc);
-        if (!fits(pile, xj, yj, z, stone.radius, 0.02 * spec.d_mean)) continue;
+        if (!packing.fits_3d(pile, xj, yj, z, stone, 0.02 * spec.d_mean)) continue;
         pile.add(xj, yj, z, stone, 0);
         ++added;
       }
@@ -136,6 +125,17 @@ std::unique_ptr<StonePacking> model_packing(const WeirSpec& spec) {
 }
 }  // namespace
 
+// the bounding spheres keep more than margin apart
+bool StonePacking::fits_3d(const PackedStones& pile, double x, double y, double z, const PackedStone& s,
+                           double margin) const {
+  for (std::size_t i = 0; i < pile.size(); ++i) {
+    const double dx = x - pile.pos[2 * i], dz = z - pile.pos[2 * i + 1], dy = y - pile.y[i];
+    const double reach = pile.radius[i] + s.radius + margin;
+    if (dx * dx + dy * dy + dz * dz <= reach * reach) return false;
+  }
+  return true;
+}
+
 double StonePacking::porosity_3d(const DEMSystem& sys, const WeirSpec& spec) const {
   return weir_porosity_3d(sys, spec);
 }
@@ -163,10 +163,19 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   const DEMParams p = packing_steps::pour_params(params, spec, final_walls);
   const double off = 0.5 * spec.d_mean;  // the slope walls' offset outside the slopes
   double t_total = 0.0;
-  DEMSystem box = make(p, pile);
+  // a light compaction where the model asks for one: the rounds settle at a lower friction, then the weir's
+  DEMParams pour = p;
+  const bool compacted = packing->pour_friction() >= 0.0;
+  if (compacted) pour.friction_stone = packing->pour_friction();
+  DEMSystem box = make(pour, pile);
   for (int round = 0; round < packing->pour_rounds(); ++round) {
     const int added = pour_round(spec, width, off, d_max, rng, *packing, pile);
     if (added == 0 && round > 0) break;
+    box = make(pour, pile);
+    t_total += settle(box, spec, 0.2);
+    pile.take(box);
+  }
+  if (compacted) {
     box = make(p, pile);
     t_total += settle(box, spec, 0.2);
     pile.take(box);

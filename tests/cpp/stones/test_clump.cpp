@@ -208,6 +208,18 @@ TEST(Clump, LibraryShapesHaveRequestedSizeAndAspect) {
   }
 }
 
+// the bounding radius about the centroid: two equal spheres 2c apart reach c + r; a pair_2 of 1 : q : q
+// along its long axis reaches half its length, its extent e_1 / 2
+TEST(Clump, BoundingRadiusByHand) {
+  const Clump two({{Vec3(0.01, 0.02, -0.03), 0.01}, {Vec3(0.022, 0.02, -0.03), 0.01}});
+  EXPECT_NEAR(two.bounding_radius(), 0.006 + 0.01, 1e-15);
+  const Clump pair = quarried_stone("pair_2", 0.048);
+  EXPECT_NEAR(pair.bounding_radius(), 0.5 * pair.principal_extents()[0], 1e-15);
+  EXPECT_EQ(pair.bounding_radius(), bounding_radius(pair.spheres()));
+  // scaled: the same shape times the factor
+  EXPECT_NEAR(pair.scaled(2.0).bounding_radius(), 2.0 * pair.bounding_radius(), 1e-15);
+}
+
 TEST(Clump, DeterministicBitForBit) {
   const Clump a = quarried_stone("box_8", 0.048), b = quarried_stone("box_8", 0.048);
   EXPECT_EQ(std::memcmp(a.principal_inertia().data(), b.principal_inertia().data(), 3 * sizeof(double)), 0);

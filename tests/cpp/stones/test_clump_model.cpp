@@ -234,7 +234,7 @@ TEST(ClumpModel, WithoutShapesEachStoneIsOneSphere) {
   EXPECT_NEAR(s.inertia(0), 0.4 * s.mass(0) * kR * kR, 1e-18);
 }
 
-TEST(ClumpModel, BadShapesAndTheCouplingAreRefusedWithTheKeyNamed) {
+TEST(ClumpModel, BadShapesAreRefusedWithTheKeyNamedAndAFlumeWithoutWidthToo) {
   DEMParams p;
   p.width = 0.1;
   DEMSystem s(p, {0.1, 0.1}, {kR}, {kRho});

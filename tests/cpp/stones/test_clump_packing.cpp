@@ -12,6 +12,8 @@
 
 #include "vofdem/stones/clump.h"
 #include "vofdem/stones/clump_model.h"
+#include "vofdem/stones/stone_model.h"
+#include "vofdem/stones/stone_packing.h"
 #include "vofdem/stones/weir_packing.h"
 #include "vofdem/stones/weir_packing_3d.h"
 
@@ -131,18 +133,53 @@ TEST(ClumpPacking, SmallWeirAtRestInsideWallsAndOutlineWithTheMixDrawnAndTurned)
   // leaves |w| >= 0.99 with probability ~1e-3)
   EXPECT_EQ(counts, (std::set<int>{2, 3, 4}));
   EXPECT_GT(turned, w.n() * 9 / 10);
-  // the outline: the spheres' test asks a mean diameter; this weir of clumps misses it (0.031 m = 1.55 d
-  // at seed 3: its slopes lose stones when the walls go, and the pour starts 1.6 bounding diameters up, half
-  // the height), so only within the largest bounding diameter 1.5 (1 + spread) d here (the Maeno weir's
-  // in benchmarks/results/clump_calibration.md)
-  EXPECT_LT(a.report.outline_error, 1.5 * 1.1 * s.d_mean);
-  // the porosity from the sub-spheres (weir_porosity_3d_spheres), above random close packing's 0.36; the
-  // weir is 4 d high and 5 d wide, all boundary layers: 0.78 at seed 3 (spheres at 2.7 d high: 0.62)
+  // the outline within a mean diameter, as the spheres' test asks: 0.79-0.94 d over seeds 0-4 (the fixed
+  // bottom layer's toe stones reaching past the slopes; 1.16-1.46 d when the pour's lattice was spaced by
+  // the bounding diameters and the rounds settled at the weir's friction: benchmarks/results/
+  // clump_weir_packing.md)
+  EXPECT_LT(a.report.outline_error, s.d_mean);
+  // the porosity from the sub-spheres (weir_porosity_3d_spheres), above random close packing's 0.36 and at
+  // most the sphere weir's here (0.62 at 2.7 d high): 0.582-0.587 over seeds 0-4 with the light compaction
+  // (0.63-0.65 without it, 0.76-0.79 before the lattice of the stones' real extent); the weir is 4 d high
+  // and 5 d wide, all boundary layers
   EXPECT_GT(a.report.porosity, 0.36);
-  EXPECT_LT(a.report.porosity, 0.85);
+  EXPECT_LT(a.report.porosity, 0.62);
   // a line across crosses a stone where the porosity leaves solid: at least (1 - n) B / (largest chord
   // 1.5 d (1 + spread))
   EXPECT_GT(a.report.stones_across, (1.0 - a.report.porosity) * 0.1 / (1.5 * 1.1 * s.d_mean));
+}
+
+// the pour's free-site test by sub-spheres: two pair_2 stones (long axis x, sub-spheres of radius r_s at
+// x = +-c) side by side across y clear each other from 2 r_s + margin on, where their bounding spheres
+// (radius c + r_s) still overlap, so the default bounding-sphere test refuses the site; end to end along x
+// they touch at 2 (c + r_s). The lattice of their real extent is finer than the bounding diameters'
+TEST(ClumpPacking, AFreeSiteIsTestedByTheSubSpheres) {
+  const WeirSpec spec = small_weir(1);
+  const std::unique_ptr<StonePacking> pk = make_stone_model("clump")->packing(spec);
+  const Clump pair = quarried_stone("pair_2", spec.d_mean);
+  const double rs = pair.spheres()[0].radius, c = std::abs(pair.spheres()[0].centre[0]), margin = 1e-4;
+  ASSERT_NEAR(pair.bounding_radius(), c + rs, 1e-15);
+  PackedStone a;
+  a.shape = {0.0, spec.d_mean};  // the mix's first shape, pair_2, at d_mean, unturned
+  a.radius = pair.bounding_radius();
+  PackedStones pile;
+  pile.add(0.3, 0.05, 0.04, a, 0);
+  const double across = 2.0 * rs + 1.5 * margin;  // clear of the sub-spheres by half a margin
+  ASSERT_LT(across, 2.0 * a.radius + margin);
+  EXPECT_TRUE(pk->fits_3d(pile, 0.3, 0.05 + across, 0.04, a, margin));
+  EXPECT_FALSE(pk->StonePacking::fits_3d(pile, 0.3, 0.05 + across, 0.04, a, margin));
+  EXPECT_FALSE(pk->fits_3d(pile, 0.3, 0.05 + 2.0 * rs + 0.5 * margin, 0.04, a, margin));
+  EXPECT_FALSE(pk->fits_3d(pile, 0.3 + 2.0 * (c + rs) + 0.5 * margin, 0.05, 0.04, a, margin));
+  EXPECT_TRUE(pk->fits_3d(pile, 0.3 + 2.0 * (c + rs) + 1.5 * margin, 0.05, 0.04, a, margin));
+  // turned a quarter about z, the second stone's long axis runs along y: it needs 2 c more across
+  PackedStone b = a;
+  b.quat = {std::sqrt(0.5), 0.0, 0.0, std::sqrt(0.5)};
+  EXPECT_FALSE(pk->fits_3d(pile, 0.3, 0.05 + across, 0.04, b, margin));
+  EXPECT_TRUE(pk->fits_3d(pile, 0.3, 0.05 + across + c, 0.04, b, margin));
+  EXPECT_LT(pk->lattice_factor(), 0.8 * pk->bounding_factor());
+  EXPECT_GE(pk->lattice_factor(), 1.0);  // no site closer than a nominal diameter
+  EXPECT_GE(pk->pour_friction(), 0.0);
+  EXPECT_LT(pk->pour_friction(), 0.577);
 }
 
 TEST(ClumpPacking, TheMixNamedIsTheMixDrawn) {

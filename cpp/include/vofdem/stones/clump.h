@@ -70,6 +70,10 @@ VolumeMoments union_moments_quadrature(const std::vector<ClumpSphere>& spheres, 
 // moments of the union: exact for one or two spheres, the quadrature of order n otherwise
 VolumeMoments union_moments(const std::vector<ClumpSphere>& spheres, int order = kClumpQuadratureOrder);
 
+// the bounding radius [m] about the origin, max_k |c_k| + r_k: a clump stone's stone_radius (ClumpModel,
+// its restart and the packing generator all take it from here, so their radii are the same bits)
+double bounding_radius(const std::vector<ClumpSphere>& spheres);
+
 // a clump stored in its principal frame: centroid at the origin, principal moments ascending
 class Clump {
  public:
@@ -81,6 +85,7 @@ class Clump {
   double volume() const { return volume_; }                             // union volume [m^3]
   double sphere_volume_sum() const;                                     // sum of the spheres [m^3]
   double equivalent_diameter() const;                                   // (6 V / pi)^(1/3) [m]
+  double bounding_radius() const;                                       // about the centroid [m]
   const Eigen::Vector3d& principal_inertia() const { return inertia_; }  // per unit density [m^5]
   const Eigen::Vector3d& input_centroid() const { return centroid_; }   // centroid in the input frame [m]
   // the principal frame in the input frame: x_input = input_centroid() + orientation() * x_principal

@@ -66,6 +66,16 @@ class StonePacking {
   virtual int pour_rounds() const { return 6; }
   // whether stones that rolled off a toe onto the bed are removed at the end (shapes that roll far)
   virtual bool drop_toe_rollers() const { return false; }
+  // 3D models: the pour lattice's pitch over the largest nominal diameter [-] (the default: bounding_factor(),
+  // sites as far apart as the largest bounding spheres)
+  virtual double lattice_factor() const { return bounding_factor(); }
+  // 3D models: whether stone s at (x, y, z) [m] keeps more than margin [m] from every placed stone (the
+  // default: from their bounding spheres)
+  virtual bool fits_3d(const PackedStones& pile, double x, double y, double z, const PackedStone& s,
+                       double margin) const;
+  // 3D models: the stone-stone friction [-] of the pour's rounds, a light compaction (the weir's own friction
+  // returns for a last settling before the trim); negative: the weir's own throughout
+  virtual double pour_friction() const { return -1.0; }
   // the DEM system of the placed stones (radii, density, fixed flags; the model and its shapes; for 3D
   // models their y and quaternions)
   virtual DEMSystem make(const DEMParams& p, const PackedStones& pile, double density) const = 0;
