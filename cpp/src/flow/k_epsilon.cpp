@@ -657,7 +657,10 @@ double KEpsilonModel::stable_dt(const std::vector<double>& face_u, const std::ve
     if (cell) *cell = -1;
     return std::numeric_limits<double>::infinity();
   }
-  // the alternating lines take every diffusion implicitly: the horizontal advection's limit alone
+  // the alternating lines take every face implicitly: the horizontal advection's limit alone, each face's
+  // Courant number as the flow's CFL takes it (a sum over a cell's inflow faces bound the explicit
+  // faces' stability, which an implicit face does not need; where water converges on a cell, the sum
+  // bound the steps of the fine grids before the flow's own CFL did)
   if (alternating) {
     int worst = -1;
     const double rate = lines_stable_rate(face_u, cell_porosity, cell_F, worst, false);

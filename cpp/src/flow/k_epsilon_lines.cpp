@@ -29,8 +29,10 @@ namespace {
 // work values): the sums of face_coefficients() in the same operations and order (the same bits),
 // inactive neighbours' faces and inactive cells 0. A face's diffusion conductance first (the same from
 // both sides, as a sum commutes), then the sums by selects without a branch (both loops vectorised);
-// the end cells have no neighbour beyond the flume's ends
-template <bool kAdv, bool kDif>
+// the end cells have no neighbour beyond the flume's ends. kLargest (the alternating lines, advection
+// alone): the larger of the two faces' rates instead of their sum, each face's Courant number as the
+// flow's advective limit takes it (no sum is needed for stability: every face is implicit)
+template <bool kAdv, bool kDif, bool kLargest = false>
 void lines_row_rates(int nx, double dx, const double* u, const double* n, const double* act, const double* res_k,
                      const double* res_eps, double* g_k, double* g_eps, double* rate) {
   if (kDif)
@@ -46,8 +48,13 @@ void lines_row_rates(int nx, double dx, const double* u, const double* n, const 
   };
   auto at = [&](int i, double gw_k, double gw_eps, double ge_k, double ge_eps, bool w_open, bool e_open) {
     double sk = 0.0, se = 0.0;
-    sk += coef(u[i], gw_k, w_open), se += coef(u[i], gw_eps, w_open);
-    sk += coef(-u[i + 1], ge_k, e_open), se += coef(-u[i + 1], ge_eps, e_open);
+    if (kLargest) {
+      static_assert(!kLargest || !kDif, "the largest face's rate is the advection's alone");
+      sk = std::max(coef(u[i], 0.0, w_open), coef(-u[i + 1], 0.0, e_open)), se = sk;
+    } else {
+      sk += coef(u[i], gw_k, w_open), se += coef(u[i], gw_eps, w_open);
+      sk += coef(-u[i + 1], ge_k, e_open), se += coef(-u[i + 1], ge_eps, e_open);
+    }
     const double r = std::max(sk, se) / n[i];
     return act[i] != 0.0 ? r : 0.0;
   };
@@ -78,7 +85,9 @@ double KEpsilonModel::lines_stable_rate(const std::vector<double>& face_u, const
   const int nx = grid_.nx(), nz = grid_.nz(), sx = nx + 1;
   const bool adv = (params_.flags & kKEpsAdvection) != 0u;
   const bool dif = diffusion && (params_.flags & kKEpsDiffusion) != 0u;
-  auto row_rates = adv ? (dif ? lines_row_rates<true, true> : lines_row_rates<true, false>)
+  // the alternating lines (diffusion false) bound each face's advection alone, as the flow's CFL does
+  auto row_rates = adv ? (dif ? lines_row_rates<true, true> : diffusion ? lines_row_rates<true, false>
+                                                                        : lines_row_rates<true, false, true>)
                        : (dif ? lines_row_rates<false, true> : lines_row_rates<false, false>);
   const double dx = grid_.dx(), fmin = params_.water_fraction_min;
   // a row's rates at the start of its buffer, then its cells' activity and its faces' conductances

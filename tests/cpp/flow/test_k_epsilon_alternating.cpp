@@ -155,7 +155,8 @@ double splitting_error(const RandomCase& rc, double dt, const KEpsilonParams& p 
 }  // namespace
 
 TEST(KEpsilonAlternating, StableDtIsTheHorizontalAdvectionsLimitAlone) {
-  // the same bits as the vertical lines' limit with the diffusion switched off; none without flow
+  // one inflow face per cell (u > 0 everywhere): the same bits as the vertical lines' limit with the
+  // diffusion switched off; none without flow
   RandomCase rc;
   KEpsilonParams lines = scheme(KEpsilonTimeScheme::kVerticalLines);
   lines.flags = vofdem::kKEpsAdvection;
@@ -178,6 +179,36 @@ TEST(KEpsilonAlternating, StableDtIsTheHorizontalAdvectionsLimitAlone) {
   Flow still(rc.g);
   EXPECT_EQ(big.stable_dt(still.face_u, still.face_w, still.porosity, still.F, still.nu),
             std::numeric_limits<double>::infinity());
+}
+
+TEST(KEpsilonAlternating, StableDtTakesEachFaceAloneAsTheFlowsCfl) {
+  // three cells of one row, 0.1 m wide, porosity 0.25 in the middle: water enters the middle cell from
+  // both sides (0.2 m/s from the west, 0.1 m/s from the east). Its horizontal faces are implicit: the
+  // limit is the larger face's Courant number, cfl n dx / u = 0.5 x 0.25 x 0.1 / 0.2 = 0.0625 s (the
+  // flow's own CFL on that face, whose porosity is the tighter cell's), not the explicit column scheme's
+  // sum, 0.5 x 0.25 x 0.1 / 0.3 = 0.04167 s
+  const Grid2D g = Grid2D::uniform(3, 1, 0.3, 0.1);
+  KEpsilonBoundaries b;
+  Flow f(g);
+  f.porosity[1] = 0.25;
+  f.face_u = {0.0, 0.2, -0.1, 0.0};
+  KEpsilonParams p = alternating();
+  ASSERT_EQ(p.cfl, 0.5);
+  p.flags = vofdem::kKEpsAdvection | vofdem::kKEpsDiffusion;
+  KEpsilonModel alt(g, p, b);
+  alt.initialize(1e-4, 1e-5, 1e-6);
+  int cell = -2;
+  EXPECT_NEAR(alt.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu, &cell), 0.0625, 1e-15);
+  EXPECT_EQ(cell, 1);
+  KEpsilonParams lines = scheme(KEpsilonTimeScheme::kVerticalLines);
+  lines.flags = vofdem::kKEpsAdvection;
+  KEpsilonModel col(g, lines, b);
+  col.initialize(1e-4, 1e-5, 1e-6);
+  EXPECT_NEAR(col.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu), 0.5 * 0.25 * 0.1 / 0.3, 1e-15);
+  // the outer cells see 0.2 and 0.1 m/s leaving: no inflow, no limit of theirs; porosity 1 in the
+  // middle: 0.5 x 0.1 / 0.2
+  f.porosity[1] = 1.0;
+  EXPECT_NEAR(alt.stable_dt(f.face_u, f.face_w, f.porosity, f.F, f.nu), 0.25, 1e-15);
 }
 
 TEST(KEpsilonAlternating, ValidationNamesTheSchemes) {
