@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "vofdem/common/numbers.h"
+
 namespace vofdem {
 
 using Vec3 = Eigen::Vector3d;
@@ -41,10 +43,10 @@ VolumeMoments shifted(const VolumeMoments& m, const Vec3& o) {
 // h = -R gives the whole sphere: m0 = 4 pi R^3/3, Z1 = 0, Z2 = P/2 = 4 pi R^5/15.
 VolumeMoments cap_moments(const Vec3& c, double r, const Vec3& u, double h) {
   const double r2 = r * r, h2 = h * h, h3 = h2 * h, h5 = h3 * h2;
-  const double m0 = M_PI * (2.0 * r2 * r / 3.0 - r2 * h + h3 / 3.0);
-  const double z1 = 0.25 * M_PI * (r2 - h2) * (r2 - h2);
-  const double z2 = M_PI * (2.0 * r2 * r2 * r / 15.0 - r2 * h3 / 3.0 + h5 / 5.0);
-  const double p = 0.5 * M_PI * (8.0 * r2 * r2 * r / 15.0 - r2 * r2 * h + 2.0 * r2 * h3 / 3.0 - h5 / 5.0);
+  const double m0 = kPi * (2.0 * r2 * r / 3.0 - r2 * h + h3 / 3.0);
+  const double z1 = 0.25 * kPi * (r2 - h2) * (r2 - h2);
+  const double z2 = kPi * (2.0 * r2 * r2 * r / 15.0 - r2 * h3 / 3.0 + h5 / 5.0);
+  const double p = 0.5 * kPi * (8.0 * r2 * r2 * r / 15.0 - r2 * r2 * h + 2.0 * r2 * h3 / 3.0 - h5 / 5.0);
   const Mat3 uu = u * u.transpose();
   VolumeMoments m;
   m.m0 = m0;
@@ -59,7 +61,7 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.assign(static_cast<std::size_t>(n), 0.0);
   w.assign(static_cast<std::size_t>(n), 0.0);
   for (int i = 0; i < (n + 1) / 2; ++i) {
-    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
     for (int it = 0; it < 100; ++it) {
       double p0 = 1.0, p1 = z;
       for (int k = 2; k <= n; ++k) {
@@ -109,7 +111,7 @@ VolumeMoments cell_moments(const std::vector<ClumpSphere>& s, std::size_t i, con
                            const std::vector<double>& mu, const std::vector<double>& wmu) {
   VolumeMoments m;
   const int n = static_cast<int>(mu.size());
-  const double dphi = M_PI / n;
+  const double dphi = kPi / n;
   for (int a = 0; a < n; ++a) {
     const double st = std::sqrt(std::max(0.0, 1.0 - mu[a] * mu[a]));
     for (int b = 0; b < 2 * n; ++b) {
@@ -265,11 +267,11 @@ Clump::Clump(const std::vector<ClumpSphere>& spheres, int order) {
 
 double Clump::sphere_volume_sum() const {
   double v = 0.0;
-  for (const ClumpSphere& s : spheres_) v += 4.0 / 3.0 * M_PI * s.radius * s.radius * s.radius;
+  for (const ClumpSphere& s : spheres_) v += 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
   return v;
 }
 
-double Clump::equivalent_diameter() const { return std::cbrt(6.0 * volume_ / M_PI); }
+double Clump::equivalent_diameter() const { return std::cbrt(6.0 * volume_ / kPi); }
 
 double Clump::bounding_radius() const { return vofdem::bounding_radius(spheres_); }
 
@@ -360,7 +362,7 @@ Clump quarried_stone(const std::string& name, double d_eq, double ratio_intermed
               std::to_string(ratio_intermediate));
   std::vector<ClumpSphere> s = unit_shape(name, ratio_intermediate, ratio_short);
   const double v0 = union_moments(s, order).m0;
-  const double scale = d_eq / std::cbrt(6.0 * v0 / M_PI);
+  const double scale = d_eq / std::cbrt(6.0 * v0 / kPi);
   for (ClumpSphere& c : s) {
     c.centre *= scale;
     c.radius *= scale;

@@ -17,6 +17,7 @@
 #include "stones/clump_packing.h"
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/coupling/drag.h"
 #include "vofdem/coupling/drag_exchange.h"
 #include "vofdem/coupling/fluid_forces.h"
@@ -33,7 +34,6 @@ namespace {
 using sphere_loads::apply;
 using sphere_loads::at3;
 using sphere_loads::push3;
-constexpr double kPi = 3.14159265358979323846;
 
 bool zero(const SphereContactHistory& h) { return h.spring.isZero(0.0) && h.rolling.isZero(0.0); }
 

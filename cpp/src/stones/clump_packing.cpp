@@ -29,6 +29,7 @@
 #include <Eigen/Geometry>
 
 #include "stones/packing_random.h"
+#include "vofdem/common/numbers.h"
 #include "vofdem/stones/clump.h"
 #include "vofdem/stones/clump_model.h"
 #include "vofdem/stones/dem_system.h"
@@ -37,7 +38,6 @@
 namespace vofdem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 using packing_random::uniform01;
 
 class ClumpPacking final : public StonePacking {

@@ -20,6 +20,8 @@
 
 #include <cmath>
 
+#include "vofdem/common/numbers.h"
+
 namespace vofdem {
 
 // damping ratio zeta [-] that gives the restitution coefficient e [-] (e = 0: critical, zeta = 1)
@@ -27,19 +29,19 @@ inline double damping_ratio_from_restitution(double e) {
   if (e <= 0.0) return 1.0;
   if (e >= 1.0) return 0.0;
   const double l = std::log(e);
-  return -l / std::sqrt(M_PI * M_PI + l * l);
+  return -l / std::sqrt(kPi * kPi + l * l);
 }
 
 // restitution coefficient e [-] of a linear spring-dashpot with damping ratio zeta [-] (0 for zeta >= 1)
 inline double restitution_from_damping_ratio(double zeta) {
   if (zeta >= 1.0) return 0.0;
-  return std::exp(-zeta * M_PI / std::sqrt(1.0 - zeta * zeta));
+  return std::exp(-zeta * kPi / std::sqrt(1.0 - zeta * zeta));
 }
 
 // contact duration t_c [s] of a linear spring-dashpot: stiffness k [N/m], reduced mass m* [kg], zeta [-]
 inline double contact_duration(double k, double m_reduced, double zeta) {
   if (zeta >= 1.0) return INFINITY;
-  return M_PI / (std::sqrt(k / m_reduced) * std::sqrt(1.0 - zeta * zeta));
+  return kPi / (std::sqrt(k / m_reduced) * std::sqrt(1.0 - zeta * zeta));
 }
 
 // result of one contact evaluation, in the contact frame (n from i to j, t = n rotated +90 degrees)

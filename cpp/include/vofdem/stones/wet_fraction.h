@@ -22,6 +22,8 @@
 #include <cmath>
 #include <limits>
 
+#include "vofdem/common/numbers.h"
+
 namespace vofdem {
 
 // the measured wet fraction w in [0, 1] as the DEM takes it: 1 above 1 - tol, 0 below tol, else w
@@ -36,12 +38,12 @@ inline double disc_wet_fraction(double s) {
   if (s <= -1.0) return 0.0;
   if (s >= 1.0) return 1.0;
   // clamped: round-off near s = +-1 may step just outside [0, 1]
-  const double w = (std::acos(-s) + s * std::sqrt(1.0 - s * s)) / M_PI;
+  const double w = (std::acos(-s) + s * std::sqrt(1.0 - s * s)) / kPi;
   return w < 0.0 ? 0.0 : (w > 1.0 ? 1.0 : w);
 }
 
 // dw/ds of (W) [-]
-inline double disc_wet_slope(double s) { return 2.0 * std::sqrt(std::max(0.0, 1.0 - s * s)) / M_PI; }
+inline double disc_wet_slope(double s) { return 2.0 * std::sqrt(std::max(0.0, 1.0 - s * s)) / kPi; }
 
 // share of a sphere's volume below the level, a cap's: w(s) = (1 + s)^2 (2 - s) / 4 (3D stones); clamped
 inline double sphere_wet_fraction(double s) {
