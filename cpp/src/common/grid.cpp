@@ -76,4 +76,10 @@ int Grid2D::locate_z(double z) const {
   return std::clamp(k, 0, nz_ - 1);
 }
 
+CellBox Grid2D::circle_cells(double x, double z, double r) const {
+  if (x + r <= x0_ || x - r >= x_face(nx_) || z + r <= z_faces_.front() || z - r >= z_faces_.back()) return {};
+  const int i0 = locate_x(x - r), k0 = locate_z(z - r);
+  return {i0, k0, locate_x(x + r) - i0 + 1, locate_z(z + r) - k0 + 1};
+}
+
 }  // namespace vofdem

@@ -165,12 +165,9 @@ std::size_t PorosityMapper::table_bytes() const {
 }
 
 int PorosityMapper::add_exact(int /*j*/, double x, double z, double r, int p) {
-  const double xend = grid_.x_face(grid_.nx());
-  const double z0 = grid_.z_face(0), zend = grid_.z_face(grid_.nz());
-  if (x + r <= grid_.x0() || x - r >= xend || z + r <= z0 || z - r >= zend) return p;
-  const int i0 = grid_.locate_x(x - r), i1 = grid_.locate_x(x + r);
-  const int k0 = grid_.locate_z(z - r), k1 = grid_.locate_z(z + r);
-  const int ni = i1 - i0 + 1, nk = k1 - k0 + 1;
+  const CellBox box = grid_.circle_cells(x, z, r);
+  if (box.empty()) return p;
+  const int i0 = box.i0, k0 = box.k0, ni = box.ni, nk = box.nk;
   if (static_cast<std::size_t>(ni + 1) * (nk + 1) + 3 * scratch_line_ > node_phi_.size() || ni + 1 > scratch_line_ ||
       nk + 1 > scratch_line_ || ni * nk > max_cells_per_disc_)
     throw std::logic_error("porosity_map: disc stencil larger than its bound (r = " + format_value(r) + ")");

@@ -38,12 +38,9 @@ void sphere_cell_parts(const Grid2D& grid, std::vector<double>& phi, double x, d
 }  // namespace
 
 int PorosityMapper::add_sphere(double x, double z, double r, double width, int p) {
-  const double xend = grid_.x_face(grid_.nx());
-  const double z0 = grid_.z_face(0), zend = grid_.z_face(grid_.nz());
-  if (x + r <= grid_.x0() || x - r >= xend || z + r <= z0 || z - r >= zend) return p;
-  const int i0 = grid_.locate_x(x - r), i1 = grid_.locate_x(x + r);
-  const int k0 = grid_.locate_z(z - r), k1 = grid_.locate_z(z + r);
-  const int ni = i1 - i0 + 1, nk = k1 - k0 + 1;
+  const CellBox box = grid_.circle_cells(x, z, r);
+  if (box.empty()) return p;
+  const int i0 = box.i0, k0 = box.k0, ni = box.ni, nk = box.nk;
   if (static_cast<std::size_t>(ni + 1) * (nk + 1) > node_phi_.size() || ni * nk > max_cells_per_disc_)
     throw std::logic_error("porosity_map: sphere stencil larger than its bound (r = " + format_value(r) + ")");
   sphere_cell_parts(grid_, node_phi_, x, z, r, i0, k0, ni, nk, [&](int i, int k, double volume) {
@@ -79,8 +76,6 @@ void PorosityMapper::map_spheres(int n, const double* x, const double* z, const 
 // the order of add_sphere (rows, then columns), so a one-sphere clump gives the sphere's entries
 int PorosityMapper::add_clump(double x, double z, const double* quat, const double* sphere, int count, double volume,
                               double width, int p) {
-  const double xend = grid_.x_face(grid_.nx());
-  const double z0 = grid_.z_face(0), zend = grid_.z_face(grid_.nz());
   const Eigen::Matrix3d rot = Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]).toRotationMatrix();
   double cx[kClumpMaxSpheres], cz[kClumpMaxSpheres], sum = 0.0;
   int i0 = grid_.nx(), i1 = -1, k0 = grid_.nz(), k1 = -1;
@@ -90,9 +85,10 @@ int PorosityMapper::add_clump(double x, double z, const double* quat, const doub
     const double r = c[3];
     cx[g] = x + w[0], cz[g] = z + w[2];
     sum += 4.0 / 3.0 * kPi * r * r * r;
-    if (cx[g] + r <= grid_.x0() || cx[g] - r >= xend || cz[g] + r <= z0 || cz[g] - r >= zend) continue;
-    i0 = std::min(i0, grid_.locate_x(cx[g] - r)), i1 = std::max(i1, grid_.locate_x(cx[g] + r));
-    k0 = std::min(k0, grid_.locate_z(cz[g] - r)), k1 = std::max(k1, grid_.locate_z(cz[g] + r));
+    const CellBox b = grid_.circle_cells(cx[g], cz[g], r);
+    if (b.empty()) continue;
+    i0 = std::min(i0, b.i0), i1 = std::max(i1, b.i0 + b.ni - 1);
+    k0 = std::min(k0, b.k0), k1 = std::max(k1, b.k0 + b.nk - 1);
   }
   if (i1 < i0) return p;  // wholly outside the grid
   const int ni = i1 - i0 + 1, nk = k1 - k0 + 1;
@@ -103,10 +99,9 @@ int PorosityMapper::add_clump(double x, double z, const double* quat, const doub
   std::fill(clump_patch_.begin(), clump_patch_.begin() + ni * nk, 0.0);
   for (int g = 0; g < count; ++g) {
     const double r = sphere[4 * g + 3];
-    if (cx[g] + r <= grid_.x0() || cx[g] - r >= xend || cz[g] + r <= z0 || cz[g] - r >= zend) continue;
-    const int a0 = grid_.locate_x(cx[g] - r), a1 = grid_.locate_x(cx[g] + r);
-    const int b0 = grid_.locate_z(cz[g] - r), b1 = grid_.locate_z(cz[g] + r);
-    const int na = a1 - a0 + 1, nb = b1 - b0 + 1;
+    const CellBox b = grid_.circle_cells(cx[g], cz[g], r);
+    if (b.empty()) continue;
+    const int a0 = b.i0, b0 = b.k0, na = b.ni, nb = b.nk;
     if (static_cast<std::size_t>(na + 1) * (nb + 1) > node_phi_.size())
       throw std::logic_error("porosity_map: sub-sphere stencil larger than its bound (r = " + format_value(r) + ")");
     sphere_cell_parts(grid_, node_phi_, cx[g], cz[g], r, a0, b0, na, nb, [&](int i, int k, double volume) {

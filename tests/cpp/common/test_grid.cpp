@@ -4,6 +4,7 @@
 
 #include "vofdem/common/grid.h"
 
+using vofdem::CellBox;
 using vofdem::Grid2D;
 
 TEST(Grid2D, GradedMatchesThePapersMesh) {
@@ -59,6 +60,24 @@ TEST(Grid2D, IndexingAndLocation) {
   EXPECT_EQ(g.locate_x(1.2), 2);
   EXPECT_EQ(g.locate_z(0.45), 2);
   EXPECT_EQ(g.locate_z(-1.0), 0);
+}
+
+TEST(Grid2D, CircleCells) {
+  const Grid2D g = Grid2D::uniform(4, 3, 2.0, 0.6);  // dx = 0.5, dz = 0.2
+  // a circle inside: columns 1..2, rows 0..2
+  const CellBox in = g.circle_cells(1.0, 0.3, 0.25);
+  EXPECT_EQ(in.i0, 1);
+  EXPECT_EQ(in.ni, 2);
+  EXPECT_EQ(in.k0, 0);
+  EXPECT_EQ(in.nk, 3);
+  // one across the left end: clamped to the first column
+  const CellBox left = g.circle_cells(-0.1, 0.3, 0.2);
+  EXPECT_EQ(left.i0, 0);
+  EXPECT_EQ(left.ni, 1);
+  // one that only touches the grid's edge, or lies beyond it, reaches no cell
+  EXPECT_TRUE(g.circle_cells(-0.2, 0.3, 0.2).empty());
+  EXPECT_TRUE(g.circle_cells(1.0, 0.9, 0.2).empty());
+  EXPECT_FALSE(in.empty());
 }
 
 TEST(Grid2D, FaceNeighbours) {

@@ -23,6 +23,12 @@ struct FaceCells {
   int a, b;  // left and right of an x-face, below and above a z-face
 };
 
+// the cells a circle reaches (Grid2D::circle_cells): columns i0 .. i0 + ni - 1, rows k0 .. k0 + nk - 1
+struct CellBox {
+  int i0 = 0, k0 = 0, ni = 0, nk = 0;  // ni = nk = 0: none (the circle lies wholly outside the grid)
+  bool empty() const { return ni == 0; }
+};
+
 class Grid2D {
  public:
   // uniform in x: nx cells of width dx [m] from x0 [m]; z_faces [m]: nz + 1 strictly increasing heights
@@ -72,6 +78,9 @@ class Grid2D {
   // cell index range [i, k] holding a point, clamped to the grid
   int locate_x(double x) const;
   int locate_z(double z) const;
+  // the box of cells the circle of centre (x, z) [m] and radius r [m] reaches, clamped to the grid; empty
+  // when the circle lies wholly outside it (touching the grid's edge does not reach it)
+  CellBox circle_cells(double x, double z, double r) const;
 
  private:
   int nx_, nz_;
