@@ -33,9 +33,10 @@ namespace vofdem {
 namespace {
 using sphere_loads::apply;
 using sphere_loads::at3;
+using sphere_loads::histories;
 using sphere_loads::push3;
-
-bool zero(const SphereContactHistory& h) { return h.spring.isZero(0.0) && h.rolling.isZero(0.0); }
+using sphere_loads::push_histories;
+using sphere_loads::zero;
 
 // the spheres of one stone (4 values each) in the offsets' layout, checked
 void check_layout(std::size_t n, const std::vector<double>& sphere, const std::vector<int>& offset) {
@@ -319,11 +320,7 @@ void ClumpModel::export_state(const DEMSystem& s, DEMState& t) const {
       push3(t.clump_contact_rolling, c.h.rolling);
     }
   const std::size_t size = m.sphere_.size() / 4 * (s.params().walls.size() + 2);
-  for (std::size_t k = 0; k < size; ++k) {
-    const SphereContactHistory h = k < wall_history_.size() ? wall_history_[k] : SphereContactHistory();
-    push3(t.clump_wall_spring, h.spring);
-    push3(t.clump_wall_rolling, h.rolling);
-  }
+  push_histories(wall_history_, size, t.clump_wall_spring, t.clump_wall_rolling);
 }
 
 void ClumpModel::check_state(const DEMSystem& s, const DEMState& t) const {
@@ -375,9 +372,7 @@ void ClumpModel::import_state(DEMSystem& s, const DEMState& t) {
     }
     pair_history_.back().push_back({c[2], c[3], true, {at3(t.clump_contact_spring, k), at3(t.clump_contact_rolling, k)}});
   }
-  wall_history_.resize(t.clump_wall_spring.size() / 3);
-  for (std::size_t k = 0; k < wall_history_.size(); ++k)
-    wall_history_[k] = {at3(t.clump_wall_spring, k), at3(t.clump_wall_rolling, k)};
+  wall_history_ = histories(t.clump_wall_spring, t.clump_wall_rolling);
   world_.resize(3 * (sphere_.size() / 4));
 }
 

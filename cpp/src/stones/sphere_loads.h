@@ -1,6 +1,6 @@
 // What the 3D models built on sphere contacts share (sphere_model.cpp, clump_model.cpp): the contact law's
 // constants from the system's parameters and effect flags, the loads of one contact added into the
-// system's arrays with the energy tally, and the 3-vectors of their checkpoint arrays.
+// system's arrays with the energy tally, and the 3-vectors and plane histories of their checkpoint arrays.
 #pragma once
 
 #include <vector>
@@ -48,6 +48,26 @@ inline void apply(DEMSystem& s, int i, int j, const SphereContactLoads& f, Conta
 inline void push3(std::vector<double>& out, const Eigen::Vector3d& v) { out.insert(out.end(), {v[0], v[1], v[2]}); }
 inline Eigen::Vector3d at3(const std::vector<double>& v, std::size_t k) {
   return {v[3 * k], v[3 * k + 1], v[3 * k + 2]};
+}
+
+// a history with nothing stored (a pair's is then left out of the checkpoint)
+inline bool zero(const SphereContactHistory& h) { return h.spring.isZero(0.0) && h.rolling.isZero(0.0); }
+
+// the first `size` plane histories into a checkpoint's arrays, 3 values each (those not made yet: zero)
+inline void push_histories(const std::vector<SphereContactHistory>& h, std::size_t size, std::vector<double>& spring,
+                           std::vector<double>& rolling) {
+  for (std::size_t k = 0; k < size; ++k) {
+    const SphereContactHistory e = k < h.size() ? h[k] : SphereContactHistory();
+    push3(spring, e.spring);
+    push3(rolling, e.rolling);
+  }
+}
+
+// the plane histories of a checkpoint's arrays (push_histories' inverse)
+inline std::vector<SphereContactHistory> histories(const std::vector<double>& spring, const std::vector<double>& rolling) {
+  std::vector<SphereContactHistory> h(spring.size() / 3);
+  for (std::size_t k = 0; k < h.size(); ++k) h[k] = {at3(spring, k), at3(rolling, k)};
+  return h;
 }
 
 }  // namespace vofdem::sphere_loads

@@ -21,7 +21,10 @@ namespace vofdem {
 namespace {
 using sphere_loads::apply;
 using sphere_loads::at3;
+using sphere_loads::histories;
 using sphere_loads::push3;
+using sphere_loads::push_histories;
+using sphere_loads::zero;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // stone i as a sphere of its body (inertia: the principal moments, 3 per stone), with the mass its
@@ -147,18 +150,14 @@ void SphereModel::export_state(const DEMSystem& s, DEMState& t) const {
   const std::vector<ContactPair>& list = pairs(const_cast<DEMSystem&>(s));
   for (std::size_t k = 0; k < list.size() && k < pair_history_.size(); ++k) {
     const SphereContactHistory& h = pair_history_[k];
-    if (h.spring.isZero(0.0) && h.rolling.isZero(0.0)) continue;
+    if (zero(h)) continue;
     t.sphere_contact_i.push_back(list[k].i);
     t.sphere_contact_j.push_back(list[k].j);
     push3(t.sphere_contact_spring, h.spring);
     push3(t.sphere_contact_rolling, h.rolling);
   }
   const std::size_t size = static_cast<std::size_t>(s.n()) * (s.params().walls.size() + 2);
-  for (std::size_t k = 0; k < size; ++k) {
-    const SphereContactHistory h = k < wall_history_.size() ? wall_history_[k] : SphereContactHistory();
-    push3(t.sphere_wall_spring, h.spring);
-    push3(t.sphere_wall_rolling, h.rolling);
-  }
+  push_histories(wall_history_, size, t.sphere_wall_spring, t.sphere_wall_rolling);
 }
 
 void SphereModel::check_state(const DEMSystem& s, const DEMState& t) const {
@@ -182,9 +181,7 @@ void SphereModel::import_state(DEMSystem& s, const DEMState& t) {
     list.push_back({t.sphere_contact_i[k], t.sphere_contact_j[k], 0.0, 0.0});
     pair_history_.push_back({at3(t.sphere_contact_spring, k), at3(t.sphere_contact_rolling, k)});
   }
-  wall_history_.resize(t.sphere_wall_spring.size() / 3);
-  for (std::size_t k = 0; k < wall_history_.size(); ++k)
-    wall_history_[k] = {at3(t.sphere_wall_spring, k), at3(t.sphere_wall_rolling, k)};
+  wall_history_ = histories(t.sphere_wall_spring, t.sphere_wall_rolling);
 }
 
 void SphereModel::state_to_map(DEMState& t, StateMap& m) const {
