@@ -133,36 +133,33 @@ def _force_arrows(ax, data, k: int, F, color: str) -> None:
     ax.quiverkey(q, 0.9, 1.03, 1.0, "1 N", labelpos="E", fontproperties={"size": 8})
 
 
+def _force_figure(data, scene, k: int, f, field, cmap: str, label: str, F, color: str, title: str) -> Figure:
+    """A field of snapshot k under the stones with one force on each stone as an arrow (Figs. 8 and 9)."""
+    fig, ax = _axes(scene, data)
+    m = ax.pcolormesh(data.x_faces, data.z_faces, field, cmap=cmap, shading="flat", zorder=1)
+    fig.colorbar(m, ax=ax, label=label, shrink=0.8)
+    _stones(ax, data, k, "none")
+    _force_arrows(ax, data, k, F, color)
+    _surface(ax, data, f)
+    _outline(ax, scene)
+    _title(ax, data, k, title)
+    return fig
+
+
 def fig_pressure_gradient(data, scene, k: int) -> Figure:
     """Pressure field and the pressure-gradient force on each stone (the paper's Fig. 8)."""
     f = data.fields(k)
-    fig, ax = _axes(scene, data)
     p = np.where(f["F"] > 0.01, f["p"], np.nan)
-    m = ax.pcolormesh(data.x_faces, data.z_faces, p, cmap="Blues", shading="flat", zorder=1)
-    fig.colorbar(m, ax=ax, label="pressure p [Pa]", shrink=0.8)
-    _stones(ax, data, k, "none")
-    F = data.force_pressure[k]
-    _force_arrows(ax, data, k, F, "tab:red")
-    _surface(ax, data, f)
-    _outline(ax, scene)
-    _title(ax, data, k, "Pressure-gradient force on stones")
-    return fig
+    return _force_figure(data, scene, k, f, p, "Blues", "pressure p [Pa]", data.force_pressure[k], "tab:red",
+                         "Pressure-gradient force on stones")
 
 
 def fig_drag(data, scene, k: int) -> Figure:
     """Pore speed and the drag force on each stone (the paper's Fig. 9)."""
     f = data.fields(k)
-    fig, ax = _axes(scene, data)
     U, W = _pore_velocity(f)
-    m = ax.pcolormesh(data.x_faces, data.z_faces, np.hypot(U, W), cmap="magma_r", shading="flat", zorder=1)
-    fig.colorbar(m, ax=ax, label="pore speed |U| [m/s]", shrink=0.8)
-    _stones(ax, data, k, "none")
-    F = data.force_drag[k]
-    _force_arrows(ax, data, k, F, "tab:green")
-    _surface(ax, data, f)
-    _outline(ax, scene)
-    _title(ax, data, k, "Drag force on stones")
-    return fig
+    return _force_figure(data, scene, k, f, np.hypot(U, W), "magma_r", "pore speed |U| [m/s]", data.force_drag[k],
+                         "tab:green", "Drag force on stones")
 
 
 def fig_velocity_distribution(data, scene, discharges_lps: Sequence[float] = (12.0, 17.0, 22.0)) -> Figure:
