@@ -2,11 +2,11 @@
 
 usage: python3 benchmarks/clump_map_table.py BUILD_DIR   (a build configured with -DVOFDEM_BENCHMARKS=ON)
 """
-import json
 import os
 import platform
-import subprocess
 import sys
+
+from google_bench import medians, write_results
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -15,17 +15,13 @@ def main():
     build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "..", "build", "cpp-release")
     exe = os.path.join(build, "bench_clump_map")
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    out = subprocess.run([exe, "--benchmark_format=json", "--benchmark_repetitions=5",
-                          "--benchmark_report_aggregates_only=true", "--benchmark_min_time=0.3"],
-                         check=True, capture_output=True, text=True, env=env).stdout
-    data = json.loads(out)
-    rows = [b for b in data["benchmarks"] if b.get("aggregate_name") == "median"]
+    context, rows = medians(exe, 5, 0.3, env)
     # cpu_time is per call; items_per_second counts stones per second of CPU time
     per_stone = {b["run_name"]: 1e9 / b["items_per_second"] for b in rows}
     base = per_stone["BM_MapSpheres"]
     lines = ["# Solid fraction of clumps against spheres", "",
              "Google Benchmark `benchmarks/cpp/bench_clump_map.cpp`, median of 5 repetitions (CPU time), "
-             f"{data['context'].get('num_cpus')} CPUs shared with other jobs, {platform.machine()}. "
+             f"{context.get('num_cpus')} CPUs shared with other jobs, {platform.machine()}. "
              "300 stones of d_eq = 4.8 cm at random places and orientations in the lower 0.5 m of the "
              "paper's grid (2.5 cm x 1.0 cm cells, 0.5 cm rows up to 2 cm) across a 0.3 m flume; one call "
              "maps them all (`PorosityMapper::map_spheres` for spheres of d_eq, `map_clumps` for the "
@@ -37,11 +33,7 @@ def main():
         lines.append(f"| {name} | {k:.0f} | {per_stone[name]:.0f} | {per_stone[name] / base:.2f} |")
     lines += ["", "The ratio is measured in one run. The load of the shared machine makes single figures "
               "vary by about +-30 %; the ratios less."]
-    path = os.path.join(HERE, "results", "clump_map.md")
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_results("clump_map.md", lines)
 
 
 if __name__ == "__main__":

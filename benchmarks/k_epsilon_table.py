@@ -2,11 +2,11 @@
 
 usage: python3 benchmarks/k_epsilon_table.py BUILD_DIR   (a build configured with -DVOFDEM_BENCHMARKS=ON)
 """
-import json
 import os
 import platform
-import subprocess
 import sys
+
+from google_bench import medians, write_results
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -14,15 +14,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def main():
     build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "..", "build-dev")
     exe = os.path.join(build, "bench_k_epsilon")
-    out = subprocess.run([exe, "--benchmark_format=json", "--benchmark_repetitions=5",
-                          "--benchmark_report_aggregates_only=true", "--benchmark_min_time=0.3"],
-                         check=True, capture_output=True, text=True).stdout
-    data = json.loads(out)
-    rows = [b for b in data["benchmarks"] if b.get("aggregate_name") == "median"]
+    context, rows = medians(exe, 5, 0.3)
     stages = ["setup", "wall functions", "production", "transport", "eddy viscosity", "checks"]
     lines = ["# k-epsilon step cost", "",
              "Google Benchmark `benchmarks/cpp/bench_k_epsilon.cpp`, median of 5 repetitions (CPU time), "
-             f"{data['context'].get('num_cpus')} CPUs shared with other jobs, {platform.machine()}. "
+             f"{context.get('num_cpus')} CPUs shared with other jobs, {platform.machine()}. "
              "Scene: a flume on the paper's graded mesh (2.5 cm x 1 cm cells, 0.5 cm rows at the bed, "
              "30 rows), sheared divergence-free flow, a porous mound (n = 0.41), a solid block, "
              "air in the upper third (not solved). `nx/sweeps` in the name.", "",
@@ -37,11 +33,7 @@ def main():
     lines += ["", "Stage shares are of the model's own StageProfile time. `BM_KEpsilonStableDt` is the cost "
               "of `stable_dt()` alone. The load of the shared machine makes single figures vary by about "
               "+-30 %."]
-    path = os.path.join(HERE, "results", "k_epsilon.md")
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_results("k_epsilon.md", lines)
 
 
 if __name__ == "__main__":

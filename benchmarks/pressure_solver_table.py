@@ -5,12 +5,12 @@ Usage: python3 benchmarks/pressure_solver_table.py [path/to/bench_pressure]
 """
 from __future__ import annotations
 
-import json
 import os
 import platform
-import subprocess
 import sys
 from pathlib import Path
+
+from google_bench import medians, write_results
 
 ROOT = Path(__file__).resolve().parents[1]
 NAMES = {0: "Eigen LDLT (direct)", 1: "multigrid CG"}
@@ -18,16 +18,9 @@ NAMES = {0: "Eigen LDLT (direct)", 1: "multigrid CG"}
 
 def main() -> None:
     exe = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "build-bench" / "bench_pressure"
-    out = subprocess.run(
-        [str(exe), "--benchmark_format=json", "--benchmark_min_time=0.5", "--benchmark_repetitions=3",
-         "--benchmark_report_aggregates_only=true"],
-        check=True, capture_output=True, text=True,
-    ).stdout
-    data = json.loads(out)
+    context, runs = medians(exe, 3, 0.5)
     rows = []
-    for b in data["benchmarks"]:
-        if b.get("aggregate_name") != "median":
-            continue
+    for b in runs:
         name = b["run_name"]  # BM_PressureSetupSolve/kind:1/scale:2
         kind = int(name.split("kind:")[1].split("/")[0])
         warm = int(name.split("warm:")[1].split("/")[0])
@@ -43,7 +36,7 @@ def main() -> None:
         "step's solution (source changed by 5 %), one core.",
         "Times are thread CPU times (median of 3 repetitions); the wall time of the same run is given too",
         f"(the machine may be shared). Produced by `benchmarks/pressure_solver_table.py` on {platform.machine()}"
-        f" with {os.cpu_count()} logical CPUs ({data['context'].get('date', '')}).",
+        f" with {os.cpu_count()} logical CPUs ({context.get('date', '')}).",
         "",
         "| cells | solver | initial guess | setup ms | solve ms | iterations | us per cell | wall ms |",
         "|---:|---|---|---:|---:|---:|---:|---:|",
@@ -55,10 +48,7 @@ def main() -> None:
     mg = {r[0]: r[3] + r[4] for r in rows if r[1] == 1 and r[2] == 0}
     lines += ["", "Speed-up of multigrid CG (zero guess) over the direct solver (setup + solve): " + ", ".join(
         f"{direct[c] / mg[c]:.1f}x at {c} cells" for c in sorted(mg) if c in direct) + "."]
-    dest = ROOT / "benchmarks" / "results" / "pressure_solver.md"
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    dest.write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_results("pressure_solver.md", lines)
 
 
 if __name__ == "__main__":
