@@ -1,11 +1,11 @@
 """DEMSystem from Python: zero-copy views, errors, checkpoints, angle of repose (C++ tests cover contacts)."""
 import gc
-import hashlib
 
 import numpy as np
 import pytest
 
 import vofdem
+from dem_util import state_hash
 
 D = 0.048
 
@@ -14,14 +14,6 @@ def falling_pair():
     p = vofdem.DEMParams()
     p.add_flume(0.0, 1.0, 0.0)
     return vofdem.DEMSystem(p, pos=np.array([[0.3, 0.1], [0.33, 0.2]]), density=[2650.0], radius=np.array([0.024, 0.02]))
-
-
-def state_hash(s):
-    h = hashlib.sha256()
-    for key, a in sorted(s.export_state().items()):
-        h.update(key.encode())
-        h.update(np.ascontiguousarray(a).tobytes())
-    return h.hexdigest()
 
 
 def test_views_are_zero_copy_and_keep_the_owner_alive():

@@ -1,5 +1,4 @@
 """Rolling resistance through the binding and the scene (the C++ tests cover the law by hand)."""
-import hashlib
 import math
 
 import numpy as np
@@ -9,17 +8,10 @@ import vofdem
 from vofdem import cli
 from vofdem.builder import build_stones, dem_params
 from vofdem.scene import Scene, Stones
+from dem_util import state_hash
 
 R = 0.024
 M = 2650.0 * 4.0 / 3.0 * math.pi * R**3
-
-
-def state_hash(s):
-    h = hashlib.sha256()
-    for key, a in sorted(s.export_state().items()):
-        h.update(key.encode())
-        h.update(np.ascontiguousarray(a).tobytes())
-    return h.hexdigest()
 
 
 def incline(theta, mu_r, f=0.4):
