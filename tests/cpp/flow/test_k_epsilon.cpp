@@ -14,25 +14,21 @@
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
 #include "common/pinned_params.h"
+#include "flow/k_epsilon_fields.h"
 
 using vofdem::Grid2D;
 using vofdem::KEpsilonBoundaries;
 using vofdem::KEpsilonBoundary;
 using vofdem::KEpsilonModel;
 using vofdem::KEpsilonParams;
+using vofdem::test::expect_all_positive_finite;
 using vofdem::test::pinned_k_epsilon_params;
+using vofdem::test::run_random_strain;
 
 namespace {
 
-constexpr double kNu = 1e-6;  // water [m^2/s]
-
-// the fields a flow solver hands to the model
-struct Flow {
-  std::vector<double> face_u, face_w, porosity, F, nu;
-  explicit Flow(const Grid2D& g)
-      : face_u(g.nface_x(), 0.0), face_w(g.nface_z(), 0.0), porosity(g.ncell(), 1.0), F(g.ncell(), 1.0),
-        nu(g.ncell(), kNu) {}
-};
+constexpr double kNu = vofdem::test::kNuWater;
+using Flow = vofdem::test::KEpsilonFlow;
 
 KEpsilonBoundaries closed_to_flux() {
   KEpsilonBoundaries b;
@@ -49,15 +45,6 @@ KEpsilonBoundaries walled_box() {
 // decay of homogeneous turbulence without production: dk/dt = -eps, deps/dt = -C2 eps^2/k
 double decay_k(double k0, double eps0, double c2, double t) {
   return k0 * std::pow(1.0 + (c2 - 1.0) * eps0 * t / k0, -1.0 / (c2 - 1.0));
-}
-
-void expect_all_positive_finite(const KEpsilonModel& m) {
-  const KEpsilonParams& p = m.params();
-  for (std::size_t c = 0; c < m.cell_k.size(); ++c) {
-    ASSERT_TRUE(std::isfinite(m.cell_k[c]) && m.cell_k[c] >= p.k_min) << "k[" << c << "] = " << m.cell_k[c];
-    ASSERT_TRUE(std::isfinite(m.cell_eps[c]) && m.cell_eps[c] >= p.eps_min) << "eps[" << c << "] = " << m.cell_eps[c];
-    ASSERT_TRUE(std::isfinite(m.cell_nut[c]) && m.cell_nut[c] >= 0.0) << "nut[" << c << "] = " << m.cell_nut[c];
-  }
 }
 
 }  // namespace
@@ -126,30 +113,16 @@ TEST(KEpsilon, HomogeneousDecayMatchesTheAnalyticSolution) {
 TEST(KEpsilon, StaysPositiveUnderHugeStepsAndExtremeStrain) {
   const Grid2D g = Grid2D::graded(10, 0.5, 0.12, 0.02, 0.005, 0.02);
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> vel(-100.0, 100.0), unit(0.0, 1.0), expo(-12.0, 3.0);
   for (int sweeps : {1, 3}) {
     for (double dt : {1e-6, 1e2, 1e6}) {
       KEpsilonParams p = pinned_k_epsilon_params();
       p.sweeps = sweeps;
-      KEpsilonModel m(g, p, KEpsilonBoundaries{});
-      for (int c = 0; c < g.ncell(); ++c) {
-        m.cell_k[c] = std::pow(10.0, expo(rng));
-        m.cell_eps[c] = std::pow(10.0, expo(rng));
-      }
-      Flow f(g);
-      for (int st = 0; st < 10; ++st) {
-        // a velocity field of +-100 m/s that is far from divergence-free, solid, porous and air cells
-        for (double& u : f.face_u) u = vel(rng);
-        for (double& w : f.face_w) w = vel(rng);
-        for (int c = 0; c < g.ncell(); ++c) {
-          const double r = unit(rng);
-          f.porosity[c] = r < 0.1 ? 0.0 : (r < 0.4 ? 0.3 + 0.7 * unit(rng) : 1.0);
-          f.F[c] = unit(rng) < 0.2 ? 0.0 : unit(rng);
-        }
-        ASSERT_NO_THROW(m.step(dt, f.face_u, f.face_w, f.porosity, f.F, f.nu));
+      // nu_t also within its cap, nut_max_ratio times the molecular viscosity
+      run_random_strain(g, p, dt, rng, [](const KEpsilonModel& m) {
         expect_all_positive_finite(m);
-        for (int c = 0; c < g.ncell(); ++c) ASSERT_LE(m.cell_nut[c], m.params().nut_max_ratio * kNu * (1 + 1e-15));
-      }
+        for (double nut : m.cell_nut) ASSERT_LE(nut, m.params().nut_max_ratio * kNu * (1 + 1e-15));
+      });
+      if (HasFatalFailure()) return;
     }
   }
 }

@@ -19,25 +19,22 @@
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/k_epsilon.h"
 #include "common/pinned_params.h"
+#include "flow/k_epsilon_fields.h"
 
 using vofdem::Grid2D;
 using vofdem::KEpsilonBoundaries;
 using vofdem::KEpsilonBoundary;
 using vofdem::KEpsilonModel;
 using vofdem::KEpsilonParams;
+using vofdem::test::expect_all_positive_finite;
 using vofdem::test::pinned_k_epsilon_params;
+using vofdem::test::run_random_strain;
 using vofdem::KEpsilonTimeScheme;
 
 namespace {
 
-constexpr double kNu = 1e-6;
-
-struct Flow {
-  std::vector<double> face_u, face_w, porosity, F, nu;
-  explicit Flow(const Grid2D& g)
-      : face_u(g.nface_x(), 0.0), face_w(g.nface_z(), 0.0), porosity(g.ncell(), 1.0), F(g.ncell(), 1.0),
-        nu(g.ncell(), kNu) {}
-};
+constexpr double kNu = vofdem::test::kNuWater;
+using Flow = vofdem::test::KEpsilonFlow;
 
 KEpsilonParams scheme(KEpsilonTimeScheme s) {
   KEpsilonParams p = pinned_k_epsilon_params();
@@ -265,28 +262,9 @@ TEST(KEpsilonAlternating, IsNearerBackwardEulerThanTheVerticalLinesAtTheirLimit)
 TEST(KEpsilonAlternating, StaysPositiveUnderHugeStepsAndExtremeStrain) {
   const Grid2D g = Grid2D::graded(10, 0.5, 0.12, 0.02, 0.005, 0.02);
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> vel(-100.0, 100.0), unit(0.0, 1.0), expo(-12.0, 3.0);
   for (double dt : {1e-6, 1e2, 1e6}) {
-    KEpsilonModel m(g, alternating(), KEpsilonBoundaries{});
-    for (int c = 0; c < g.ncell(); ++c) {
-      m.cell_k[c] = std::pow(10.0, expo(rng));
-      m.cell_eps[c] = std::pow(10.0, expo(rng));
-    }
-    Flow f(g);
-    for (int st = 0; st < 10; ++st) {
-      for (double& u : f.face_u) u = vel(rng);
-      for (double& w : f.face_w) w = vel(rng);
-      for (int c = 0; c < g.ncell(); ++c) {
-        const double r = unit(rng);
-        f.porosity[c] = r < 0.1 ? 0.0 : (r < 0.4 ? 0.3 + 0.7 * unit(rng) : 1.0);
-        f.F[c] = unit(rng) < 0.2 ? 0.0 : unit(rng);
-      }
-      ASSERT_NO_THROW(m.step(dt, f.face_u, f.face_w, f.porosity, f.F, f.nu));
-      for (int c = 0; c < g.ncell(); ++c) {
-        ASSERT_TRUE(std::isfinite(m.cell_k[c]) && m.cell_k[c] >= m.params().k_min);
-        ASSERT_TRUE(std::isfinite(m.cell_eps[c]) && m.cell_eps[c] >= m.params().eps_min);
-      }
-    }
+    run_random_strain(g, alternating(), dt, rng, [](const KEpsilonModel& m) { expect_all_positive_finite(m); });
+    if (HasFatalFailure()) return;
   }
 }
 
