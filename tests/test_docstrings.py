@@ -4,12 +4,18 @@ module of the package. The API reference (docs/api.md, `make docs`) is made from
 
 A pybind11 enum's generated docstring lists its members only; it counts when it says first what the enum
 chooses. A pybind11 function's generated docstring is its signature; it counts when text follows it.
-The test lists every name that lacks one."""
+The test lists every name that lacks one.
+
+Every field of the option structs that holds a quantity (a number, or a list of numbers) names its unit
+in brackets: [m], [kg/m^3], [-] for a pure number; bit flags say `bits`. A choice (an enum), a switch
+(a bool), a name, a struct or a list of structs needs a docstring only. The test lists every field that
+lacks its unit."""
 from __future__ import annotations
 
 import importlib
 import inspect
 import pkgutil
+import re
 
 import vofdem
 from vofdem import _core
@@ -103,15 +109,10 @@ def test_the_check_sees_a_missing_docstring():
     assert own_text(Fake("Wall condition.\n\nMembers:\n\n  SLIP : a"), "Wall") == "Wall condition."
 
 
-# bound classes whose methods and properties are still to be documented (the option structs wait for
-# the option registry, which will write their docs from one place)
-PENDING = {"WeirSpec", "DEMParams", "FlowParams", "CouplerParams", "PorosityParams"}
-
-
 def undocumented_members() -> list[str]:
     bad = []
     for cname, cls in vars(_core).items():
-        if not inspect.isclass(cls) or cname.startswith("_") or cname in PENDING:
+        if not inspect.isclass(cls) or cname.startswith("_"):
             continue
         enum = hasattr(cls, "__members__")
         for name, member in vars(cls).items():
@@ -124,3 +125,62 @@ def undocumented_members() -> list[str]:
 
 def test_every_method_and_property_of_a_bound_class_has_a_docstring():
     assert undocumented_members() == []
+
+
+# the structs of options (each field one option of a solver)
+OPTION_STRUCTS = ["FlowParams", "DEMParams", "CouplerParams", "PorosityParams", "WeirSpec", "Medium"]
+# a unit in brackets: [-] or one that starts with a letter ([m], [kg/m^3], [m^2/s], [deg]); not a range
+_UNIT = re.compile(r"\[(?:-|[A-Za-z][^\[\],]*)\]")
+
+
+def is_quantity(value) -> bool:
+    """A number (not a bool or an enum member) or a non-empty list of numbers."""
+    if isinstance(value, bool) or hasattr(type(value), "__members__"):  # a switch, an enum's member
+        return False
+    if isinstance(value, (int, float)):
+        return True
+    if isinstance(value, (list, tuple)):
+        return len(value) > 0 and all(is_quantity(v) for v in value)
+    return False
+
+
+def fields_without_unit(classes) -> list[str]:
+    """The properties of the (name, class) pairs with no docstring, or holding a quantity by default with
+    no unit in brackets (and no `bits`)."""
+    bad = []
+    for cname, cls in classes:
+        obj = cls()
+        for name, prop in vars(cls).items():
+            if name.startswith("_") or not isinstance(prop, property):
+                continue
+            doc = own_text(prop, name)
+            if not doc:
+                bad.append(f"{cname}.{name} (no docstring)")
+            elif is_quantity(getattr(obj, name)) and not _UNIT.search(doc) and "bits" not in doc:
+                bad.append(f"{cname}.{name}")
+    return bad
+
+
+def test_every_option_field_names_its_unit():
+    classes = [(n, getattr(_core, n)) for n in OPTION_STRUCTS]
+    assert sum(1 for _, c in classes for p in vars(c).values() if isinstance(p, property)) > 100
+    assert fields_without_unit(classes) == []
+
+
+def test_the_unit_check_sees_a_missing_unit():
+    def field(doc, value):
+        return property(lambda self: value, doc=doc)
+
+    class Options:
+        length = field("flume length [m], default 2.0", 2.0)
+        ratio = field("k_t / k_n [-]", 0.3)
+        gravity = field("gravity (x, z) [m/s^2]", [0.0, -9.81])
+        flags = field("FlowEffect bits", 7)
+        on = field("the effect is on", True)
+        bare = field("flume length, default 2.0", 2.0)
+        ranged = field("restitution, [0, 1]", 0.5)
+        listed = field("stage discharges", [1.0, 2.0])
+        undocumented = field(None, "disc")
+
+    assert fields_without_unit([("Options", Options)]) == [
+        "Options.bare", "Options.ranged", "Options.listed", "Options.undocumented (no docstring)"]

@@ -108,7 +108,7 @@ void bind_coupler(py::module_& m) {
           with_default("OVERFLOW_LOAD: height of the approach band above a stone's top, in stone diameters [-], (0, 5]",
                        &CouplerParams::overflow, &OverflowLoadParams::band_height)
               .c_str())
-      .def("validate", &CouplerParams::validate);
+      .def("validate", &CouplerParams::validate, "ValueError naming the first parameter outside its range.");
 
   bind_state_class<CouplerState>(m, "CouplerState",
                                   "A copy of a coupled simulation's whole state (Coupler.copy_state): the flow's, "

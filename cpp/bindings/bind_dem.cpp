@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "fields.h"
 #include "flags.h"
 #include "state.h"
 #include "views.h"
@@ -41,38 +42,57 @@ void bind_params(py::module_& m) {
       .def_readwrite("friction", &DEMWall::friction,
            "stone-wall Coulomb coefficient [-] (paper 0.176)");
 
-  py::class_<DEMParams>(m, "DEMParams", "Constant parameters of the DEM of the stones (SI units; see dem_system.h).")
-      .def(py::init<>())
+  py::class_<DEMParams> dp(m, "DEMParams", "Constant parameters of the DEM of the stones (SI units; see dem_system.h).");
+  dp.def(py::init<>())
       .def_readwrite("medium", &DEMParams::medium, "water and gravity (Medium); a Coupler sets the flow's")
       .def_readwrite("submerged", &DEMParams::submerged,
                      "the stones lie in the medium's water (buoyancy, added mass); False: dry")
       .def_property_readonly("water_density", &DEMParams::water_density,
                              "rho_w of buoyancy and added mass [kg/m^3]: medium.rho_water if submerged, else 0")
-      .def_readwrite("added_mass_coefficient", &DEMParams::added_mass_coefficient)
-      .def_readwrite("dt", &DEMParams::dt)
-      .def_readwrite("stiffness_normal", &DEMParams::stiffness_normal)
-      .def_readwrite("contact_steps", &DEMParams::contact_steps)
-      .def_readwrite("stiffness_ratio", &DEMParams::stiffness_ratio)
-      .def_readwrite("restitution", &DEMParams::restitution)
-      .def_readwrite("tangential_damping_factor", &DEMParams::tangential_damping_factor)
-      .def_readwrite("friction_stone", &DEMParams::friction_stone)
-      .def_readwrite("inertia_factor", &DEMParams::inertia_factor)
-      .def_readwrite("rolling_friction_stone", &DEMParams::rolling_friction_stone)
-      .def_readwrite("rolling_friction_wall", &DEMParams::rolling_friction_wall)
-      .def_readwrite("rolling_damping", &DEMParams::rolling_damping)
-      .def_readwrite("domain_min", &DEMParams::domain_min)
-      .def_readwrite("domain_max", &DEMParams::domain_max)
-      .def_readwrite("neighbour_skin", &DEMParams::neighbour_skin)
-      .def_readwrite("sleep_velocity", &DEMParams::sleep_velocity)
-      .def_readwrite("sleep_time", &DEMParams::sleep_time)
-      .def_readwrite("wake_acceleration", &DEMParams::wake_acceleration)
-      .def_readwrite("walls", &DEMParams::walls)
-      .def_readwrite("width", &DEMParams::width)
-      .def_readwrite("side_wall_friction", &DEMParams::side_wall_friction)
-      .def_readwrite("plane_neighbour_list", &DEMParams::plane_neighbour_list)
-      .def_readwrite("flags", &DEMParams::flags)
+      .def_readwrite("domain_min", &DEMParams::domain_min, "removal box, lower corner (x, z) [m]")
+      .def_readwrite("domain_max", &DEMParams::domain_max, "removal box, upper corner (x, z) [m]")
+      .def_readwrite("walls", &DEMParams::walls, "half-plane walls (DEMWall: the bed, the end walls)")
+      .def_readwrite("flags", &DEMParams::flags, "DEMFlag bits of the effects that are on")
       .def("add_flume", &DEMParams::add_flume, py::arg("x_min"), py::arg("x_max"), py::arg("z_bed") = 0.0,
-           py::arg("mu") = 0.176);
+           py::arg("mu") = 0.176,
+           "Adds the flume's walls: the bed z = z_bed and the end walls x = x_min, x_max [m], each with the "
+           "stone-wall Coulomb coefficient mu [-].");
+  def_field(dp, "added_mass_coefficient", &DEMParams::added_mass_coefficient,
+            "added-mass coefficient C_M [-] (the paper's run 1.0, its text 0.5)");
+  def_field(dp, "dt", &DEMParams::dt, "DEM step [s]; advance() substeps never exceed it (the paper's 1e-4)");
+  def_field(dp, "stiffness_normal", &DEMParams::stiffness_normal,
+            "normal spring stiffness k_n [N/m]; 0 = automatic from contact_steps (Gotoh & Sakai 1997)");
+  def_field(dp, "contact_steps", &DEMParams::contact_steps,
+            "automatic k_n: DEM steps per undamped contact of two mean stones [-]");
+  def_field(dp, "stiffness_ratio", &DEMParams::stiffness_ratio, "tangential to normal stiffness k_t / k_n [-]");
+  def_field(dp, "restitution", &DEMParams::restitution,
+            "normal restitution coefficient e [-], [0, 1]; 0 = critical damping");
+  def_field(dp, "tangential_damping_factor", &DEMParams::tangential_damping_factor,
+            "tangential to normal dashpot c_t / c_n [-] (LAMMPS's default)");
+  def_field(dp, "friction_stone", &DEMParams::friction_stone,
+            "stone-stone Coulomb coefficient mu [-] (the paper's 0.577)");
+  def_field(dp, "inertia_factor", &DEMParams::inertia_factor,
+            "moment of inertia I = factor M r^2 [-] (a sphere 0.4, a disc 0.5)");
+  def_field(dp, "rolling_friction_stone", &DEMParams::rolling_friction_stone,
+            "rolling friction mu_r stone-stone [-], >= 0 (with ROLLING_RESISTANCE; discs and 3D stones)");
+  def_field(dp, "rolling_friction_wall", &DEMParams::rolling_friction_wall,
+            "rolling friction mu_r stone-wall [-], >= 0 (with ROLLING_RESISTANCE)");
+  def_field(dp, "rolling_damping", &DEMParams::rolling_damping,
+            "rolling damper ratio eta_r = C_r / (2 sqrt(I_r k_r)) [-], [0, 1]");
+  def_field(dp, "neighbour_skin", &DEMParams::neighbour_skin,
+            "Verlet-list skin [m]; 0 = a tenth of the largest diameter");
+  def_field(dp, "sleep_velocity", &DEMParams::sleep_velocity,
+            "a stone may sleep below this speed (and omega r) [m/s] (with SLEEPING)");
+  def_field(dp, "sleep_time", &DEMParams::sleep_time, "... held for this long [s]");
+  def_field(dp, "wake_acceleration", &DEMParams::wake_acceleration,
+            "a sleeping stone wakes when its net force gives more [m/s^2]");
+  def_field(dp, "width", &DEMParams::width,
+            "3D stones: the flume's width between the side walls y = 0 and y = width [m], > 0 for them");
+  def_field(dp, "side_wall_friction", &DEMParams::side_wall_friction,
+            "3D stones: stone-side wall Coulomb coefficient [-], >= 0 (the paper's glass 0.176)");
+  def_field(dp, "plane_neighbour_list", &DEMParams::plane_neighbour_list,
+            "3D stones: neighbours by their x-z projections whatever their y (True: more pairs, the same forces) "
+            "or by cells in x, y and z (False)");
 
   py::native_enum<DEMFlag>(m, "DEMFlag", "enum.IntFlag", "Bit flags of the DEM's physical effects (DEMParams.flags).")
       .value("GRAVITY", kDEMGravity, "gravity (and buoyancy with BUOYANCY)")
@@ -330,48 +350,42 @@ void bind_system(py::module_& m) {
 
 void bind_packing(py::module_& m) {
   using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  py::class_<WeirSpec>(m, "WeirSpec", "Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).")
-      .def(py::init<>())
-      .def_readwrite("height", &WeirSpec::height)
-      .def_readwrite("crest", &WeirSpec::crest)
-      .def_readwrite("slope_up_deg", &WeirSpec::slope_up_deg)
-      .def_readwrite("slope_down_deg", &WeirSpec::slope_down_deg)
-      .def_readwrite("x_toe", &WeirSpec::x_toe)
-      .def_readwrite("z_bed", &WeirSpec::z_bed)
-      .def_readwrite("d_mean", &WeirSpec::d_mean)
-      .def_readwrite("d_spread", &WeirSpec::d_spread)
-      .def_readwrite("density", &WeirSpec::density)
-      .def_readwrite("seed", &WeirSpec::seed)
-      .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
-      .def_readwrite("rest_speed", &WeirSpec::rest_speed)
-      .def_property(
-          "shape", [](const WeirSpec& w) { return w.shape; }, [](WeirSpec& w, const std::string& name) { w.shape = name; })
-      .def_property(
-          "polygon_vertices_min", [](const WeirSpec& w) { return w.polygon.vertices_min; },
-          [](WeirSpec& w, int v) { w.polygon.vertices_min = v; })
-      .def_property(
-          "polygon_vertices_max", [](const WeirSpec& w) { return w.polygon.vertices_max; },
-          [](WeirSpec& w, int v) { w.polygon.vertices_max = v; })
-      .def_property(
-          "aspect_ratio", [](const WeirSpec& w) { return w.polygon.aspect_ratio; },
-          [](WeirSpec& w, double v) { w.polygon.aspect_ratio = v; })
-      .def_property(
-          "radial_jitter", [](const WeirSpec& w) { return w.polygon.radial_jitter; },
-          [](WeirSpec& w, double v) { w.polygon.radial_jitter = v; })
-      .def_property(
-          "clump_names", [](const WeirSpec& w) { return w.clump.names; },
-          [](WeirSpec& w, const std::vector<std::string>& v) { w.clump.names = v; },
-          "library shapes clump stones draw with equal chances (shape 'clump'; quarried_stone_names())")
-      .def_property(
-          "clump_ratio_intermediate", [](const WeirSpec& w) { return w.clump.ratio_intermediate; },
-          [](WeirSpec& w, double v) { w.clump.ratio_intermediate = v; },
-          "clumps' intermediate / long axis p [-], in [clump_ratio_short, 1]")
-      .def_property(
-          "clump_ratio_short", [](const WeirSpec& w) { return w.clump.ratio_short; },
-          [](WeirSpec& w, double v) { w.clump.ratio_short = v; }, "clumps' short / long axis q [-], in [0.55, 1]")
-      .def("x_end", &WeirSpec::x_end)
-      .def("top", &WeirSpec::top, py::arg("x"))
-      .def("area", &WeirSpec::area);
+  py::class_<WeirSpec> ws(m, "WeirSpec", "Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).");
+  ws.def(py::init<>())
+      .def("x_end", &WeirSpec::x_end, "The downstream toe [m] along the flume.")
+      .def("top", &WeirSpec::top, py::arg("x"), "The trapezoid's height above the bed [m] at x [m] (0 outside).")
+      .def("area", &WeirSpec::area, "The trapezoid's area [m^2].");
+  def_field(ws, "height", &WeirSpec::height, "crest height H above the bed [m]");
+  def_field(ws, "crest", &WeirSpec::crest, "crest length L_c [m]");
+  def_field(ws, "slope_up_deg", &WeirSpec::slope_up_deg, "upstream slope [deg]");
+  def_field(ws, "slope_down_deg", &WeirSpec::slope_down_deg, "downstream slope [deg]");
+  def_field(ws, "x_toe", &WeirSpec::x_toe, "upstream toe along the flume [m]");
+  def_field(ws, "z_bed", &WeirSpec::z_bed, "bed height [m]");
+  def_field(ws, "d_mean", &WeirSpec::d_mean, "mean stone diameter [m], > 0, required (0: unset)");
+  def_field(ws, "d_spread", &WeirSpec::d_spread, "half-width of the uniform diameter distribution, relative [-]");
+  def_field(ws, "density", &WeirSpec::density, "stone density [kg/m^3], > 0, required (0: unset)");
+  def_field(ws, "seed", &WeirSpec::seed, "random seed of the diameters, shapes and lattice jitter [-]");
+  def_field(ws, "settle_time_max", &WeirSpec::settle_time_max, "simulated time allowed each settling phase [s]");
+  def_field(ws, "rest_speed", &WeirSpec::rest_speed, "the packing is at rest when every stone is slower [m/s]");
+  ws.def_property(
+      "shape", [](const WeirSpec& w) { return w.shape; }, [](WeirSpec& w, const std::string& name) { w.shape = name; },
+      ("the stone model drawn, by its registered name (stone_model_names()), default '" + WeirSpec{}.shape + "'").c_str());
+  const auto polygon = &WeirSpec::polygon;
+  def_part_default(ws, "polygon_vertices_min", polygon, &PolygonSpec::vertices_min,
+                   "fewest vertices of a polygon stone [-], [3, 16]");
+  def_part_default(ws, "polygon_vertices_max", polygon, &PolygonSpec::vertices_max,
+                   "most vertices of a polygon stone [-], [polygon_vertices_min, 16]");
+  def_part_default(ws, "aspect_ratio", polygon, &PolygonSpec::aspect_ratio,
+                   "length / thickness of a polygon stone's section [-], [1, 3]");
+  def_part_default(ws, "radial_jitter", polygon, &PolygonSpec::radial_jitter,
+                   "polygon vertex radii 1 +- jitter before the hull [-], [0, 0.5]");
+  const auto clump = &WeirSpec::clump;
+  def_part_field(ws, "clump_names", clump, &ClumpMix::names,
+                 "library shapes clump stones draw with equal chances (shape 'clump'; quarried_stone_names())");
+  def_part_default(ws, "clump_ratio_intermediate", clump, &ClumpMix::ratio_intermediate,
+                   "clumps' intermediate / long axis p [-], in [clump_ratio_short, 1]");
+  def_part_default(ws, "clump_ratio_short", clump, &ClumpMix::ratio_short,
+                   "clumps' short / long axis q [-], in [0.55, 1]");
   py::class_<WeirPackingReport>(m, "WeirPackingReport", "What pack_weir produced.")
       .def_readonly("n_stones", &WeirPackingReport::n_stones,
            "stones in the weir, the fixed ones included")

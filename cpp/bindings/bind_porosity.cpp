@@ -44,7 +44,8 @@ void bind_porosity(py::module_& m) {
 
   py::class_<PorosityParams>(m, "PorosityParams", "Parameters of the porosity mapping (SI units).")
       .def(py::init<>())
-      .def_readwrite("method", &PorosityParams::method)
+      .def_readwrite("method", &PorosityParams::method,
+                     with_default("PorosityMethod of the solid areas", &PorosityParams::method).c_str())
       .def_readwrite("m", &PorosityParams::m, with_default("sub-areas per side of the centre cell (lookup) [-]", &PorosityParams::m).c_str())
       .def_readwrite("n_exp", &PorosityParams::n_exp, with_default("packing porosity of the stones [-]", &PorosityParams::n_exp).c_str())
       .def_readwrite("r_min", &PorosityParams::r_min, "smallest disc radius [m]")

@@ -123,22 +123,35 @@ void bind_vof(py::module_& m) {
       .def_readwrite("k1", &FlowParams::k1, with_default("linear resistance coefficient of eq. (7) [-]", &FlowParams::k1).c_str())
       .def_readwrite("k2", &FlowParams::k2, with_default("quadratic resistance coefficient of eq. (7) [-]", &FlowParams::k2).c_str())
       .def_readwrite("flume_width", &FlowParams::flume_width, with_default("flume width B [m]", &FlowParams::flume_width).c_str())
-      .def_readwrite("pressure_solver", &FlowParams::pressure_solver)
+      .def_readwrite("pressure_solver", &FlowParams::pressure_solver,
+                     with_default("PressureSolverKind of the projection", &FlowParams::pressure_solver).c_str())
       .def_readwrite("pressure_tol", &FlowParams::pressure_tol, "relative residual of the pressure solve [-]")
-      .def_readwrite("inlet", &FlowParams::inlet)
+      .def_readwrite("inlet", &FlowParams::inlet,
+                     with_default("InletBoundary of the left end (x = x0)", &FlowParams::inlet).c_str())
       .def_readwrite("inlet_profile", &FlowParams::inlet_profile, "InletProfile of the discharge over the inlet rows")
-      .def_readwrite("outlet", &FlowParams::outlet)
+      .def_readwrite("outlet", &FlowParams::outlet,
+                     with_default("OutletBoundary of the right end", &FlowParams::outlet).c_str())
       .def_readwrite("tailwater_level", &FlowParams::tailwater_level, "tailwater level [m] for OutletBoundary.TAILWATER")
-      .def_readwrite("top", &FlowParams::top)
-      .def_readwrite("walls", &FlowParams::walls)
-      .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme)
-      .def_readwrite("viscous_substeps", &FlowParams::viscous_substeps)
+      .def_readwrite("top", &FlowParams::top, with_default("TopBoundary of the domain", &FlowParams::top).c_str())
+      .def_readwrite("walls", &FlowParams::walls,
+                     with_default("WallCondition of the bed and the end walls", &FlowParams::walls).c_str())
+      .def_readwrite("viscous_scheme", &FlowParams::viscous_scheme,
+                     with_default("ViscousScheme of the viscous stresses (EXPLICIT: the forward-Euler reference)",
+                                  &FlowParams::viscous_scheme)
+                         .c_str())
+      .def_readwrite("viscous_substeps", &FlowParams::viscous_substeps,
+                     with_default("the viscous stresses in up to this many substeps of a flow step [-], [1, 64]; "
+                                  "1: one explicit step",
+                                  &FlowParams::viscous_substeps)
+                         .c_str())
       .def_readwrite("viscous_bound", &FlowParams::viscous_bound,
                      "ViscousBound of the viscous step (IMPLICIT_VERTICAL only; the other schemes: ROW_SUM)")
-      .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity)
+      .def_readwrite("corner_viscosity", &FlowParams::corner_viscosity,
+                     with_default("CornerViscosity of the shear stress at a cell corner", &FlowParams::corner_viscosity)
+                         .c_str())
       .def_readwrite("time_scheme", &FlowParams::time_scheme, "MomentumTimeScheme of the explicit momentum terms")
-      .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits")
-      .def("validate", &FlowParams::validate);
+      .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits of the effects that are on")
+      .def("validate", &FlowParams::validate, "ValueError naming the first parameter outside its range.");
 
   // the k-epsilon settings most runs touch (the rest keep the model's standard values)
   const auto k_eps = &FlowParams::turbulence;
@@ -153,8 +166,8 @@ void bind_vof(py::module_& m) {
                  "side of the FILTERED pore strain's averaging box [m]");
   def_part_field(fp, "turbulence_time_scheme", k_eps, &KEpsilonParams::time_scheme,
                  "k-epsilon time stepping: POINT_IMPLICIT, VERTICAL_LINES or ALTERNATING_LINES");
-  def_part_field(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,
-                 with_default("safety factor of the k-epsilon step limit [-], (0, 1]", k_eps, &KEpsilonParams::cfl));
+  def_part_default(fp, "turbulence_cfl", k_eps, &KEpsilonParams::cfl,
+                   "safety factor of the k-epsilon step limit [-], (0, 1]");
   def_part_field(fp, "turbulence_limit_step", k_eps, &KEpsilonParams::limit_step,
                  "VERTICAL_LINES, ALTERNATING_LINES: the explicit part's limit (the horizontal faces', or the "
                  "horizontal advection's alone) bounds the step (True) or not (False: not accurate in the weir, "
@@ -163,10 +176,10 @@ void bind_vof(py::module_& m) {
                  "equivalent sand roughness k_s of the bed [m]");
   def_part_field(fp, "turbulence_wall_roughness", k_eps, &KEpsilonParams::wall_roughness,
                  "k_s of end walls and solid cells [m]");
-  def_part_field(fp, "turbulence_inflow_intensity", k_eps, &KEpsilonParams::inflow_intensity,
-                 with_default("inflow turbulence intensity [-]", k_eps, &KEpsilonParams::inflow_intensity));
-  def_part_field(fp, "turbulence_inflow_length_scale", k_eps, &KEpsilonParams::inflow_length_scale,
-                 with_default("inflow length scale [m]", k_eps, &KEpsilonParams::inflow_length_scale));
+  def_part_default(fp, "turbulence_inflow_intensity", k_eps, &KEpsilonParams::inflow_intensity,
+                   "inflow turbulence intensity [-]");
+  def_part_default(fp, "turbulence_inflow_length_scale", k_eps, &KEpsilonParams::inflow_length_scale,
+                   "inflow length scale [m]");
   // older scripts' names of the medium's fields
   const auto medium = &FlowParams::medium;
   def_part_field(fp, "rho_water", medium, &Medium::rho_water, "alias of medium.rho_water [kg/m^3]");

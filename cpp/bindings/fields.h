@@ -1,6 +1,6 @@
-// Properties of a parameter struct that read and write a field of one of its parts: the k-epsilon
-// settings most runs touch (FlowParams.turbulence_cfl -> turbulence.cfl) and the older names of the
-// medium's fields (FlowParams.rho_water -> medium.rho_water), each one line.
+// Properties of a parameter struct, each one line: a field with its docstring ending with its default,
+// and a field of one of its parts: the k-epsilon settings most runs touch (FlowParams.turbulence_cfl ->
+// turbulence.cfl) and the older names of the medium's fields (FlowParams.rho_water -> medium.rho_water).
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -44,6 +44,12 @@ std::string with_default(const std::string& doc, Part P::*part, T Part::*field) 
   return doc + ", default " + default_text(P{}.*part.*field);
 }
 
+// P.name <-> P::field, the docstring ending with the default (with_default)
+template <class P, class T, class... Options>
+void def_field(py::class_<P, Options...>& cls, const char* name, T P::*field, const std::string& doc) {
+  cls.def_readwrite(name, field, with_default(doc, field).c_str());
+}
+
 // P.name <-> P::part.field
 template <class P, class Part, class T, class... Options>
 void def_part_field(py::class_<P, Options...>& cls, const char* name, Part P::*part, T Part::*field,
@@ -51,6 +57,13 @@ void def_part_field(py::class_<P, Options...>& cls, const char* name, Part P::*p
   cls.def_property(
       name, [part, field](const P& p) { return (p.*part).*field; },
       [part, field](P& p, const T& v) { (p.*part).*field = v; }, doc.c_str());
+}
+
+// P.name <-> P::part.field, the docstring ending with the default
+template <class P, class Part, class T, class... Options>
+void def_part_default(py::class_<P, Options...>& cls, const char* name, Part P::*part, T Part::*field,
+                      const std::string& doc) {
+  def_part_field(cls, name, part, field, with_default(doc, part, field));
 }
 
 // P.name <-> P::part.field[index] (one element of an array field)

@@ -245,7 +245,6 @@ class PorosityParams:
     """
     Parameters of the porosity mapping (SI units).
     """
-    method: PorosityMethod
     def __init__(self) -> None:
         ...
     @property
@@ -271,6 +270,14 @@ class PorosityParams:
         """
     @max_discs.setter
     def max_discs(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def method(self) -> PorosityMethod:
+        """
+        PorosityMethod of the solid areas, default EXACT
+        """
+    @method.setter
+    def method(self, arg0: PorosityMethod) -> None:
         ...
     @property
     def n_exp(self) -> float:
@@ -400,56 +407,73 @@ class DEMParams:
     """
     Constant parameters of the DEM of the stones (SI units; see dem_system.h).
     """
-    plane_neighbour_list: bool
     def __init__(self) -> None:
         ...
     def add_flume(self, x_min: typing.SupportsFloat | typing.SupportsIndex, x_max: typing.SupportsFloat | typing.SupportsIndex, z_bed: typing.SupportsFloat | typing.SupportsIndex = 0.0, mu: typing.SupportsFloat | typing.SupportsIndex = 0.176) -> None:
-        ...
+        """
+        Adds the flume's walls: the bed z = z_bed and the end walls x = x_min, x_max [m], each with the stone-wall Coulomb coefficient mu [-].
+        """
     @property
     def added_mass_coefficient(self) -> float:
-        ...
+        """
+        added-mass coefficient C_M [-] (the paper's run 1.0, its text 0.5), default 1
+        """
     @added_mass_coefficient.setter
     def added_mass_coefficient(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def contact_steps(self) -> float:
-        ...
+        """
+        automatic k_n: DEM steps per undamped contact of two mean stones [-], default 20
+        """
     @contact_steps.setter
     def contact_steps(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def domain_max(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
-        ...
+        """
+        removal box, upper corner (x, z) [m]
+        """
     @domain_max.setter
     def domain_max(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
         ...
     @property
     def domain_min(self) -> typing.Annotated[list[float], "FixedSize(2)"]:
-        ...
+        """
+        removal box, lower corner (x, z) [m]
+        """
     @domain_min.setter
     def domain_min(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(2)"]) -> None:
         ...
     @property
     def dt(self) -> float:
-        ...
+        """
+        DEM step [s]; advance() substeps never exceed it (the paper's 1e-4), default 1e-04
+        """
     @dt.setter
     def dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def flags(self) -> int:
-        ...
+        """
+        DEMFlag bits of the effects that are on
+        """
     @flags.setter
     def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def friction_stone(self) -> float:
-        ...
+        """
+        stone-stone Coulomb coefficient mu [-] (the paper's 0.577), default 0.577
+        """
     @friction_stone.setter
     def friction_stone(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def inertia_factor(self) -> float:
-        ...
+        """
+        moment of inertia I = factor M r^2 [-] (a sphere 0.4, a disc 0.5), default 0.4
+        """
     @inertia_factor.setter
     def inertia_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -463,61 +487,89 @@ class DEMParams:
         ...
     @property
     def neighbour_skin(self) -> float:
-        ...
+        """
+        Verlet-list skin [m]; 0 = a tenth of the largest diameter, default 0
+        """
     @neighbour_skin.setter
     def neighbour_skin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def restitution(self) -> float:
+    def plane_neighbour_list(self) -> bool:
+        """
+        3D stones: neighbours by their x-z projections whatever their y (True: more pairs, the same forces) or by cells in x, y and z (False), default False
+        """
+    @plane_neighbour_list.setter
+    def plane_neighbour_list(self, arg0: bool) -> None:
         ...
+    @property
+    def restitution(self) -> float:
+        """
+        normal restitution coefficient e [-], [0, 1]; 0 = critical damping, default 0
+        """
     @restitution.setter
     def restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def rolling_damping(self) -> float:
-        ...
+        """
+        rolling damper ratio eta_r = C_r / (2 sqrt(I_r k_r)) [-], [0, 1], default 0.3
+        """
     @rolling_damping.setter
     def rolling_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def rolling_friction_stone(self) -> float:
-        ...
+        """
+        rolling friction mu_r stone-stone [-], >= 0 (with ROLLING_RESISTANCE; discs and 3D stones), default 0
+        """
     @rolling_friction_stone.setter
     def rolling_friction_stone(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def rolling_friction_wall(self) -> float:
-        ...
+        """
+        rolling friction mu_r stone-wall [-], >= 0 (with ROLLING_RESISTANCE), default 0
+        """
     @rolling_friction_wall.setter
     def rolling_friction_wall(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def side_wall_friction(self) -> float:
-        ...
+        """
+        3D stones: stone-side wall Coulomb coefficient [-], >= 0 (the paper's glass 0.176), default 0.176
+        """
     @side_wall_friction.setter
     def side_wall_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def sleep_time(self) -> float:
-        ...
+        """
+        ... held for this long [s], default 0.2
+        """
     @sleep_time.setter
     def sleep_time(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def sleep_velocity(self) -> float:
-        ...
+        """
+        a stone may sleep below this speed (and omega r) [m/s] (with SLEEPING), default 0.001
+        """
     @sleep_velocity.setter
     def sleep_velocity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def stiffness_normal(self) -> float:
-        ...
+        """
+        normal spring stiffness k_n [N/m]; 0 = automatic from contact_steps (Gotoh & Sakai 1997), default 0
+        """
     @stiffness_normal.setter
     def stiffness_normal(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def stiffness_ratio(self) -> float:
-        ...
+        """
+        tangential to normal stiffness k_t / k_n [-], default 0.2857142857142857
+        """
     @stiffness_ratio.setter
     def stiffness_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -531,19 +583,25 @@ class DEMParams:
         ...
     @property
     def tangential_damping_factor(self) -> float:
-        ...
+        """
+        tangential to normal dashpot c_t / c_n [-] (LAMMPS's default), default 0.5
+        """
     @tangential_damping_factor.setter
     def tangential_damping_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def wake_acceleration(self) -> float:
-        ...
+        """
+        a sleeping stone wakes when its net force gives more [m/s^2], default 0.2
+        """
     @wake_acceleration.setter
     def wake_acceleration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def walls(self) -> list[DEMWall]:
-        ...
+        """
+        half-plane walls (DEMWall: the bed, the end walls)
+        """
     @walls.setter
     def walls(self, arg0: collections.abc.Sequence[DEMWall]) -> None:
         ...
@@ -554,7 +612,9 @@ class DEMParams:
         """
     @property
     def width(self) -> float:
-        ...
+        """
+        3D stones: the flume's width between the side walls y = 0 and y = width [m], > 0 for them, default 0
+        """
     @width.setter
     def width(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -965,18 +1025,25 @@ class WeirSpec:
     """
     Trapezoidal rubble mound weir to pack (SI units; see weir_packing.h).
     """
-    shape: str
     def __init__(self) -> None:
         ...
     def area(self) -> float:
-        ...
+        """
+        The trapezoid's area [m^2].
+        """
     def top(self, x: typing.SupportsFloat | typing.SupportsIndex) -> float:
-        ...
+        """
+        The trapezoid's height above the bed [m] at x [m] (0 outside).
+        """
     def x_end(self) -> float:
-        ...
+        """
+        The downstream toe [m] along the flume.
+        """
     @property
     def aspect_ratio(self) -> float:
-        ...
+        """
+        length / thickness of a polygon stone's section [-], [1, 3], default 1.5
+        """
     @aspect_ratio.setter
     def aspect_ratio(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -991,7 +1058,7 @@ class WeirSpec:
     @property
     def clump_ratio_intermediate(self) -> float:
         """
-        clumps' intermediate / long axis p [-], in [clump_ratio_short, 1]
+        clumps' intermediate / long axis p [-], in [clump_ratio_short, 1], default 0.8
         """
     @clump_ratio_intermediate.setter
     def clump_ratio_intermediate(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -999,98 +1066,136 @@ class WeirSpec:
     @property
     def clump_ratio_short(self) -> float:
         """
-        clumps' short / long axis q [-], in [0.55, 1]
+        clumps' short / long axis q [-], in [0.55, 1], default 0.6
         """
     @clump_ratio_short.setter
     def clump_ratio_short(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def crest(self) -> float:
-        ...
+        """
+        crest length L_c [m], default 0.2
+        """
     @crest.setter
     def crest(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def d_mean(self) -> float:
-        ...
+        """
+        mean stone diameter [m], > 0, required (0: unset), default 0
+        """
     @d_mean.setter
     def d_mean(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def d_spread(self) -> float:
-        ...
+        """
+        half-width of the uniform diameter distribution, relative [-], default 0.1
+        """
     @d_spread.setter
     def d_spread(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def density(self) -> float:
-        ...
+        """
+        stone density [kg/m^3], > 0, required (0: unset), default 0
+        """
     @density.setter
     def density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def height(self) -> float:
-        ...
+        """
+        crest height H above the bed [m], default 0.25
+        """
     @height.setter
     def height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def polygon_vertices_max(self) -> int:
-        ...
+        """
+        most vertices of a polygon stone [-], [polygon_vertices_min, 16], default 8
+        """
     @polygon_vertices_max.setter
     def polygon_vertices_max(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def polygon_vertices_min(self) -> int:
-        ...
+        """
+        fewest vertices of a polygon stone [-], [3, 16], default 5
+        """
     @polygon_vertices_min.setter
     def polygon_vertices_min(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def radial_jitter(self) -> float:
-        ...
+        """
+        polygon vertex radii 1 +- jitter before the hull [-], [0, 0.5], default 0.2
+        """
     @radial_jitter.setter
     def radial_jitter(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def rest_speed(self) -> float:
-        ...
+        """
+        the packing is at rest when every stone is slower [m/s], default 0.001
+        """
     @rest_speed.setter
     def rest_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def seed(self) -> int:
-        ...
+        """
+        random seed of the diameters, shapes and lattice jitter [-], default 0
+        """
     @seed.setter
     def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def settle_time_max(self) -> float:
-        ...
+        """
+        simulated time allowed each settling phase [s], default 6
+        """
     @settle_time_max.setter
     def settle_time_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def slope_down_deg(self) -> float:
+    def shape(self) -> str:
+        """
+        the stone model drawn, by its registered name (stone_model_names()), default 'disc'
+        """
+    @shape.setter
+    def shape(self, arg1: str) -> None:
         ...
+    @property
+    def slope_down_deg(self) -> float:
+        """
+        downstream slope [deg], default 27
+        """
     @slope_down_deg.setter
     def slope_down_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def slope_up_deg(self) -> float:
-        ...
+        """
+        upstream slope [deg], default 27
+        """
     @slope_up_deg.setter
     def slope_up_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def x_toe(self) -> float:
-        ...
+        """
+        upstream toe along the flume [m], default 1
+        """
     @x_toe.setter
     def x_toe(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def z_bed(self) -> float:
-        ...
+        """
+        bed height [m], default 0
+        """
     @z_bed.setter
     def z_bed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -2004,17 +2109,12 @@ class FlowParams:
     """
     Flow parameters, constant while stepping (SI units).
     """
-    corner_viscosity: CornerViscosity
-    inlet: InletBoundary
-    outlet: OutletBoundary
-    pressure_solver: PressureSolverKind
-    top: TopBoundary
-    viscous_scheme: ViscousScheme
-    walls: WallCondition
     def __init__(self) -> None:
         ...
     def validate(self) -> None:
-        ...
+        """
+        ValueError naming the first parameter outside its range.
+        """
     @property
     def cfl(self) -> float:
         """
@@ -2024,9 +2124,17 @@ class FlowParams:
     def cfl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def corner_viscosity(self) -> CornerViscosity:
+        """
+        CornerViscosity of the shear stress at a cell corner, default HARMONIC
+        """
+    @corner_viscosity.setter
+    def corner_viscosity(self, arg0: CornerViscosity) -> None:
+        ...
+    @property
     def flags(self) -> int:
         """
-        FlowEffect bits
+        FlowEffect bits of the effects that are on
         """
     @flags.setter
     def flags(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2062,6 +2170,14 @@ class FlowParams:
         """
     @initial_dt.setter
     def initial_dt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def inlet(self) -> InletBoundary:
+        """
+        InletBoundary of the left end (x = x0), default WALL
+        """
+    @inlet.setter
+    def inlet(self, arg0: InletBoundary) -> None:
         ...
     @property
     def inlet_profile(self) -> InletProfile:
@@ -2136,6 +2252,22 @@ class FlowParams:
     def nu_water(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def outlet(self) -> OutletBoundary:
+        """
+        OutletBoundary of the right end, default FREE_OVERFALL
+        """
+    @outlet.setter
+    def outlet(self, arg0: OutletBoundary) -> None:
+        ...
+    @property
+    def pressure_solver(self) -> PressureSolverKind:
+        """
+        PressureSolverKind of the projection, default MULTIGRID_CG
+        """
+    @pressure_solver.setter
+    def pressure_solver(self, arg0: PressureSolverKind) -> None:
+        ...
+    @property
     def pressure_tol(self) -> float:
         """
         relative residual of the pressure solve [-]
@@ -2174,6 +2306,14 @@ class FlowParams:
         """
     @time_scheme.setter
     def time_scheme(self, arg0: MomentumTimeScheme) -> None:
+        ...
+    @property
+    def top(self) -> TopBoundary:
+        """
+        TopBoundary of the domain, default OPEN
+        """
+    @top.setter
+    def top(self, arg0: TopBoundary) -> None:
         ...
     @property
     def turbulence_bed_roughness(self) -> float:
@@ -2272,10 +2412,28 @@ class FlowParams:
     def viscous_bound(self, arg0: ViscousBound) -> None:
         ...
     @property
-    def viscous_substeps(self) -> int:
+    def viscous_scheme(self) -> ViscousScheme:
+        """
+        ViscousScheme of the viscous stresses (EXPLICIT: the forward-Euler reference), default IMPLICIT_VERTICAL
+        """
+    @viscous_scheme.setter
+    def viscous_scheme(self, arg0: ViscousScheme) -> None:
         ...
+    @property
+    def viscous_substeps(self) -> int:
+        """
+        the viscous stresses in up to this many substeps of a flow step [-], [1, 64]; 1: one explicit step, default 8
+        """
     @viscous_substeps.setter
     def viscous_substeps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def walls(self) -> WallCondition:
+        """
+        WallCondition of the bed and the end walls, default SLIP
+        """
+    @walls.setter
+    def walls(self, arg0: WallCondition) -> None:
         ...
 class DischargeTable:
     """
@@ -2768,7 +2926,9 @@ class CouplerParams:
     def __init__(self) -> None:
         ...
     def validate(self) -> None:
-        ...
+        """
+        ValueError naming the first parameter outside its range.
+        """
     @property
     def bandwidth(self) -> float:
         """
