@@ -14,12 +14,13 @@
 
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/vof_advection.h"
+#include "vofdem/common/numbers.h"
 
 namespace {
 
 using vofdem::Grid2D;
 
-const double kPi = std::acos(-1.0);
+using vofdem::kPi;
 
 struct Case {
   Grid2D grid;

@@ -23,12 +23,13 @@
 #include "vofdem/stones/clump_model.h"
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/wet_fraction.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kR = 0.024;   // the sphere of the sphere model's tests [m]
 constexpr double kD = 0.048;   // the library clumps' equivalent diameter [m]
 constexpr double kRd = 0.015;  // a dumbbell's sphere radius [m]

@@ -11,12 +11,13 @@
 #include "common/coupler_scenes.h"
 #include "vofdem/coupling/fluid_forces.h"
 #include "common/pinned_params.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 // a tank of square cells h with water below `level` and box stones (half-sides a, b) at pos
 Scene box_tank(double width, double height, double h, double level, const std::vector<double>& pos, double a,

@@ -8,11 +8,12 @@
 #include <vector>
 
 #include "vofdem/coupling/porosity_map.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 // slow obvious reference: midpoint rule on the length of each vertical chord inside [z0, z1]
 double reference_area(double cx, double cz, double r, double x0, double x1, double z0, double z1) {

@@ -15,12 +15,13 @@
 #include "vofdem/coupling/slab_volume.h"
 #include "vofdem/stones/dem_system.h"
 #include "common/pinned_params.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 using namespace vofdem::test;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kR = 0.024;
 
 // a still tank width x height [m] of square cells h [m], water below level [m], 3D spheres of radius kR at

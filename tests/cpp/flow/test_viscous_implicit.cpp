@@ -17,12 +17,13 @@
 #include "vofdem/flow/momentum.h"
 #include "vofdem/flow/vof_grid.h"
 #include "common/pinned_params.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 // single-phase kernel fields: water density, uniform viscosity mu [Pa s]
 struct Column {

@@ -15,6 +15,7 @@
 
 #include "vofdem/common/grid.h"
 #include "vofdem/flow/vof_advection.h"
+#include "vofdem/common/numbers.h"
 
 using vofdem::advect_vof;
 using vofdem::Grid2D;
@@ -26,7 +27,7 @@ using vofdem::vof_stable_dt;
 
 namespace {
 
-const double kPi = std::acos(-1.0);
+using vofdem::kPi;
 
 // slow obvious reference: clip the rectangle by the half-plane m.x <= alpha (Sutherland-Hodgman)
 // and take the shoelace area of the polygon left

@@ -15,11 +15,12 @@
 #include "vofdem/stones/clump.h"
 #include "vofdem/stones/clump_model.h"
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kR = 0.012;   // sub-sphere radius [m]
 constexpr double kC = 0.008;   // sub-sphere centre's distance from the clump's centre [m]
 constexpr double kRho = 2650.0;

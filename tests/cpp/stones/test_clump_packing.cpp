@@ -16,11 +16,12 @@
 #include "vofdem/stones/stone_packing.h"
 #include "vofdem/stones/weir_packing.h"
 #include "vofdem/stones/weir_packing_3d.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 // the sphere test's low weir (weir_packing_3d) of 2 cm clumps across a 10 cm flume (a clump's bounding
 // diameter is up to 1.5 d: 3 cm ones leave one pour layer)

@@ -6,13 +6,14 @@
 
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
 constexpr double kR = 0.024;  // 4.8 cm stone
 constexpr double kRho = 2650.0;
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 double sphere_mass(double r) { return kRho * 4.0 / 3.0 * kPi * r * r * r; }
 

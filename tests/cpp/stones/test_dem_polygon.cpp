@@ -11,11 +11,12 @@
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/polygon.h"
 #include "common/pin_hash.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kRho = 2650.0;
 
 std::uint64_t state_hash(const DEMSystem& s) { return test::state_hash(s.export_state()); }

@@ -12,11 +12,12 @@
 
 #include "vofdem/stones/dem_system.h"
 #include "common/pin_hash.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kR = 0.024;
 
 std::uint64_t state_hash(const DEMSystem& s) { return test::state_hash(s.export_state()); }

@@ -8,11 +8,12 @@
 
 #include "vofdem/stones/polygon.h"
 #include "vofdem/stones/polygon_contact.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 // the rectangle [-a, a] x [-b, b] (CCW), moved by (x, z) and turned by angle
 std::vector<double> box(double a, double b, double x = 0.0, double z = 0.0, double angle = 0.0) {

@@ -13,11 +13,12 @@
 
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/rolling_resistance.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kR = 0.024;
 constexpr double kRho = 2650.0;
 

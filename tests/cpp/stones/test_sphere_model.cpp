@@ -15,11 +15,12 @@
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/sphere_model.h"
 #include "vofdem/stones/wet_fraction.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kR = 0.024;
 constexpr double kG = 9.81;
 

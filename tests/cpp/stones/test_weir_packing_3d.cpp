@@ -8,11 +8,12 @@
 
 #include "vofdem/stones/weir_packing.h"
 #include "vofdem/stones/weir_packing_3d.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 
 // a low weir of 3 cm spheres across a 10 cm flume (three fixed rows): ~50 stones, packed in a second
 WeirSpec small_weir(std::uint64_t seed) {

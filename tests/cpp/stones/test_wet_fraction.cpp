@@ -10,12 +10,13 @@
 
 #include "vofdem/stones/dem_system.h"
 #include "vofdem/stones/wet_fraction.h"
+#include "vofdem/common/numbers.h"
 
 using namespace vofdem;
 
 namespace {
 constexpr double kR = 0.024;
-constexpr double kPi = 3.14159265358979323846;
+using vofdem::kPi;
 constexpr double kV = 4.0 / 3.0 * kPi * kR * kR * kR;
 }  // namespace
 
