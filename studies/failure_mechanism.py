@@ -3,8 +3,9 @@
 they lay (cross-section and plan view) and what the water pulled on them just before.
 
 The weir shown is the ensemble's median member: its members (completed, ensemble.csv) ordered by the
-discharge of their first stage (a member without a stage after all that have one, by its first removal
-among those, then by seed), the lower median of that order. For it, per stage: its discharge and
+discharge of their first stage, ties (e.g. stages at the release) by their second stage's, then their
+third's, then their first removal (a missing event after every discharge), then by seed; the lower median
+of that order. For it, per stage: its discharge and
 stones, where they lay at the start (the regions of vofdem.analysis; height above the bed over the weir's
 height; for 3D stones the share lying within one diameter of a side wall), and the water's force on them
 at the last snapshot before the stage began (the drag and the pressure-gradient force the run writes,
@@ -40,13 +41,15 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def median_member(df: pd.DataFrame) -> int:
-    """The seed of the lower median member: completed members ordered by their first stage's discharge
-    (none: after all that have one), then by their first removal (none: last), then by seed."""
+    """The seed of the lower median member: completed members ordered by their stages' discharges (the
+    first, then the second, then the third; none: after any discharge), then by their first removal, then
+    by seed."""
     done = df[df["status"] == "completed"]
     if done.empty:
         raise ValueError("the ensemble has no completed member")
-    key = done.assign(_s=done["stage1_lps"].fillna(math.inf), _r=done["first_removal_lps"].fillna(math.inf))
-    order = key.sort_values(["_s", "_r", "seed"], kind="stable")
+    cols = [c for c in ("stage1_lps", "stage2_lps", "stage3_lps", "first_removal_lps") if c in done]
+    key = done.assign(**{f"_{c}": done[c].astype(float).fillna(math.inf) for c in cols})
+    order = key.sort_values([f"_{c}" for c in cols] + ["seed"], kind="stable")
     return int(order["seed"].iloc[(len(order) - 1) // 2])
 
 

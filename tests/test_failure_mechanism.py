@@ -18,14 +18,20 @@ def _mod():
     return load_script("studies/failure_mechanism.py")
 
 
-def test_the_median_member_orders_by_first_stage_then_first_removal_then_seed():
+def test_the_median_member_orders_by_the_stages_then_first_removal_then_seed():
     df = pd.DataFrame({"seed": [0, 1, 2, 3, 4, 5], "status": ["completed"] * 5 + ["failed"],
                        "stage1_lps": [18.0, np.nan, 12.0, np.nan, 15.0, 11.0],
+                       "stage2_lps": [np.nan] * 6, "stage3_lps": [np.nan] * 6,
                        "first_removal_lps": [11.0, 20.0, 12.0, np.nan, 15.0, 11.0]})
     # completed, in order: seed 2 (12), 4 (15), 0 (18), 1 (no stage, a removal at 20), 3 (nothing);
     # the failed seed 5 is left out; the lower median of five is the third
     assert _mod().median_member(df) == 0
     assert _mod().median_member(df[df["seed"] != 3]) == 4  # of four, the second
+    # first stages alike (at the release): the second stage decides, then the third
+    ties = pd.DataFrame({"seed": [0, 1, 2, 3], "status": ["completed"] * 4, "stage1_lps": [10.06] * 4,
+                         "stage2_lps": [14.0, 15.5, 12.7, 14.0], "stage3_lps": [15.0, 19.4, 23.4, 13.0],
+                         "first_removal_lps": [10.06] * 4})
+    assert _mod().median_member(ties) == 3  # order 2, 3, 0, 1
     with pytest.raises(ValueError, match="no completed member"):
         _mod().median_member(df[df["status"] == "failed"])
 
