@@ -22,12 +22,15 @@ runs only the members not finished (one directory per ensemble under --out).
   reference's 16-84 % band) beside it.
 
 Writes studies/results/maeno2008_verdict<suffix>.md (+ _verdict.csv, _width.csv, _cost.csv) and
-docs/figures/maeno2008_verdict<suffix>_cost.png and _fragility.png; suffix '' (full), '_small', '_tiny'.
+docs/figures/maeno2008_verdict<suffix>_cost.png and _fragility.png; suffix '' (full), '_small', '_tiny',
+then '_<tag>' with --tag (a study of other scenes kept beside the main one; only the parts run are written).
 
     PYTHONPATH=python python3 studies/maeno2008_verdict.py            # the full study: 30 seeds (hours)
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --small    # the small version (minutes)
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --scheduler tcp://host:8786   # on a cluster
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --scenes maeno2008_rolling maeno2008_polygons
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --parts verdict --scenes \
+        maeno2008_spheres_rolling_consistent --seeds 0-9 --tag spheres   # the 3D spheres' verdict
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --redraw-cost   # the cost figure from its CSV
 """
 import argparse
@@ -91,6 +94,8 @@ def _parser():
     p.add_argument("--n-boot", type=int, default=1000, help="bootstrap resamples (default 1000)")
     p.add_argument("--out", type=Path, default=None,
                    help="ensembles' directory (default out/maeno2008_verdict<suffix>)")
+    p.add_argument("--tag", default=None, help="a name appended to the results' and figures' names "
+                   "(maeno2008_verdict<suffix>_<tag>), to keep a study of other scenes beside the main one")
     p.add_argument("--results", type=Path, default=ROOT / "studies" / "results")
     p.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
     p.add_argument("--redraw-cost", action="store_true", help="run nothing: draw the cost figure again from the "
@@ -129,6 +134,25 @@ def _client(workers, scheduler):
 
 def _size(args) -> str:
     return "tiny" if args.tiny else "small" if args.small else "full"
+
+
+def _suffix(args) -> str:
+    """The results' suffix: the size's, then the tag's."""
+    return SUFFIX[_size(args)] + (f"_{args.tag}" if args.tag else "")
+
+
+def _command(args, size: str) -> str:
+    """The options of the call that are not the defaults, as a command line."""
+    flag = {"full": "", "small": " --small", "tiny": " --tiny"}[size]
+    if list(args.parts) != list(PARTS):
+        flag += " --parts " + " ".join(args.parts)
+    if list(args.scenes) != list(SCENES):
+        flag += " --scenes " + " ".join(args.scenes)
+    flag += "".join(f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "knob_seeds", "tag")
+                    if getattr(args, k))
+    if args.knobs:
+        flag += " --knobs " + " ".join(args.knobs)
+    return flag + (" --no-reference-rerun" if args.no_reference_rerun else "")
 
 
 def run_study(args, build=None, log=print):
@@ -527,7 +551,7 @@ def _spread_band(ax, ref) -> None:
 
 def write_results(res, args, wall: float) -> Path:
     """The tables (markdown and CSV) and the two figures."""
-    size, sfx = res["size"], SUFFIX[res["size"]]
+    size, sfx = res["size"], _suffix(args)
     args.results.mkdir(parents=True, exist_ok=True)
     args.figures.mkdir(parents=True, exist_ok=True)
     base = args.results / f"maeno2008_verdict{sfx}"
@@ -547,9 +571,7 @@ def write_results(res, args, wall: float) -> Path:
     ran = _finished(res["out"]) - res["found"]
     where = (f"on the cluster at {args.scheduler}" if args.scheduler else "in this process" if args.workers == 0
              else f"on {args.workers or default_workers()} local worker process(es)")
-    flag = {"full": "", "small": " --small", "tiny": " --tiny"}[size] + "".join(
-        f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "knob_seeds")
-        if getattr(args, k))
+    flag = _command(args, size)
     if args.no_run:
         where = "(--no-run: tables of the members finished so far)"
     scene0 = next(iter(res["scenes"].values()))
@@ -569,11 +591,21 @@ def write_results(res, args, wall: float) -> Path:
             "the lognormal fit, and the scene's reference data.", ""]
     for n, s in res["scenes"].items():
         text += _config_md(n, s, res["verdict"][n])
-    text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by B; "
-             f"the paper does not give it), seeds {_seed_range(res['width_seeds'])}" + _height_note(res) + ".", ""]
-    text += _width_md(res)
+    if "width" in args.parts:
+        text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by "
+                 f"B; the paper does not give it), seeds {_seed_range(res['width_seeds'])}" + _height_note(res) + ".", ""]
+        text += _width_md(res)
+    if "cost" in args.parts:
+        text += _cost_sections(res, crows)
+    md = Path(f"{base}.md")
+    md.write_text("\n".join(text), encoding="utf-8")
+    return md
+
+
+def _cost_sections(res, crows) -> list:
+    """Accuracy against cost and the presets."""
     ref_scene = res["scenes"][res["cost_scene"]]
-    text += ["## Accuracy against cost", "",
+    text = ["## Accuracy against cost", "",
              f"Reference: `{res['cost_scene']}` (grid {ref_scene.grid.dx * 100:g} x {ref_scene.grid.dz * 100:g} cm, "
              f"CFL {ref_scene.numerics.cfl:g}, porosity {ref_scene.numerics.porosity_method}, "
              f"{ref_scene.numerics.dem_contact_steps:g} DEM steps per contact, ramp "
@@ -585,15 +617,13 @@ def write_results(res, args, wall: float) -> Path:
     text += ["## The fidelity presets", "", "The presets (`vofdem run SCENE --fidelity draft|standard|fine`, "
              "vofdem/fidelity.py) that the reference or a setting of this study ran, with their measured cost and "
              "shift from the reference:", ""] + _presets_md(res, crows)
-    md = Path(f"{base}.md")
-    md.write_text("\n".join(text), encoding="utf-8")
-    return md
+    return text
 
 
 def main(argv=None, build=None, log=print) -> Path:
     args = _parser().parse_args(argv)
     if args.redraw_cost:
-        sfx = SUFFIX[_size(args)]
+        sfx = _suffix(args)
         png = args.figures / f"maeno2008_verdict{sfx}_cost.png"
         fig_cost(cost_rows_from_csv(args.results / f"maeno2008_verdict{sfx}_cost.csv"), png)
         log(f"wrote {png}")

@@ -59,6 +59,21 @@ def test_the_scene_file_of_spheres_is_the_papers_scene_with_spheres():
     assert a == b
 
 
+def test_the_scene_of_rolling_spheres_is_the_sphere_scene_with_the_pulls_mu_r_and_the_consistent_coupling():
+    """scenes/maeno2008_spheres_rolling_consistent.toml: the sphere scene with the rolling resistance its
+    header names (the calibration's route, calibration.with_rolling) and the bed drag, nothing else."""
+    from vofdem.calibration import with_rolling
+
+    rolling = vofdem.load_scene(SCENES / "maeno2008_spheres_rolling_consistent.toml")
+    expected = with_rolling(vofdem.load_scene(SCENES / "maeno2008_spheres.toml"), 0.2)
+    expected.stones.drag_model = "bed"
+    expected.effects.rolling_resistance = True
+    a, b = rolling.to_dict(), expected.to_dict()
+    a.pop("name"), b.pop("name")
+    assert a == b
+    assert rolling.numerics.dem_dt == pytest.approx(1e-4 * 20.0 / 32.0, rel=1e-12)
+
+
 def test_a_scene_of_spheres_refuses_what_its_packing_cannot_do_naming_the_key():
     d = small_sphere_scene().to_dict()
     for key in ("height", "crest_length", "upstream_slope_deg", "downstream_slope_deg", "toe_x"):

@@ -258,3 +258,14 @@ def test_the_width_sweep_raises_the_domain_where_the_narrower_water_would_reach_
     assert v.sweep_height(s, [0.3, 0.4]) == 0.42 and v.sweep_height(s, [0.4]) == 0.40  # 0.38 + 0.0388 / 0.0155
     assert v.sweep_height(s, []) == v.sweep_height(s, [0.5]) == v.sweep_height(s, [0.6]) == 0.38
     assert v.sweep_height(s.replace(end_time=10.0), [0.3]) == 0.41  # 10 l/s held: 0.3017 -> 0.3225 m, 0.4008 m
+
+
+def test_the_coupling_in_words_names_3d_stones_by_their_drag_alone():
+    from vofdem.study import coupling
+
+    assert coupling(load_scene(ROOT / "scenes" / "maeno2008_rolling_consistent.toml")) == "consistent"
+    assert coupling(load_scene(ROOT / "scenes" / "maeno2008_rolling.toml")) == "paper's"
+    # spheres map their true void fraction whatever porosity_mapping says
+    assert coupling(load_scene(ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml")) == \
+        "consistent, true void fraction"
+    assert coupling(load_scene(ROOT / "scenes" / "maeno2008_spheres.toml")) == "paper's drag, true void fraction"

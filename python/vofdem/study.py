@@ -41,8 +41,12 @@ def stone_model(scene) -> str:
 
 
 def coupling(scene) -> str:
-    """The coupling in words: the paper's (sphere drag, eq. 11 with n_exp) or the consistent one."""
+    """The coupling in words: the paper's (sphere drag, eq. 11 with n_exp) or the consistent one; for 3D
+    stones, whose porosity is their true void fraction whatever the mapping key, by their drag alone."""
     st = scene.stones
+    if st.shape in ("sphere", "clump"):
+        return {"sphere": "paper's drag", "bed": "consistent"}.get(st.drag_model, f"{st.drag_model} drag") + \
+            ", true void fraction"
     if st.drag_model == "sphere" and st.porosity_mapping == "paper":
         return "paper's"
     if st.drag_model == "bed" and st.porosity_mapping == "bulk":
