@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "fields.h"
 #include "flags.h"
 #include "state.h"
 #include "views.h"
@@ -344,6 +345,10 @@ void bind_packing(py::module_& m) {
       .def_readwrite("seed", &WeirSpec::seed)
       .def_readwrite("settle_time_max", &WeirSpec::settle_time_max)
       .def_readwrite("rest_speed", &WeirSpec::rest_speed)
+      .def_readwrite("compaction_friction", &WeirSpec::compaction_friction,
+                     with_default("3D models: the stone-stone friction of the pour's rounds, a compaction before the "
+                                  "weir's own friction returns [-], in [0, 2]; -1: the stone model's own (clumps 0.1, "
+                                  "spheres none)", &WeirSpec::compaction_friction).c_str())
       .def_property(
           "shape", [](const WeirSpec& w) { return w.shape; }, [](WeirSpec& w, const std::string& name) { w.shape = name; })
       .def_property(
