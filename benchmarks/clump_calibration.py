@@ -16,7 +16,7 @@ A model meets: the angle if its mean lies in 37-41 deg; the pulls if each direct
 the paper's (the sphere study's criterion); the porosity if the prism's lies within 0.03 of 0.41.
 
 usage: PYTHONPATH=python python3 benchmarks/clump_calibration.py [--mu-r 0] [--stones 500] [--weirs 2]
-       [--per-seed 2] [--jobs 2]
+       [--per-seed 2] [--jobs 2] [--compaction-friction F]
 Writes benchmarks/results/clump_calibration.md. CPU times are each job's own process time.
 """
 import argparse
@@ -84,9 +84,10 @@ def core_porosity(s, box, n=40000, seed=0):
 
 
 def weir_job(args):
-    mu_r, seed, per_seed, hold, width = args
+    mu_r, seed, per_seed, hold, width, compaction = args
     t = time.process_time()
     sc = scene(mu_r, width)
+    sc.stones.compaction_friction = compaction  # the packing protocol (None: the clumps' own)
     sys_, rep = c3.pack_clump_weir(sc, seed, c3.ClumpMix())
     t_pack = time.process_time() - t
     w = sc.weir
@@ -125,11 +126,13 @@ def main():
     ap.add_argument("--hold", type=float, default=3.0)
     ap.add_argument("--width", type=float, default=0.5, help="flume width B of the packed weirs [m]")
     ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--compaction-friction", type=float, default=None,
+                    help="stone-stone friction of the weirs' pour rounds [-], in [0, 2] (unset: the clumps' own 0.1)")
     a = ap.parse_args()
     WIDTH[0] = a.width
     t0 = time.process_time()
-    jobs = [("heap", (m, 0, a.stones)) for m in a.mu_r] + [("weir", (m, s, a.per_seed, a.hold, a.width))
-                                                          for m in a.mu_r for s in range(a.weirs)]
+    jobs = [("heap", (m, 0, a.stones)) for m in a.mu_r] + [
+        ("weir", (m, s, a.per_seed, a.hold, a.width, a.compaction_friction)) for m in a.mu_r for s in range(a.weirs)]
 
     out = _run(_dispatch, jobs, a.jobs)
     heaps = [r for k, r in out if k == "heap"]
@@ -147,6 +150,9 @@ def main():
              f"Command: `{cmd}` (one run on a machine shared with other jobs; CPU: each job's process time).", "",
              f"Heap: {a.stones} clumps poured as the spheres' (calibration_3d.pour_cone) onto a rough disc of fixed "
              f"clumps. Weirs: `pack_weir` with `WeirSpec.shape = 'clump'` across B = {a.width:g} m (the Maeno trapezoid; "
+             + ("the pour's rounds at the clumps' own compaction friction" if a.compaction_friction is None else
+                f"the pour's rounds at friction {a.compaction_friction:g}") +
+             " (`WeirSpec.compaction_friction`), then the weir's own; "
              "the spheres' across 0.5 m); "
              "porosity of the prism (`weir_porosity_3d_spheres`, 2 mm grid) and of its core (40,000 random "
              "points in x within 0.1 m of the crest's middle, 2 d from the side walls, z from 1.5 d to H - d). "

@@ -92,3 +92,16 @@ def test_a_scene_of_clumps_refuses_a_step_too_long_and_explicit_stones_naming_th
     d["stones"].update(positions=[[0.55, 0.02]], diameters=[0.03])
     with pytest.raises(ValueError, match=r"stones.positions.*'clump'|'clump'.*stones.positions"):
         vofdem.Scene.from_dict(d).validate()
+
+
+def test_a_compaction_friction_out_of_range_or_for_plane_stones_is_refused_naming_the_key():
+    d = small_clump_scene().to_dict()
+    for bad in (-0.1, 2.5, float("nan")):
+        d["stones"].update(compaction_friction=bad)
+        with pytest.raises(ValueError, match="stones.compaction_friction"):
+            vofdem.Scene.from_dict(d).validate()
+    d["stones"].update(compaction_friction=0.3, shape="disc")
+    with pytest.raises(ValueError, match="stones.compaction_friction"):
+        vofdem.Scene.from_dict(d).validate()
+    d["stones"].update(shape="clump")
+    assert vofdem.Scene.from_dict(d).validate().stones.compaction_friction == 0.3

@@ -75,12 +75,14 @@ FEEDS = {
     "stones.diameter_spread": (WEIR, "d_spread", None),
     "stones.density": (WEIR, "density", None),
     "stones.shape": (WEIR, "shape", None),
+    "stones.compaction_friction": (WEIR, "compaction_friction", None),
 }
 # the fields the core leaves unset (0, refused by its check with the key named): the stones' material has
 # no default in the core and comes from the scene alone
 REQUIRED_BY_THE_CORE = {WEIR: {"d_mean", "density"}}
 # keys another key must be given with before they can move
-GIVEN_WITH = {"flume.outflow": {"flume.tailwater_level": 0.2}}
+GIVEN_WITH = {"flume.outflow": {"flume.tailwater_level": 0.2},
+              "stones.compaction_friction": {"stones.shape": "clump"}}  # the plane's packing has no compaction
 
 # the fields a scene sets from its geometry or the run (no option of their own), which may differ from
 # the core's defaults: the medium's gravity along the bed, the end walls and removal box of the stones,

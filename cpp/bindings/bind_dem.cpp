@@ -367,6 +367,9 @@ void bind_packing(py::module_& m) {
   def_field(ws, "seed", &WeirSpec::seed, "random seed of the diameters, shapes and lattice jitter [-]");
   def_field(ws, "settle_time_max", &WeirSpec::settle_time_max, "simulated time allowed each settling phase [s]");
   def_field(ws, "rest_speed", &WeirSpec::rest_speed, "the packing is at rest when every stone is slower [m/s]");
+  def_field(ws, "compaction_friction", &WeirSpec::compaction_friction,
+            "3D models: the stone-stone friction of the pour's rounds, a compaction before the weir's own friction "
+            "returns [-], in [0, 2]; -1: the stone model's own (clumps 0.1, spheres none)");
   ws.def_property(
       "shape", [](const WeirSpec& w) { return w.shape; }, [](WeirSpec& w, const std::string& name) { w.shape = name; },
       ("the stone model drawn, by its registered name (stone_model_names()), default '" + WeirSpec{}.shape + "'").c_str());

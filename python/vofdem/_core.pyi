@@ -1072,6 +1072,14 @@ class WeirSpec:
     def clump_ratio_short(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def compaction_friction(self) -> float:
+        """
+        3D models: the stone-stone friction of the pour's rounds, a compaction before the weir's own friction returns [-], in [0, 2]; -1: the stone model's own (clumps 0.1, spheres none), default -1
+        """
+    @compaction_friction.setter
+    def compaction_friction(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def crest(self) -> float:
         """
         crest length L_c [m], default 0.2

@@ -344,6 +344,7 @@ def weir_spec(scene: Scene):
     spec.x_toe, spec.z_bed = t["toe_x"], 0.0
     spec.d_mean, spec.d_spread, spec.density, spec.seed = st.diameter, st.diameter_spread, st.density, scene.seed
     spec.shape = st.shape
+    spec.compaction_friction = -1.0 if st.compaction_friction is None else st.compaction_friction
     front(st.shape).spec_options(st, spec)
     return spec
 

@@ -197,6 +197,10 @@ class Stones(_Section):
                                     "eq. (11) with n_exp inside each disc ('paper') or with the inner porosity "
                                     "1 - (1 - n_exp) / phi that makes the weir's mean porosity n_exp ('bulk'; phi: the "
                                     "packing's 2D solid fraction)")
+    compaction_friction: Optional[float] = _p(None, None, 0.0, 2.0, "3D stones' packing: the stone-stone friction of "
+                                              "the pour's rounds [-], a compaction before friction_stone returns "
+                                              "for a last settling; unset: the stone model's own (clumps 0.1, "
+                                              "spheres none: friction_stone throughout)")
     fix_bottom_layer: bool = _flag(True, "stones touching the bed are fixed to it (as in the paper)")
     # the choices are the stone models' registry (stone_model.h), each name written once there
     shape: str = _choice("disc", tuple(_core.stone_model_names()),
@@ -246,6 +250,10 @@ class Stones(_Section):
                              f"range [{self.polygon_vertices_min}, 16] (at least {prefix}.polygon_vertices_min)")
         # what the stone model cannot honour (stone_models.py)
         front(self.shape).check(self, prefix)
+        if self.compaction_friction is not None and front(self.shape).dimensions != 3:
+            raise ValueError(f"{prefix}.compaction_friction = {self.compaction_friction!r}: the plane's packing has "
+                             f"no compaction ({prefix}.shape = '{self.shape}'); leave it unset or use a 3D shape "
+                             "('sphere', 'clump')")
 
     def grading(self):
         """The sieve curve of the stones (grading.Grading) when one is given (grading_diameters and

@@ -38,6 +38,10 @@ void check_weir_spec(const WeirSpec& s) {
   require_positive("density", s.density);
   require_positive("settle_time_max", s.settle_time_max);
   require_positive("rest_speed", s.rest_speed);
+  // -1 (the model's own) or a friction
+  if (s.compaction_friction != -1.0 && !(s.compaction_friction >= 0.0 && s.compaction_friction <= 2.0))
+    throw std::invalid_argument("compaction_friction = " + std::to_string(s.compaction_friction) +
+                                " must be -1 (the stone model's own) or in [0, 2]");
   if (s.height < 2.0 * s.d_mean) require_in_closed("height", s.height, 2.0 * s.d_mean, INFINITY);
   check_clump_mix(s.clump);
 }
@@ -200,6 +204,10 @@ DEMSystem pack_weir(const WeirSpec& spec, const DEMParams& params, WeirPackingRe
   check_weir_spec(spec);
   // stones that also move across the flume: the 3D generator (weir_packing_3d.h)
   if (make_stone_model(spec.shape)->dimensions() == 3) return pack_weir_3d(spec, params, report);
+  // the plane's rounds settle at the weir's friction
+  if (spec.compaction_friction != -1.0)
+    throw std::invalid_argument("compaction_friction = " + std::to_string(spec.compaction_friction) +
+                                ": the plane's packing generator has no compaction (3D stone models only; -1: none)");
   const auto wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<StonePacking> packing = model_packing(spec);
   std::mt19937_64 rng(spec.seed);

@@ -165,8 +165,9 @@ DEMSystem pack_weir_3d(const WeirSpec& spec, const DEMParams& params, WeirPackin
   double t_total = 0.0;
   // a light compaction where the model asks for one: the rounds settle at a lower friction, then the weir's
   DEMParams pour = p;
-  const bool compacted = packing->pour_friction() >= 0.0;
-  if (compacted) pour.friction_stone = packing->pour_friction();
+  const double compaction = spec.compaction_friction >= 0.0 ? spec.compaction_friction : packing->pour_friction();
+  const bool compacted = compaction >= 0.0;
+  if (compacted) pour.friction_stone = compaction;
   DEMSystem box = make(pour, pile);
   for (int round = 0; round < packing->pour_rounds(); ++round) {
     const int added = pour_round(spec, width, off, d_max, rng, *packing, pile);

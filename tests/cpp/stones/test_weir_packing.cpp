@@ -85,6 +85,19 @@ TEST(WeirPacking, RefusesUnsetStoneDiameterAndDensityNamingTheKey) {
   EXPECT_NO_THROW(check_weir_spec(s));
 }
 
+// the plane's rounds settle at the weir's friction: a compaction friction is refused with the key named
+TEST(WeirPacking, ThePlanesGeneratorRefusesACompactionFrictionNamingTheKey) {
+  WeirSpec s = maeno_stones();
+  s.compaction_friction = 0.2;
+  WeirPackingReport r;
+  try {
+    pack_weir(s, DEMParams{}, r);
+    FAIL() << "the plane's generator took a compaction friction";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("compaction_friction"), std::string::npos) << e.what();
+  }
+}
+
 TEST(WeirPacking, SmallPolygonWeirIsPackedAtRestInsideTheOutlineAndReproducible) {
   WeirSpec s = maeno_stones();
   s.height = 0.12;

@@ -74,7 +74,8 @@ class StonePacking {
   virtual bool fits_3d(const PackedStones& pile, double x, double y, double z, const PackedStone& s,
                        double margin) const;
   // 3D models: the stone-stone friction [-] of the pour's rounds, a light compaction (the weir's own friction
-  // returns for a last settling before the trim); negative: the weir's own throughout
+  // returns for a last settling before the trim); negative: the weir's own throughout. WeirSpec::compaction_friction,
+  // when set, replaces it
   virtual double pour_friction() const { return -1.0; }
   // the DEM system of the placed stones (radii, density, fixed flags; the model and its shapes; for 3D
   // models their y and quaternions)

@@ -43,6 +43,10 @@ struct WeirSpec {
   std::uint64_t seed = 0;       // random seed of the diameters and lattice jitter
   double settle_time_max = 6.0; // simulated time allowed for each settling phase [s]
   double rest_speed = 1e-3;     // packing is at rest when every stone is slower [m/s]
+  // 3D models: the stone-stone friction [-] of the pour's rounds, in [0, 2], a compaction (the weir's own
+  // friction returns for a last settling before the trim); -1: the model's own (StonePacking::pour_friction:
+  // 0.1 for clumps, the weir's friction throughout for spheres). The plane's generator refuses any other
+  double compaction_friction = -1.0;
   // the stone model drawn (stone_model.h), by its registered name; the model must have a packing
   std::string shape = "disc";
   PolygonSpec polygon;          // how polygon stones are drawn (shape "polygon")
