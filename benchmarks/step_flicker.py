@@ -28,7 +28,6 @@ import argparse
 import math
 import os
 import platform
-import resource
 import sys
 import time
 from collections import Counter
@@ -45,15 +44,11 @@ from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 
 import grid_cost  # noqa: E402
+from grid_cost import cpu_seconds  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SHOWN = 12  # steps printed one by one per variant
 RETRIES = 4  # a breaching step taken again, halved, at most this often
-
-
-def cpu_seconds() -> float:
-    r = resource.getrusage(resource.RUSAGE_SELF)
-    return r.ru_utime + r.ru_stime
 
 
 def build(factor: float, settings) -> tuple:
