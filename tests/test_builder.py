@@ -70,13 +70,16 @@ def test_fluid_of_the_scene():
     assert p.flags & int(vofdem.FlowEffect.POROUS_FORCHHEIMER)
     # the numerics of the step count: second-order convection, column-implicit k-epsilon
     assert p.time_scheme == vofdem.MomentumTimeScheme.ADAMS_BASHFORTH2
+    assert p.step_control == vofdem.StepControl.THIS_STEP
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.VERTICAL_LINES
     assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL
     assert p.viscous_bound == vofdem.ViscousBound.ENERGY
     s.numerics.time_scheme, s.numerics.turbulence_scheme = "euler", "point_implicit"
+    s.numerics.step_control = "two_steps"
     s.numerics.viscous_scheme, s.numerics.viscous_bound = "implicit_vertical_from_start", "row_sum"
     p = build_fluid(s.validate()).params
     assert p.time_scheme == vofdem.MomentumTimeScheme.EULER
+    assert p.step_control == vofdem.StepControl.TWO_STEPS
     assert p.turbulence_time_scheme == vofdem.KEpsilonTimeScheme.POINT_IMPLICIT
     assert p.viscous_scheme == vofdem.ViscousScheme.IMPLICIT_VERTICAL_FROM_START
     assert p.viscous_bound == vofdem.ViscousBound.ROW_SUM

@@ -24,6 +24,7 @@ FEEDS = {
     "numerics.pressure_solver": (FLOW, "pressure_solver", None),
     "numerics.pressure_tolerance": (FLOW, "pressure_tol", None),
     "numerics.time_scheme": (FLOW, "time_scheme", None),
+    "numerics.step_control": (FLOW, "step_control", None),
     "numerics.turbulence_scheme": (FLOW, "turbulence_time_scheme", None),
     "numerics.turbulence_cfl": (FLOW, "turbulence_cfl", None),
     "numerics.turbulence_production": (FLOW, "turbulence_production", None),

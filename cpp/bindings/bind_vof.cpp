@@ -105,6 +105,10 @@ void bind_vof(py::module_& m) {
       .value("EULER", MomentumTimeScheme::kEuler, "forward Euler of the explicit momentum terms (first order)")
       .value("ADAMS_BASHFORTH2", MomentumTimeScheme::kAdamsBashforth2,
              "variable-step Adams-Bashforth 2 of the explicit momentum terms (second order)");
+  py::enum_<StepControl>(m, "StepControl", "The advective limit a flow step is taken under (FlowParams.step_control).")
+      .value("THIS_STEP", StepControl::kThisStep, "the limit of the step's start")
+      .value("TWO_STEPS", StepControl::kTwoSteps,
+             "the smaller of the limits of this step's start and the last step's: a two-step flicker is not chased");
   py::enum_<CornerViscosity>(m, "CornerViscosity",
                                "Viscosity [Pa s] of a cell corner, where the shear stress lives, from its four cells "
                                "(FlowParams.corner_viscosity).")
@@ -150,6 +154,7 @@ void bind_vof(py::module_& m) {
                      with_default("CornerViscosity of the shear stress at a cell corner", &FlowParams::corner_viscosity)
                          .c_str())
       .def_readwrite("time_scheme", &FlowParams::time_scheme, "MomentumTimeScheme of the explicit momentum terms")
+      .def_readwrite("step_control", &FlowParams::step_control, "StepControl: the advective limit of one step or the last two")
       .def_readwrite("flags", &FlowParams::flags, "FlowEffect bits of the effects that are on")
       .def("validate", &FlowParams::validate, "ValueError naming the first parameter outside its range.");
 
@@ -295,6 +300,8 @@ void bind_vof(py::module_& m) {
            "flow steps taken")
       .def_property("last_dt", &VOFGrid::last_dt, &VOFGrid::set_last_dt,
                     "the last step [s] the growth limit starts from (0: none yet, initial_dt applies)")
+      .def_property_readonly("last_advective", &VOFGrid::last_advective,
+                             "the advective limit [s] measured at the last step's start (0: none)")
       .def_property_readonly("retried_steps", &VOFGrid::retried_steps,
                              "steps advance() took again, shorter, after a CFL breach")
       .def_property_readonly("prev_dt", &VOFGrid::prev_dt,

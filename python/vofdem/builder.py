@@ -246,6 +246,7 @@ def flow_params(scene: Scene):
     p.viscous_bound = {"energy": _core.ViscousBound.ENERGY, "row_sum": _core.ViscousBound.ROW_SUM}[n.viscous_bound]
     p.time_scheme = {"adams_bashforth2": _core.MomentumTimeScheme.ADAMS_BASHFORTH2,
                      "euler": _core.MomentumTimeScheme.EULER}[n.time_scheme]
+    p.step_control = {"this_step": _core.StepControl.THIS_STEP, "two_steps": _core.StepControl.TWO_STEPS}[n.step_control]
     p.turbulence_time_scheme = {"vertical_lines": _core.KEpsilonTimeScheme.VERTICAL_LINES,
                                 "point_implicit": _core.KEpsilonTimeScheme.POINT_IMPLICIT,
                                 "alternating_lines": _core.KEpsilonTimeScheme.ALTERNATING_LINES}[n.turbulence_scheme]

@@ -367,6 +367,9 @@ class Numerics(_Section):
                                    "(water volume drift about 1e-11 per step)", "(]")
     time_scheme: str = _choice("adams_bashforth2", ("adams_bashforth2", "euler"),
                                "momentum convection: Adams-Bashforth 2 (second order) or forward Euler")
+    step_control: str = _choice("this_step", ("this_step", "two_steps"),
+                                "the advective limit a flow step is taken under: its start's, or the smaller of "
+                                "its start's and the last step's (a two-step flicker of the limit is not chased)")
     turbulence_scheme: str = _choice("vertical_lines", ("vertical_lines", "point_implicit", "alternating_lines"),
                                      "k-epsilon transport: columns implicit (step bounded by the horizontal "
                                      "faces), point-implicit (bounded by all faces), or rows then columns "

@@ -49,6 +49,9 @@ void FlowParams::validate() const {
   if (static_cast<int>(time_scheme) < 0 || static_cast<int>(time_scheme) > 1)
     throw std::invalid_argument("time_scheme = " + std::to_string(static_cast<int>(time_scheme)) +
                                 " is outside the allowed values {0 (kEuler), 1 (kAdamsBashforth2)}");
+  if (static_cast<int>(step_control) < 0 || static_cast<int>(step_control) > 1)
+    throw std::invalid_argument("step_control = " + std::to_string(static_cast<int>(step_control)) +
+                                " is outside the allowed values {0 (kThisStep), 1 (kTwoSteps)}");
   if (static_cast<int>(viscous_scheme) < 0 || static_cast<int>(viscous_scheme) > 3)
     throw std::invalid_argument("viscous_scheme = " + std::to_string(static_cast<int>(viscous_scheme)) +
                                 " is outside the allowed values {0 (kExplicit), 1 (kImplicitVertical), "
@@ -406,6 +409,10 @@ FlowStableDt VOFGrid::stable_dt_terms() const {
     }
   }
   s.advective = rate > 0.0 ? params_.cfl / rate : kInf;
+  advective_seen_ = {step_count_, s.advective};
+  // a limit that flickers from one step to the next: its low points, not its high ones
+  if (params_.step_control == StepControl::kTwoSteps && last_advective_ > 0.0)
+    s.advective = std::min(s.advective, last_advective_);
   // the cell beside the binding face (inside the grid at a boundary face)
   if (index >= 0) {
     const int nx = grid_.nx();
@@ -799,6 +806,8 @@ void VOFGrid::step(double dt) {
   face_w_prev.swap(snapshot_->face_w);
   prev_dt_ = dt;
   time_ += dt;
+  // the limit measured for this step (none when the caller chose dt without asking)
+  last_advective_ = advective_seen_.step == step_count_ ? advective_seen_.limit : 0.0;
   ++step_count_;
   last_dt_ = dt;
 }

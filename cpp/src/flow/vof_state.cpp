@@ -54,6 +54,7 @@ void VOFGrid::export_state(FlowState& s) const {
   s.time = time_;
   s.step_count = step_count_;
   s.last_dt = last_dt_;
+  s.last_advective = last_advective_;
   s.inlet_volume = inlet_volume_;
   s.net_inflow_volume = net_inflow_volume_;
   s.dilatation_volume = dilatation_volume_;
@@ -67,6 +68,7 @@ void VOFGrid::export_state(FlowState& s) const {
 void VOFGrid::check_state(const FlowState& s) const {
   for (const FlowField& f : kFlowFields) require_size(f.key, s.*f.state, size_of(grid_, f.where));
   require_non_negative("last_dt", s.last_dt);
+  require_non_negative("last_advective", s.last_advective);
   require_non_negative("prev_dt", s.prev_dt);
   if (s.prev_dt > 0.0) {
     require_size("face_u_prev", s.face_u_prev, size_of(grid_, kFacesX));
@@ -91,6 +93,8 @@ void VOFGrid::import_state(const FlowState& s) {
   time_ = s.time;
   step_count_ = s.step_count;
   last_dt_ = s.last_dt;
+  last_advective_ = s.last_advective;
+  advective_seen_ = {};
   // the step history of AB2 (none: the next step is forward Euler)
   if (s.prev_dt > 0.0) {
     face_u_prev = s.face_u_prev;
@@ -116,6 +120,7 @@ void state::flow_to_map(FlowState& f, StateMap& s) {
   s["fluid/time"] = {f.time};
   s["fluid/step_count"] = {static_cast<double>(f.step_count)};
   s["fluid/last_dt"] = {f.last_dt};
+  s["fluid/last_advective"] = {f.last_advective};
   s["fluid/prev_dt"] = {f.prev_dt};
   s["fluid/face_u_prev"] = std::move(f.face_u_prev);
   s["fluid/face_w_prev"] = std::move(f.face_w_prev);
@@ -140,6 +145,7 @@ FlowState state::flow_from_map(const StateMap& s, const Grid2D& g) {
   f.time = scalar("fluid/time", false);
   f.step_count = static_cast<long long>(scalar("fluid/step_count", false));
   f.last_dt = scalar("fluid/last_dt", true);
+  f.last_advective = scalar("fluid/last_advective", true);
   f.prev_dt = scalar("fluid/prev_dt", true);
   if (f.prev_dt > 0.0) {
     f.face_u_prev = entry(s, "fluid/face_u_prev", size_of(g, kFacesX));

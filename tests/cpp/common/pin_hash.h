@@ -13,13 +13,13 @@ namespace vofdem::test {
 // wall_mr), the k-epsilon model's state (turbulence/...), the water level each stone's wet fraction
 // follows (stone_water_level), the linearised drag handed to the DEM (stone_drag_coef, stone_drag_vel), and
 // the fluid's boundary budget and time-scheme history (fluid/net_inflow_volume, prev_dt, face_u_prev,
-// face_w_prev, dilatation_volume). They are left out of the hash, so that it covers the same arrays as
-// when the pins were taken; rolling_springs_zero() checks the springs.
+// face_w_prev, dilatation_volume, last_advective). They are left out of the hash, so that it covers the
+// same arrays as when the pins were taken; rolling_springs_zero() checks the springs.
 inline bool added_after_pins(const std::string& key) {
   static const char* const kAdded[] = {"contact_mr",          "wall_mr",           "stone_water_level",
                                        "stone_drag_coef",     "stone_drag_vel",     "fluid/net_inflow_volume",
                                        "fluid/prev_dt",       "fluid/face_u_prev", "fluid/face_w_prev",
-                                       "fluid/dilatation_volume"};
+                                       "fluid/dilatation_volume", "fluid/last_advective"};
   const std::string k = key.rfind("dem/", 0) == 0 ? key.substr(4) : key;
   for (const char* a : kAdded)
     if (k == a) return true;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/coupler_scenes.h"
@@ -194,6 +195,54 @@ TEST(VOFTimeStep, StartsAtInitialDtAndGrowsByAtMostTheFactor) {
   }
   EXPECT_GE(grown, 3);  // the growth limit was the binding term at the start
   EXPECT_NEAR(flow.water_volume(), v0, 1e-10 * v0);
+}
+
+TEST(VOFTimeStep, TwoStepControlTakesTheSmallerOfThisAndTheLastStepsAdvectiveLimit) {
+  // a fast face (0.2 m/s) sets the first limit; then a four times slower one: kTwoSteps keeps the
+  // first step's limit for the second, kThisStep takes the new one
+  const Grid2D g = Grid2D::uniform(20, 10, 0.2, 0.1);
+  const int face = g.face_x(10, 2);
+  auto limits = [&g, face](StepControl control) {
+    FlowParams p = test::pinned_flow_params();
+    p.step_control = control;
+    VOFGrid flow(g, p);
+    flow.fill_water_below(0.05);
+    flow.face_u[face] = 0.2;
+    const double first = flow.stable_dt_terms().advective;
+    flow.step(1e-4);
+    EXPECT_EQ(flow.last_advective(), first);
+    std::fill(flow.face_u.begin(), flow.face_u.end(), 0.0);
+    std::fill(flow.face_w.begin(), flow.face_w.end(), 0.0);
+    flow.face_u[face] = 0.05;
+    return std::make_pair(first, flow.stable_dt_terms().advective);
+  };
+  const auto [first, next] = limits(StepControl::kThisStep);
+  EXPECT_DOUBLE_EQ(next, 4.0 * first);
+  const auto [first2, next2] = limits(StepControl::kTwoSteps);
+  EXPECT_EQ(first2, first);
+  EXPECT_EQ(next2, first);
+  // a step whose length the caller chose without asking measured no limit: nothing is kept
+  FlowParams p = test::pinned_flow_params();
+  p.step_control = StepControl::kTwoSteps;
+  VOFGrid flow(g, p);
+  flow.fill_water_below(0.05);
+  flow.step(1e-4);
+  EXPECT_EQ(flow.last_advective(), 0.0);
+  // the kept limit is state: an exported and imported flow takes the same next step
+  flow.face_u[face] = 0.2;
+  const double limit = flow.stable_dt_terms().advective;
+  flow.step(1e-4);
+  FlowState s;
+  flow.export_state(s);
+  EXPECT_EQ(s.last_advective, limit);
+  VOFGrid copy(g, p);
+  copy.import_state(s);
+  EXPECT_EQ(copy.last_advective(), limit);
+  EXPECT_EQ(copy.stable_dt_terms().advective, flow.stable_dt_terms().advective);
+  s.last_advective = -1.0;
+  EXPECT_THROW(copy.import_state(s), std::invalid_argument);
+  p.step_control = static_cast<StepControl>(2);
+  EXPECT_THROW(VOFGrid(g, p), std::invalid_argument);
 }
 
 TEST(VOFTimeStep, AdvanceCutToItsEndKeepsTheStableStepForTheGrowth) {

@@ -114,6 +114,11 @@ enum class CornerViscosity { kArithmetic = 0, kHarmonic = 1 };
 // projection and the semi-implicit porous resistance are kept. The first step (and one after
 // clear_step_history()) is forward Euler
 enum class MomentumTimeScheme { kEuler = 0, kAdamsBashforth2 = 1 };
+// the advective limit a step is taken under: the Courant number's of the step's start (kThisStep), or
+// the smaller of that and the last step's (kTwoSteps). With AB2 at cfl 0.5 the limit can flicker from
+// one step to the next (by 0.83 / 1.20 in the overflow of the Maeno grid four times as fine,
+// docs/vof_grid.md); kTwoSteps does not chase its high points, each of which the growth cap then cuts
+enum class StepControl { kThisStep = 0, kTwoSteps = 1 };
 
 // the largest accepted FlowParams::cfl: the split VOF advection stays bounded up to it (vof_advection.h)
 constexpr double kMaxFlowCfl = 0.5;
@@ -156,6 +161,7 @@ struct FlowParams {
   int viscous_substeps = 8;
   CornerViscosity corner_viscosity = CornerViscosity::kHarmonic;    // kArithmetic: the plain mean
   MomentumTimeScheme time_scheme = MomentumTimeScheme::kAdamsBashforth2;  // convection; kEuler: first order
+  StepControl step_control = StepControl::kThisStep;  // the advective limit of one step or the last two
   std::uint32_t flags = kFlowDefault;                  // FlowEffect bits
   KEpsilonParams turbulence;  // k-epsilon constants, wall roughness, inflow turbulence (kFlowTurbulence)
 
@@ -191,6 +197,7 @@ struct FlowState {
   std::vector<double> face_u_prev, face_w_prev;
   double prev_dt = 0.0;
   double time = 0.0, last_dt = 0.0;  // [s]
+  double last_advective = 0.0;  // the advective limit the last step was measured under [s] (0: none)
   long long step_count = 0;
   double inlet_volume = 0.0, net_inflow_volume = 0.0, dilatation_volume = 0.0;  // [m^2]
   DischargeTable discharge;
@@ -280,6 +287,9 @@ class VOFGrid {
   // applies); part of the state (checkpoints)
   double last_dt() const { return last_dt_; }
   void set_last_dt(double dt);
+  // the advective limit [s] measured at the last step's start (0: none; StepControl::kTwoSteps takes the
+  // smaller of it and the next step's); part of the state
+  double last_advective() const { return last_advective_; }
   FlowStableDt stable_dt_terms() const;
   double stable_dt() const { return stable_dt_terms().min(); }
   // one step of dt [s] (stages: see the top of this file); throws std::runtime_error naming the stage,
@@ -391,6 +401,13 @@ class VOFGrid {
   double time_ = 0.0;
   long long step_count_ = 0;
   double last_dt_ = 0.0;  // see last_dt()
+  double last_advective_ = 0.0;  // see last_advective()
+  // the advective limit stable_dt_terms() measured and the step it was measured for: step() keeps it
+  struct AdvectiveSeen {
+    long long step = -1;
+    double limit = 0.0;
+  };
+  mutable AdvectiveSeen advective_seen_;
   long long retried_steps_ = 0;  // see retried_steps()
   double prev_dt_ = 0.0;  // see prev_dt()
   std::vector<double> face_u_ext_, face_w_ext_;  // the extrapolated velocities of AB2
