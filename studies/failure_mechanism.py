@@ -102,7 +102,7 @@ def results_md(ens: Path, seed: int, df: pd.DataFrame, scene, analysis, rows, fi
     done = df[df["status"] == "completed"]
     lines = [f"# The failure's mechanism: `{scene.name}`, packing {seed}", "",
              f"Written by `studies/failure_mechanism.py {ens.name} ...` from the ensemble `{ens}` "
-             f"({len(done)} completed members): the median member by its first stage (the module's "
+             f"({len(done)} completed members): the median member by its stages (the module's "
              "docstring), packing (seed) " + str(seed) + ". Loads: the drag and pressure-gradient force of the "
              "last snapshot before each stage began, in units of each stone's submerged weight (x "
              "downstream, z up); 'others': the loose stones of the same regions still in place then.", ""]
