@@ -557,11 +557,13 @@ def write_results(res, args, wall: float) -> Path:
     base = args.results / f"maeno2008_verdict{sfx}"
     vrows = [r for n, s in res["scenes"].items() for r in verdict_rows(n, s, res["verdict"][n])]
     pd.DataFrame(vrows).to_csv(f"{base}_verdict.csv", index=False, lineterminator="\n")
-    pd.DataFrame(width_rows(res)).to_csv(f"{base}_width.csv", index=False, lineterminator="\n")
+    if "width" in args.parts:
+        pd.DataFrame(width_rows(res)).to_csv(f"{base}_width.csv", index=False, lineterminator="\n")
     crows = cost_rows(res, args.n_boot)
-    pd.DataFrame(crows).to_csv(f"{base}_cost.csv", index=False, lineterminator="\n")
     cost_png, frag_png = (args.figures / f"maeno2008_verdict{sfx}_{k}.png" for k in ("cost", "fragility"))
-    fig_cost(crows, cost_png)
+    if "cost" in args.parts:
+        pd.DataFrame(crows).to_csv(f"{base}_cost.csv", index=False, lineterminator="\n")
+        fig_cost(crows, cost_png)
     by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
     fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
     frames = [*res["verdict"].values(), *res["cost"].values()] + [
@@ -582,8 +584,8 @@ def write_results(res, args, wall: float) -> Path:
             f"{scene0.duration:g} s simulated per member, {cpu / 60:.1f} CPU-minutes in all. The last call ran {ran} "
             f"members (found {res['found']} finished) in {wall / 60:.1f} min {where} ({os.cpu_count()} cores, load "
             f"average {os.getloadavg()[0]:.1f} at the end). Ensembles in "
-            f"`{_shown(res['out'])}/` (resumable). Figures: `docs/figures/{cost_png.name}`, "
-            f"`docs/figures/{frag_png.name}`.",
+            f"`{_shown(res['out'])}/` (resumable). Figures: "
+            + ", ".join(f"`docs/figures/{p.name}`" for p in (cost_png, frag_png) if p.exists()) + ".",
             "", "## The verdict", "",
             "Per event: members in which it happened (in brackets those in which it happened at the first discharge "
             "a run could see it, when the stones were released), the Kaplan-Meier median and 16-84 % band (members "
