@@ -94,14 +94,23 @@ def stage_rows(data, analysis, scene) -> list:
     return rows
 
 
+def _shown(path: Path) -> str:
+    """A path relative to the project when inside it, else its last three parts (no machine's path in a
+    committed page)."""
+    try:
+        return str(Path(path).resolve().relative_to(ROOT))
+    except ValueError:
+        return str(Path(*Path(path).parts[-3:]))
+
+
 def _f(v, fmt="{:.2f}") -> str:
     return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
 
 
-def results_md(ens: Path, seed: int, df: pd.DataFrame, scene, analysis, rows, figures) -> str:
+def results_md(ens: Path, tag: str, seed: int, df: pd.DataFrame, scene, analysis, rows, figures) -> str:
     done = df[df["status"] == "completed"]
     lines = [f"# The failure's mechanism: `{scene.name}`, packing {seed}", "",
-             f"Written by `studies/failure_mechanism.py {ens.name} ...` from the ensemble `{ens}` "
+             f"Written by `studies/failure_mechanism.py {_shown(ens)} --tag {tag}` "
              f"({len(done)} completed members): the median member by its stages (the module's "
              "docstring), packing (seed) " + str(seed) + ". Loads: the drag and pressure-gradient force of the "
              "last snapshot before each stage began, in units of each stone's submerged weight (x "
@@ -122,7 +131,7 @@ def results_md(ens: Path, seed: int, df: pd.DataFrame, scene, analysis, rows, fi
     n_rem = int(np.isfinite(analysis.removal_time).sum())
     lines += ["", f"Stones removed in all: {n_rem} of {analysis.removal_time.size} ({len(analysis.isolated)} "
               f"outside any stage); crest lowering at the end {1e3 * analysis.crest_lowering[-1]:.1f} mm.", "",
-              "Figures: " + ", ".join(f"`{p.relative_to(ROOT) if p.is_relative_to(ROOT) else p}`" for p in figures),
+              "Figures: " + ", ".join(f"`{_shown(p)}`" for p in figures),
               ""]
     return "\n".join(lines)
 
@@ -152,7 +161,7 @@ def main(argv=None):
     rows = stage_rows(data, analysis, scene)
     args.results.mkdir(parents=True, exist_ok=True)
     out = args.results / f"failure_mechanism_{args.tag}.md"
-    out.write_text(results_md(args.ensemble, seed, df, scene, analysis, rows, [p for _, p in figs]), encoding="utf-8")
+    out.write_text(results_md(args.ensemble, args.tag, seed, df, scene, analysis, rows, [p for _, p in figs]), encoding="utf-8")
     print(out)
 
 
