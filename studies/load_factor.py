@@ -226,6 +226,8 @@ def main(argv=None):
     ap.add_argument("--tag", default="spheres", help="name of the results and figure")
     ap.add_argument("--results", type=Path, default=ROOT / "studies" / "results")
     ap.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
+    ap.add_argument("--no-run", action="store_true",
+                    help="run nothing: the tables of the cases finished so far (in --out)")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "load_factor",
                     help="where the finished cases are kept (a second call resumes; default out/load_factor)")
     args = ap.parse_args(argv)
@@ -249,6 +251,8 @@ def main(argv=None):
             for seed in parse_seeds(args.seeds):
                 if (base.name, float(q), seed) in done:
                     cases.append(done[(base.name, float(q), seed)])
+                    continue
+                if args.no_run:
                     continue
                 scene = base.replace(seed=seed)
                 scene.hydrograph.discharge_start_lps = float(q)
@@ -275,6 +279,8 @@ def main(argv=None):
     if args.spin_up is not None:
         parts += ["--spin-up", f"{args.spin_up:g}"]
     parts += ["--tag", args.tag]
+    if not cases:
+        raise ValueError(f"no case of these scenes, discharges and seeds has finished in '{args.out}'")
     args.results.mkdir(parents=True, exist_ok=True)
     out = args.results / f"load_factor_{args.tag}.md"
     out.write_text(results_md(args, cases, " ".join(parts)), encoding="utf-8")

@@ -2,6 +2,7 @@
 frozen, on a small weir of 3D spheres (tests/test_sphere_scenes.py's): nothing moves without load, a load
 large enough moves stones, a replay from the same state repeats itself, and the results file says it."""
 import numpy as np
+import pytest
 
 from script_loader import load_script
 from test_sphere_scenes import small_sphere_scene
@@ -56,3 +57,11 @@ def test_the_results_file_names_the_command_and_each_member(tmp_path):
                      "--figures", str(tmp_path), "--out", str(tmp_path)])
     assert again[0]["cpu_spin_up"] == cases[0]["cpu_spin_up"]
     assert (tmp_path / "load_factor_t.md").read_text() == text
+    # --no-run: the tables of the finished cases only (seed 1 has not run), and none at all is an error
+    only = lf.main(["--scenes", str(scene_file), "--seeds", "0-1", "--mu-r", "0", "0.5", "--levels", "0", "400",
+                    "--hold", "0.05", "--spin-up", "0.3", "--tag", "t", "--results", str(tmp_path),
+                    "--figures", str(tmp_path), "--out", str(tmp_path), "--no-run"])
+    assert [c["seed"] for c in only] == [0]
+    with pytest.raises(ValueError, match="no case"):
+        lf.main(["--scenes", str(scene_file), "--seeds", "5", "--tag", "t", "--out", str(tmp_path), "--no-run",
+                 "--results", str(tmp_path), "--figures", str(tmp_path)])
