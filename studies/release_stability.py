@@ -266,8 +266,11 @@ def figure(rows, configs, heaps, path: Path) -> None:
                 mfc="none" if cfg.shape == "clump" else None, ms=7)
     ax.set_xlabel("dry heap angle of repose [deg] (calibration)")
     ax.set_ylabel("stones lost at the release")
+    ax.set_yscale("symlog", linthresh=10.0)  # a few stones and a collapse of hundreds on one axis
     ax.axvspan(37.0, 41.0, color="0.9", zorder=0, label="quarried stone 37-41 deg")
-    ax.set_ylim(bottom=-0.5)
+    ax.set_ylim(bottom=0.0)
+    ticks = [0, 1, 2, 5, 10, 20, 50, 100, 200, 500]
+    ax.set_yticks(ticks, [str(t) for t in ticks])
     ax.legend(fontsize=8)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
