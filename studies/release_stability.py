@@ -54,6 +54,8 @@ from vofdem.scene import load_scene  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKING_FILE = "packing.json"
+NO_RUN_NOTE = (" With --no-run: the tables of the members finished there, which earlier calls of this script ran "
+               "(a configuration or a set of seeds at a time); 'not run': a member no call ran.")
 # the whole slope's surface: the pull's selection (calibration.PullSetup) from the bed to the crest
 WHOLE_SLOPE = PullSetup(z_low=0.0, z_high=1.0)
 # the downstream slope with its shoulder (vofdem.analysis regions of the stones' initial places)
@@ -210,7 +212,7 @@ def results_md(args, base, configs, rows, summary, command) -> str:
              f"{rel:g} s spin-up with the stones held and {args.after:g} s of the ramp after the release "
              f"({q(rel + 1e-6):.2f} to {q(rel + args.after):.2f} l/s), one member after the other in one process "
              "on a machine shared with other jobs (2 cores, load about 3-6). Ensembles: `"
-             f"{_shown(args.out)}/<configuration>/`.", "",
+             f"{_shown(args.out)}/<configuration>/`." + NO_RUN_NOTE * args.no_run, "",
              f"Lost at the release: stones removed (moved more than their diameter) within {args.window:g} s after "
              "it; a stage at the release: a stage (vofdem.analysis) beginning in that window. Loads: the last "
              "snapshot before the release (stones held), drag + pressure-gradient force on the downstream slope's "
@@ -332,7 +334,7 @@ def main(argv=None) -> Path:
     command = ("PYTHONPATH=python python3 studies/release_stability.py" + (f" --scene {_shown(args.scene)}"
                if args.scene.resolve() != p.get_default("scene").resolve() else "") + (" --quick" if args.quick else "")
                + f" --seeds {args.seeds} --mu-r {args.mu_r} --clump-mu-r '{args.clump_mu_r}' --after {args.after:g}"
-               f" --window {args.window:g}")
+               f" --window {args.window:g}" + (" --no-run" if args.no_run else ""))
     figure(rows, configs, heaps, args.figure)
     args.results.parent.mkdir(parents=True, exist_ok=True)
     args.results.write_text(results_md(args, base, configs, rows, summary, command), encoding="utf-8")
