@@ -386,7 +386,20 @@ def _width_md(res) -> list:
         notes.append(f"B = {res['base_width']:g} m: the events and stage shares are the rows of the earlier study "
                      "named, over its own seeds (not paired with the sweep's; its crest lowering and CPU time are "
                      "in its own page).")
-    return lines + [""] + [x for n in notes for x in (n, "")]
+    return lines + [""] + [x for n in notes for x in (n, "")] + _width_members_md(res)
+
+
+def _width_members_md(res) -> list:
+    """The members run, one row each: a few seeds are read member by member, not by their medians."""
+    lines = ["| B [m] | seed | stones | first removal [l/s] | stage 1 [l/s] (stones) | stage 2 | stage 3 | stages | "
+             "removed | crest lowering [mm] | CPU [s] |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    stage = lambda r, k: "-" if pd.isna(r[f"stage{k}_lps"]) else f"{r[f'stage{k}_lps']:.2f} ({r[f'stage{k}_stones']})"  # noqa: E731
+    for w, df in width_frames(res).items():
+        for _, r in df[df["status"] == "completed"].sort_values("seed").iterrows():
+            lines.append(f"| {w:g} | {r['seed']} | {r['stones']} | {_q(r['first_removal_lps'])} | {stage(r, 1)} | "
+                         f"{stage(r, 2)} | {stage(r, 3)} | {r['stages']} | {r['removed']} | "
+                         f"{_q(r['crest_lowering_mm'])} | {_q(r['cpu_seconds'], '{:.1f}')} |")
+    return ["The members (stones: those of the run's analysis):", ""] + lines + [""]
 
 
 def fig_width(rows, path: Path):
