@@ -14,7 +14,7 @@ from script_loader import load_script
 from vofdem.cli import main as cli_main
 from vofdem.fragility import empirical_quantile
 from vofdem.scene import Scene, load_scene
-from vofdem.study import event_summary, knob_settings, km_quantiles, median_shift, stage_fractions
+from vofdem.study import event_summary, knob_settings, km_quantiles, median_shift, shown_path, stage_fractions
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -231,6 +231,13 @@ def test_the_width_part_alone_takes_the_scenes_own_width_from_an_earlier_verdict
     assert (tmp_path / "maeno2008_verdict_tiny_w_width.png").stat().st_size > 0
     with pytest.raises(ValueError, match="width_base: .* width part alone"):
         mod.main(wide + ["--parts", "verdict", "width"], build=_build, log=lambda *a: None)
+
+
+def test_a_shown_path_is_relative_to_the_project_or_its_last_parts_never_absolute(tmp_path):
+    assert shown_path(ROOT / "out" / "x", ROOT) == "out/x"
+    assert shown_path(tmp_path / "a" / "b" / "c" / "d", ROOT) == "b/c/d"
+    assert shown_path(tmp_path / "a" / "b", ROOT, tail=1) == "b"
+    assert shown_path("/x", ROOT) == "x"  # fewer parts than asked: still without the anchor
 
 
 def test_the_study_with_the_solver_at_a_tiny_size(tmp_path):
