@@ -36,6 +36,7 @@ import pandas as pd
 from vofdem.builder import GRAVITY, WATER_DENSITY
 from vofdem.io import RunData
 from vofdem.run import analyse_run
+from vofdem.study import shown_path
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -94,15 +95,6 @@ def stage_rows(data, analysis, scene) -> list:
     return rows
 
 
-def _shown(path: Path) -> str:
-    """A path relative to the project when inside it, else its last three parts (no machine's path in a
-    committed page)."""
-    try:
-        return str(Path(path).resolve().relative_to(ROOT))
-    except ValueError:
-        return str(Path(*Path(path).parts[-3:]))
-
-
 def _f(v, fmt="{:.2f}") -> str:
     return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
 
@@ -110,7 +102,7 @@ def _f(v, fmt="{:.2f}") -> str:
 def results_md(ens: Path, tag: str, seed: int, df: pd.DataFrame, scene, analysis, rows, figures) -> str:
     done = df[df["status"] == "completed"]
     lines = [f"# The failure's mechanism: `{scene.name}`, packing {seed}", "",
-             f"Written by `studies/failure_mechanism.py {_shown(ens)} --tag {tag}` "
+             f"Written by `studies/failure_mechanism.py {shown_path(ens, ROOT)} --tag {tag}` "
              f"({len(done)} completed members): the median member by its stages (the module's "
              "docstring), packing (seed) " + str(seed) + ". Loads: the drag and pressure-gradient force of the "
              "last snapshot before each stage began, in units of each stone's submerged weight (x "
@@ -131,7 +123,7 @@ def results_md(ens: Path, tag: str, seed: int, df: pd.DataFrame, scene, analysis
     n_rem = int(np.isfinite(analysis.removal_time).sum())
     lines += ["", f"Stones removed in all: {n_rem} of {analysis.removal_time.size} ({len(analysis.isolated)} "
               f"outside any stage); crest lowering at the end {1e3 * analysis.crest_lowering[-1]:.1f} mm.", "",
-              "Figures: " + ", ".join(f"`{_shown(p)}`" for p in figures),
+              "Figures: " + ", ".join(f"`{shown_path(p, ROOT)}`" for p in figures),
               ""]
     return "\n".join(lines)
 

@@ -12,7 +12,9 @@ runs only the members not finished (one directory per ensemble under --out).
   lowering at the run's end (25 l/s), next to the scene's [reference] data (the experiment's and the
   paper's model's discharges). Then the width sweep: one configuration over flume widths (the
   ensemble's `vary` of flume.width; the scene's own width is its verdict ensemble), in a domain raised
-  where a narrower flume's water would reach the top (`sweep_height`).
+  where a narrower flume's water would reach the top (`sweep_height`); for 3D stones with each width's
+  packings (stones, stones across, porosity). With --width-base and --parts width alone, the scene's own
+  width is read from an earlier study's _verdict.csv instead of run (its seeds, not paired with the sweep's).
 * **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
   (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up, the
   kernel mapping's width, the overflow load); per setting the shift of each event's median from the reference's, with its paired bootstrap interval,
@@ -22,7 +24,7 @@ runs only the members not finished (one directory per ensemble under --out).
   reference's 16-84 % band) beside it.
 
 Writes studies/results/maeno2008_verdict<suffix>.md (+ _verdict.csv, _width.csv, _cost.csv) and
-docs/figures/maeno2008_verdict<suffix>_cost.png and _fragility.png; suffix '' (full), '_small', '_tiny',
+docs/figures/maeno2008_verdict<suffix>_cost.png, _fragility.png and _width.png; suffix '' (full), '_small', '_tiny',
 then '_<tag>' with --tag (a study of other scenes kept beside the main one; only the parts run are written).
 
     PYTHONPATH=python python3 studies/maeno2008_verdict.py            # the full study: 30 seeds (hours)
@@ -31,6 +33,10 @@ then '_<tag>' with --tag (a study of other scenes kept beside the main one; only
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --scenes maeno2008_rolling maeno2008_polygons
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --parts verdict --scenes \
         maeno2008_spheres_rolling_consistent --seeds 0-9 --tag spheres   # the 3D spheres' verdict
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --parts width --scenes \
+        maeno2008_spheres_rolling_consistent --widths 0.3 0.4 --width-seeds 0-3 --width-base \
+        studies/results/maeno2008_verdict_spheres_verdict.csv --tag spheres_width --workers 1 \
+        --out out/spheres_width   # their width sweep, B = 0.5 m from the verdict's rows
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --redraw-cost   # the cost figure from its CSV
 """
 import argparse
@@ -43,14 +49,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from vofdem.builder import peak_discharge, upstream_level
+from vofdem.builder import build_stones, peak_discharge, upstream_level
 from vofdem.cluster import default_workers, ensemble_client
 from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble
 from vofdem.fragility import EVENTS, fig_fragility, figure_legend, fragility_of
 from vofdem.scene import load_scene
 from vofdem.fidelity import PRESETS
-from vofdem.study import (KNOBS, coupling, event_summary, knob_settings, median_shift, preset_of, spread,
-                          stage_fractions, stone_model)
+from vofdem.study import (KNOBS, coupling, event_summary, knob_settings, median_shift, preset_of, shown_path,
+                          spread, stage_fractions, stone_model)
 
 ROOT = Path(__file__).resolve().parents[1]
 # the first is the width sweep's and the cost part's reference: the consistent coupling, chosen on physics (the
@@ -77,6 +83,9 @@ def _parser():
     p.add_argument("--knobs", nargs="+", default=None, choices=KNOBS, help="knobs of the cost part (default all)")
     p.add_argument("--seeds", default=None, help="packings (default 0-29; --small 0-5; --tiny 0-1)")
     p.add_argument("--width-seeds", default=None, help="packings of the width sweep (default --seeds)")
+    p.add_argument("--width-base", type=Path, default=None, help="with --parts width alone: the scene's own width "
+                   "from the rows of an earlier study's _verdict.csv (its Kaplan-Meier medians and bands over that "
+                   "study's seeds, not paired with the sweep's) instead of running its verdict ensemble")
     p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
                    "the reference's members at these seeds are paired with each setting's)")
     p.add_argument("--no-reference-rerun", action="store_true", help="measure the settings' CPU time against the "
@@ -85,8 +94,8 @@ def _parser():
     p.add_argument("--no-run", action="store_true", help="run no member: the tables of the members finished so far "
                    "(an ensemble cut short says how many of its members it holds)")
     p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
-                   help="parts to run (default all; the verdict's ensembles always run: the others are "
-                        "measured against them)")
+                   help="parts to run (default all; the verdict's ensembles always run, the others are "
+                        "measured against them, unless --width-base gives the width part's own width)")
     p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s]")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default one per core; 0: "
                    "in this process, no Dask)")
@@ -148,8 +157,14 @@ def _command(args, size: str) -> str:
         flag += " --parts " + " ".join(args.parts)
     if list(args.scenes) != list(SCENES):
         flag += " --scenes " + " ".join(args.scenes)
+    if args.width_scene:
+        flag += f" --width-scene {args.width_scene}"
+    if args.widths:
+        flag += " --widths " + " ".join(f"{w:g}" for w in args.widths)
     flag += "".join(f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "knob_seeds", "tag")
                     if getattr(args, k))
+    if args.width_base:
+        flag += f" --width-base {shown_path(args.width_base, ROOT)}"
     if args.knobs:
         flag += " --knobs " + " ".join(args.knobs)
     return flag + (" --no-reference-rerun" if args.no_reference_rerun else "")
@@ -175,15 +190,19 @@ def run_study(args, build=None, log=print):
     widths = widths if "width" in args.parts else []
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
     height = sweep_height(scenes[width_name], widths)
+    base_rows = _width_base_rows(args, width_name, base_width) if args.width_base else None
     res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes,
            "width_scene": width_name, "cost_scene": cost_name,
-           "settings": settings, "base_width": base_width, "sweep_height": height, "out": out, "found": _finished(out)}
+           "settings": settings, "base_width": base_width, "sweep_height": height, "out": out, "found": _finished(out),
+           "width_base": base_rows, "width_base_path": args.width_base}
     with _client(0 if args.no_run else args.workers, None if args.no_run else args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
                   progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
         ens = (lambda s, sd, d, vary=None: finished_outcomes(s, sd, d, vary)) if args.no_run else \
             (lambda s, sd, d, vary=None: run_ensemble(s, sd, d, vary=vary, **kw))
-        res["verdict"] = {n: ens(s, seeds, out / "verdict" / n) for n, s in scenes.items()}
+        # with --width-base the scene's own width comes from an earlier study's rows: no verdict member runs
+        res["verdict"] = {} if base_rows is not None else {n: ens(s, seeds, out / "verdict" / n)
+                                                            for n, s in scenes.items()}
         res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, _width_vary(res, widths))
                         if widths else None)
         ref = scenes[cost_name]
@@ -191,7 +210,33 @@ def run_study(args, build=None, log=print):
         rerun = settings and not args.no_reference_rerun
         res["cost_reference"] = ens(ref, knob_seeds, out / "cost" / "reference") if rerun else None
         res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
+    res["packing"] = _packings(scenes[width_name], [base_width, *widths], width_seeds) if widths else {}
     return res
+
+
+def _packings(scene, widths, seeds) -> dict:
+    """{width: [(stones, stones across, porosity) per seed]} of 3D stones' weirs packed as the members pack
+    them (builder.build_stones: the seed's weir bit for bit; seconds each); {} for stones in the plane."""
+    if scene.stones.shape not in ("sphere", "clump"):
+        return {}
+    out = {}
+    for w in widths:
+        reports = [build_stones(scene.with_value("flume.width", w).replace(seed=s))[1] for s in seeds]
+        out[w] = [(r.n_stones, r.stones_across, r.porosity) for r in reports]
+    return out
+
+
+def _width_base_rows(args, name: str, width: float) -> list:
+    """The event rows of scene `name` in the earlier study's _verdict.csv given by --width-base."""
+    if list(args.parts) != ["width"]:
+        raise ValueError(f"width_base: the scene's own width is read instead of run in the width part alone "
+                         f"(--parts width), not with --parts {' '.join(args.parts)}")
+    frame = pd.read_csv(args.width_base)
+    rows = frame[frame["scene"] == name]
+    if rows.empty or not np.allclose(rows["width_m"].astype(float), width):
+        raise ValueError(f"width_base: {args.width_base.name} holds no rows of {name} at its width B = {width:g} m")
+    return [{k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in r.items()}
+            for r in rows.to_dict("records")]
 
 
 def _width_vary(res, widths) -> dict:
@@ -266,8 +311,8 @@ def _config_md(name, scene, df) -> list:
 def width_frames(res):
     """{width [m]: outcome frame} of the width sweep, the scene's own width from its verdict ensemble (its
     members at the sweep's seeds)."""
-    base = res["verdict"][res["width_scene"]]
-    out = {res["base_width"]: base[base["seed"].isin(res["width_seeds"])]}
+    base = res["verdict"].get(res["width_scene"])
+    out = {} if base is None else {res["base_width"]: base[base["seed"].isin(res["width_seeds"])]}
     wide = res["width"]
     if wide is not None:
         for w, g in wide.groupby("flume.width"):
@@ -276,13 +321,39 @@ def width_frames(res):
 
 
 def width_rows(res):
-    rows = []
+    """One row per width and event; the scene's own width from --width-base's rows where given."""
+    rows = _base_width_rows(res) if res.get("width_base") is not None else []
     for w, df in width_frames(res).items():
         fr = stage_fractions(df)
+        done = df[df["status"] == "completed"]
         for ev in EVENTS:
             rows.append({"width_m": w, **event_summary(df, ev), "stages_2plus": fr["stages_2plus"],
-                         "crest_lowering_mm_median": spread(df["crest_lowering_mm"].astype(float))[1]})
-    return rows
+                         "crest_lowering_mm_median": spread(done["crest_lowering_mm"].astype(float))[1],
+                         "stages_3plus": fr["stages_3plus"], "stones_median": spread(done["stones"].astype(float))[1],
+                         "cpu_s_median": spread(done["cpu_seconds"].astype(float))[1],
+                         "seeds": _seed_range(sorted(done["seed"])) if len(done) else "", "source": "run"})
+    for r in rows:
+        packed = _near(res.get("packing", {}), r["width_m"])
+        r.update({k: (float(np.mean([p[i] for p in packed])) if packed else None)
+                  for i, k in enumerate(("packed_stones_mean", "stones_across_mean", "packed_porosity_mean"))})
+    return sorted(rows, key=lambda r: r["width_m"])
+
+
+def _near(by_width: dict, w: float):
+    return next((v for k, v in by_width.items() if math.isclose(k, w)), None)
+
+
+def _base_width_rows(res) -> list:
+    """The scene's own width from an earlier study's verdict rows: its events as they are; its stage
+    shares from the members in which stage 2 (3) happened; no crest lowering, stones or CPU time there."""
+    by = {r["event"]: r for r in res["width_base"]}
+    n = max(int(by["stage2"]["members"]), 1)
+    keys = ("event", "members", "happened", "at_first_discharge", "censored_at_lps", "km_median_lps", "km_q16_lps",
+            "km_q84_lps", "fit_median_lps", "fit_q16_lps", "fit_q84_lps")
+    return [{"width_m": res["base_width"], **{k: by[ev][k] for k in keys},
+             "stages_2plus": by["stage2"]["happened"] / n, "crest_lowering_mm_median": None,
+             "stages_3plus": by["stage3"]["happened"] / n, "stones_median": None, "cpu_s_median": None,
+             "seeds": "", "source": "earlier study"} for ev in EVENTS]
 
 
 def _height_note(res) -> str:
@@ -295,14 +366,69 @@ def _height_note(res) -> str:
 
 def _width_md(res) -> list:
     lines = ["| B [m] | " + " | ".join(f"{EVENTS[e][1]}: KM median [16-84 %] [l/s]" for e in EVENTS)
-             + " | 2+ stages | crest lowering [mm] |", "|---|" + "---|" * (len(EVENTS) + 2)]
+             + " | 2+ stages | crest lowering [mm] | 3+ stages | stones | stones across | porosity | "
+             "CPU s per member | members (seeds) |", "|---|" + "---|" * (len(EVENTS) + 8)]
     rows = width_rows(res)
     for w in dict.fromkeys(r["width_m"] for r in rows):
         rs = [r for r in rows if r["width_m"] == w]
         cells = [_band(r["km_q16_lps"], r["km_median_lps"], r["km_q84_lps"], r["censored_at_lps"]) for r in rs]
-        lines.append(f"| {w:g} | " + " | ".join(cells) + f" | {rs[0]['stages_2plus']:.0%} | "
-                     f"{_q(rs[0]['crest_lowering_mm_median'], '{:.2f}')} |")
-    return lines + [""]
+        r0 = rs[0]
+        seeds = f"{r0['members']} ({r0['seeds']})" if r0["source"] == "run" else \
+            f"{r0['members']} (earlier study: `{shown_path(res['width_base_path'], ROOT)}`)"
+        lines.append(f"| {w:g} | " + " | ".join(cells) + f" | {r0['stages_2plus']:.0%} | "
+                     f"{_q(r0['crest_lowering_mm_median'], '{:.2f}')} | {r0['stages_3plus']:.0%} | "
+                     f"{_q(r0['packed_stones_mean'], '{:.0f}')} | {_q(r0['stones_across_mean'], '{:.2f}')} | "
+                     f"{_q(r0['packed_porosity_mean'], '{:.3f}')} | {_q(r0['cpu_s_median'], '{:.1f}')} | {seeds} |")
+    notes = ["Crest lowering and CPU time: medians over the members; stones, stones across (the mean number a line "
+             "across the flume through the trapezoid crosses) and the porosity of the trapezoid's prism: means over "
+             f"the weirs packed as the members pack them at seeds {_seed_range(res['width_seeds'])} (3D stones only)."]
+    if res.get("width_base") is not None:
+        notes.append(f"B = {res['base_width']:g} m: the events and stage shares are the rows of the earlier study "
+                     "named, over its own seeds (not paired with the sweep's; its crest lowering and CPU time are "
+                     "in its own page).")
+    return lines + [""] + [x for n in notes for x in (n, "")] + _width_members_md(res)
+
+
+def _width_members_md(res) -> list:
+    """The members run, one row each: a few seeds are read member by member, not by their medians."""
+    lines = ["| B [m] | seed | stones | first removal [l/s] | stage 1 [l/s] (stones) | stage 2 | stage 3 | stages | "
+             "removed | crest lowering [mm] | CPU [s] |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    stage = lambda r, k: "-" if pd.isna(r[f"stage{k}_lps"]) else f"{r[f'stage{k}_lps']:.2f} ({r[f'stage{k}_stones']})"  # noqa: E731
+    for w, df in width_frames(res).items():
+        for _, r in df[df["status"] == "completed"].sort_values("seed").iterrows():
+            lines.append(f"| {w:g} | {r['seed']} | {r['stones']} | {_q(r['first_removal_lps'])} | {stage(r, 1)} | "
+                         f"{stage(r, 2)} | {stage(r, 3)} | {r['stages']} | {r['removed']} | "
+                         f"{_q(r['crest_lowering_mm'])} | {_q(r['cpu_seconds'], '{:.1f}')} |")
+    return ["The members (stones: those of the run's analysis):", ""] + lines + [""]
+
+
+def fig_width(rows, path: Path):
+    """Each event's Kaplan-Meier median and 16-84 % band against the flume width (a band's end not reached
+    drawn to the runs' last discharge, open); hollow: the widths taken from an earlier study; saved and
+    returned."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.4, 4.2), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    widths = sorted({r["width_m"] for r in rows})
+    dx = 0.08 * (min(np.diff(widths)) if len(widths) > 1 else 0.1)  # events side by side at each width
+    for k, ev in enumerate(EVENTS):
+        for r in (r for r in rows if r["event"] == ev and r["km_median_lps"] is not None):
+            top = r["km_q84_lps"] if r["km_q84_lps"] is not None else r["censored_at_lps"]
+            lo = r["km_q16_lps"] if r["km_q16_lps"] is not None else r["km_median_lps"]
+            x, m = r["width_m"] + (k - 1.5) * dx, r["km_median_lps"]
+            ax.errorbar([x], [m], yerr=[[m - lo], [top - m]], fmt="o", color=f"C{k}", capsize=3,
+                        mfc="none" if r["source"] != "run" else f"C{k}", label=EVENTS[ev][1])
+    ax.set_xticks(widths)
+    ax.set_xlabel("flume width B [m]")
+    ax.set_ylabel("discharge Q [l/s]")
+    ax.grid(alpha=0.3)
+    figure_legend(fig, [ax], 2)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=90)
+    return fig
 
 
 def cost_rows(res, n_boot: int):
@@ -359,15 +485,6 @@ def _rerun_md(res) -> list:
             f"(`cost/reference`; CPU {_median(done, 'cpu_seconds'):.1f} s per member, its verdict members of the same "
             f"seeds {_median(ref[ref.index.isin(done['seed'])].reset_index(), 'cpu_seconds'):.1f} s). The rerun "
             f"removed the same stones as the verdict's members in {same} of {len(done)} seeds.", ""]
-
-
-def _shown(path: Path) -> str:
-    """A path relative to the project when inside it, else its last part only (no machine's path in a
-    committed page)."""
-    try:
-        return str(Path(path).resolve().relative_to(ROOT))
-    except ValueError:
-        return Path(path).name
 
 
 def _median(df, col) -> float:
@@ -555,17 +672,24 @@ def write_results(res, args, wall: float) -> Path:
     args.results.mkdir(parents=True, exist_ok=True)
     args.figures.mkdir(parents=True, exist_ok=True)
     base = args.results / f"maeno2008_verdict{sfx}"
-    vrows = [r for n, s in res["scenes"].items() for r in verdict_rows(n, s, res["verdict"][n])]
-    pd.DataFrame(vrows).to_csv(f"{base}_verdict.csv", index=False, lineterminator="\n")
+    ran_verdict = bool(res["verdict"])  # not with --width-base
+    if ran_verdict:
+        vrows = [r for n, s in res["scenes"].items() for r in verdict_rows(n, s, res["verdict"][n])]
+        pd.DataFrame(vrows).to_csv(f"{base}_verdict.csv", index=False, lineterminator="\n")
+    width_png = args.figures / f"maeno2008_verdict{sfx}_width.png"
     if "width" in args.parts:
-        pd.DataFrame(width_rows(res)).to_csv(f"{base}_width.csv", index=False, lineterminator="\n")
-    crows = cost_rows(res, args.n_boot)
+        wrows = width_rows(res)
+        pd.DataFrame(wrows).to_csv(f"{base}_width.csv", index=False, lineterminator="\n")
+        fig_width(wrows, width_png)
+    # the bootstrap of every setting's shifts is the costly table: only when the cost part ran
+    crows = cost_rows(res, args.n_boot) if "cost" in args.parts else []
     cost_png, frag_png = (args.figures / f"maeno2008_verdict{sfx}_{k}.png" for k in ("cost", "fragility"))
     if "cost" in args.parts:
         pd.DataFrame(crows).to_csv(f"{base}_cost.csv", index=False, lineterminator="\n")
         fig_cost(crows, cost_png)
-    by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
-    fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
+    if ran_verdict:
+        by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
+        fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
     frames = [*res["verdict"].values(), *res["cost"].values()] + [
         df for df in (res["width"], res.get("cost_reference")) if df is not None]
     n_members = sum(len(df) for df in frames)
@@ -577,22 +701,24 @@ def write_results(res, args, wall: float) -> Path:
     if args.no_run:
         where = "(--no-run: tables of the members finished so far)"
     scene0 = next(iter(res["scenes"].values()))
+    seeds = res["seeds"] if ran_verdict else res["width_seeds"]
     text = [f"# The Maeno 2008 weir: the verdict and what its accuracy costs ({size} version)", "",
-            f"Written by `PYTHONPATH=python python3 studies/maeno2008_verdict.py{flag}`: {len(res['seeds'])} "
-            f"seeds ({_seed_range(res['seeds'])}), {n_members} members, "
+            f"Written by `PYTHONPATH=python python3 studies/maeno2008_verdict.py{flag}`: {len(seeds)} "
+            f"seeds ({_seed_range(seeds)}), {n_members} members, "
             f"{'the quick variants of ' if size != 'full' else ''}scenes {', '.join(res['scenes'])}, "
             f"{scene0.duration:g} s simulated per member, {cpu / 60:.1f} CPU-minutes in all. The last call ran {ran} "
             f"members (found {res['found']} finished) in {wall / 60:.1f} min {where} ({os.cpu_count()} cores, load "
             f"average {os.getloadavg()[0]:.1f} at the end). Ensembles in "
-            f"`{_shown(res['out'])}/` (resumable). Figures: "
-            + ", ".join(f"`docs/figures/{p.name}`" for p in (cost_png, frag_png) if p.exists()) + ".",
-            "", "## The verdict", "",
-            "Per event: members in which it happened (in brackets those in which it happened at the first discharge "
-            "a run could see it, when the stones were released), the Kaplan-Meier median and 16-84 % band (members "
-            "in which it never happened are censored at their last discharge; '> Q': not reached by the runs' end), "
-            "the lognormal fit, and the scene's reference data.", ""]
-    for n, s in res["scenes"].items():
-        text += _config_md(n, s, res["verdict"][n])
+            f"`{shown_path(res['out'], ROOT, tail=1)}/` (resumable). Figures: "
+            + ", ".join(f"`docs/figures/{p.name}`" for p in (cost_png, frag_png, width_png) if p.exists()) + ".", ""]
+    if ran_verdict:
+        text += ["## The verdict", "",
+                 "Per event: members in which it happened (in brackets those in which it happened at the first "
+                 "discharge a run could see it, when the stones were released), the Kaplan-Meier median and 16-84 % "
+                 "band (members in which it never happened are censored at their last discharge; '> Q': not reached "
+                 "by the runs' end), the lognormal fit, and the scene's reference data.", ""]
+        for n, s in res["scenes"].items():
+            text += _config_md(n, s, res["verdict"][n])
     if "width" in args.parts:
         text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by "
                  f"B; the paper does not give it), seeds {_seed_range(res['width_seeds'])}" + _height_note(res) + ".", ""]

@@ -14,7 +14,7 @@ from script_loader import load_script
 from vofdem.cli import main as cli_main
 from vofdem.fragility import empirical_quantile
 from vofdem.scene import Scene, load_scene
-from vofdem.study import event_summary, knob_settings, km_quantiles, median_shift, stage_fractions
+from vofdem.study import event_summary, knob_settings, km_quantiles, median_shift, shown_path, stage_fractions
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -203,6 +203,41 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     assert cost.loc[("porosity=lookup", "first_removal"), "cost_ratio"] == pytest.approx(1.5, abs=1e-12)
     assert cost.loc[("reference", "first_removal"), "cpu_s_per_member"] == pytest.approx(2.0, abs=1e-12)
     assert cost.loc[("porosity=lookup", "first_removal"), "steps_ratio"] == 2.0
+
+
+def test_the_width_part_alone_takes_the_scenes_own_width_from_an_earlier_verdict(tmp_path):
+    mod = _script()
+    common = ["--tiny", "--scenes", "maeno2008_rolling", "--end-time", "36", "--workers", "0", "--n-boot", "20",
+              "--results", str(tmp_path), "--figures", str(tmp_path)]
+    mod.main(common + ["--parts", "verdict", "--seeds", "0-2", "--tag", "base", "--out", str(tmp_path / "a")],
+             build=_build, log=lambda *a: None)
+    base_csv = tmp_path / "maeno2008_verdict_tiny_base_verdict.csv"
+    before = base_csv.read_bytes()
+    wide = common + ["--parts", "width", "--widths", "0.4", "--width-seeds", "0-1", "--width-base", str(base_csv),
+                     "--tag", "w", "--out", str(tmp_path / "b")]
+    text = mod.main(wide, build=_build, log=lambda *a: None).read_text()
+    # no verdict member ran and no verdict table was written; the earlier study's files are as they were
+    assert not (tmp_path / "b" / "verdict").exists()
+    assert not (tmp_path / "maeno2008_verdict_tiny_w_verdict.csv").exists()
+    assert base_csv.read_bytes() == before and "## The verdict" not in text
+    rows = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_w_width.csv").set_index(["width_m", "event"])
+    # B = 0.5 m: the earlier rows over seeds 0-2 (stage 1 at 12.25, 14.25, never: median 14.25); B = 0.4 m run
+    # at seeds 0-1 (the test double's stones go at the same discharges: median 12.25, the lower of two)
+    assert rows.loc[(0.5, "stage1"), ["km_median_lps", "members", "source"]].tolist() == [14.25, 3, "earlier study"]
+    assert rows.loc[(0.4, "stage1"), ["km_median_lps", "members", "source"]].tolist() == [12.25, 2, "run"]
+    assert rows.loc[(0.5, "stage1"), "stages_2plus"] == pytest.approx(2 / 3)
+    assert "maeno2008_verdict_tiny_base_verdict.csv`) |" in text and "| 2 (0-1) |" in text
+    assert str(tmp_path) not in text  # no machine's path
+    assert (tmp_path / "maeno2008_verdict_tiny_w_width.png").stat().st_size > 0
+    with pytest.raises(ValueError, match="width_base: .* width part alone"):
+        mod.main(wide + ["--parts", "verdict", "width"], build=_build, log=lambda *a: None)
+
+
+def test_a_shown_path_is_relative_to_the_project_or_its_last_parts_never_absolute(tmp_path):
+    assert shown_path(ROOT / "out" / "x", ROOT) == "out/x"
+    assert shown_path(tmp_path / "a" / "b" / "c" / "d", ROOT) == "b/c/d"
+    assert shown_path(tmp_path / "a" / "b", ROOT, tail=1) == "b"
+    assert shown_path("/x", ROOT) == "x"  # fewer parts than asked: still without the anchor
 
 
 def test_the_study_with_the_solver_at_a_tiny_size(tmp_path):

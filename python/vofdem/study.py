@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -52,6 +53,16 @@ def coupling(scene) -> str:
     if st.drag_model == "bed" and st.porosity_mapping == "bulk":
         return "consistent"
     return f"{st.drag_model} drag, {st.porosity_mapping} mapping"
+
+
+def shown_path(path, root, tail: int = 3) -> str:
+    """`path` as a committed page may show it: relative to the project's `root` when inside it, else its
+    last `tail` parts without the anchor (never a machine's absolute path)."""
+    full = Path(path).resolve()
+    try:
+        return str(full.relative_to(Path(root).resolve()))
+    except ValueError:
+        return str(Path(*full.parts[1:][-tail:]))
 
 
 # ---------------------------------------------------------------------------- statistics
