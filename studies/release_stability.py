@@ -42,7 +42,7 @@ from types import SimpleNamespace
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from failure_mechanism import _shown, submerged_weight  # noqa: E402
+from failure_mechanism import submerged_weight  # noqa: E402
 from vofdem import builder  # noqa: E402
 from vofdem.analysis import classify_regions  # noqa: E402
 from vofdem.calibration import PullSetup, slope_surface_stones, with_rolling  # noqa: E402
@@ -51,6 +51,7 @@ from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble  # noqa
 from vofdem.io import RunData  # noqa: E402
 from vofdem.run import analyse_run  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import shown_path  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKING_FILE = "packing.json"
@@ -212,7 +213,7 @@ def results_md(args, base, configs, rows, summary, command) -> str:
              f"{rel:g} s spin-up with the stones held and {args.after:g} s of the ramp after the release "
              f"({q(rel + 1e-6):.2f} to {q(rel + args.after):.2f} l/s), one member after the other in one process "
              "on a machine shared with other jobs (2 cores, load about 3-6). Ensembles: `"
-             f"{_shown(args.out)}/<configuration>/`." + NO_RUN_NOTE * args.no_run, "",
+             f"{shown_path(args.out, ROOT)}/<configuration>/`." + NO_RUN_NOTE * args.no_run, "",
              f"Lost at the release: stones removed (moved more than their diameter) within {args.window:g} s after "
              "it; a stage at the release: a stage (vofdem.analysis) beginning in that window. Loads: the last "
              "snapshot before the release (stones held), drag + pressure-gradient force on the downstream slope's "
@@ -245,7 +246,7 @@ def results_md(args, base, configs, rows, summary, command) -> str:
                      f"{r['cpu']:.0f} |")
     cpu = [r["cpu"] for r in rows if not math.isnan(r["cpu"])]
     lines += ["", f"CPU: {sum(cpu) / 60:.1f} min over {len(cpu)} members (each member's process time, packing "
-              f"included; median {_median(cpu):.0f} s).", "", f"Figure: `{_shown(args.figure)}`.", ""]
+              f"included; median {_median(cpu):.0f} s).", "", f"Figure: `{shown_path(args.figure, ROOT)}`.", ""]
     return "\n".join(lines)
 
 
@@ -331,7 +332,7 @@ def main(argv=None) -> Path:
             rows.append(member_row(cfg, out, d / f"seed{rec['seed']}", args.window))
     heaps = heap_angles()
     summary = config_rows(configs, rows, heaps)
-    command = ("PYTHONPATH=python python3 studies/release_stability.py" + (f" --scene {_shown(args.scene)}"
+    command = ("PYTHONPATH=python python3 studies/release_stability.py" + (f" --scene {shown_path(args.scene, ROOT)}"
                if args.scene.resolve() != p.get_default("scene").resolve() else "") + (" --quick" if args.quick else "")
                + f" --seeds {args.seeds} --mu-r {args.mu_r} --clump-mu-r '{args.clump_mu_r}' --after {args.after:g}"
                f" --window {args.window:g}" + (" --no-run" if args.no_run else ""))
