@@ -3,6 +3,7 @@
 outcome and packing, the needed angle against a hand value, the options' ranges."""
 import json
 import math
+import re
 
 import pytest
 
@@ -34,7 +35,8 @@ def test_tiny_study_writes_tables_from_its_own_run(tmp_path):
     rs.main(["--scene", str(scene), "--seeds", "0", "--mu-r", "0", "--clump-mu-r", "", "--after", "0.5",
              "--window", "0.5", "--out", str(out), "--results", str(res), "--figure", str(fig)])
     text = res.read_text()
-    assert fig.stat().st_size > 0 and "/tmp/" not in text and str(tmp_path) not in text
+    # no machine path in a committed page: neither the run's own directory nor any absolute one
+    assert fig.stat().st_size > 0 and str(tmp_path) not in text and not re.search(r"/(work|tmp|root|home)/", text)
     lines = text.splitlines()
     assert "## Per configuration" in lines and "## Per member" in lines
     # the heap angle of spheres at mu_r = 0 comes from benchmarks/results/sphere_calibration.md
