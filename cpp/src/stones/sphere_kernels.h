@@ -32,18 +32,57 @@ VOFDEM_SPHERE_INLINE void onto_tangent_plane(Vec3& v, const Vec3& n) {
   v = pl > 0.0 ? Vec3(p * (length / pl)) : Vec3(Vec3::Zero());
 }
 
-// what the law needs beyond the law's constants and the histories
+// whether sqrt(x) > c, as the rounded root compares, without the root when x lies clearly below c^2 (a
+// contact below its cap, the common case): there sqrt(x) < c (1 - 4e-13), which no rounding lifts to c
+// (c > 1e-150: c^2 keeps its relative precision, no subnormal)
+VOFDEM_SPHERE_INLINE bool root_exceeds(double x, double c) {
+  if (c > 1e-150 && x < c * c * (1.0 - 1e-12)) return false;
+  return std::sqrt(x) > c;
+}
+
+// what the law needs beyond the law's constants, the pair's constants and the histories
 struct Geometry {
   Vec3 n;              // from i to j
   double delta;        // overlap [m]
   Vec3 point;          // contact point [m]
   Vec3 v_rel;          // velocity of i relative to j at the point [m/s]
   Vec3 w_rel;          // omega_i - omega_j [rad/s]
-  double m_reduced;    // m* [kg]
-  double r_eff = 0.0;  // R* [m] (sphere pairs: set only with the rolling resistance on)
-  double roll_inertia = 0.0;  // I_r [kg m^2] (likewise)
   double mu, mu_r;     // Coulomb and rolling friction [-]
 };
+
+// a model's loop keeps these per listed pair while the masses, radii and inertia stay the same (the same
+// expressions as computed at each contact: the same bits): nine divisions and two square roots a contact
+using PairConstants = SpherePairConstants;
+
+// from m* [kg], R* [m] and I_r [kg m^2] (sphere_contact.h)
+VOFDEM_SPHERE_INLINE PairConstants constants(double m_reduced, double r_eff, double roll_inertia, double mu_r,
+                                             const SphereContactLaw& law, double zeta) {
+  PairConstants c;
+  c.r_eff = r_eff;
+  const double kn = law.stiffness_normal, kt = law.stiffness_ratio * kn;
+  c.cn = 2.0 * zeta * std::sqrt(m_reduced * kn);
+  c.ct = law.tangential_damping_factor * c.cn;
+  if (mu_r > 0.0) {
+    c.kr = kt * r_eff * r_eff;
+    c.cr = 2.0 * law.rolling_damping * std::sqrt(roll_inertia * c.kr);
+  }
+  return c;
+}
+
+// a sphere pair's constants (the bodies' mass and inertia: +inf for a fixed body)
+VOFDEM_SPHERE_INLINE PairConstants pair_constants(const SphereOfBody& i, const SphereOfBody& j,
+                                                  const SphereContactLaw& law, double zeta) {
+  const double m_reduced = 1.0 / (1.0 / i.mass + 1.0 / j.mass);  // a fixed body's mass is +inf
+  double r_eff = 0.0, roll_inertia = 0.0;
+  if (law.rolling_friction > 0.0) {
+    // only the rolling resistance reads them: four divisions saved per contact without it
+    r_eff = i.radius * j.radius / (i.radius + j.radius);
+    const double inv_i = 1.0 / (i.inertia + i.mass * i.radius * i.radius);
+    const double inv_j = 1.0 / (j.inertia + j.mass * j.radius * j.radius);
+    roll_inertia = 1.0 / (inv_i + inv_j);
+  }
+  return constants(m_reduced, r_eff, roll_inertia, law.rolling_friction, law, zeta);
+}
 
 // the tangential spring's update and the Coulomb cap; returns f_t on i
 VOFDEM_SPHERE_INLINE Vec3 tangential(const Geometry& g, const Vec3& vt, double fn, double kt, double ct, double dt,
@@ -52,9 +91,9 @@ VOFDEM_SPHERE_INLINE Vec3 tangential(const Geometry& g, const Vec3& vt, double f
   h.spring += vt * dt;
   Vec3 ft = -kt * h.spring - ct * vt;
   const double cap = g.mu * std::max(fn, 0.0);
-  const double f = ft.norm();
-  if (f > cap) {
+  if (root_exceeds(ft.squaredNorm(), cap)) {
     // sliding: the spring is shortened so that it carries exactly the Coulomb force
+    const double f = ft.norm();
     const double old2 = h.spring.squaredNorm();
     ft *= cap / f;
     h.spring = kt > 0.0 ? Vec3(-(ft + ct * vt) / kt) : Vec3(Vec3::Zero());
@@ -65,18 +104,17 @@ VOFDEM_SPHERE_INLINE Vec3 tangential(const Geometry& g, const Vec3& vt, double f
 }
 
 // the type-C rolling spring-dashpot (rolling_resistance.h in 3D); returns M_r on i
-VOFDEM_SPHERE_INLINE Vec3 rolling(const Geometry& g, double fn, double kt, double eta, double dt,
+VOFDEM_SPHERE_INLINE Vec3 rolling(const Geometry& g, const PairConstants& c, double fn, double dt,
                                   SphereContactHistory& h, SphereContactLoads& out) {
   const Vec3 wr = g.w_rel - g.w_rel.dot(g.n) * g.n;  // twisting is not resisted
-  const double kr = kt * g.r_eff * g.r_eff;
-  const double cr = 2.0 * eta * std::sqrt(g.roll_inertia * kr);
+  const double kr = c.kr, cr = c.cr;
   onto_tangent_plane(h.rolling, g.n);
   h.rolling -= kr * dt * wr;
-  const double cap = g.mu_r * g.r_eff * std::max(fn, 0.0);
-  const double m = h.rolling.norm();
+  const double cap = g.mu_r * c.r_eff * std::max(fn, 0.0);
   Vec3 moment;
-  if (m > cap) {
+  if (root_exceeds(h.rolling.squaredNorm(), cap)) {
     // full mobilisation: the spring slips to the cap, the damper is off
+    const double m = h.rolling.norm();
     h.rolling *= cap / m;
     out.energy_slip += kr > 0.0 ? 0.5 * (m * m - cap * cap) / kr : 0.0;
     moment = h.rolling;
@@ -89,17 +127,16 @@ VOFDEM_SPHERE_INLINE Vec3 rolling(const Geometry& g, double fn, double kt, doubl
 }
 
 // the law at one contact: forces on i, torques on i and j about their centres of mass
-VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const Vec3& arm_i, const Vec3& arm_j,
-                                                  SphereContactHistory& h, const SphereContactLaw& law,
-                                                  double zeta, double dt) {
+VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const PairConstants& c, const Vec3& arm_i,
+                                                  const Vec3& arm_j, SphereContactHistory& h,
+                                                  const SphereContactLaw& law, double dt) {
   SphereContactLoads out;
   out.touching = true;
   out.normal = g.n;
   out.point = g.point;
   out.overlap = g.delta;
   const double kn = law.stiffness_normal, kt = law.stiffness_ratio * kn;
-  const double cn = 2.0 * zeta * std::sqrt(g.m_reduced * kn);
-  const double ct = law.tangential_damping_factor * cn;
+  const double cn = c.cn, ct = c.ct;
   const double vn = g.v_rel.dot(g.n);
   const Vec3 vt = g.v_rel - vn * g.n;
   out.fn = kn * g.delta + cn * vn;
@@ -110,17 +147,19 @@ VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const Vec3&
   out.power_damp += cn * vn * vn + ct * vt.squaredNorm();
   out.energy_spring += 0.5 * kn * g.delta * g.delta + 0.5 * kt * h.spring.squaredNorm();
   if (g.mu_r > 0.0) {
-    const Vec3 m = rolling(g, out.fn, kt, law.rolling_damping, dt, h, out);
+    const Vec3 m = rolling(g, c, out.fn, dt, h, out);
     out.torque_i += m;
     out.torque_j -= m;
   }
   return out;
 }
 
-// sphere_sphere_contact_unchecked's body (sphere_contact.h)
-VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair(const SphereOfBody& i, const SphereOfBody& j,
-                                                    SphereContactHistory& h, const SphereContactLaw& law, double zeta,
-                                                    double dt) {
+// sphere_sphere_contact_unchecked's body (sphere_contact.h); the pair's constants from `constants()`,
+// called only for spheres that touch (a loop hands its kept ones)
+template <class Constants>
+VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair_with(const SphereOfBody& i, const SphereOfBody& j,
+                                                         SphereContactHistory& h, const SphereContactLaw& law,
+                                                         double dt, Constants&& constants) {
   const Vec3 d = j.centre - i.centre;
   const double dist = d.norm();
   const double delta = i.radius + j.radius - dist;
@@ -135,17 +174,15 @@ VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair(const SphereOfBody& i, const
   const Vec3 arm_i = g.point - i.com, arm_j = g.point - j.com;
   g.v_rel = (i.vel + i.omega.cross(arm_i)) - (j.vel + j.omega.cross(arm_j));
   g.w_rel = i.omega - j.omega;
-  g.m_reduced = 1.0 / (1.0 / i.mass + 1.0 / j.mass);  // a fixed body's mass is +inf
   g.mu = law.friction;
   g.mu_r = law.rolling_friction;
-  if (g.mu_r > 0.0) {
-    // only the rolling resistance reads them: four divisions saved per contact without it
-    g.r_eff = i.radius * j.radius / (i.radius + j.radius);
-    const double inv_i = 1.0 / (i.inertia + i.mass * i.radius * i.radius);
-    const double inv_j = 1.0 / (j.inertia + j.mass * j.radius * j.radius);
-    g.roll_inertia = 1.0 / (inv_i + inv_j);
-  }
-  return apply_law(g, arm_i, arm_j, h, law, zeta, dt);
+  return apply_law(g, constants(), arm_i, arm_j, h, law, dt);
+}
+
+VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair(const SphereOfBody& i, const SphereOfBody& j,
+                                                    SphereContactHistory& h, const SphereContactLaw& law, double zeta,
+                                                    double dt) {
+  return sphere_pair_with(i, j, h, law, dt, [&] { return pair_constants(i, j, law, zeta); });
 }
 
 // sphere_plane_contact_unchecked's body (sphere_contact.h)
@@ -164,12 +201,11 @@ VOFDEM_SPHERE_INLINE SphereContactLoads sphere_plane(const SphereOfBody& i, cons
   const Vec3 arm_i = g.point - i.com;
   g.v_rel = i.vel + i.omega.cross(arm_i);
   g.w_rel = i.omega;
-  g.m_reduced = i.mass;
-  g.r_eff = i.radius;
-  g.roll_inertia = i.inertia + i.mass * i.radius * i.radius;
   g.mu = plane.friction;
   g.mu_r = plane.rolling_friction;
-  return apply_law(g, arm_i, Vec3::Zero(), h, law, zeta, dt);
+  const PairConstants c =
+      constants(i.mass, i.radius, i.inertia + i.mass * i.radius * i.radius, g.mu_r, law, zeta);
+  return apply_law(g, c, arm_i, Vec3::Zero(), h, law, dt);
 }
 
 }  // namespace vofdem::sphere_kernels

@@ -67,6 +67,22 @@ void SphereModel::prepare(DEMSystem& s) {
   planes_ = planes(s.params());
   const std::size_t size = static_cast<std::size_t>(s.n()) * planes_.size();
   if (wall_history_.size() != size) wall_history_.assign(size, SphereContactHistory());
+  pair_constants_current_ = false;  // the masses, inertia and law are set anew after this
+}
+
+// each listed pair's constants from the contacts' masses and the inertia of the call (DEMSystem::prepare
+// sets them; a removal changes them only for stones that leave the list)
+void SphereModel::update_pair_constants(DEMSystem& s, const SphereContactLaw& law, double zeta) {
+  const std::vector<ContactPair>& list = pairs(s);
+  const std::vector<double>& inv_m = contact_inv_mass(s);
+  const double* inertia = inertia_3d(s).data();
+  pair_constants_.resize(list.size());
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const int i = list[k].i, j = list[k].j;
+    pair_constants_[k] = sphere_kernels::pair_constants(sphere_of(s, inertia, i, 1.0 / inv_m[i]),
+                                                        sphere_of(s, inertia, j, 1.0 / inv_m[j]), law, zeta);
+  }
+  pair_constants_current_ = true;
 }
 
 // stone i as a sphere of its body, with the mass its contacts' dashpots use (+inf: fixed)
@@ -80,7 +96,7 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
   std::vector<ContactPair>& list = pairs(s);
   if (pair_history_.size() != list.size())
     throw std::logic_error("sphere model: the pair histories do not follow the neighbour list");
-  const std::vector<double>& inv_m = contact_inv_mass(s);
+  if (!pair_constants_current_ || pair_constants_.size() != list.size()) update_pair_constants(s, law, zeta);
   const double* pos = s.stone_pos.data();
   const double* y = s.stone_y.data();
   const double* radius = s.stone_radius.data();
@@ -94,10 +110,10 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
       pair_history_[k] = SphereContactHistory();
       continue;
     }
-    // the kernel inline: the loop reads only the loads it adds
-    const SphereContactLoads f = sphere_kernels::sphere_pair(sphere_of(s, inertia, i, 1.0 / inv_m[i]),
-                                                             sphere_of(s, inertia, j, 1.0 / inv_m[j]),
-                                                             pair_history_[k], law, zeta, dt);
+    // the kernel inline: the loop reads only the loads it adds; the masses are in the pair's constants
+    const SphereContactLoads f =
+        sphere_kernels::sphere_pair_with(sphere_of(s, inertia, i, 0.0), sphere_of(s, inertia, j, 0.0),
+                                         pair_history_[k], law, dt, [&] { return pair_constants_[k]; });
     apply(s, i, j, f, t, dt);
   }
   return t;
@@ -142,6 +158,7 @@ void SphereModel::pairs_rebuilt(DEMSystem&, const std::vector<int>& from) {
   for (std::size_t k = 0; k < from.size(); ++k)
     if (from[k] >= 0 && static_cast<std::size_t>(from[k]) < pair_history_.size()) carried[k] = pair_history_[from[k]];
   pair_history_.swap(carried);
+  pair_constants_current_ = false;
 }
 
 // ---- state: the pairs' histories that are not zero, and every (stone, plane) history
@@ -182,6 +199,7 @@ void SphereModel::import_state(DEMSystem& s, const DEMState& t) {
     pair_history_.push_back({at3(t.sphere_contact_spring, k), at3(t.sphere_contact_rolling, k)});
   }
   wall_history_ = histories(t.sphere_wall_spring, t.sphere_wall_rolling);
+  pair_constants_current_ = false;
 }
 
 void SphereModel::state_to_map(DEMState& t, StateMap& m) const {

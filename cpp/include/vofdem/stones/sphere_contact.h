@@ -75,6 +75,14 @@ struct SphereContactHistory {
   Eigen::Vector3d rolling = Eigen::Vector3d::Zero();  // rolling spring moment M_r^k on i [N m]
 };
 
+// the parts of the law fixed by the two bodies' masses, radii and inertia and the law's constants
+// (c_n, c_t, R*, k_r, C_r above), which a model's loop keeps per pair between changes of those
+struct SpherePairConstants {
+  double cn = 0.0, ct = 0.0;  // normal and tangential dashpots [kg/s]
+  double r_eff = 0.0;         // R* [m] (with the rolling resistance on)
+  double kr = 0.0, cr = 0.0;  // rolling spring k_r [N m] and dashpot C_r [N m s] (likewise)
+};
+
 // the loads of one contact (all zero when the spheres do not touch)
 struct SphereContactLoads {
   bool touching = false;

@@ -62,7 +62,12 @@ class SphereModel final : public DiscModel {
 
  private:
   SphereOfBody body(const DEMSystem& s, int i, double mass) const;
+  void update_pair_constants(DEMSystem& s, const SphereContactLaw& law, double zeta);
   std::vector<SphereContactHistory> pair_history_;  // one per listed pair, in the list's order
+  // per listed pair: the law's parts from the masses, radii and inertia (sphere_contact.h), kept from
+  // the call's start or the last neighbour build, whichever is later
+  std::vector<SpherePairConstants> pair_constants_;
+  bool pair_constants_current_ = false;
   std::vector<SphereContactHistory> wall_history_;  // per (stone, plane of planes())
   std::vector<ContactPlane> planes_;                // planes() of the parameters in use (prepare)
 };
