@@ -273,11 +273,7 @@ void DEMSystem::change_wet_fraction(int i, double w) {
 // the drag's kick scale follows its new mass, so that the next half kicks integrate the linear drag
 // exactly with the added mass the stone now has (set_wet_fraction has kept its momentum)
 void DEMSystem::follow_water_level(int i) {
-  const double level = stone_water_level[i];
-  // a level at +-inf (a stone wholly under water or above it): every law, clamped, gives 1 (0) there,
-  // without the division and the model's calls (most stones, every substep)
-  const double w = std::isinf(level) ? (level > 0.0 ? 1.0 : 0.0)
-                                     : wet_law_.fraction((level - stone_pos[2 * i + 1]) / wet_radius(i));
+  const double w = wet_law_.fraction((stone_water_level[i] - stone_pos[2 * i + 1]) / wet_radius(i));
   if (w == stone_wet[i]) return;
   change_wet_fraction(i, w);
   if (kick_scale_.size() == static_cast<std::size_t>(n_)) kick_scale_[i] = drag_kick_scale(i, kick_dt_);
