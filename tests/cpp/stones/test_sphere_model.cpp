@@ -263,6 +263,30 @@ TEST(SphereModel, RunsAreDeterministicAndRestartBitForBit) {
   EXPECT_EQ(d.stone_y, checkpoint.at("stone_y"));
 }
 
+// the pair constants the contact loop keeps between calls (sphere_contact.h) follow the masses each call
+// starts from: after a wet fraction changed between calls (the added mass), the bits of a system made afresh
+// from that state
+TEST(SphereModel, KeptPairConstantsFollowAWetFractionChangedBetweenCalls) {
+  auto wet_heap = [] {
+    DEMSystem s = sphere_heap();
+    DEMParams p = s.params();
+    p.submerged = true;
+    s.set_params(p);
+    return s;
+  };
+  DEMSystem a = wet_heap();
+  a.advance(0.1);
+  DEMSystem same = wet_heap();
+  same.import_state(a.export_state());
+  for (int i = 0; i < a.n(); ++i) a.set_wet_fraction(i, 0.5);
+  DEMSystem b = wet_heap();
+  b.import_state(a.export_state());
+  for (DEMSystem* s : {&a, &b, &same}) s->advance(0.05);
+  EXPECT_GT(a.contact_count(), 5);
+  EXPECT_EQ(test::state_hash(a.export_state()), test::state_hash(b.export_state()));
+  EXPECT_NE(test::state_hash(a.export_state()), test::state_hash(same.export_state()));  // the change counts
+}
+
 TEST(SphereModel, BadInputIsRefusedWithTheKeyNamed) {
   DEMParams p;
   p.width = 0.0;
