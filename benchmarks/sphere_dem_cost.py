@@ -118,6 +118,9 @@ def segment(seed: int, path: Path, duration: float) -> dict:
                builds=int(st.neighbour_builds) - nb0, mobile=mobile, active=int(np.sum(st.stone_active)),
                contacts=statistics.mean(contacts), wall_contacts=statistics.mean(walls), pairs=statistics.mean(pairs),
                hash=state_hash(sim.export_state()))
+    # the step and what bounds it, read after the state is hashed
+    out.update(dt=float(st.params.dt), contact_steps=float(st.params.contact_steps), stable_dt=float(st.stable_dt()),
+               kn=float(st.stiffness_normal))
     out["coupler"] = {n: s for n, s, c in zip(sim.profile.names, sim.profile.seconds, sim.profile.calls) if c}
     out["dem"] = {n: s for n, s, c in zip(st.profile.names, st.profile.seconds, st.profile.calls) if c}
     return out
@@ -222,8 +225,10 @@ def main(argv=None) -> None:
             "- " + "\n- ".join(f"build {k}: {label}" for k, label in enumerate(labels)), "",
             "## Cost of the segment (median [range] over the rounds)", "", *build_table(labels, runs), "",
             f"## Where the time goes (the last build's last round)", "",
-            f"{last['flow_steps']} flow steps, {last['substeps']} DEM substeps "
-            f"({last['substeps'] / last['flow_steps']:.1f} per flow step), {last['builds']} neighbour-list builds "
+            f"{last['flow_steps']} flow steps ({1e3 * last['simulated'] / last['flow_steps']:.2f} ms on average), "
+            f"{last['substeps']} DEM substeps ({last['substeps'] / last['flow_steps']:.1f} per flow step: the DEM "
+            f"step {last['dt']:.4g} s, {last['contact_steps']:g} steps per contact, with the normal stiffness that "
+            f"follows, {last['kn']:.4g} N/m; the stable step {last['stable_dt']:.4g} s), {last['builds']} neighbour-list builds "
             f"(one per {last['substeps'] / max(1, last['builds']):.0f} substeps); at the ends of the 0.5-s windows "
             f"on average {last['pairs']:.0f} listed pairs, {last['contacts']:.0f} touching sphere-sphere "
             f"contacts ({last['contacts'] / last['mobile']:.2f} per mobile sphere) and {last['wall_contacts']:.0f} "

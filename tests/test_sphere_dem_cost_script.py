@@ -45,3 +45,17 @@ def test_refusals_name_the_option(tmp_path):
         sdc.main(["--segment", "0", "--out", str(tmp_path / "x.md")])
     with pytest.raises(ValueError, match="LABEL=DIR"):
         sdc.main(["--build", "nolabel", "--out", str(tmp_path / "x.md")])
+
+
+def test_the_report_from_canned_runs(tmp_path, monkeypatch):
+    seg = dict(run(2.0, "a"), simulated=10.0, flow_steps=1000, builds=10, active=711, wall_contacts=40.0,
+               pairs=150.0, dt=6.25e-5, contact_steps=32.0, stable_dt=8e-5, kn=1.87e5,
+               coupler={"dem": 3.0, "fluid": 1.0}, dem={"contacts": 2.0})
+    prep = dict(cpu_build=35.0, cpu_spin_up=4.8, spin_up=20.0, steps_spin_up=2098)
+    monkeypatch.setattr(sdc, "run_child", lambda build, args, mode: prep if mode == "prepare" else seg)
+    sdc.main(["--rounds", "2", "--build", "a=x=dir", "b=", "--out", str(tmp_path / "c.md")])
+    text = (tmp_path / "c.md").read_text()
+    assert "- build 0: a=x\n- build 1: b\n" in text  # a label may hold '='; the directory follows the last
+    assert "1000 flow steps (10.00 ms on average), 1000 DEM substeps (1.0 per flow step: the DEM step 6.25e-05 s, " \
+           "32 steps per contact" in text
+    assert "| b | 2 [2 to 2] | 0.2 [0.2 to 0.2] |" in text and "dir" not in text  # labels, never directories
