@@ -11,6 +11,9 @@ from vofdem import _core, calibration as cal, calibration_3d as c3
 from vofdem.scene import Scene
 from vofdem.stone_models import front_of
 
+# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the packed weir made once
+pytestmark = pytest.mark.xdist_group("clump_calibration")
+
 
 def small_spec(seed=3, shape="clump"):
     # the C++ test's low weir (test_clump_packing.cpp): 2 cm clumps, 8 cm high, across 0.1 m

@@ -4,6 +4,9 @@ import pytest
 
 import vofdem
 
+# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the packed weir made once
+pytestmark = pytest.mark.xdist_group("dem_weir")
+
 
 def packed(**keys):
     """(DEMSystem, WeirPackingReport, WeirSpec) of a WeirSpec with these keys set, the rest its defaults and

@@ -13,6 +13,9 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
 import vof_cases as val  # noqa: E402  (the cases live in validation/, outside the package)
 
+# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the dam-break runs made once
+pytestmark = pytest.mark.xdist_group("vof_validation")
+
 
 # ---------------------------------------------------------------------------------------------
 # front definition (identical to the peer drivers' dambreak_common.front_from_row)
