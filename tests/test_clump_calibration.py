@@ -11,8 +11,8 @@ from vofdem import _core, calibration as cal, calibration_3d as c3
 from vofdem.scene import Scene
 from vofdem.stone_models import front_of
 
-# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the packed weir made once
-pytestmark = pytest.mark.xdist_group("clump_calibration")
+# on several processes (pytest-xdist, --dist loadgroup) the tests of the small weir run on one: it is packed once
+SMALL_WEIR = pytest.mark.xdist_group("clump_small_weir")
 
 
 def small_spec(seed=3, shape="clump"):
@@ -39,6 +39,7 @@ def small_weir():
     return _core.pack_weir(small_spec(), small_params())
 
 
+@SMALL_WEIR
 def test_a_small_clump_weir_packs_from_python_with_the_default_mix(small_weir):
     sys_, report = small_weir
     assert sys_.shape == "clump" and report.n_stones == sys_.n
@@ -107,6 +108,7 @@ def test_a_small_clump_heap_is_a_cone_of_clumps():
         cal.pour_heap(sc, 0, setup=cal.ReposeSetup(n_stones=10), clumps=c3.ClumpMix())
 
 
+@SMALL_WEIR
 def test_a_clump_pulled_up_out_of_the_small_weir_needs_at_least_its_weight(small_weir):
     sys_, _ = small_weir
     p = sys_.params
