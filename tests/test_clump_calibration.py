@@ -127,6 +127,9 @@ def test_a_clump_pulled_up_out_of_the_small_weir_needs_at_least_its_weight(small
 def test_pulls_on_a_clump_weir_across_a_narrow_flume():
     sc = spheres()
     sc.flume.width = 0.2
-    rs = cal.pull_test(sc, [0], 1, clumps=c3.ClumpMix())
+    # the stones beyond 3 d held, as benchmarks/clump_calibration.py pulls: this stone's peaks within 5 % of
+    # those with every stone free (2.06 / 1.48 / 2.16 of its weight against 2.06 / 1.56 / 2.17), the pulls at
+    # about a fifth of their CPU
+    rs = cal.pull_test(sc, [0], 1, clumps=c3.ClumpMix(), setup=cal.PullSetup(hold_beyond=3.0))
     assert {r.direction for r in rs} == {"vertical", "normal", "horizontal"}
     assert all(r.peak > 0.5 * r.weight for r in rs)
