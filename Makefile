@@ -4,6 +4,9 @@
 #   make test   installs what is missing and runs every test (C++, C++ under sanitizers, Python) and builds the docs
 PY ?= python3
 OUT ?= out
+# the Python tests on one process a core (pytest-xdist); --dist loadgroup keeps each xdist_group (a module
+# whose fixture is costly, the hard-case catalogue that writes its table) on one process
+PYTEST = $(PY) -m pytest -q -p no:cacheprovider -n $(shell nproc) --dist loadgroup
 
 .PHONY: demo full ensemble-demo maeno-fragility verdict verdict-small test test-fast install test-cpp test-py docs bench
 
@@ -50,13 +53,13 @@ docs: install
 # the developer's loop: the optimised C++ tests and the Python tests not marked slow (minutes less)
 test-fast: install
 	bash scripts/test_cpp.sh --fast
-	$(PY) -m pytest -q -p no:cacheprovider -m "not slow" tests
+	$(PYTEST) -m "not slow" tests
 
 test-cpp:
 	bash scripts/test_cpp.sh
 
 test-py:
-	$(PY) -m pytest -q -p no:cacheprovider tests
+	$(PYTEST) --durations=25 tests
 
 bench: install
 	$(PY) benchmarks/porosity_lookup_cost.py

@@ -33,10 +33,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from vofdem.builder import GRAVITY, WATER_DENSITY
 from vofdem.io import RunData
 from vofdem.run import analyse_run
-from vofdem.study import shown_path
+from vofdem.study import number_or_dash as _f, shown_path, sphere_volume, submerged_weight
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -54,11 +53,6 @@ def median_member(df: pd.DataFrame) -> int:
     return int(order["seed"].iloc[(len(order) - 1) // 2])
 
 
-def submerged_weight(diameter: np.ndarray, rho_s: float) -> np.ndarray:
-    """(rho_s - rho_w) g pi d^3 / 6 [N]: the volume-equivalent sphere's weight in still water."""
-    return (rho_s - WATER_DENSITY) * GRAVITY * math.pi * np.asarray(diameter, float) ** 3 / 6.0
-
-
 def _side_wall_share(data, stones) -> float:
     """Share of the stones lying within one diameter of a side wall at the start (3D stones; else nan)."""
     if data.y is None or len(stones) == 0:
@@ -72,7 +66,7 @@ def stage_rows(data, analysis, scene) -> list:
     w = scene.weir
     x0, z0 = data.pos[0, :, 0], data.pos[0, :, 1]
     regions = analysis.region
-    weight = submerged_weight(data.diameter, scene.stones.density)
+    weight = submerged_weight(sphere_volume(data.diameter), scene.stones.density)
     rows = []
     for st in analysis.stages:
         k = max(int(np.searchsorted(data.times, st.start_time)) - 1, 0)  # the last snapshot before it
@@ -93,10 +87,6 @@ def stage_rows(data, analysis, scene) -> list:
             "others_z": float(np.mean(load[same, 1])) if same.any() else math.nan,
         })
     return rows
-
-
-def _f(v, fmt="{:.2f}") -> str:
-    return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
 
 
 def results_md(ens: Path, tag: str, seed: int, df: pd.DataFrame, scene, analysis, rows, figures) -> str:

@@ -33,11 +33,11 @@ from pathlib import Path
 
 import numpy as np
 
-from vofdem.builder import GRAVITY, WATER_DENSITY
-from vofdem.calibration import ROLLING_CONTACT_STEPS
+from vofdem.calibration import rolling_step
 from vofdem.ensemble import parse_seeds
 from vofdem.run import build_simulation
 from vofdem.scene import load_scene
+from vofdem.study import number_or_dash as _f, submerged_weight
 
 ROOT = Path(__file__).resolve().parents[1]
 LEVELS = (0.0, 0.25, 0.5, 0.625, 0.75, 0.875, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5, 3.0)
@@ -77,9 +77,7 @@ def ramp(stones, state: dict, params, mu_r, levels, hold: float) -> list:
     if mu_r is not None:
         p = stones.params
         p.rolling_friction_stone = p.rolling_friction_wall = float(mu_r)
-        if mu_r > 0.0 and p.contact_steps < ROLLING_CONTACT_STEPS:  # the same contact, the rolling
-            p.dt *= p.contact_steps / ROLLING_CONTACT_STEPS           # springs' steps (calibration.with_rolling)
-            p.contact_steps = ROLLING_CONTACT_STEPS
+        p.dt, p.contact_steps = rolling_step(p.dt, p.contact_steps, mu_r)  # as calibration.with_rolling
         stones.params = p
     f_ext, u_drag = np.array(stones.stone_force_ext), np.array(stones.stone_drag_vel)
     free = ~np.asarray(stones.stone_fixed).astype(bool)
@@ -109,8 +107,7 @@ def first_level(rows, count: float) -> float:
 def load_summary(stones) -> dict:
     """The free stones' downstream and upward loads at the release over their submerged weights."""
     free = ~np.asarray(stones.stone_fixed).astype(bool)
-    weight = (np.asarray(stones.stone_density) - WATER_DENSITY) * GRAVITY * np.array(
-        [stones.volume(i) for i in range(stones.n)])
+    weight = submerged_weight([stones.volume(i) for i in range(stones.n)], stones.stone_density)
     f = release_loads(stones)[free] / weight[free, None]
     return {"free": int(free.sum()), "fx_mean": float(f[:, 0].mean()), "fx_p95": float(np.percentile(f[:, 0], 95)),
             "fz_mean": float(f[:, 1].mean())}
@@ -140,10 +137,6 @@ def _band(a: np.ndarray, top: str) -> str:
     b = np.where(np.isfinite(a), a, np.inf)
     med = float(np.median(b))
     return f"{_f(med) if np.isfinite(med) else top} [{_f(float(b.min()))} - {_f(float(b.max())) if np.isfinite(b.max()) else top}]"
-
-
-def _f(v, fmt="{:.2f}") -> str:
-    return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
 
 
 def results_md(args, cases, command: str) -> str:

@@ -42,7 +42,6 @@ from types import SimpleNamespace
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from failure_mechanism import submerged_weight  # noqa: E402
 from vofdem import builder  # noqa: E402
 from vofdem.analysis import classify_regions  # noqa: E402
 from vofdem.calibration import PullSetup, slope_surface_stones, with_rolling  # noqa: E402
@@ -51,7 +50,7 @@ from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble  # noqa
 from vofdem.io import RunData  # noqa: E402
 from vofdem.run import analyse_run  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
-from vofdem.study import shown_path  # noqa: E402
+from vofdem.study import number_or_dash as _f, shown_path, sphere_volume, submerged_weight  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKING_FILE = "packing.json"
@@ -140,7 +139,7 @@ def surface_loads(data, scene, k: int) -> dict:
     if idx.size == 0:
         return {"surface": 0, "load_x": math.nan, "load_x_max": math.nan, "load_z": math.nan, "phi_needed": math.nan}
     load = (data.force_drag[k, idx] + data.force_pressure[k, idx]) / submerged_weight(
-        data.diameter[idx], scene.stones.density)[:, None]
+        sphere_volume(data.diameter[idx]), scene.stones.density)[:, None]
     fx, fz = float(np.mean(load[:, 0])), float(np.mean(load[:, 1]))
     return {"surface": int(idx.size), "load_x": fx, "load_x_max": float(np.max(load[:, 0])), "load_z": fz,
             "phi_needed": needed_angle(w.downstream_slope_deg, fx, fz)}
@@ -179,10 +178,6 @@ def member_row(cfg: Config, out: dict, member_dir: Path, window: float) -> dict:
 def _median(vals) -> float:
     v = [x for x in vals if x is not None and not (isinstance(x, float) and math.isnan(x))]
     return float(np.median(v)) if v else math.nan
-
-
-def _f(v, fmt="{:.2f}") -> str:
-    return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
 
 
 def config_rows(configs, rows, heaps) -> list:

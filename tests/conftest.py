@@ -12,3 +12,19 @@ def one_solver_thread():
     _core.set_threads(1)
     yield
     _core.set_threads(before)
+
+
+_WORKER_LINES = []
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """pytest-xdist: keeps the summary line a worker's run of the hard-case catalogue sent."""
+    line = getattr(node, "workeroutput", {}).get("hard_cases_summary")
+    if line:
+        _WORKER_LINES.append(line)
+
+
+def pytest_terminal_summary(terminalreporter):
+    for line in _WORKER_LINES:
+        terminalreporter.write_line(line)

@@ -11,6 +11,9 @@ from vofdem import _core, calibration as cal, calibration_3d as c3
 from vofdem.scene import Scene
 from vofdem.stone_models import front_of
 
+# on several processes (pytest-xdist, --dist loadgroup) the tests of the small weir run on one: it is packed once
+SMALL_WEIR = pytest.mark.xdist_group("clump_small_weir")
+
 
 def small_spec(seed=3, shape="clump"):
     # the C++ test's low weir (test_clump_packing.cpp): 2 cm clumps, 8 cm high, across 0.1 m
@@ -36,6 +39,7 @@ def small_weir():
     return _core.pack_weir(small_spec(), small_params())
 
 
+@SMALL_WEIR
 def test_a_small_clump_weir_packs_from_python_with_the_default_mix(small_weir):
     sys_, report = small_weir
     assert sys_.shape == "clump" and report.n_stones == sys_.n
@@ -104,6 +108,7 @@ def test_a_small_clump_heap_is_a_cone_of_clumps():
         cal.pour_heap(sc, 0, setup=cal.ReposeSetup(n_stones=10), clumps=c3.ClumpMix())
 
 
+@SMALL_WEIR
 def test_a_clump_pulled_up_out_of_the_small_weir_needs_at_least_its_weight(small_weir):
     sys_, _ = small_weir
     p = sys_.params
@@ -122,6 +127,9 @@ def test_a_clump_pulled_up_out_of_the_small_weir_needs_at_least_its_weight(small
 def test_pulls_on_a_clump_weir_across_a_narrow_flume():
     sc = spheres()
     sc.flume.width = 0.2
-    rs = cal.pull_test(sc, [0], 1, clumps=c3.ClumpMix())
+    # the stones beyond 3 d held, as benchmarks/clump_calibration.py pulls: this stone's peaks within 5 % of
+    # those with every stone free (2.06 / 1.48 / 2.16 of its weight against 2.06 / 1.56 / 2.17), the pulls at
+    # about a fifth of their CPU
+    rs = cal.pull_test(sc, [0], 1, clumps=c3.ClumpMix(), setup=cal.PullSetup(hold_beyond=3.0))
     assert {r.direction for r in rs} == {"vertical", "normal", "horizontal"}
     assert all(r.peak > 0.5 * r.weight for r in rs)

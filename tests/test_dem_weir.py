@@ -4,6 +4,9 @@ import pytest
 
 import vofdem
 
+# on several processes (pytest-xdist, --dist loadgroup) the tests of the packed weir run on one: it is packed once
+PACKED_WEIR = pytest.mark.xdist_group("packed_weir")
+
 
 def packed(**keys):
     """(DEMSystem, WeirPackingReport, WeirSpec) of a WeirSpec with these keys set, the rest its defaults and
@@ -21,6 +24,7 @@ def weir():
                   density=2650.0, seed=0)
 
 
+@PACKED_WEIR
 def test_weir_matches_the_trapezoid_within_one_diameter(weir):
     s, report, spec = weir
     assert report.n_stones == s.n and report.n_fixed == int(s.stone_fixed.sum())
@@ -35,6 +39,7 @@ def test_weir_matches_the_trapezoid_within_one_diameter(weir):
     assert s.stone_pos[free, 1].max() < spec.z_bed + spec.height + spec.d_mean / 2
 
 
+@PACKED_WEIR
 def test_weir_is_at_rest_and_stays_at_rest_for_ten_seconds(weir):
     s, report, _ = weir
     assert report.max_speed < 1e-3
@@ -61,6 +66,7 @@ def test_no_free_stone_lies_on_the_bed_beyond_the_fixed_layer(seed):
     assert not outside.any(), s.stone_pos[outside]
 
 
+@PACKED_WEIR
 def test_weir_porosity_is_reported(weir):
     _, report, spec = weir
     # 2D area porosity of discs in the trapezoid (the paper's 3D value is 0.41)

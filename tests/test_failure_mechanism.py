@@ -79,3 +79,22 @@ def test_the_script_on_an_ensemble_of_the_test_double(tmp_path):
     assert "packing 1" in text.splitlines()[0]
     assert "| 1 | 14.25 | 2 | downstream slope 2 |" in text and "| 2 | 22.25 | 3 | downstream slope 3 |" in text
     assert (tmp_path / "failure_mechanism_t_destruction.png").stat().st_size > 0
+
+
+def test_the_weight_from_a_nominal_diameter_is_the_weight_from_the_stones_volume():
+    # run.h5 keeps nominal diameters: for a clump as for a disc, the volume-equivalent sphere's, so that
+    # sphere_volume of them is the stone's own volume and the studies share one submerged weight
+    from vofdem import _core
+    from vofdem.study import number_or_dash, sphere_volume, submerged_weight
+
+    p = _core.DEMParams()
+    p.width = 0.2
+    s = _core.DEMSystem(p, np.array([[0.1, 0.1], [0.3, 0.1]]), np.array([0.01, 0.02]), np.array([2650.0, 2650.0]),
+                        [0, 0])
+    s.set_clumps(np.vstack([_core.quarried_stone("pair_2", 0.02), _core.quarried_stone("tetra_4", 0.04)]), [0, 2, 6])
+    volume = np.array([s.volume(i) for i in range(s.n)])
+    d = np.array([s.nominal_diameter(i) for i in range(s.n)])
+    assert sphere_volume(d) == pytest.approx(volume, rel=1e-12)
+    w = submerged_weight(volume, s.stone_density)
+    assert w == pytest.approx((2650.0 - 998.2) * 9.81 * volume, rel=1e-12)
+    assert (number_or_dash(None), number_or_dash(math.nan), number_or_dash(0.125, "{:.1f}")) == ("-", "-", "0.1")

@@ -14,6 +14,9 @@ from test_spheres import heap
 from vofdem import io, plots
 from vofdem.scene import Scene
 
+# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the 3D heap's run made once
+pytestmark = pytest.mark.xdist_group("output_3d")
+
 HERE = Path(__file__).resolve().parent
 PVBATCH = shutil.which("pvbatch")
 READERS = ("XDMFReader", "Xdmf3ReaderS", "Xdmf3ReaderT")

@@ -13,6 +13,9 @@ from test_resume import _vofdem, kill_at_snapshot
 
 from vofdem.io import FIELD_NAMES, completed_snapshots
 
+# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the runs made once
+pytestmark = pytest.mark.xdist_group("paraview")
+
 ROOT = Path(__file__).resolve().parents[1]
 READERS = ("XDMFReader", "Xdmf3ReaderS", "Xdmf3ReaderT")
 QUICK = ["run", "maeno2008", "--quick", "--no-figures", "--no-animation", "--no-progress"]

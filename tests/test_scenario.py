@@ -10,6 +10,9 @@ from vofdem.io import RunData, check_xdmf
 from vofdem.run import run_scene
 from vofdem.scene import Scene
 
+# on several processes (pytest-xdist, --dist loadgroup) the module runs on one: the quick run made once
+pytestmark = pytest.mark.xdist_group("scenario")
+
 END_TIME = 7.0  # s: 5 s spin-up at 10 l/s + 2 s of the ramp
 
 

@@ -13,6 +13,9 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))
 import vof_cases as val  # noqa: E402  (the cases live in validation/, outside the package)
 
+# on several processes (pytest-xdist, --dist loadgroup) the tests of the dam-break runs run on one: they are made once
+DAM_BREAK_RUNS = pytest.mark.xdist_group("dam_break_runs")
+
 
 # ---------------------------------------------------------------------------------------------
 # front definition (identical to the peer drivers' dambreak_common.front_from_row)
@@ -46,6 +49,7 @@ def dam_break_runs():
     return {n: val.dam_break_front(n=n, cfl=0.2, t_end=0.185) for n in (8, 16)}
 
 
+@DAM_BREAK_RUNS
 def test_dam_break_conserves_water_and_front_starts_at_a(dam_break_runs):
     for run in dam_break_runs.values():
         # round-off only, accumulated over the steps: measured 4.3e-13 / 4.8e-13 (N = 8 / 16, 162 / 314
@@ -55,6 +59,7 @@ def test_dam_break_conserves_water_and_front_starts_at_a(dam_break_runs):
         assert np.all(np.diff(run.Z) >= -0.05)  # the surge front does not retreat
 
 
+@DAM_BREAK_RUNS
 def test_dam_break_front_against_martin_and_moyce(dam_break_runs):
     # measured (CFL 0.2, no shift, Adams-Bashforth 2): N=8 rms 0.123, max 0.199; N=16 rms 0.159, max 0.232
     # (in Z = x/a; with the former Euler convection 0.137, 0.205; 0.188, 0.239).
@@ -88,6 +93,7 @@ def test_dam_break_second_order_convection_removes_the_time_step_error():
 
 
 @pytest.mark.slow
+@DAM_BREAK_RUNS
 def test_dam_break_grid_convergence(dam_break_runs):
     # Z(T = 3) at N = 8, 16, 32 (CFL 0.2): measured 3.698, 3.794, 3.841 (Euler: 3.763, 3.855, 3.917);
     # the change per doubling shrinks (0.096 then 0.047)

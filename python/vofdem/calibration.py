@@ -169,10 +169,17 @@ def with_rolling(scene: Scene, mu_r: float) -> Scene:
     s = scene.replace()
     s.stones.rolling_friction = s.stones.rolling_friction_wall = float(mu_r)
     n = s.numerics
-    if mu_r > 0.0 and n.dem_contact_steps < ROLLING_CONTACT_STEPS:
-        n.dem_dt *= n.dem_contact_steps / ROLLING_CONTACT_STEPS
-        n.dem_contact_steps = ROLLING_CONTACT_STEPS
+    n.dem_dt, n.dem_contact_steps = rolling_step(n.dem_dt, n.dem_contact_steps, mu_r)
     return s.validate()
+
+
+def rolling_step(dt: float, contact_steps: float, mu_r: float):
+    """(dt [s], steps per contact [-]) of a DEM with rolling friction mu_r [-]: for mu_r > 0 at least
+    ROLLING_CONTACT_STEPS steps per contact, dt scaled with them so that the contact stiffness is kept;
+    else (or with as many steps already) dt and contact_steps as given."""
+    if mu_r > 0.0 and contact_steps < ROLLING_CONTACT_STEPS:
+        return dt * (contact_steps / ROLLING_CONTACT_STEPS), ROLLING_CONTACT_STEPS
+    return dt, contact_steps
 
 
 def repose_params(scene: Scene, submerged: bool, half_width: float):

@@ -31,6 +31,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .builder import GRAVITY, WATER_DENSITY
 from .fragility import BAND, EVENTS, empirical_quantile, event_fragility
 from .stone_models import front
 
@@ -63,6 +64,23 @@ def shown_path(path, root, tail: int = 3) -> str:
         return str(full.relative_to(Path(root).resolve()))
     except ValueError:
         return str(Path(*full.parts[1:][-tail:]))
+
+
+def number_or_dash(v, fmt: str = "{:.2f}") -> str:
+    """v formatted by `fmt` for a results table, '-' where it is None or nan (not measured)."""
+    return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
+
+
+def sphere_volume(diameter) -> np.ndarray:
+    """pi d^3 / 6 [m^3] of nominal diameters d [m]: a stone's own volume, since every stone model's nominal
+    diameter is its volume-equivalent sphere's (the diameters run.h5 keeps)."""
+    return math.pi * np.asarray(diameter, float) ** 3 / 6.0
+
+
+def submerged_weight(volume, density) -> np.ndarray:
+    """(rho_s - rho_w) g V [N]: the weight in still water of stones of volume V [m^3] and density rho_s
+    [kg/m^3] (rho_w and g: the Medium's defaults, builder.WATER_DENSITY and builder.GRAVITY)."""
+    return (np.asarray(density, float) - WATER_DENSITY) * GRAVITY * np.asarray(volume, float)
 
 
 # ---------------------------------------------------------------------------- statistics

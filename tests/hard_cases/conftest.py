@@ -100,6 +100,9 @@ def _table(cases) -> str:
 def pytest_sessionfinish(session, exitstatus):
     from hc_harness import CASES
 
+    # a pytest-xdist worker prints nothing: its summary goes to the main process (tests/conftest.py shows it)
+    if hasattr(session.config, "workeroutput") and _summary():
+        session.config.workeroutput["hard_cases_summary"] = _summary()
     if not CASES or any(c.name not in _OUTCOMES for c in CASES):
         return  # only part of the catalogue ran: the table stays as it is
     if TABLE.parent.is_dir():
@@ -110,11 +113,17 @@ def pytest_sessionfinish(session, exitstatus):
         COSTS.write_text(_costs(CASES), encoding="utf-8")
 
 
-def pytest_terminal_summary(terminalreporter):
+def _summary() -> str:
     from hc_harness import CASES
 
     ran = [c for c in CASES if c.name in _OUTCOMES]
-    if ran:
-        n = _counts(ran)
-        terminalreporter.write_line(f"hard cases: {len(ran)} run, {n['pass']} pass, {n['xfail']} expected to fail, "
-                                    f"{n['FAIL']} fail, {n['xpass']} unexpected pass")
+    if not ran:
+        return ""
+    n = _counts(ran)
+    return (f"hard cases: {len(ran)} run, {n['pass']} pass, {n['xfail']} expected to fail, {n['FAIL']} fail, "
+            f"{n['xpass']} unexpected pass")
+
+
+def pytest_terminal_summary(terminalreporter):
+    if _summary():
+        terminalreporter.write_line(_summary())

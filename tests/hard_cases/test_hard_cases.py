@@ -14,6 +14,10 @@ import hc_coupled  # noqa: F401
 import hc_errors  # noqa: F401
 from hc_harness import CASES
 
+# on several processes (pytest-xdist, --dist loadgroup) the catalogue runs on one, whose conftest sees every
+# outcome and so writes docs/hard_cases.md; the session fixture is made once
+pytestmark = pytest.mark.xdist_group("hard_cases")
+
 
 def _params():
     out = []
