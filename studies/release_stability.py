@@ -50,7 +50,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from failure_mechanism import submerged_weight  # noqa: E402
 from vofdem import builder  # noqa: E402
-from vofdem.analysis import classify_regions  # noqa: E402
+from vofdem.analysis import REGIONS, classify_regions  # noqa: E402
 from vofdem.calibration import PullSetup, slope_surface_stones, with_rolling  # noqa: E402
 from vofdem.calibration_3d import ClumpMix, clump_params  # noqa: E402
 from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble  # noqa: E402
@@ -176,6 +176,9 @@ def member_row(cfg: Config, out: dict, member_dir: Path, window: float) -> dict:
     t = a.removal_time
     lost = np.isfinite(t) & (t > release) & (t <= release + window)
     st = [s for s in a.stages if s.start_time <= release + window]
+    # where the stones lost at the release lay at the start (vofdem.analysis regions, as the stage tables')
+    region = classify_regions(data.pos[0, :, 0], scene.weir, float(np.mean(data.diameter)))
+    row["lost_where"] = {r: int(np.sum(lost & (region == r))) for r in REGIONS}
     row.update(stones=int(t.size), lost_release=int(lost.sum()), lost_end=int(np.isfinite(t).sum()),
                stage_release=len(st) > 0, stage_stones=st[0].n_stones if st else 0,
                simulated=float(data.times[-1]), q_end=float(scene.hydrograph.discharge_lps_at(float(data.times[-1]))))
@@ -188,9 +191,14 @@ def member_row(cfg: Config, out: dict, member_dir: Path, window: float) -> dict:
 def earlier_rows(page: Path, configs, seeds) -> list:
     """The completed members of an earlier page of this script (its per-member table) of the configurations
     run here, at seeds not run here: packings another call ran, whose ensembles need not be at hand."""
+    return earlier_rows_of(page.read_text(encoding="utf-8"), configs, seeds)
+
+
+def earlier_rows_of(text: str, configs, seeds) -> list:
+    """earlier_rows of a page's text."""
     labels = {c.label for c in configs}
     rows = []
-    for line in page.read_text(encoding="utf-8").split("## Per member", 1)[-1].splitlines():
+    for line in text.split("## Per member", 1)[-1].splitlines():
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
         if len(cells) == MEMBER_COLUMNS and cells[0] in labels and cells[2] == "completed" and \
                 int(cells[1]) not in seeds:
@@ -283,6 +291,7 @@ def results_md(args, base, configs, rows, summary, command) -> str:
                      f"{r['surface']} | {_f(r['load_x'])} ({_f(r['load_x_max'])}) | {_f(r['load_z'])} | "
                      f"{_f(r['phi_needed'], '{:.1f}')} | {_f(r['porosity'], '{:.3f}')} | {r['simulated']:.1f} | "
                      f"{r['cpu']:.0f} |")
+    lines += _where_md(rows)
     cpu = [r["cpu"] for r in rows if not math.isnan(r["cpu"])]
     n_earlier = sum(r["status"] == EARLIER for r in rows)
     from_earlier = f"; {n_earlier} of them from the earlier page" if n_earlier else ""
@@ -290,6 +299,19 @@ def results_md(args, base, configs, rows, summary, command) -> str:
               f"included; median {_median(cpu):.0f} s{from_earlier}).", "",
               f"Figure: `{shown_path(args.figure, ROOT)}`.", ""]
     return "\n".join(lines)
+
+
+def _where_md(rows) -> list:
+    """Where the stones lost at the release lay at the start, per member run here that lost any."""
+    lost = [r for r in rows if r["status"] == "completed" and r["lost_release"] > 0]
+    if not lost:
+        return ["", "Where the stones lost at the release lay: no member run here lost any."]
+    lines = ["", "## Where the stones lost at the release lay", "",
+             "Their initial places (vofdem.analysis regions, as the stage tables'), per member run here that lost "
+             "any:", "", "| stones | seed | " + " | ".join(REGIONS) + " |", "|---|---:|" + "---:|" * len(REGIONS)]
+    for r in lost:
+        lines.append(f"| {r['config']} | {r['seed']} | " + " | ".join(str(r["lost_where"][g]) for g in REGIONS) + " |")
+    return lines
 
 
 def _earlier_note(args, rows) -> str:

@@ -81,13 +81,17 @@ def test_an_earlier_pages_member_row_reads_back_as_written():
     cfg = rs.Config("clump", 0.0)
     row = {"config": cfg.label, "seed": 2, "status": "completed", "cpu": 954.0, "removed": 3, "porosity": 0.501,
            "stones": 900, "lost_release": 1, "lost_end": 3, "stage_release": True, "stage_stones": 2,
-           "simulated": 30.0, "surface": 88, "load_x": 0.42, "load_x_max": 0.61, "load_z": -0.12, "phi_needed": 47.5}
+           "simulated": 30.0, "surface": 88, "load_x": 0.42, "load_x_max": 0.61, "load_z": -0.12, "phi_needed": 47.5,
+           "lost_where": {"upstream slope": 0, "crest": 0, "shoulder": 0, "downstream slope": 1}}
     args = rs.argparse.Namespace(seeds="2", after=10.0, window=2.0, no_run=False, out=rs.ROOT / "out" / "x",
                                  figure=rs.ROOT / "docs" / "f.png", earlier=None)
     base = vofdem.load_scene(rs.ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml")
     summary = rs.config_rows([cfg], [row], {})
     page = rs.results_md(args, base, [cfg], [row], summary, "cmd")
     lines = [ln for ln in page.split("## Per member")[1].splitlines() if ln.startswith("| clumps")]
+    # the per-member row, then where its lost stone lay (a table of its own, the regions in analysis' order)
+    assert lines[1] == "| clumps, mu_r = 0 | 2 | 0 | 0 | 0 | 1 |" and "| crest | shoulder | downstream slope |" in page
+    assert rs.earlier_rows_of(page, [cfg], []) == [rs.parsed_member([c.strip() for c in lines[0].strip("|").split("|")])]
     back = rs.parsed_member([c.strip() for c in lines[0].strip("|").split("|")])
     assert back == {**{k: row[k] for k in back if k != "status"}, "status": rs.EARLIER}
     no_stage = rs.parsed_member([c.strip() for c in lines[0].replace("yes (2)", "no").strip("|").split("|")])
