@@ -15,6 +15,9 @@ runs only the members not finished (one directory per ensemble under --out).
   where a narrower flume's water would reach the top (`sweep_height`); for 3D stones with each width's
   packings (stones, stones across, porosity). With --width-base and --parts width alone, the scene's own
   width is read from an earlier study's _verdict.csv instead of run (its seeds, not paired with the sweep's).
+  The stone-wall friction's sweep (--parts wall, not run by default) is the like over stones.friction_wall
+  (the side walls', the bed's and the upstream end wall's Coulomb friction; the paper's 0.176) with
+  --wall-frictions, --wall-seeds and --wall-base: a sensitivity over a plausible range, not a fit.
 * **Accuracy against cost**: from a reference configuration, one knob at a time over the same seeds
   (vofdem.study.knob_settings: grid, ramp, CFL, porosity table, DEM steps per contact, spin-up, the
   kernel mapping's width, the overflow load); per setting the shift of each event's median from the reference's, with its paired bootstrap interval,
@@ -23,9 +26,10 @@ runs only the members not finished (one directory per ensemble under --out).
   does not enter) and the steps per member (the same on any machine); the packings' own spread (the
   reference's 16-84 % band) beside it.
 
-Writes studies/results/maeno2008_verdict<suffix>.md (+ _verdict.csv, _width.csv, _cost.csv) and
-docs/figures/maeno2008_verdict<suffix>_cost.png, _fragility.png and _width.png; suffix '' (full), '_small', '_tiny',
-then '_<tag>' with --tag (a study of other scenes kept beside the main one; only the parts run are written).
+Writes studies/results/maeno2008_verdict<suffix>.md (+ _verdict.csv, _width.csv, _wall.csv, _cost.csv) and
+docs/figures/maeno2008_verdict<suffix>_cost.png, _fragility.png, _width.png and _wall.png; suffix '' (full),
+'_small', '_tiny', then '_<tag>' with --tag (a study of other scenes kept beside the main one; only the parts
+run are written).
 
     PYTHONPATH=python python3 studies/maeno2008_verdict.py            # the full study: 30 seeds (hours)
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --small    # the small version (minutes)
@@ -37,6 +41,10 @@ then '_<tag>' with --tag (a study of other scenes kept beside the main one; only
         maeno2008_spheres_rolling_consistent --widths 0.3 0.4 --width-seeds 0-3 --width-base \
         studies/results/maeno2008_verdict_spheres_verdict.csv --tag spheres_width --workers 1 \
         --out out/spheres_width   # their width sweep, B = 0.5 m from the verdict's rows
+    PYTHONPATH=python python3 studies/maeno2008_verdict.py --parts wall --scenes \
+        maeno2008_spheres_rolling_consistent --wall-frictions 0.1 0.35 --wall-seeds 0-3 --wall-base \
+        studies/results/maeno2008_verdict_spheres_verdict.csv --tag spheres_wall --workers 1 \
+        --out out/spheres_wall   # their stone-wall friction's sweep, 0.176 from the verdict's rows
     PYTHONPATH=python python3 studies/maeno2008_verdict.py --redraw-cost   # the cost figure from its CSV
 """
 import argparse
@@ -44,6 +52,7 @@ import contextlib
 import math
 import os
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -62,12 +71,43 @@ ROOT = Path(__file__).resolve().parents[1]
 # the first is the width sweep's and the cost part's reference: the consistent coupling, chosen on physics (the
 # stones take the momentum the porous resistance removes; the weir's mean porosity is the measured one)
 SCENES = ("maeno2008_rolling_consistent", "maeno2008_rolling")
-# per size: seeds, the scenes' quick variant, the end time [s] (None: the hydrograph's end), widths [m]
-SIZES = {"full": dict(seeds="0-29", quick=False, end_time=None, widths=(0.3, 0.4, 0.5)),
-         "small": dict(seeds="0-5", quick=True, end_time=None, widths=(0.3, 0.4, 0.5)),
-         "tiny": dict(seeds="0-1", quick=True, end_time=3.0, widths=(0.4, 0.5))}
+# per size: seeds, the scenes' quick variant, the end time [s] (None: the hydrograph's end), widths [m],
+# stone-wall frictions [-] (about the paper's 0.176: glass or stone on stone, wet; assumed, not measured)
+SIZES = {"full": dict(seeds="0-29", quick=False, end_time=None, widths=(0.3, 0.4, 0.5), wall_frictions=(0.1, 0.35)),
+         "small": dict(seeds="0-5", quick=True, end_time=None, widths=(0.3, 0.4, 0.5), wall_frictions=(0.1, 0.35)),
+         "tiny": dict(seeds="0-1", quick=True, end_time=3.0, widths=(0.4, 0.5), wall_frictions=(0.35,))}
 SUFFIX = {"full": "", "small": "_small", "tiny": "_tiny"}
-PARTS = ("verdict", "width", "cost")
+PARTS = ("verdict", "width", "cost")  # the default parts; the stone-wall friction's sweep runs when asked
+PART_CHOICES = ("verdict", "width", "wall", "cost")
+WALL_FRICTION_RANGE = (0.0, 2.0)  # stones.friction_wall's range in the scene
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A part that runs one configuration over values of one scene key; the scene's own value is its
+    verdict ensemble (or an earlier study's rows, --<part>-base)."""
+
+    part: str  # the part's name and its options' prefix: --<part>-seeds, --<part>-base
+    key: str  # the scene key varied
+    values_arg: str  # the option of its values, and their SIZES entry
+    noun: str  # the value in words
+    column: str  # the values' column in the tables and the CSV
+    header: str  # the tables' first column
+    axis: str  # the figure's abscissa
+    named: str  # one value in words, a format of the value
+    title: str
+    what: str  # the page's sentence on the values
+
+
+SWEEPS = {"width": Sweep("width", "flume.width", "widths", "width", "width_m", "B [m]", "flume width B [m]",
+                         "B = {:g} m", "The width sweep",
+                         "flume widths B (the discharge is divided by B; the paper does not give it)"),
+          "wall": Sweep("wall", "stones.friction_wall", "wall_frictions", "stone-wall friction", "friction_wall",
+                        "stone-wall friction [-]", "stone-wall friction [-]", "Stone-wall friction {:g}",
+                        "The stone-wall friction's sweep",
+                        "stone-wall frictions (stones.friction_wall: the side walls', the bed's and the upstream end "
+                        "wall's Coulomb friction; the paper gives 0.176 for its model, no measurement; the bed's "
+                        "lowest stones are fixed)")}
 
 
 def _parser():
@@ -77,7 +117,8 @@ def _parser():
                       "one setting per knob (minutes on 2 cores)")
     size.add_argument("--tiny", action="store_true", help="the test suite's size: 2 seeds, 3 s, two knobs")
     p.add_argument("--scenes", nargs="+", default=list(SCENES), help="configurations: scene names in scenes/")
-    p.add_argument("--width-scene", default=None, help="the configuration of the width sweep (default the first)")
+    p.add_argument("--width-scene", default=None, help="the configuration of the width and the stone-wall "
+                   "friction's sweeps (default the first)")
     p.add_argument("--cost-scene", default=None, help="the reference of accuracy against cost (default the first)")
     p.add_argument("--widths", type=float, nargs="+", default=None, help="flume widths [m] of the sweep")
     p.add_argument("--knobs", nargs="+", default=None, choices=KNOBS, help="knobs of the cost part (default all)")
@@ -86,6 +127,11 @@ def _parser():
     p.add_argument("--width-base", type=Path, default=None, help="with --parts width alone: the scene's own width "
                    "from the rows of an earlier study's _verdict.csv (its Kaplan-Meier medians and bands over that "
                    "study's seeds, not paired with the sweep's) instead of running its verdict ensemble")
+    p.add_argument("--wall-frictions", type=float, nargs="+", default=None, help="stone-wall frictions [-] of "
+                   "the stone-wall friction's sweep (--parts wall), each in [0, 2] (default 0.1 0.35; --tiny 0.35)")
+    p.add_argument("--wall-seeds", default=None, help="packings of the stone-wall friction's sweep (default --seeds)")
+    p.add_argument("--wall-base", type=Path, default=None, help="with --parts wall alone: the scene's own "
+                   "stone-wall friction from the rows of an earlier study's _verdict.csv, as --width-base")
     p.add_argument("--knob-seeds", default=None, help="packings of the accuracy-against-cost part (default --seeds; "
                    "the reference's members at these seeds are paired with each setting's)")
     p.add_argument("--no-reference-rerun", action="store_true", help="measure the settings' CPU time against the "
@@ -93,9 +139,9 @@ def _parser():
                    "machine's speed between the two then enters the ratios)")
     p.add_argument("--no-run", action="store_true", help="run no member: the tables of the members finished so far "
                    "(an ensemble cut short says how many of its members it holds)")
-    p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PARTS,
-                   help="parts to run (default all; the verdict's ensembles always run, the others are "
-                        "measured against them, unless --width-base gives the width part's own width)")
+    p.add_argument("--parts", nargs="+", default=list(PARTS), choices=PART_CHOICES,
+                   help="parts to run (default verdict, width, cost; the verdict's ensembles always run, the others "
+                        "are measured against them, unless --width-base or --wall-base gives the part's own value)")
     p.add_argument("--end-time", type=float, default=None, help="stop each member at this time [s]")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default one per core; 0: "
                    "in this process, no Dask)")
@@ -159,12 +205,14 @@ def _command(args, size: str) -> str:
         flag += " --scenes " + " ".join(args.scenes)
     if args.width_scene:
         flag += f" --width-scene {args.width_scene}"
-    if args.widths:
-        flag += " --widths " + " ".join(f"{w:g}" for w in args.widths)
-    flag += "".join(f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "knob_seeds", "tag")
-                    if getattr(args, k))
-    if args.width_base:
-        flag += f" --width-base {shown_path(args.width_base, ROOT)}"
+    for k in ("widths", "wall_frictions"):
+        if getattr(args, k):
+            flag += f" --{k.replace('_', '-')} " + " ".join(f"{v:g}" for v in getattr(args, k))
+    flag += "".join(f" --{k.replace('_', '-')} {getattr(args, k)}" for k in ("seeds", "width_seeds", "wall_seeds",
+                                                                            "knob_seeds", "tag") if getattr(args, k))
+    for k in ("width_base", "wall_base"):
+        if getattr(args, k):
+            flag += f" --{k.replace('_', '-')} {shown_path(getattr(args, k), ROOT)}"
     if args.knobs:
         flag += " --knobs " + " ".join(args.knobs)
     return flag + (" --no-reference-rerun" if args.no_reference_rerun else "")
@@ -178,65 +226,96 @@ def run_study(args, build=None, log=print):
     d = SIZES[size]
     end_time = args.end_time if args.end_time is not None else d["end_time"]
     seeds = parse_seeds(args.seeds or d["seeds"])
-    width_seeds, knob_seeds = (parse_seeds(a) if a else seeds for a in (args.width_seeds, args.knob_seeds))
+    knob_seeds = parse_seeds(args.knob_seeds) if args.knob_seeds else seeds
     scenes = {n: _scene(n, d["quick"], end_time) for n in args.scenes}
     width_name, cost_name = args.width_scene or args.scenes[0], args.cost_scene or args.scenes[0]
     for n in (width_name, cost_name):
         if n not in scenes:
             raise ValueError(f"{n!r} is not one of the study's scenes ({', '.join(scenes)})")
     settings = knob_settings(scenes[cost_name], size, args.knobs) if "cost" in args.parts else []
-    base_width = scenes[width_name].flume.width
-    widths = [w for w in (args.widths or d["widths"]) if not math.isclose(w, base_width)]
-    widths = widths if "width" in args.parts else []
     out = args.out or ROOT / "out" / f"maeno2008_verdict{SUFFIX[size]}"
-    height = sweep_height(scenes[width_name], widths)
-    base_rows = _width_base_rows(args, width_name, base_width) if args.width_base else None
-    res = {"size": size, "seeds": seeds, "width_seeds": width_seeds, "knob_seeds": knob_seeds, "scenes": scenes,
-           "width_scene": width_name, "cost_scene": cost_name,
-           "settings": settings, "base_width": base_width, "sweep_height": height, "out": out, "found": _finished(out),
-           "width_base": base_rows, "width_base_path": args.width_base}
+    sweeps = {part: _sweep_plan(args, part, width_name, scenes[width_name], d, seeds)
+              for part in SWEEPS if part in args.parts}
+    height = sweep_height(scenes[width_name], sweeps["width"]["values"] if "width" in sweeps else [])
+    res = {"size": size, "seeds": seeds, "knob_seeds": knob_seeds, "scenes": scenes,
+           "width_scene": width_name, "cost_scene": cost_name, "sweeps": sweeps,
+           "settings": settings, "sweep_height": height, "out": out, "found": _finished(out)}
     with _client(0 if args.no_run else args.workers, None if args.no_run else args.scheduler) as client:
         kw = dict(client=client, workers=args.workers, figures=False, animation=False, build=build,
                   progress=log is print, dashboard=False, n_boot=args.n_boot, log=log)
         ens = (lambda s, sd, d, vary=None: finished_outcomes(s, sd, d, vary)) if args.no_run else \
             (lambda s, sd, d, vary=None: run_ensemble(s, sd, d, vary=vary, **kw))
-        # with --width-base the scene's own width comes from an earlier study's rows: no verdict member runs
-        res["verdict"] = {} if base_rows is not None else {n: ens(s, seeds, out / "verdict" / n)
-                                                            for n, s in scenes.items()}
-        res["width"] = (ens(scenes[width_name], width_seeds, out / "width" / width_name, _width_vary(res, widths))
-                        if widths else None)
+        # with --width-base (--wall-base) the scene's own value comes from an earlier study's rows: no verdict
+        # member runs
+        from_base = any(plan["base_rows"] is not None for plan in sweeps.values())
+        res["verdict"] = {} if from_base else {n: ens(s, seeds, out / "verdict" / n) for n, s in scenes.items()}
+        for part, plan in sweeps.items():
+            plan["frame"] = (ens(scenes[width_name], plan["seeds"], out / part / width_name, _sweep_vary(res, part))
+                             if plan["values"] else None)
         ref = scenes[cost_name]
         # the reference rerun at the knob seeds just before the settings: its CPU time is measured beside theirs
         rerun = settings and not args.no_reference_rerun
         res["cost_reference"] = ens(ref, knob_seeds, out / "cost" / "reference") if rerun else None
         res["cost"] = {st.name: ens(st.scene(ref), knob_seeds, out / "cost" / st.name) for st in settings}
-    res["packing"] = _packings(scenes[width_name], [base_width, *widths], width_seeds) if widths else {}
+    for part, plan in sweeps.items():
+        plan["packing"] = (_packings(scenes[width_name], SWEEPS[part].key, [plan["own"], *plan["values"]],
+                                     plan["seeds"]) if plan["values"] else {})
     return res
 
 
-def _packings(scene, widths, seeds) -> dict:
-    """{width: [(stones, stones across, porosity) per seed]} of 3D stones' weirs packed as the members pack
-    them (builder.build_stones: the seed's weir bit for bit; seconds each); {} for stones in the plane."""
+def _sweep_plan(args, part: str, name: str, scene, size: dict, seeds) -> dict:
+    """What a sweep part runs: the scene's own value, the other values, the seeds, and the earlier study's
+    rows for the own value where --<part>-base gives them."""
+    sw = SWEEPS[part]
+    own = float(scene.value_of(sw.key))
+    given = getattr(args, sw.values_arg) or size[sw.values_arg]
+    if part == "wall":
+        _check_range(f"--{sw.values_arg.replace('_', '-')}", given, WALL_FRICTION_RANGE)
+    own_seeds = getattr(args, f"{part}_seeds")
+    base = getattr(args, f"{part}_base")
+    return {"own": own, "values": [v for v in given if not math.isclose(v, own)],
+            "seeds": parse_seeds(own_seeds) if own_seeds else seeds, "base_path": base,
+            "base_rows": _sweep_base_rows(args, part, name, scene) if base else None}
+
+
+def _check_range(option: str, values, bounds) -> None:
+    lo, hi = bounds
+    for v in values:
+        if not lo <= v <= hi:
+            raise ValueError(f"{option}: {v:g} is outside the allowed range [{lo:g}, {hi:g}]")
+
+
+def _packings(scene, key: str, values, seeds) -> dict:
+    """{value of key: [(stones, stones across, porosity) per seed]} of 3D stones' weirs packed as the members
+    pack them (builder.build_stones: the seed's weir bit for bit; seconds each); {} for stones in the plane."""
     if scene.stones.shape not in ("sphere", "clump"):
         return {}
     out = {}
-    for w in widths:
-        reports = [build_stones(scene.with_value("flume.width", w).replace(seed=s))[1] for s in seeds]
-        out[w] = [(r.n_stones, r.stones_across, r.porosity) for r in reports]
+    for v in values:
+        reports = [build_stones(scene.with_value(key, v).replace(seed=s))[1] for s in seeds]
+        out[v] = [(r.n_stones, r.stones_across, r.porosity) for r in reports]
     return out
 
 
-def _width_base_rows(args, name: str, width: float) -> list:
-    """The event rows of scene `name` in the earlier study's _verdict.csv given by --width-base."""
-    if list(args.parts) != ["width"]:
-        raise ValueError(f"width_base: the scene's own width is read instead of run in the width part alone "
-                         f"(--parts width), not with --parts {' '.join(args.parts)}")
-    frame = pd.read_csv(args.width_base)
+def _sweep_base_rows(args, part: str, name: str, scene) -> list:
+    """The event rows of scene `name` in the earlier study's _verdict.csv given by --<part>-base (a verdict of
+    the same scene: its own width and stone-wall friction)."""
+    path, width = getattr(args, f"{part}_base"), scene.flume.width
+    if list(args.parts) != [part]:
+        raise ValueError(f"{part}_base: the scene's own {SWEEPS[part].noun} is read instead of run in the {part} "
+                         f"part alone (--parts {part}), not with --parts {' '.join(args.parts)}")
+    frame = pd.read_csv(path)
     rows = frame[frame["scene"] == name]
     if rows.empty or not np.allclose(rows["width_m"].astype(float), width):
-        raise ValueError(f"width_base: {args.width_base.name} holds no rows of {name} at its width B = {width:g} m")
+        raise ValueError(f"{part}_base: {path.name} holds no rows of {name} at its width B = {width:g} m")
     return [{k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in r.items()}
             for r in rows.to_dict("records")]
+
+
+def _sweep_vary(res, part: str) -> dict:
+    """A sweep's `vary`: its values; the width's with the raised domain's height where it is raised."""
+    return _width_vary(res, res["sweeps"][part]["values"]) if part == "width" else \
+        {SWEEPS[part].key: res["sweeps"][part]["values"]}
 
 
 def _width_vary(res, widths) -> dict:
@@ -308,49 +387,51 @@ def _config_md(name, scene, df) -> list:
     return lines + [""]
 
 
-def width_frames(res):
-    """{width [m]: outcome frame} of the width sweep, the scene's own width from its verdict ensemble (its
-    members at the sweep's seeds)."""
+def sweep_frames(res, part: str):
+    """{value: outcome frame} of a sweep, the scene's own value from its verdict ensemble (its members at the
+    sweep's seeds)."""
+    plan = res["sweeps"][part]
     base = res["verdict"].get(res["width_scene"])
-    out = {} if base is None else {res["base_width"]: base[base["seed"].isin(res["width_seeds"])]}
-    wide = res["width"]
-    if wide is not None:
-        for w, g in wide.groupby("flume.width"):
-            out[float(w)] = g
+    out = {} if base is None else {plan["own"]: base[base["seed"].isin(plan["seeds"])]}
+    if plan["frame"] is not None:
+        for v, g in plan["frame"].groupby(SWEEPS[part].key):
+            out[float(v)] = g
     return dict(sorted(out.items()))
 
 
-def width_rows(res):
-    """One row per width and event; the scene's own width from --width-base's rows where given."""
-    rows = _base_width_rows(res) if res.get("width_base") is not None else []
-    for w, df in width_frames(res).items():
+def sweep_rows(res, part: str):
+    """One row per value and event; the scene's own value from --<part>-base's rows where given."""
+    col, plan = SWEEPS[part].column, res["sweeps"][part]
+    rows = _base_sweep_rows(res, part) if plan["base_rows"] is not None else []
+    for v, df in sweep_frames(res, part).items():
         fr = stage_fractions(df)
         done = df[df["status"] == "completed"]
         for ev in EVENTS:
-            rows.append({"width_m": w, **event_summary(df, ev), "stages_2plus": fr["stages_2plus"],
+            rows.append({col: v, **event_summary(df, ev), "stages_2plus": fr["stages_2plus"],
                          "crest_lowering_mm_median": spread(done["crest_lowering_mm"].astype(float))[1],
                          "stages_3plus": fr["stages_3plus"], "stones_median": spread(done["stones"].astype(float))[1],
                          "cpu_s_median": spread(done["cpu_seconds"].astype(float))[1],
                          "seeds": _seed_range(sorted(done["seed"])) if len(done) else "", "source": "run"})
     for r in rows:
-        packed = _near(res.get("packing", {}), r["width_m"])
+        packed = _near(plan.get("packing", {}), r[col])
         r.update({k: (float(np.mean([p[i] for p in packed])) if packed else None)
                   for i, k in enumerate(("packed_stones_mean", "stones_across_mean", "packed_porosity_mean"))})
-    return sorted(rows, key=lambda r: r["width_m"])
+    return sorted(rows, key=lambda r: r[col])
 
 
-def _near(by_width: dict, w: float):
-    return next((v for k, v in by_width.items() if math.isclose(k, w)), None)
+def _near(by_value: dict, v: float):
+    return next((x for k, x in by_value.items() if math.isclose(k, v)), None)
 
 
-def _base_width_rows(res) -> list:
-    """The scene's own width from an earlier study's verdict rows: its events as they are; its stage
+def _base_sweep_rows(res, part: str) -> list:
+    """The scene's own value from an earlier study's verdict rows: its events as they are; its stage
     shares from the members in which stage 2 (3) happened; no crest lowering, stones or CPU time there."""
-    by = {r["event"]: r for r in res["width_base"]}
+    plan = res["sweeps"][part]
+    by = {r["event"]: r for r in plan["base_rows"]}
     n = max(int(by["stage2"]["members"]), 1)
     keys = ("event", "members", "happened", "at_first_discharge", "censored_at_lps", "km_median_lps", "km_q16_lps",
             "km_q84_lps", "fit_median_lps", "fit_q16_lps", "fit_q84_lps")
-    return [{"width_m": res["base_width"], **{k: by[ev][k] for k in keys},
+    return [{SWEEPS[part].column: plan["own"], **{k: by[ev][k] for k in keys},
              "stages_2plus": by["stage2"]["happened"] / n, "crest_lowering_mm_median": None,
              "stages_3plus": by["stage3"]["happened"] / n, "stones_median": None, "cpu_s_median": None,
              "seeds": "", "source": "earlier study"} for ev in EVENTS]
@@ -364,47 +445,49 @@ def _height_note(res) -> str:
             f"the weir formula's level at the peak discharge), the scene's own width in its {own:g} m")
 
 
-def _width_md(res) -> list:
-    lines = ["| B [m] | " + " | ".join(f"{EVENTS[e][1]}: KM median [16-84 %] [l/s]" for e in EVENTS)
+def _sweep_md(res, part: str) -> list:
+    sw, plan = SWEEPS[part], res["sweeps"][part]
+    lines = [f"| {sw.header} | " + " | ".join(f"{EVENTS[e][1]}: KM median [16-84 %] [l/s]" for e in EVENTS)
              + " | 2+ stages | crest lowering [mm] | 3+ stages | stones | stones across | porosity | "
              "CPU s per member | members (seeds) |", "|---|" + "---|" * (len(EVENTS) + 8)]
-    rows = width_rows(res)
-    for w in dict.fromkeys(r["width_m"] for r in rows):
-        rs = [r for r in rows if r["width_m"] == w]
+    rows = sweep_rows(res, part)
+    for v in dict.fromkeys(r[sw.column] for r in rows):
+        rs = [r for r in rows if r[sw.column] == v]
         cells = [_band(r["km_q16_lps"], r["km_median_lps"], r["km_q84_lps"], r["censored_at_lps"]) for r in rs]
         r0 = rs[0]
         seeds = f"{r0['members']} ({r0['seeds']})" if r0["source"] == "run" else \
-            f"{r0['members']} (earlier study: `{shown_path(res['width_base_path'], ROOT)}`)"
-        lines.append(f"| {w:g} | " + " | ".join(cells) + f" | {r0['stages_2plus']:.0%} | "
+            f"{r0['members']} (earlier study: `{shown_path(plan['base_path'], ROOT)}`)"
+        lines.append(f"| {v:g} | " + " | ".join(cells) + f" | {r0['stages_2plus']:.0%} | "
                      f"{_q(r0['crest_lowering_mm_median'], '{:.2f}')} | {r0['stages_3plus']:.0%} | "
                      f"{_q(r0['packed_stones_mean'], '{:.0f}')} | {_q(r0['stones_across_mean'], '{:.2f}')} | "
                      f"{_q(r0['packed_porosity_mean'], '{:.3f}')} | {_q(r0['cpu_s_median'], '{:.1f}')} | {seeds} |")
     notes = ["Crest lowering and CPU time: medians over the members; stones, stones across (the mean number a line "
              "across the flume through the trapezoid crosses) and the porosity of the trapezoid's prism: means over "
-             f"the weirs packed as the members pack them at seeds {_seed_range(res['width_seeds'])} (3D stones only)."]
-    if res.get("width_base") is not None:
-        notes.append(f"B = {res['base_width']:g} m: the events and stage shares are the rows of the earlier study "
+             f"the weirs packed as the members pack them at seeds {_seed_range(plan['seeds'])} (3D stones only)."]
+    if plan["base_rows"] is not None:
+        notes.append(f"{sw.named.format(plan['own'])}: the events and stage shares are the rows of the earlier study "
                      "named, over its own seeds (not paired with the sweep's; its crest lowering and CPU time are "
                      "in its own page).")
-    return lines + [""] + [x for n in notes for x in (n, "")] + _width_members_md(res)
+    return lines + [""] + [x for n in notes for x in (n, "")] + _sweep_members_md(res, part)
 
 
-def _width_members_md(res) -> list:
+def _sweep_members_md(res, part: str) -> list:
     """The members run, one row each: a few seeds are read member by member, not by their medians."""
-    lines = ["| B [m] | seed | stones | first removal [l/s] | stage 1 [l/s] (stones) | stage 2 | stage 3 | stages | "
-             "removed | crest lowering [mm] | CPU [s] |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = [f"| {SWEEPS[part].header} | seed | stones | first removal [l/s] | stage 1 [l/s] (stones) | stage 2 | "
+             "stage 3 | stages | removed | crest lowering [mm] | CPU [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     stage = lambda r, k: "-" if pd.isna(r[f"stage{k}_lps"]) else f"{r[f'stage{k}_lps']:.2f} ({r[f'stage{k}_stones']})"  # noqa: E731
-    for w, df in width_frames(res).items():
+    for v, df in sweep_frames(res, part).items():
         for _, r in df[df["status"] == "completed"].sort_values("seed").iterrows():
-            lines.append(f"| {w:g} | {r['seed']} | {r['stones']} | {_q(r['first_removal_lps'])} | {stage(r, 1)} | "
+            lines.append(f"| {v:g} | {r['seed']} | {r['stones']} | {_q(r['first_removal_lps'])} | {stage(r, 1)} | "
                          f"{stage(r, 2)} | {stage(r, 3)} | {r['stages']} | {r['removed']} | "
                          f"{_q(r['crest_lowering_mm'])} | {_q(r['cpu_seconds'], '{:.1f}')} |")
     return ["The members (stones: those of the run's analysis):", ""] + lines + [""]
 
 
-def fig_width(rows, path: Path):
-    """Each event's Kaplan-Meier median and 16-84 % band against the flume width (a band's end not reached
-    drawn to the runs' last discharge, open); hollow: the widths taken from an earlier study; saved and
+def fig_sweep(rows, path: Path, sw: Sweep = SWEEPS["width"]):
+    """Each event's Kaplan-Meier median and 16-84 % band against the sweep's value (a band's end not reached
+    drawn to the runs' last discharge, open); hollow: the values taken from an earlier study; saved and
     returned."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -412,17 +495,17 @@ def fig_width(rows, path: Path):
     fig = Figure(figsize=(6.4, 4.2), layout="constrained")
     FigureCanvasAgg(fig)
     ax = fig.subplots()
-    widths = sorted({r["width_m"] for r in rows})
-    dx = 0.08 * (min(np.diff(widths)) if len(widths) > 1 else 0.1)  # events side by side at each width
+    values = sorted({r[sw.column] for r in rows})
+    dx = 0.08 * (min(np.diff(values)) if len(values) > 1 else 0.1)  # events side by side at each value
     for k, ev in enumerate(EVENTS):
         for r in (r for r in rows if r["event"] == ev and r["km_median_lps"] is not None):
             top = r["km_q84_lps"] if r["km_q84_lps"] is not None else r["censored_at_lps"]
             lo = r["km_q16_lps"] if r["km_q16_lps"] is not None else r["km_median_lps"]
-            x, m = r["width_m"] + (k - 1.5) * dx, r["km_median_lps"]
+            x, m = r[sw.column] + (k - 1.5) * dx, r["km_median_lps"]
             ax.errorbar([x], [m], yerr=[[m - lo], [top - m]], fmt="o", color=f"C{k}", capsize=3,
                         mfc="none" if r["source"] != "run" else f"C{k}", label=EVENTS[ev][1])
-    ax.set_xticks(widths)
-    ax.set_xlabel("flume width B [m]")
+    ax.set_xticks(values)
+    ax.set_xlabel(sw.axis)
     ax.set_ylabel("discharge Q [l/s]")
     ax.grid(alpha=0.3)
     figure_legend(fig, [ax], 2)
@@ -676,11 +759,11 @@ def write_results(res, args, wall: float) -> Path:
     if ran_verdict:
         vrows = [r for n, s in res["scenes"].items() for r in verdict_rows(n, s, res["verdict"][n])]
         pd.DataFrame(vrows).to_csv(f"{base}_verdict.csv", index=False, lineterminator="\n")
-    width_png = args.figures / f"maeno2008_verdict{sfx}_width.png"
-    if "width" in args.parts:
-        wrows = width_rows(res)
-        pd.DataFrame(wrows).to_csv(f"{base}_width.csv", index=False, lineterminator="\n")
-        fig_width(wrows, width_png)
+    sweep_png = {part: args.figures / f"maeno2008_verdict{sfx}_{part}.png" for part in SWEEPS}
+    for part in res["sweeps"]:
+        srows = sweep_rows(res, part)
+        pd.DataFrame(srows).to_csv(f"{base}_{part}.csv", index=False, lineterminator="\n")
+        fig_sweep(srows, sweep_png[part], SWEEPS[part])
     # the bootstrap of every setting's shifts is the costly table: only when the cost part ran
     crows = cost_rows(res, args.n_boot) if "cost" in args.parts else []
     cost_png, frag_png = (args.figures / f"maeno2008_verdict{sfx}_{k}.png" for k in ("cost", "fragility"))
@@ -691,7 +774,8 @@ def write_results(res, args, wall: float) -> Path:
         by = {n: fragility_of(df[df["status"] == "completed"], n_boot=0) for n, df in res["verdict"].items()}
         fig_fragility(by, next(iter(res["scenes"].values())).reference).savefig(frag_png, dpi=90)
     frames = [*res["verdict"].values(), *res["cost"].values()] + [
-        df for df in (res["width"], res.get("cost_reference")) if df is not None]
+        df for df in (*(plan["frame"] for plan in res["sweeps"].values()), res.get("cost_reference"))
+        if df is not None]
     n_members = sum(len(df) for df in frames)
     cpu = sum(float(df.loc[df["status"] == "completed", "cpu_seconds"].astype(float).sum()) for df in frames)
     ran = _finished(res["out"]) - res["found"]
@@ -701,7 +785,7 @@ def write_results(res, args, wall: float) -> Path:
     if args.no_run:
         where = "(--no-run: tables of the members finished so far)"
     scene0 = next(iter(res["scenes"].values()))
-    seeds = res["seeds"] if ran_verdict else res["width_seeds"]
+    seeds = res["seeds"] if ran_verdict or not res["sweeps"] else next(iter(res["sweeps"].values()))["seeds"]
     text = [f"# The Maeno 2008 weir: the verdict and what its accuracy costs ({size} version)", "",
             f"Written by `PYTHONPATH=python python3 studies/maeno2008_verdict.py{flag}`: {len(seeds)} "
             f"seeds ({_seed_range(seeds)}), {n_members} members, "
@@ -710,7 +794,8 @@ def write_results(res, args, wall: float) -> Path:
             f"members (found {res['found']} finished) in {wall / 60:.1f} min {where} ({os.cpu_count()} cores, load "
             f"average {os.getloadavg()[0]:.1f} at the end). Ensembles in "
             f"`{shown_path(res['out'], ROOT, tail=1)}/` (resumable). Figures: "
-            + ", ".join(f"`docs/figures/{p.name}`" for p in (cost_png, frag_png, width_png) if p.exists()) + ".", ""]
+            + ", ".join(f"`docs/figures/{p.name}`" for p in (cost_png, frag_png, *sweep_png.values()) if p.exists())
+            + ".", ""]
     if ran_verdict:
         text += ["## The verdict", "",
                  "Per event: members in which it happened (in brackets those in which it happened at the first "
@@ -719,10 +804,10 @@ def write_results(res, args, wall: float) -> Path:
                  "by the runs' end), the lognormal fit, and the scene's reference data.", ""]
         for n, s in res["scenes"].items():
             text += _config_md(n, s, res["verdict"][n])
-    if "width" in args.parts:
-        text += ["## The width sweep", "", f"`{res['width_scene']}` over flume widths B (the discharge is divided by "
-                 f"B; the paper does not give it), seeds {_seed_range(res['width_seeds'])}" + _height_note(res) + ".", ""]
-        text += _width_md(res)
+    for part, plan in res["sweeps"].items():
+        text += [f"## {SWEEPS[part].title}", "", f"`{res['width_scene']}` over {SWEEPS[part].what}, seeds "
+                 f"{_seed_range(plan['seeds'])}" + (_height_note(res) if part == "width" else "") + ".", ""]
+        text += _sweep_md(res, part)
     if "cost" in args.parts:
         text += _cost_sections(res, crows)
     md = Path(f"{base}.md")

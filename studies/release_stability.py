@@ -26,7 +26,13 @@ benchmarks/results/sphere_calibration.md and clump_calibration.md (not measured 
         --mu-r 0,0.2,0.4,0.8 --clump-mu-r 0
 
 Writes studies/results/release_stability.md and docs/figures/release_stability.png; the ensembles go to
-out/release_stability/<configuration>/ (each member's packing.json holds its packing's report).
+out/release_stability/<configuration>/ (each member's packing.json holds its packing's report). More packings
+of a configuration on a page of their own, the earlier page's members of that configuration in its tables:
+
+    nice -n 5 env PYTHONPATH=python python3 studies/release_stability.py --seeds 1-3 --mu-r '' \
+        --clump-mu-r 0 --earlier studies/results/release_stability.md \
+        --results studies/results/release_stability_clumps.md \
+        --figure docs/figures/release_stability_clumps.png --out out/release_stability_clumps
 """
 
 import argparse
@@ -43,7 +49,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from vofdem import builder  # noqa: E402
-from vofdem.analysis import classify_regions  # noqa: E402
+from vofdem.analysis import REGIONS, classify_regions  # noqa: E402
 from vofdem.calibration import PullSetup, slope_surface_stones, with_rolling  # noqa: E402
 from vofdem.calibration_3d import ClumpMix, clump_params  # noqa: E402
 from vofdem.ensemble import finished_outcomes, parse_seeds, run_ensemble  # noqa: E402
@@ -60,6 +66,9 @@ NO_RUN_NOTE = (" With --no-run: the tables of the members finished there, which 
 WHOLE_SLOPE = PullSetup(z_low=0.0, z_high=1.0)
 # the downstream slope with its shoulder (vofdem.analysis regions of the stones' initial places)
 SLOPE_REGIONS = ("shoulder", "downstream slope")
+# a member's status on the page when its row comes from an earlier page (--earlier)
+EARLIER = "completed, earlier page"
+MEMBER_COLUMNS = 13  # the per-member table's
 
 
 @dataclass(frozen=True)
@@ -166,6 +175,9 @@ def member_row(cfg: Config, out: dict, member_dir: Path, window: float) -> dict:
     t = a.removal_time
     lost = np.isfinite(t) & (t > release) & (t <= release + window)
     st = [s for s in a.stages if s.start_time <= release + window]
+    # where the stones lost at the release lay at the start (vofdem.analysis regions, as the stage tables')
+    region = classify_regions(data.pos[0, :, 0], scene.weir, float(np.mean(data.diameter)))
+    row["lost_where"] = {r: int(np.sum(lost & (region == r))) for r in REGIONS}
     row.update(stones=int(t.size), lost_release=int(lost.sum()), lost_end=int(np.isfinite(t).sum()),
                stage_release=len(st) > 0, stage_stones=st[0].n_stones if st else 0,
                simulated=float(data.times[-1]), q_end=float(scene.hydrograph.discharge_lps_at(float(data.times[-1]))))
@@ -173,6 +185,40 @@ def member_row(cfg: Config, out: dict, member_dir: Path, window: float) -> dict:
     row["t_loads"] = float(data.times[k])
     row.update(surface_loads(data, scene, k))
     return row
+
+
+def earlier_rows(page: Path, configs, seeds) -> list:
+    """The completed members of an earlier page of this script (its per-member table) of the configurations
+    run here, at seeds not run here: packings another call ran, whose ensembles need not be at hand."""
+    return earlier_rows_of(page.read_text(encoding="utf-8"), configs, seeds)
+
+
+def earlier_rows_of(text: str, configs, seeds) -> list:
+    """earlier_rows of a page's text."""
+    labels = {c.label for c in configs}
+    rows = []
+    for line in text.split("## Per member", 1)[-1].splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == MEMBER_COLUMNS and cells[0] in labels and cells[2] == "completed" and \
+                int(cells[1]) not in seeds:
+            rows.append(parsed_member(cells))
+    return rows
+
+
+def parsed_member(c) -> dict:
+    """A row of member_row from the cells of its line in a per-member table (results_md)."""
+    num = lambda v: math.nan if v == "-" else float(v)  # noqa: E731
+    stage = re.fullmatch(r"yes \((\d+)\)", c[4])
+    load = re.fullmatch(r"(\S+) \((\S+)\)", c[7])
+    return {"config": c[0], "seed": int(c[1]), "status": EARLIER, "lost_release": int(c[3]),
+            "stage_release": stage is not None, "stage_stones": int(stage.group(1)) if stage else 0,
+            "lost_end": int(c[5]), "removed": int(c[5]), "surface": int(c[6]), "load_x": num(load.group(1)),
+            "load_x_max": num(load.group(2)), "load_z": num(c[8]), "phi_needed": num(c[9]),
+            "porosity": None if c[10] == "-" else float(c[10]), "simulated": float(c[11]), "cpu": num(c[12])}
+
+
+def _done(r) -> bool:
+    return r["status"] in ("completed", EARLIER)
 
 
 def _median(vals) -> float:
@@ -184,7 +230,7 @@ def config_rows(configs, rows, heaps) -> list:
     """One summary per configuration over its completed members."""
     out = []
     for cfg in configs:
-        done = [r for r in rows if r["config"] == cfg.label and r["status"] == "completed"]
+        done = [r for r in rows if r["config"] == cfg.label and _done(r)]
         mine = [r for r in rows if r["config"] == cfg.label]
         lr, le = [r["lost_release"] for r in done], [r["lost_end"] for r in done]
         out.append({"config": cfg.label, "heap": heaps.get((cfg.shape, cfg.mu_r), math.nan),
@@ -208,7 +254,8 @@ def results_md(args, base, configs, rows, summary, command) -> str:
              f"{rel:g} s spin-up with the stones held and {args.after:g} s of the ramp after the release "
              f"({q(rel + 1e-6):.2f} to {q(rel + args.after):.2f} l/s), one member after the other in one process "
              "on a machine shared with other jobs (2 cores, load about 3-6). Ensembles: `"
-             f"{shown_path(args.out, ROOT)}/<configuration>/`." + NO_RUN_NOTE * args.no_run, "",
+             f"{shown_path(args.out, ROOT)}/<configuration>/`." + NO_RUN_NOTE * args.no_run + _earlier_note(args, rows),
+             "",
              f"Lost at the release: stones removed (moved more than their diameter) within {args.window:g} s after "
              "it; a stage at the release: a stage (vofdem.analysis) beginning in that window. Loads: the last "
              "snapshot before the release (stones held), drag + pressure-gradient force on the downstream slope's "
@@ -230,7 +277,7 @@ def results_md(args, base, configs, rows, summary, command) -> str:
               "surface stones | load x / W', mean (max) | load z / W' | angle needed [deg] | porosity (prism) | "
               "simulated [s] | CPU [s] |", "|---|---:|---|---:|---|---:|---:|---|---:|---:|---:|---:|---:|"]
     for r in rows:
-        if r["status"] != "completed":
+        if not _done(r):
             lines.append(f"| {r['config']} | {r['seed']} | {r['status']} | | | | | | | | {_f(r['porosity'], '{:.3f}')} "
                          f"| | {_f(r['cpu'], '{:.0f}')} |")
             continue
@@ -239,10 +286,37 @@ def results_md(args, base, configs, rows, summary, command) -> str:
                      f"{r['surface']} | {_f(r['load_x'])} ({_f(r['load_x_max'])}) | {_f(r['load_z'])} | "
                      f"{_f(r['phi_needed'], '{:.1f}')} | {_f(r['porosity'], '{:.3f}')} | {r['simulated']:.1f} | "
                      f"{r['cpu']:.0f} |")
+    lines += _where_md(rows)
     cpu = [r["cpu"] for r in rows if not math.isnan(r["cpu"])]
+    n_earlier = sum(r["status"] == EARLIER for r in rows)
+    from_earlier = f"; {n_earlier} of them from the earlier page" if n_earlier else ""
     lines += ["", f"CPU: {sum(cpu) / 60:.1f} min over {len(cpu)} members (each member's process time, packing "
-              f"included; median {_median(cpu):.0f} s).", "", f"Figure: `{shown_path(args.figure, ROOT)}`.", ""]
+              f"included; median {_median(cpu):.0f} s{from_earlier}).", "",
+              f"Figure: `{shown_path(args.figure, ROOT)}`.", ""]
     return "\n".join(lines)
+
+
+def _where_md(rows) -> list:
+    """Where the stones lost at the release lay at the start, per member run here that lost any."""
+    lost = [r for r in rows if r["status"] == "completed" and r["lost_release"] > 0]
+    if not lost:
+        return ["", "Where the stones lost at the release lay: no member run here lost any."]
+    lines = ["", "## Where the stones lost at the release lay", "",
+             "Their initial places (vofdem.analysis regions, as the stage tables'), per member run here that lost "
+             "any:", "", "| stones | seed | " + " | ".join(REGIONS) + " |", "|---|---:|" + "---:|" * len(REGIONS)]
+    for r in lost:
+        lines.append(f"| {r['config']} | {r['seed']} | " + " | ".join(str(r["lost_where"][g]) for g in REGIONS) + " |")
+    return lines
+
+
+def _earlier_note(args, rows) -> str:
+    earlier = [r for r in rows if r["status"] == EARLIER]
+    if not earlier:
+        return ""
+    seeds = ", ".join(f"{c} seed {', '.join(str(r['seed']) for r in earlier if r['config'] == c)}"
+                      for c in dict.fromkeys(r["config"] for r in earlier))
+    return (f" With --earlier: the members '{EARLIER}' are the rows of `{shown_path(args.earlier, ROOT)}` (an earlier "
+            f"call of this script; not run here): {seeds}.")
 
 
 def figure(rows, configs, heaps, path: Path) -> None:
@@ -255,7 +329,7 @@ def figure(rows, configs, heaps, path: Path) -> None:
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     markers = {"sphere": "o", "clump": "s"}
     for j, cfg in enumerate(configs):
-        done = [r for r in rows if r["config"] == cfg.label and r["status"] == "completed"]
+        done = [r for r in rows if r["config"] == cfg.label and _done(r)]
         heap = heaps.get((cfg.shape, cfg.mu_r), math.nan)
         if not done or math.isnan(heap):
             continue
@@ -290,6 +364,15 @@ def parse_mu(spec: str, name: str) -> list:
     return vals
 
 
+def _paths_shown(parser, args) -> str:
+    """The options of the earlier page and of the files written that are not the defaults, as a command line."""
+    out = f" --earlier {shown_path(args.earlier, ROOT)}" if args.earlier is not None else ""
+    for name in ("results", "figure", "out"):
+        if getattr(args, name).resolve() != parser.get_default(name).resolve():
+            out += f" --{name} {shown_path(getattr(args, name), ROOT)}"
+    return out
+
+
 def main(argv=None) -> Path:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--scene", type=Path, default=ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml")
@@ -303,7 +386,11 @@ def main(argv=None) -> Path:
     p.add_argument("--out", type=Path, default=ROOT / "out" / "release_stability")
     p.add_argument("--results", type=Path, default=ROOT / "studies" / "results" / "release_stability.md")
     p.add_argument("--figure", type=Path, default=ROOT / "docs" / "figures" / "release_stability.png")
+    p.add_argument("--earlier", type=Path, default=None, help="an earlier page of this script: its completed members "
+                   "of the configurations run here, at seeds not run here, join the tables")
     args = p.parse_args(argv)
+    if args.earlier is not None and not args.earlier.is_file():
+        raise ValueError(f"--earlier: {shown_path(args.earlier, ROOT)} is not a page of this script (no such file)")
     for name in ("after", "window"):
         if not getattr(args, name) > 0.0:
             raise ValueError(f"--{name} = {getattr(args, name)} s is outside the allowed range (0, ...)")
@@ -325,12 +412,16 @@ def main(argv=None) -> Path:
             out = {"seed": rec["seed"], "status": rec["status"], "cpu_seconds": rec.get("cpu_seconds"),
                    "removed": rec.get("removed")}
             rows.append(member_row(cfg, out, d / f"seed{rec['seed']}", args.window))
+    if args.earlier is not None:
+        order = [c.label for c in configs]
+        rows = sorted(rows + earlier_rows(args.earlier, configs, seeds),
+                      key=lambda r: (order.index(r["config"]), r["seed"]))
     heaps = heap_angles()
     summary = config_rows(configs, rows, heaps)
     command = ("PYTHONPATH=python python3 studies/release_stability.py" + (f" --scene {shown_path(args.scene, ROOT)}"
                if args.scene.resolve() != p.get_default("scene").resolve() else "") + (" --quick" if args.quick else "")
-               + f" --seeds {args.seeds} --mu-r {args.mu_r} --clump-mu-r '{args.clump_mu_r}' --after {args.after:g}"
-               f" --window {args.window:g}" + (" --no-run" if args.no_run else ""))
+               + f" --seeds {args.seeds} --mu-r '{args.mu_r}' --clump-mu-r '{args.clump_mu_r}' --after {args.after:g}"
+               f" --window {args.window:g}" + (" --no-run" if args.no_run else "") + _paths_shown(p, args))
     figure(rows, configs, heaps, args.figure)
     args.results.parent.mkdir(parents=True, exist_ok=True)
     args.results.write_text(results_md(args, base, configs, rows, summary, command), encoding="utf-8")

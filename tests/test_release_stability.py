@@ -57,6 +57,45 @@ def test_tiny_study_writes_tables_from_its_own_run(tmp_path):
     assert cells[12] == f"{outcome['cpu_seconds']:.0f}"
     # the angle needed is the slope's plus the resultant's tilt: finite, above the slope
     assert 27.0 < float(cells[9]) < 90.0
+    # more packings on a page of their own: seed 1 (not run: --no-run), seed 0 from the page above
+    res2 = tmp_path / "r2.md"
+    rs.main(["--scene", str(scene), "--seeds", "1", "--mu-r", "0", "--clump-mu-r", "", "--after", "0.5",
+             "--window", "0.5", "--out", str(out), "--results", str(res2), "--figure", str(fig), "--no-run",
+             "--earlier", str(res)])
+    text2 = res2.read_text()
+    lines2 = text2.splitlines()
+    # the earlier member's row as it was, but for its status; the run's summary counts it
+    assert member[0].replace("| completed |", f"| {rs.EARLIER} |") in lines2
+    assert [ln for ln in lines2 if ln.startswith("| spheres, mu_r = 0 | 1 | not run |")]
+    summary = [c.strip() for c in [ln for ln in lines2 if ln.startswith("| spheres, mu_r = 0 | 20.1 |")][0].split("|")]
+    n = lost_release
+    assert summary[3] == "1 of 2" and summary[4] == f"{n} [{n}-{n}], sum {n}"
+    assert "spheres, mu_r = 0 seed 0." in text2
+    assert re.search(r"--earlier \S*/r\.md --results \S*/r2\.md --figure \S*/f\.png --out \S*/ens`", text2)
+    assert str(tmp_path) not in text2 and not re.search(r"/(work|tmp|root|home)/", text2)
+    # the page's own command line reruns it: no empty option value left bare
+    assert "--mu-r '0' --clump-mu-r ''" in text2
+
+
+def test_an_earlier_pages_member_row_reads_back_as_written():
+    cfg = rs.Config("clump", 0.0)
+    row = {"config": cfg.label, "seed": 2, "status": "completed", "cpu": 954.0, "removed": 3, "porosity": 0.501,
+           "stones": 900, "lost_release": 1, "lost_end": 3, "stage_release": True, "stage_stones": 2,
+           "simulated": 30.0, "surface": 88, "load_x": 0.42, "load_x_max": 0.61, "load_z": -0.12, "phi_needed": 47.5,
+           "lost_where": {"upstream slope": 0, "crest": 0, "shoulder": 0, "downstream slope": 1}}
+    args = rs.argparse.Namespace(seeds="2", after=10.0, window=2.0, no_run=False, out=rs.ROOT / "out" / "x",
+                                 figure=rs.ROOT / "docs" / "f.png", earlier=None)
+    base = vofdem.load_scene(rs.ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml")
+    summary = rs.config_rows([cfg], [row], {})
+    page = rs.results_md(args, base, [cfg], [row], summary, "cmd")
+    lines = [ln for ln in page.split("## Per member")[1].splitlines() if ln.startswith("| clumps")]
+    # the per-member row, then where its lost stone lay (a table of its own, the regions in analysis' order)
+    assert lines[1] == "| clumps, mu_r = 0 | 2 | 0 | 0 | 0 | 1 |" and "| crest | shoulder | downstream slope |" in page
+    assert rs.earlier_rows_of(page, [cfg], []) == [rs.parsed_member([c.strip() for c in lines[0].strip("|").split("|")])]
+    back = rs.parsed_member([c.strip() for c in lines[0].strip("|").split("|")])
+    assert back == {**{k: row[k] for k in back if k != "status"}, "status": rs.EARLIER}
+    no_stage = rs.parsed_member([c.strip() for c in lines[0].replace("yes (2)", "no").strip("|").split("|")])
+    assert no_stage["stage_release"] is False and no_stage["stage_stones"] == 0
 
 
 def test_needed_angle_by_hand():
@@ -71,6 +110,8 @@ def test_options_are_checked():
         rs.parse_mu("0,3", "--mu-r")
     with pytest.raises(ValueError, match="--after"):
         rs.main(["--after", "0"])
+    with pytest.raises(ValueError, match="--earlier: .*no such file"):
+        rs.main(["--earlier", "studies/results/no_such_page.md"])
     assert rs.parse_mu("", "--clump-mu-r") == []
 
 

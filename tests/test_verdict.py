@@ -233,6 +233,45 @@ def test_the_width_part_alone_takes_the_scenes_own_width_from_an_earlier_verdict
         mod.main(wide + ["--parts", "verdict", "width"], build=_build, log=lambda *a: None)
 
 
+def test_the_wall_part_runs_the_stone_wall_frictions_and_takes_the_scenes_own_from_an_earlier_verdict(tmp_path):
+    mod = _script()
+    common = ["--tiny", "--scenes", "maeno2008_rolling", "--end-time", "36", "--workers", "0", "--n-boot", "20",
+              "--results", str(tmp_path), "--figures", str(tmp_path)]
+    mod.main(common + ["--parts", "verdict", "--seeds", "0-2", "--tag", "base", "--out", str(tmp_path / "a")],
+             build=_build, log=lambda *a: None)
+    base_csv = tmp_path / "maeno2008_verdict_tiny_base_verdict.csv"
+    seen = []  # the stone-wall friction of each member built
+
+    def build(scene):
+        seen.append(scene.stones.friction_wall)
+        return _build(scene)
+
+    wall = common + ["--parts", "wall", "--wall-frictions", "0.176", "0.35", "--wall-seeds", "0-1", "--wall-base",
+                     str(base_csv), "--tag", "m", "--out", str(tmp_path / "b")]
+    text = mod.main(wall, build=build, log=lambda *a: None).read_text()
+    # the scene's own 0.176 is not run again: two members at 0.35, none of the verdict
+    assert seen == [0.35, 0.35] and not (tmp_path / "b" / "verdict").exists()
+    assert not (tmp_path / "maeno2008_verdict_tiny_m_verdict.csv").exists() and "## The verdict" not in text
+    assert not (tmp_path / "maeno2008_verdict_tiny_m_width.csv").exists() and "## The width sweep" not in text
+    rows = pd.read_csv(tmp_path / "maeno2008_verdict_tiny_m_wall.csv").set_index(["friction_wall", "event"])
+    # 0.176: the earlier rows over seeds 0-2 (stage 1 at 12.25, 14.25, never: median 14.25); 0.35 run at seeds
+    # 0-1 (the test double's stones go at the same discharges: median 12.25, the lower of two)
+    assert rows.loc[(0.176, "stage1"), ["km_median_lps", "members", "source"]].tolist() == [14.25, 3, "earlier study"]
+    assert rows.loc[(0.35, "stage1"), ["km_median_lps", "members", "source"]].tolist() == [12.25, 2, "run"]
+    assert "## The stone-wall friction's sweep" in text and "| 0.35 | 0 | 24 | 12.25 |" in text
+    assert "maeno2008_verdict_tiny_base_verdict.csv`) |" in text and "| 2 (0-1) |" in text
+    assert "--wall-frictions 0.176 0.35 --wall-seeds 0-1" in text and str(tmp_path) not in text
+    assert (tmp_path / "maeno2008_verdict_tiny_m_wall.png").stat().st_size > 0
+    # resumable: a second call runs none of the finished members
+    seen.clear()
+    mod.main(wall, build=build, log=lambda *a: None)
+    assert seen == []
+    with pytest.raises(ValueError, match="wall_base: .* wall part alone"):
+        mod.main(wall + ["--parts", "verdict", "wall"], build=build, log=lambda *a: None)
+    with pytest.raises(ValueError, match=r"--wall-frictions: 2.5 is outside the allowed range \[0, 2\]"):
+        mod.main(common + ["--parts", "wall", "--wall-frictions", "0.1", "2.5"], build=build, log=lambda *a: None)
+
+
 def test_a_shown_path_is_relative_to_the_project_or_its_last_parts_never_absolute(tmp_path):
     assert shown_path(ROOT / "out" / "x", ROOT) == "out/x"
     assert shown_path(tmp_path / "a" / "b" / "c" / "d", ROOT) == "b/c/d"
