@@ -205,13 +205,18 @@ def test_the_study_end_to_end_against_a_hand_computation(tmp_path):
     assert cost.loc[("porosity=lookup", "first_removal"), "steps_ratio"] == 2.0
 
 
-def test_the_width_part_alone_takes_the_scenes_own_width_from_an_earlier_verdict(tmp_path):
+def _earlier_verdict(tmp_path):
+    """(the script, the tiny study's common options, the _verdict.csv of an earlier verdict over seeds 0-2)."""
     mod = _script()
     common = ["--tiny", "--scenes", "maeno2008_rolling", "--end-time", "36", "--workers", "0", "--n-boot", "20",
               "--results", str(tmp_path), "--figures", str(tmp_path)]
     mod.main(common + ["--parts", "verdict", "--seeds", "0-2", "--tag", "base", "--out", str(tmp_path / "a")],
              build=_build, log=lambda *a: None)
-    base_csv = tmp_path / "maeno2008_verdict_tiny_base_verdict.csv"
+    return mod, common, tmp_path / "maeno2008_verdict_tiny_base_verdict.csv"
+
+
+def test_the_width_part_alone_takes_the_scenes_own_width_from_an_earlier_verdict(tmp_path):
+    mod, common, base_csv = _earlier_verdict(tmp_path)
     before = base_csv.read_bytes()
     wide = common + ["--parts", "width", "--widths", "0.4", "--width-seeds", "0-1", "--width-base", str(base_csv),
                      "--tag", "w", "--out", str(tmp_path / "b")]
@@ -234,12 +239,7 @@ def test_the_width_part_alone_takes_the_scenes_own_width_from_an_earlier_verdict
 
 
 def test_the_wall_part_runs_the_stone_wall_frictions_and_takes_the_scenes_own_from_an_earlier_verdict(tmp_path):
-    mod = _script()
-    common = ["--tiny", "--scenes", "maeno2008_rolling", "--end-time", "36", "--workers", "0", "--n-boot", "20",
-              "--results", str(tmp_path), "--figures", str(tmp_path)]
-    mod.main(common + ["--parts", "verdict", "--seeds", "0-2", "--tag", "base", "--out", str(tmp_path / "a")],
-             build=_build, log=lambda *a: None)
-    base_csv = tmp_path / "maeno2008_verdict_tiny_base_verdict.csv"
+    mod, common, base_csv = _earlier_verdict(tmp_path)
     seen = []  # the stone-wall friction of each member built
 
     def build(scene):
