@@ -1,6 +1,7 @@
 """A run killed with SIGKILL at a random snapshot: its file opens in plain h5py, `vofdem run --resume`
 continues it from its checkpoint, and it ends bit for bit as a run that was never stopped; with disc
 stones and with polygon stones (their shapes, orientations and per-point contact springs)."""
+import json
 import os
 import signal
 import subprocess
@@ -10,6 +11,7 @@ from pathlib import Path
 
 import h5py
 import numpy as np
+import pandas as pd
 import pytest
 
 import vofdem
@@ -40,11 +42,12 @@ def _completed(path) -> int:
         return 0
 
 
-def kill_at_snapshot(out: Path, k: int, args=RUN) -> None:
-    """Starts `vofdem *args` into `out` and SIGKILLs it once `k` snapshots are complete."""
+def kill_at_snapshot(out: Path, k: int, args=RUN, run_dir: str = ".") -> None:
+    """Starts `vofdem *args` into `out` and SIGKILLs it once `k` snapshots of out/run_dir/run.h5 are
+    complete."""
     p = _vofdem(*args, "--out", str(out))
     deadline = time.monotonic() + 300
-    while _completed(out / "run.h5") < k and p.poll() is None and time.monotonic() < deadline:
+    while _completed(out / run_dir / "run.h5") < k and p.poll() is None and time.monotonic() < deadline:
         time.sleep(0.005)
     p.send_signal(signal.SIGKILL)
     p.wait(timeout=60)
@@ -103,6 +106,36 @@ def test_killed_run_resumes_bit_for_bit(tmp_path, stones):
         assert np.array_equal(sa.state[name], sb.state[name]), name
     # the stage profile adds up the killed part and the resumed part
     assert b["profile/calls"].sum() >= a["profile/calls"].sum()
+
+
+@pytest.mark.slow
+def test_a_killed_ensemble_member_resumes_from_its_checkpoint_bit_for_bit(tmp_path):
+    """The same ensemble command run again continues a member whose process died from the member's
+    checkpoint (written after its first snapshot, then every checkpoint interval), not from the start."""
+    run = ["run", "maeno2008", "--quick", "--end-time", "8", "--seeds", "0", "--workers", "0", "--no-figures",
+           "--no-animation", "--no-progress"]
+    ref = _vofdem(*run, "--out", str(tmp_path / "ref"))
+    assert ref.wait(timeout=600) == 0, ref.stderr.read()
+    ref.stderr.close()
+    out = tmp_path / "killed"
+    kill_at_snapshot(out, SNAPSHOTS - 4, run, run_dir="seed0")
+    killed = load_checkpoint(out / "seed0" / "checkpoint.h5")
+    assert 1 <= killed.snapshots < SNAPSHOTS and killed.cpu_seconds > 0
+    again = _vofdem(*run, "--out", str(out))
+    assert again.wait(timeout=600) == 0, again.stderr.read()
+    again.stderr.close()
+    a, b = _datasets(tmp_path / "ref" / "seed0" / "run.h5"), _datasets(out / "seed0" / "run.h5")
+    assert a.keys() == b.keys()
+    for name in a:
+        if not name.startswith("profile/"):
+            assert np.array_equal(a[name], b[name], equal_nan=True), name
+    outcome = json.loads((out / "seed0" / "outcome.json").read_text())
+    assert outcome["resumed"] is True and outcome["status"] == "completed"
+    # the process time counts the killed process's part: not less than the checkpoint's
+    assert outcome["cpu_seconds"] > killed.cpu_seconds
+    assert "resumed" not in json.loads((tmp_path / "ref" / "seed0" / "outcome.json").read_text())
+    rows = [pd.read_csv(d / "ensemble.csv").drop(columns=["wall_seconds", "cpu_seconds"]) for d in (tmp_path / "ref", out)]
+    pd.testing.assert_frame_equal(*rows, check_exact=True)
 
 
 def test_resume_errors(tmp_path, capsys):

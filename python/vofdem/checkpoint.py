@@ -33,8 +33,9 @@ CHECKPOINT_SECONDS = 30.0
 class Checkpoint:
     """A run's state after `snapshots` snapshots: the solver's state, the snapshot times of the whole
     run (`targets`, after the first snapshot), whether the stones are held (`hold`), the scene (TOML),
-    the profile so far {stage: (seconds, calls)}, the wall time so far [s] and when water first reached
-    the domain's top row [s] (None: not yet; the resumed run then warns no second time)."""
+    the profile so far {stage: (seconds, calls)}, the wall time so far [s], when water first reached
+    the domain's top row [s] (None: not yet; the resumed run then warns no second time) and the
+    process (CPU) time so far [s] (None in checkpoints written before it was kept)."""
 
     state: Dict[str, np.ndarray]
     snapshots: int
@@ -44,6 +45,7 @@ class Checkpoint:
     profile: Dict[str, Tuple[float, int]]
     wall_seconds: float
     water_at_top_s: Optional[float] = None
+    cpu_seconds: Optional[float] = None
 
 
 def save_checkpoint(path, ck: Checkpoint) -> None:
@@ -66,8 +68,9 @@ def save_checkpoint(path, ck: Checkpoint) -> None:
             f["profile/calls"] = np.array([ck.profile[n][1] for n in names], np.int64)
             f.attrs.update(snapshots=int(ck.snapshots), hold=bool(ck.hold), scene_toml=ck.scene_toml,
                            wall_seconds=float(ck.wall_seconds))
-            if ck.water_at_top_s is not None:
-                f.attrs["water_at_top_s"] = float(ck.water_at_top_s)
+            for name in ("water_at_top_s", "cpu_seconds"):
+                if getattr(ck, name) is not None:
+                    f.attrs[name] = float(getattr(ck, name))
         os.replace(tmp, path)
     except OSError as e:
         tmp.unlink(missing_ok=True)
@@ -94,6 +97,7 @@ def load_checkpoint(path) -> Checkpoint:
                        zip(names, f["profile/seconds"][()], f["profile/calls"][()])}
             return Checkpoint(state, int(f.attrs["snapshots"]), f["targets"][()].tolist(), bool(f.attrs["hold"]),
                               str(f.attrs["scene_toml"]), profile, float(f.attrs["wall_seconds"]),
-                              _optional_float(f.attrs.get("water_at_top_s")))
+                              _optional_float(f.attrs.get("water_at_top_s")),
+                              _optional_float(f.attrs.get("cpu_seconds")))
     except (OSError, KeyError) as e:
         raise ValueError(f"checkpoint '{path}' cannot be read: {e}") from e

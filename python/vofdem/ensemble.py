@@ -231,19 +231,41 @@ def _run_member(base: Scene, member: Member, out_dir, figures: bool, animation: 
     row: Dict[str, Any] = {"member": member.name, "seed": member.seed, "params": dict(member.params),
                            "status": "completed", "error": "", "scene_sha256": scene_digest(scene),
                            "vofdem_version": __version__, "host": socket.gethostname()}
+    ck = _checkpoint_to_resume(mdir, scene)
+    if ck is not None:
+        row["resumed"] = True  # in the JSON only: continued from the checkpoint of a killed run
+    cpu_before = 0.0 if ck is None else ck.cpu_seconds
     wall0, cpu0 = _time.perf_counter(), _time.process_time()
     try:
         res = run_scene(scene, mdir, progress=False, figures=figures, animation=animation, build=build,
-                        log=lambda *a, **k: None)
+                        log=lambda *a, **k: None, resume=ck is not None)
         row.update(_event_columns(res.analysis, scene))
         row["steps"], row["stones_hash"] = res.steps, _stones_hash(res.h5_path)
         row["step_limits"] = res.step_limits  # in the JSON only: which limit bound the member's steps
     except Exception as e:  # noqa: BLE001 - a failing member is an outcome; the others go on
         row.update(status="failed", error=f"{type(e).__name__}: {e}")
     # the CPU time of the member's process: the cost of a member on a loaded machine (one thread, run_member)
-    row["wall_seconds"], row["cpu_seconds"] = _time.perf_counter() - wall0, _time.process_time() - cpu0
+    row["wall_seconds"] = _time.perf_counter() - wall0 + (0.0 if ck is None else ck.wall_seconds)
+    # a checkpoint written before it kept the process time: the killed runs' CPU is unknown
+    row["cpu_seconds"] = None if cpu_before is None else _time.process_time() - cpu0 + cpu_before
     _write_atomic(mdir / OUTCOME_FILE, json.dumps(row, indent=1) + "\n")
     return row
+
+
+def _checkpoint_to_resume(member_dir: Path, scene: Scene):
+    """The checkpoint of a killed run of `scene` in `member_dir` (a member whose worker or machine died
+    before it finished: its run.h5 still 'running', or 'interrupted'), or None: no checkpoint, one that
+    cannot be read or is of another scene, or a run that ended (completed without its outcome written,
+    or failed): that one runs again from the start."""
+    from .checkpoint import CHECKPOINT_NAME, load_checkpoint
+    from .io import RunData
+
+    try:
+        ck = load_checkpoint(member_dir / CHECKPOINT_NAME)
+        status = RunData(member_dir / "run.h5").attrs.get("status")
+    except (ValueError, OSError):
+        return None
+    return ck if ck.scene_toml == scene.to_toml() and status in ("running", "interrupted") else None
 
 
 def read_outcome(path: Path) -> Optional[Dict[str, Any]]:

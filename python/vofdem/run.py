@@ -288,7 +288,7 @@ class _Loop:
                  checkpoint_seconds: float = CHECKPOINT_SECONDS, xdmf_seconds: float = XDMF_SECONDS):
         self.sim, self.scene, self.out = sim, scene, out
         st = sim.stones
-        self.wall0 = _time.perf_counter()
+        self.wall0, self.cpu0 = _time.perf_counter(), _time.process_time()
         self.checkpoint_seconds, self.last_checkpoint = checkpoint_seconds, None
         if ck is None:
             self.fixed0 = np.asarray(st.stone_fixed).astype(bool).copy()
@@ -304,7 +304,7 @@ class _Loop:
                                     width=st.params.width if front_of(st).dimensions == 3 else None)
             if self.hold:
                 st.held = True  # kept in place with their contacts' springs (DEMSystem.held)
-            self.base_profile, self.base_wall, pos0 = {}, 0.0, None
+            self.base_profile, self.base_wall, self.base_cpu, pos0 = {}, 0.0, 0.0, None
         else:
             sim.import_state(ck.state)
             self.targets, self.hold = ck.targets, ck.hold
@@ -318,7 +318,7 @@ class _Loop:
             if self.hold:
                 st.held = True
             self.t_start = float(data.times[0])
-            self.base_profile, self.base_wall = ck.profile, ck.wall_seconds
+            self.base_profile, self.base_wall, self.base_cpu = ck.profile, ck.wall_seconds, ck.cpu_seconds
         self.rec = _Recorder(sim, scene, self.writer, pos0, self.fixed0)
         if ck is not None:
             self.rec.top_water_t = ck.water_at_top_s
@@ -358,10 +358,16 @@ class _Loop:
             names, seconds, calls = self.profile_tuple()
             save_checkpoint(self.out / CHECKPOINT_NAME, Checkpoint(
                 dict(self.sim.export_state()), self.writer.count, self.targets, self.hold, self.scene.to_toml(),
-                {n: (s, c) for n, s, c in zip(names, seconds, calls)}, self.wall_seconds(), self.rec.top_water_t))
+                {n: (s, c) for n, s, c in zip(names, seconds, calls)}, self.wall_seconds(), self.rec.top_water_t,
+                self.cpu_seconds()))
 
     def wall_seconds(self) -> float:
         return self.base_wall + _time.perf_counter() - self.wall0
+
+    def cpu_seconds(self) -> Optional[float]:
+        """The process time of the run so far [s], the killed runs' included; None if a checkpoint it
+        resumed from did not keep its own."""
+        return None if self.base_cpu is None else self.base_cpu + _time.process_time() - self.cpu0
 
     def profile_tuple(self):
         """(names, seconds, calls) of the solver's profile plus the killed run's (resumed runs)."""
