@@ -364,7 +364,7 @@ def verdict_rows(name, scene, df):
     return rows
 
 
-def _config_md(name, scene, df) -> list:
+def config_md(name, scene, df) -> list:
     done = df[df["status"] == "completed"]
     fr = stage_fractions(df)
     crest = spread(done["crest_lowering_mm"].astype(float))
@@ -803,7 +803,7 @@ def write_results(res, args, wall: float) -> Path:
                  "band (members in which it never happened are censored at their last discharge; '> Q': not reached "
                  "by the runs' end), the lognormal fit, and the scene's reference data.", ""]
         for n, s in res["scenes"].items():
-            text += _config_md(n, s, res["verdict"][n])
+            text += config_md(n, s, res["verdict"][n])
     for part, plan in res["sweeps"].items():
         text += [f"## {SWEEPS[part].title}", "", f"`{res['width_scene']}` over {SWEEPS[part].what}, seeds "
                  f"{_seed_range(plan['seeds'])}" + (_height_note(res) if part == "width" else "") + ".", ""]

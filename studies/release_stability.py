@@ -20,7 +20,10 @@ slope_surface_stones over the whole slope height, side walls included, of the st
 downstream slope or its shoulder) over each stone's submerged weight, and the friction angle a lone stone on the slope
 would need against the mean load, slope + atan(f_x / (1 - f_z)) (sliding on a plane, no interlocking);
 the weir's packed porosity (the packer's report, the prism across the flume). The heap angles come from
-benchmarks/results/sphere_calibration.md and clump_calibration.md (not measured here).
+benchmarks/results/sphere_calibration.md and clump_calibration.md (not measured here). When --after reaches
+the ramp's end, the page adds the verdict's tables of the members run (studies/maeno2008_verdict.py
+config_md: each event's Kaplan-Meier median and band, the stage shares, the crest lowering, next to the
+experiment and the paper's model).
 
     nice -n 5 env PYTHONPATH=python python3 studies/release_stability.py --seeds 0-3 \\
         --mu-r 0,0.2,0.4,0.8 --clump-mu-r 0
@@ -57,6 +60,7 @@ from vofdem.io import RunData  # noqa: E402
 from vofdem.run import analyse_run  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 from vofdem.study import number_or_dash as _f, shown_path, sphere_volume, submerged_weight  # noqa: E402
+from maeno2008_verdict import config_md  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKING_FILE = "packing.json"
@@ -296,6 +300,21 @@ def results_md(args, base, configs, rows, summary, command) -> str:
     return "\n".join(lines)
 
 
+def hydrograph_md(whole) -> str:
+    """The verdict's tables (studies/maeno2008_verdict.py) of configurations whose members ran the whole
+    ramp: their runs here, not an earlier page's."""
+    if not whole:
+        return ""
+    lines = ["", "## Through the hydrograph", "",
+             "The members ran the whole ramp: per event the Kaplan-Meier median and 16-84 % band of its "
+             "discharge over the members run here (members in which it never happened censored at their last "
+             "discharge), as the verdict's tables (`studies/maeno2008_verdict.py`), next to the experiment's and "
+             "the paper's model's discharges.", ""]
+    for label, scene, frame in whole:
+        lines += config_md(label, scene, frame)
+    return "\n".join(lines)
+
+
 def _where_md(rows) -> list:
     """Where the stones lost at the release lay at the start, per member run here that lost any."""
     lost = [r for r in rows if r["status"] == "completed" and r["lost_release"] > 0]
@@ -400,7 +419,7 @@ def main(argv=None) -> Path:
     seeds = parse_seeds(args.seeds)
     configs = [Config("sphere", m) for m in parse_mu(args.mu_r, "--mu-r")] + \
               [Config("clump", m) for m in parse_mu(args.clump_mu_r, "--clump-mu-r")]
-    rows = []
+    rows, whole = [], []
     for cfg in configs:
         scene, d = cfg.scene(base), args.out / cfg.name
         if args.no_run:
@@ -412,6 +431,8 @@ def main(argv=None) -> Path:
             out = {"seed": rec["seed"], "status": rec["status"], "cpu_seconds": rec.get("cpu_seconds"),
                    "removed": rec.get("removed")}
             rows.append(member_row(cfg, out, d / f"seed{rec['seed']}", args.window))
+        if base.end_time >= base.hydrograph.ramp_start + base.hydrograph.ramp_duration - 1e-9:
+            whole.append((cfg.label, scene, frame))
     if args.earlier is not None:
         order = [c.label for c in configs]
         rows = sorted(rows + earlier_rows(args.earlier, configs, seeds),
@@ -424,7 +445,8 @@ def main(argv=None) -> Path:
                f" --window {args.window:g}" + (" --no-run" if args.no_run else "") + _paths_shown(p, args))
     figure(rows, configs, heaps, args.figure)
     args.results.parent.mkdir(parents=True, exist_ok=True)
-    args.results.write_text(results_md(args, base, configs, rows, summary, command), encoding="utf-8")
+    args.results.write_text(results_md(args, base, configs, rows, summary, command) + hydrograph_md(whole),
+                            encoding="utf-8")
     print(args.results)
     return args.results
 

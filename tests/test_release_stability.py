@@ -13,9 +13,9 @@ from script_loader import load_script
 rs = load_script("studies/release_stability.py")
 
 
-def tiny_scene(path):
+def tiny_scene(path, ramp_duration=None):
     """The spheres' small test scene (tests/test_sphere_scenes.py) with the consistent coupling and a held
-    spin-up of 1 s; written as TOML to path."""
+    spin-up of 1 s (and a ramp of ramp_duration [s] if given); written as TOML to path."""
     d = vofdem.Scene.maeno2008().to_dict()
     d["name"] = "release_tiny"
     d["stones"].update(shape="sphere", diameter=0.03, drag_model="bed")
@@ -23,6 +23,8 @@ def tiny_scene(path):
     d["weir"].update(height=0.08, crest_length=0.06, toe_x=0.5)
     d["hydrograph"].update(discharge_start_lps=1.0, discharge_end_lps=2.0, spin_up_duration=1.0,
                            hold_stones_during_spin_up=True)
+    if ramp_duration is not None:
+        d["hydrograph"]["ramp_duration"] = ramp_duration
     d["grid"].update(dx=0.02)
     d["output"].update(snapshot_interval=0.25, figures=False, animation=False)
     path.write_text(vofdem.Scene.from_dict(d).validate().to_toml(), encoding="utf-8")
@@ -39,6 +41,7 @@ def test_tiny_study_writes_tables_from_its_own_run(tmp_path):
     assert fig.stat().st_size > 0 and str(tmp_path) not in text and not re.search(r"/(work|tmp|root|home)/", text)
     lines = text.splitlines()
     assert "## Per configuration" in lines and "## Per member" in lines
+    assert "## Through the hydrograph" not in lines  # the members stop before the ramp's end
     # the heap angle of spheres at mu_r = 0 comes from benchmarks/results/sphere_calibration.md
     conf = [ln for ln in lines if ln.startswith("| spheres, mu_r = 0 | 20.1 |")]
     member = [ln for ln in lines if ln.startswith("| spheres, mu_r = 0 | 0 |")]
@@ -75,6 +78,24 @@ def test_tiny_study_writes_tables_from_its_own_run(tmp_path):
     assert str(tmp_path) not in text2 and not re.search(r"/(work|tmp|root|home)/", text2)
     # the page's own command line reruns it: no empty option value left bare
     assert "--mu-r '0' --clump-mu-r ''" in text2
+
+
+def test_members_through_the_whole_ramp_get_the_verdicts_tables(tmp_path):
+    """--after reaching the ramp's end adds the verdict's tables of the members run: events, shares, crest."""
+    scene = tiny_scene(tmp_path / "tiny.toml", ramp_duration=0.5)
+    out, res, fig = tmp_path / "ens", tmp_path / "r.md", tmp_path / "f.png"
+    args = ["--scene", str(scene), "--seeds", "0", "--mu-r", "0", "--clump-mu-r", "", "--window", "0.5", "--out",
+            str(out), "--results", str(res), "--figure", str(fig)]
+    rs.main(args + ["--after", "0.5"])
+    text = res.read_text()
+    head, whole = text.split("## Through the hydrograph")
+    outcome = json.loads((out / "spheres_mu_r=0" / "seed0" / "outcome.json").read_text())
+    assert "**spheres, mu_r = 0** (sphere" in whole and "1 of 1 members completed" in whole
+    first = [ln for ln in whole.splitlines() if ln.startswith("| first removal")]
+    happened = 0 if outcome["first_removal_lps"] is None else 1
+    assert len(first) == 1 and f"| {happened} of 1 (" in first[0]
+    # the experiment's and the paper's model's second stage beside the run's
+    assert re.search(r"\| stage 2 \| .* \| 16\.5 \| 17\.1 \|", whole)
 
 
 def test_an_earlier_pages_member_row_reads_back_as_written():
