@@ -224,6 +224,32 @@ def test_a_failing_member_and_a_killed_worker_are_recorded_and_the_rest_finish(t
     assert (retried["status"] == "completed").all()
 
 
+class _Interrupted(FakeSimulation):
+    """Interrupted (Ctrl-C) once past 10 s."""
+
+    def advance(self, t_end):
+        if t_end > 10.0:
+            raise KeyboardInterrupt
+        super().advance(t_end)
+
+
+def test_an_interrupted_member_built_by_a_study_resumes_from_its_checkpoint(tmp_path):
+    """A member built by a `build` (as the studies build theirs) continues from its checkpoint when the same
+    ensemble is called again, and ends as a member never stopped."""
+    ref = run_ensemble(short_scene(), [0], tmp_path / "ref", build=_build, workers=0, n_boot=0, **QUIET)
+    with pytest.raises(KeyboardInterrupt):
+        run_ensemble(short_scene(), [0], tmp_path / "cut", workers=0, n_boot=0, **QUIET,
+                     build=lambda scene: _Interrupted(scene, thresholds_lps=THRESHOLDS[scene.seed]))
+    assert RunData(tmp_path / "cut" / "seed0" / "run.h5").attrs["status"] == "interrupted"
+    again = run_ensemble(short_scene(), [0], tmp_path / "cut", build=_build, workers=0, n_boot=0, **QUIET)
+    outcome = json.loads((tmp_path / "cut" / "seed0" / "outcome.json").read_text())
+    assert outcome["resumed"] is True and "resumed" not in json.loads(
+        (tmp_path / "ref" / "seed0" / "outcome.json").read_text())
+    same = [c for c in ref.columns if c not in ("wall_seconds", "cpu_seconds")]
+    pd.testing.assert_frame_equal(again[same], ref[same], check_exact=True)
+    assert again["stage1_lps"].notna().all()  # the member got past the cut's 10 s to its stages
+
+
 def test_a_directory_of_another_scene_is_refused(tmp_path):
     run_ensemble(short_scene(), [0], tmp_path, build=_build, workers=0, n_boot=0, **QUIET)
     other = short_scene()
