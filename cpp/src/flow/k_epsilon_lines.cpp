@@ -190,8 +190,8 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
 namespace vofdem {
 
 // kAlternatingLines: backward Euler of (K) and (E) with every face implicit, (M + A_x + A_z) x = b,
-// approximately factored in delta form with the whole diagonal between the passes (diagonally dominant
-// ADI: Bardina & Lombard 1987; Douglas & Gunn 1964 for the delta form): with x = x0 + d, the residual of
+// approximately factored in delta form (Douglas & Gunn 1964) with the whole diagonal between the passes
+// (a diagonally dominant form of the factorisation): with x = x0 + d, the residual of
 // the step's start r = b - (M + A_x + A_z) x0 and D = M + D_x + D_z the system's diagonal,
 //   (M + D_z + A_x) y = r      one tridiagonal system per row (horizontal faces; the vertical on the diagonal)
 //   (M + D_x + A_z) d = D y    one per column (vertical faces; the horizontal on the diagonal)
