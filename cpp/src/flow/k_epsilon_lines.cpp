@@ -190,18 +190,26 @@ void KEpsilonModel::solve_transport_lines(double dt, const std::vector<double>& 
 namespace vofdem {
 
 // kAlternatingLines: backward Euler of (K) and (E) with every face implicit, (M + A_x + A_z) x = b,
-// approximately factored in delta form (Douglas & Gunn 1964; Beam & Warming 1978): with x = x0 + d and
-// the residual of the step's start r = b - (M + A_x + A_z) x0,
-//   (M + A_x) y = r             one tridiagonal system per row (horizontal faces)
-//   (M + A_z) d = M y           one per column (vertical faces)
+// approximately factored in delta form (Douglas & Gunn 1964) with the whole diagonal between the passes
+// (a diagonally dominant form of the factorisation): with x = x0 + d, the residual of
+// the step's start r = b - (M + A_x + A_z) x0 and D = M + D_x + D_z the system's diagonal,
+//   (M + D_z + A_x) y = r      one tridiagonal system per row (horizontal faces; the vertical on the diagonal)
+//   (M + D_x + A_z) d = D y    one per column (vertical faces; the horizontal on the diagonal)
 // M = n/dt + n D (the diagonal: storage and the linearised sink), A_x, A_z: the horizontal and vertical
 // faces' coefficients of face_coefficients() (upwind inflow + diffusion; a boundary inflow face or a
-// face to a wall cell on the diagonal alone, its value known). The factorisation adds A_x M^-1 A_z d,
-// of order dt^2 for small dt and proportional to d for any dt: a steady state is kept exactly (r = 0,
-// d = 0) and so is a uniform decaying field (A_x, A_z annihilate it: the backward-Euler value); where
-// A_x is small (the paper's grid, below the horizontal limit) the scheme is the column solves of
-// kVerticalLines with their horizontal faces explicit. Both systems are M-matrices, stable for any dt;
-// d is not sign-bound, so k and eps are kept at their floors (k_min, eps_min) as every scheme's are.
+// face to a wall cell on the diagonal alone, its value known), D_x, D_z: their sums per cell, A = D - O.
+// The product is the backward-Euler matrix plus O_x D^-1 O_z, a weight of at most min(O_x, O_z) between
+// diagonal neighbours: bounded by the faces' own coefficients for any dt. With M alone between the
+// passes (the classic form, used before) the extra term was A_x M^-1 A_z, which grows as D_z / M ~ dt
+// nu_t / dz^2 on thin rows: a cell's row value y, its whole vertical residual over M, ran along its row
+// into a neighbour whose column did not take it back (no vertical faces, at the water's front), and k
+// doubled there in one step; on the grid four times as fine it grew to 1e216 and eps overflowed
+// (docs/k_epsilon.md, "Alternating lines"). A steady state is kept exactly (r = 0, d = 0); a uniform
+// decaying field is exact in a single column and lags the point-implicit decay elsewhere, by
+// D_x D_z / ((M + D_x)(M + D_z)) of each step's change in an inner cell. Where A_x is small (the paper's
+// grid, below the horizontal limit) the scheme is close to the column solves of kVerticalLines with
+// their horizontal faces explicit. Both systems are M-matrices, stable for any dt; d is not sign-bound,
+// so k and eps are kept at their floors (k_min, eps_min) as every scheme's are.
 void KEpsilonModel::solve_transport_alternating(double dt, const std::vector<double>& face_u,
                                                 const std::vector<double>& face_w,
                                                 const std::vector<double>& cell_porosity,
@@ -237,8 +245,10 @@ void KEpsilonModel::solve_transport_alternating(double dt, const std::vector<dou
             const std::vector<double>& x0 = *start[e];
             std::vector<double>* row = tri_[e];
             const double m = n / dt + n * sink[e];
-            double diag = m;
-            double rhs = rows ? n * (source[e] - sink[e] * x0[c]) : m * row_pass_[e][c];
+            // the whole diagonal M + D_x + D_z: each pass holds the other direction's faces on its own
+            const double d_x = fc[0].a[e] + fc[1].a[e], d_z = fc[2].a[e] + fc[3].a[e];
+            double diag = m + (rows ? d_z : d_x);
+            double rhs = rows ? n * (source[e] - sink[e] * x0[c]) : (m + d_x + d_z) * row_pass_[e][c];
             for (int f = 0; f < 4; ++f) {
               const double a = fc[f].a[e];
               if (a == 0.0) continue;
