@@ -26,7 +26,6 @@ Each run is cached (--cache, one JSON line per run) so that runs can be split be
 """
 import argparse
 import json
-import math
 import os
 import platform
 import sys
@@ -42,6 +41,7 @@ from vofdem.analysis import classify_regions  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import sphere_volume, submerged_weight, write_page  # noqa: E402
 
 UPSTREAM = 0.5  # m before the upstream toe: the approach depth column
 DOWNSTREAM = 0.3  # m past the downstream toe: the tailwater column
@@ -72,8 +72,7 @@ def run(scene, settings, times):
     mobile = np.asarray(st.stone_fixed) == 0
     st.stone_fixed[:] = True
     d = 2.0 * np.asarray(st.stone_radius)[mobile]
-    water = sim.fluid.params
-    weight = (np.asarray(st.stone_density)[mobile] - water.rho_water) * abs(water.gravity_z) * math.pi * d ** 3 / 6.0
+    weight = submerged_weight(sphere_volume(d), np.asarray(st.stone_density)[mobile])
     t0, built = time.process_time(), time.process_time() - t0  # the packing's build is not a coupled step
     x = np.asarray(st.stone_pos)[mobile, 0].copy()
     down = classify_regions(x, scene.weir, 0.0) == "downstream slope"
@@ -247,10 +246,7 @@ def main(argv=None):
             "## Fixed bed: bed pressure drop dp = p_up - p_down between those two columns", "", *t["dp"], "",
             "## Cost", "", "CPU of the steps (the build and packing excluded) over their number, to the last time "
             "run, this process alone (time.process_time); the runs shared a loaded 2-core machine.", "", *cost, ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

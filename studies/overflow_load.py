@@ -26,6 +26,7 @@ from vofdem.analysis import classify_regions  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 REGIONS = ("upstream slope", "crest", "downstream slope")
 
@@ -97,10 +98,7 @@ def main(argv=None):
     text += [f"| mean | {offs.mean():.3f} | {ons.mean():.3f} |", "",
              f"Criteria: 0.5-0.8. With the overflow load the exponent is {'inside' if 0.5 <= ons.mean() <= 0.8 else 'outside'} "
              f"that range (mean {ons.mean():.3f}); without it {offs.mean():.3f}.", ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

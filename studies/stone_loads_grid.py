@@ -16,7 +16,6 @@ studies/results/stone_loads_grid.md.
     OMP_NUM_THREADS=1 PYTHONPATH=python python3 studies/stone_loads_grid.py --seeds 0 1 --times 20 50 80
 """
 import argparse
-import math
 import os
 import platform
 import time
@@ -31,6 +30,7 @@ from vofdem.analysis import classify_regions  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import sphere_volume, submerged_weight, write_page  # noqa: E402
 
 MOBILE = 0.3  # a mobility counted as high in the table (about half the friction between stones)
 
@@ -43,8 +43,7 @@ def loads(scene, settings, times):
     mobile = np.asarray(st.stone_fixed) == 0
     st.stone_fixed[:] = True
     d = 2.0 * np.asarray(st.stone_radius)[mobile]
-    water = sim.fluid.params
-    weight = (np.asarray(st.stone_density)[mobile] - water.rho_water) * abs(water.gravity_z) * math.pi * d ** 3 / 6.0
+    weight = submerged_weight(sphere_volume(d), np.asarray(st.stone_density)[mobile])
     out = []
     for t in times:
         sim.advance(t)
@@ -108,10 +107,7 @@ def main(argv=None):
         for ra, rb in zip(a, b):
             text += compare(scene, ra, rb, (v0, v1))
         text.append("")
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

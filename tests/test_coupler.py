@@ -1,6 +1,7 @@
 """Coupler from Python: the names the run loop uses, zero-copy views, checkpoint/restart, guards."""
 import gc
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -51,6 +52,22 @@ def test_run_loop_names_and_zero_copy_views():
     gc.collect()
     assert np.isfinite(drag).all() and F.sum() > 0 and pos.shape == (3, 2)
 
+
+def test_the_stage_times_sum_to_about_the_step_time():
+    # `profile` the wall clock, `cpu_profile` the process's CPU time: the same stages and calls, each summing
+    # to about what advance() took by that clock (the stages are disjoint here: no kernel, no overflow load;
+    # the step control between them is the rest)
+    sim = scene()
+    sim.set_inflow_table(np.array([0.0, 10.0]), np.array([0.0, 0.0]))
+    wall0, cpu0 = time.perf_counter(), time.process_time()
+    sim.advance(0.3)
+    wall, cpu = time.perf_counter() - wall0, time.process_time() - cpu0
+    assert list(sim.cpu_profile.names) == list(sim.profile.names)
+    assert list(sim.cpu_profile.calls) == list(sim.profile.calls)
+    for prof, took in ((sim.profile, wall), (sim.cpu_profile, cpu)):
+        assert 0.8 * took < prof.total_seconds <= took
+    sim.cpu_profile.reset()
+    assert sim.cpu_profile.total_seconds == 0.0 and sim.profile.total_seconds > 0.0  # reset apart
 
 def test_checkpoint_dict_restarts_bit_for_bit():
     a = scene()

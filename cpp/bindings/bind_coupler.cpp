@@ -194,7 +194,10 @@ void bind_coupler(py::module_& m) {
                                "continues from it bit for bit",
                                "returns to a copy_state() copy (every part checked first; written into the arrays in place)");
   cls.def_property_readonly("profile", &Coupler::profile, py::return_value_policy::reference_internal,
-           "CPU seconds per coupled stage (StageProfile)")
+           "wall-clock seconds per coupled stage (StageProfile)")
+      .def_property_readonly("cpu_profile", &Coupler::cpu_profile, py::return_value_policy::reference_internal,
+           "the process's CPU seconds (all threads) per coupled stage, the stages and calls of `profile` "
+           "(StageProfile): unchanged by other work on a shared machine; reset apart")
       .def_property_readonly("stone_force_drag",
                              [](py::object self) { return view_pairs(self.cast<Coupler&>().stone_force_drag, self); },
            "drag on each stone (sphere or bed drag) (n, 2) [N], zero-copy view")

@@ -273,7 +273,7 @@ void bind_system(py::module_& m) {
                            "returns to a copy_state() copy (checked first; written in place unless the stone or "
                            "vertex count differs, which invalidates earlier views)");
   cls.def_property_readonly("profile", &DEMSystem::profile, py::return_value_policy::reference_internal,
-           "CPU seconds per DEM stage (StageProfile)")
+           "wall-clock seconds per DEM stage (StageProfile)")
       .def_property_readonly("stone_pos", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_pos, self); },
            "centres (x along the flume, z up) (n, 2) [m], zero-copy view")
       .def_property_readonly("stone_vel", [](py::object self) { return view_pairs(self.cast<DEMSystem&>().stone_vel, self); },

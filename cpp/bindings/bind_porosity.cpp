@@ -107,7 +107,7 @@ void bind_porosity(py::module_& m) {
           "area [m^2] of each (disc, cell) pair, uncapped")
       .def_property_readonly("profile", [](PorosityMapper& p) -> StageProfile& { return p.profile(); },
                              py::return_value_policy::reference_internal,
-           "CPU seconds per mapping stage (StageProfile)");
+           "wall-clock seconds per mapping stage (StageProfile)");
 }
 
 }  // namespace vofdem::bind

@@ -346,7 +346,7 @@ void bind_vof(py::module_& m) {
                              "the velocity is not divergence-free (the pressure solve's residual), since construction")
       .def_property_readonly("profile", py::overload_cast<>(&VOFGrid::profile),
                              py::return_value_policy::reference_internal,
-           "CPU seconds per flow stage (StageProfile)")
+           "wall-clock seconds per flow stage (StageProfile)")
       .def_property_readonly("turbulence_profile", [](VOFGrid& f) -> StageProfile& { return f.turbulence().profile(); },
                              py::return_value_policy::reference_internal,
                              "the k-epsilon model's own stages (setup, wall functions, production, transport, eddy "

@@ -341,7 +341,7 @@ class PorosityMapper:
     @property
     def profile(self) -> StageProfile:
         """
-        CPU seconds per mapping stage (StageProfile)
+        wall-clock seconds per mapping stage (StageProfile)
         """
     @property
     def row_class(self) -> list[int]:
@@ -859,7 +859,7 @@ class DEMSystem:
     @property
     def profile(self) -> StageProfile:
         """
-        CPU seconds per DEM stage (StageProfile)
+        wall-clock seconds per DEM stage (StageProfile)
         """
     @property
     def removed_count(self) -> int:
@@ -2810,7 +2810,7 @@ class VOFGrid:
     @property
     def profile(self) -> StageProfile:
         """
-        CPU seconds per flow stage (StageProfile)
+        wall-clock seconds per flow stage (StageProfile)
         """
     @property
     def retried_steps(self) -> int:
@@ -3239,6 +3239,11 @@ class Coupler:
         OVERFLOW_LOAD: the reaction taken from each cell (ncell, 2) [N per metre of flume width], zero-copy view
         """
     @property
+    def cpu_profile(self) -> StageProfile:
+        """
+        the process's CPU seconds (all threads) per coupled stage, the stages and calls of `profile` (StageProfile): unchanged by other work on a shared machine; reset apart
+        """
+    @property
     def floored_solid_area(self) -> float:
         """
         KERNEL: solid area per unit width [m^2] the porosity floor n >= n_exp removed at the last mapping (0: the flow sees all of the stones' solid volume)
@@ -3269,7 +3274,7 @@ class Coupler:
     @property
     def profile(self) -> StageProfile:
         """
-        CPU seconds per coupled stage (StageProfile)
+        wall-clock seconds per coupled stage (StageProfile)
         """
     @property
     def redistributed_volume(self) -> float:

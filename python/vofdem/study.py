@@ -83,6 +83,16 @@ def submerged_weight(volume, density) -> np.ndarray:
     return (np.asarray(density, float) - WATER_DENSITY) * GRAVITY * np.asarray(volume, float)
 
 
+def write_page(out, lines: Sequence[str]) -> Path:
+    """Writes a results page (Markdown lines) to the path `out`, making its folder, prints it and returns
+    `out`: the last step of each study script."""
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("\n".join(lines), encoding="utf-8")
+    print("\n".join(lines))
+    return out
+
+
 # ---------------------------------------------------------------------------- statistics
 def event_arrays(members, event: str) -> Tuple[np.ndarray, np.ndarray]:
     """(q [l/s], observed) of one event over completed members: the event's discharge where it

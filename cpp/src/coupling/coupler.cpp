@@ -14,6 +14,7 @@
 #include "vofdem/common/advance.h"
 #include "vofdem/stones/stone_model.h"
 #include "vofdem/stones/wet_fraction.h"
+#include "coupling/coupler_stage.h"
 
 namespace vofdem {
 
@@ -95,13 +96,18 @@ Coupler::Coupler(VOFGrid* fluid, DEMSystem* stones, const CouplerParams& params)
     make_kernel();
   }
   time_ = fluid_ ? fluid_->time() : (stones_ ? stones_->time() : 0.0);
-  st_snapshot_ = profile_.add_stage("snapshot");
-  st_porosity_ = profile_.add_stage("porosity");
-  st_forces_ = profile_.add_stage("fluid_forces");
-  st_dem_ = profile_.add_stage("dem");
-  st_fluid_ = profile_.add_stage("fluid");
-  st_checks_ = profile_.add_stage("checks");
-  st_stable_dt_ = profile_.add_stage("stable_dt");
+  st_snapshot_ = add_stage("snapshot");
+  st_porosity_ = add_stage("porosity");
+  st_forces_ = add_stage("fluid_forces");
+  st_dem_ = add_stage("dem");
+  st_fluid_ = add_stage("fluid");
+  st_checks_ = add_stage("checks");
+  st_stable_dt_ = add_stage("stable_dt");
+}
+
+int Coupler::add_stage(const std::string& name) {
+  cpu_profile_.add_stage(name);
+  return profile_.add_stage(name);
 }
 
 // the stones feel the flow's water and gravity (buoyancy, added mass, weight): one medium, the flow's
@@ -163,7 +169,7 @@ void Coupler::make_kernel() {
   cell_bed_x_.assign(nc, 0.0);
   cell_bed_z_.assign(nc, 0.0);
   cell_bed_slope_.assign(nc, 0.0);
-  if (st_kernel_ < 0) st_kernel_ = profile_.add_stage("kernel");
+  if (st_kernel_ < 0) st_kernel_ = add_stage("kernel");
 }
 
 // the parameters' limits that depend on the scene (checked before anything changes)
@@ -262,7 +268,7 @@ void Coupler::smooth_area_field(std::vector<double>& v) {
 // n >= n_exp (phi <= 1: a cell holds no more stone than a packing of the stones does), before the
 // resistance law; the solid area the floor removes is counted, never clipped silently
 void Coupler::smooth_solid() {
-  ScopedStage timer(profile_, st_kernel_);
+  CoupledStage timer(profile_, cpu_profile_, st_kernel_);
   smooth_area_field(cell_solid_sum_);
   smooth_area_field(cell_diam_sum_);
   if (fluid_->params().flags & kFlowRelativeVelocity) {
@@ -287,7 +293,7 @@ void Coupler::smooth_solid() {
 }
 
 void Coupler::stage_porosity(bool keep_water_volume) {
-  ScopedStage timer(profile_, st_porosity_);
+  CoupledStage timer(profile_, cpu_profile_, st_porosity_);
   map_stones();
   const Grid2D& g = fluid_->grid();
   const int nc = g.ncell();
@@ -363,7 +369,7 @@ std::string Coupler::non_finite_cell(int count, const int* cells) const {
 void Coupler::stage_fluid_forces() { stage_fluid_forces(params_.flags); }
 
 void Coupler::stage_fluid_forces(unsigned fl) {
-  ScopedStage timer(profile_, st_forces_);
+  CoupledStage timer(profile_, cpu_profile_, st_forces_);
   // one-way coupling: the stones' cell lists without touching the flow's porosity
   if (!csr_current_) map_stones();
   const FlowParams& fp = fluid_->params();
@@ -469,7 +475,7 @@ void Coupler::smooth_flow(bool bed, const BedDragParams& bp) {
     deposit_stones();
     smooth_solid();
   }
-  ScopedStage timer(profile_, st_kernel_);
+  CoupledStage timer(profile_, cpu_profile_, st_kernel_);
   const int nc = fluid_->grid().ncell();
   const std::vector<double>& F = fluid_->cell_F;
   fluid_->pore_velocity_at_cells(cell_U_, cell_W_);
@@ -533,8 +539,8 @@ DragForce Coupler::kernel_bed_drag(int j, double* slope) const {
 // the overflow load (overflow_load.h) on every active stone: its extents, protrusion and exposed share, the
 // approach band in the column of its centre, F_D + F_L, and the reaction per cell (per metre of width)
 void Coupler::overflow_loads(double rho) {
-  if (st_overflow_ < 0) st_overflow_ = profile_.add_stage("overflow_load");
-  ScopedStage timer(profile_, st_overflow_);
+  if (st_overflow_ < 0) st_overflow_ = add_stage("overflow_load");
+  CoupledStage timer(profile_, cpu_profile_, st_overflow_);
   const Grid2D& g = fluid_->grid();
   const StoneModel& model = stones_->model();
   for (int j = 0; j < n_; ++j) {
@@ -605,7 +611,7 @@ void Coupler::overflow_loads(double rho) {
 }
 
 void Coupler::apply_overflow_reaction(double dt) {
-  ScopedStage timer(profile_, st_overflow_);
+  CoupledStage timer(profile_, cpu_profile_, st_overflow_);
   vofdem::apply_overflow_reaction(fluid_->grid(), fluid_->face_x_porosity.data(), fluid_->face_z_porosity.data(),
                                   cell_overflow_reaction.data(), dt, fluid_->params().medium.rho_water,
                                   fluid_->face_u.data(), fluid_->face_w.data());
@@ -623,7 +629,7 @@ void Coupler::clear_fluid_forces() {
 }
 
 void Coupler::stage_dem(double dt) {
-  ScopedStage timer(profile_, st_dem_);
+  CoupledStage timer(profile_, cpu_profile_, st_dem_);
   try {
     stones_->advance(dt);
   } catch (const std::runtime_error& e) {
@@ -632,7 +638,7 @@ void Coupler::stage_dem(double dt) {
 }
 
 void Coupler::stage_fluid(double dt) {
-  ScopedStage timer(profile_, st_fluid_);
+  CoupledStage timer(profile_, cpu_profile_, st_fluid_);
   try {
     // the guard's snapshot holds the whole start: the flow need not copy its own
     if (snapshot_valid_) fluid_->step_guarded(dt);
@@ -645,7 +651,7 @@ void Coupler::stage_fluid(double dt) {
 }
 
 void Coupler::stage_checks() {
-  ScopedStage timer(profile_, st_checks_);
+  CoupledStage timer(profile_, cpu_profile_, st_checks_);
   for (int j = 0; j < n_; ++j) {
     if (!stones_->stone_active[j]) continue;
     const double* x = &stones_->stone_pos[2 * j];
@@ -662,7 +668,7 @@ void Coupler::stage_checks() {
 double Coupler::stable_dt() { return stable_dt_limits(nullptr, nullptr); }
 
 double Coupler::stable_dt_limits(const char** term, int* cell) {
-  ScopedStage timer(profile_, st_stable_dt_);
+  CoupledStage timer(profile_, cpu_profile_, st_stable_dt_);
   double dt = params_.max_dt;
   const char* why = "coupler_max_dt";
   int where = -1;
@@ -741,7 +747,7 @@ void Coupler::save() {
   // a whole interval without a failure (not the first snapshot): the next one may be twice as long
   if (sparse_snapshots_ && snapshot_valid_)
     snapshot_interval_ = std::min(2 * snapshot_interval_, params_.max_snapshot_interval);
-  ScopedStage timer(profile_, st_snapshot_);
+  CoupledStage timer(profile_, cpu_profile_, st_snapshot_);
   export_state(snapshot_, false);
   snapshot_valid_ = true;
   replay_.assign(1, {std::numeric_limits<double>::quiet_NaN(), last_dt});
@@ -753,7 +759,7 @@ void Coupler::restore() {
   if (replay_.size() > 1) {
     replay();
     // the retries of this step start from here: a snapshot of its start, the interval back to 1
-    ScopedStage timer(profile_, st_snapshot_);
+    CoupledStage timer(profile_, cpu_profile_, st_snapshot_);
     export_state(snapshot_, false);
     snapshot_interval_ = 1;
   }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "vofdem/common/check.h"
+#include "coupling/coupler_stage.h"
 #include "vofdem/coupling/coupler.h"
 
 namespace vofdem {
@@ -25,8 +26,8 @@ SettleReport Coupler::settle(const SettleParams& p) {
   p.validate();
   SettleReport r;
   if (!has_stones() || !(params_.flags & kCoupleDEM)) return r;
-  if (st_settle_ < 0) st_settle_ = profile_.add_stage("settle");
-  ScopedStage timer(profile_, st_settle_);
+  if (st_settle_ < 0) st_settle_ = add_stage("settle");
+  CoupledStage timer(profile_, cpu_profile_, st_settle_);
   share_medium();
   // each stone's wet fraction in the still water, and the level that keeps it as the stone moves; no
   // drag and no pressure gradient: the water is at rest and its weight is the buoyancy

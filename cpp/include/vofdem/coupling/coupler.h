@@ -257,7 +257,10 @@ class Coupler {
   std::map<std::string, std::vector<double>> export_state() const;
   void import_state(const std::map<std::string, std::vector<double>>& state);
 
+  // wall-clock seconds and calls per coupled stage; cpu_profile() the same stages' CPU seconds, the process's
+  // (all threads), which a machine shared with other work leaves unchanged (coupler_stage.h). Reset apart
   StageProfile& profile() { return profile_; }
+  StageProfile& cpu_profile() { return cpu_profile_; }
 
   // ---- kernel mapping (CouplerParams::mapping = kKernel) ----
   // the smoothing operator (null with kCell or without fluid or stones) and its width b [m]
@@ -373,11 +376,12 @@ class Coupler {
   std::map<std::string, long long> limit_steps_;
   std::map<std::string, std::vector<long long>> limit_cells_;
 
-  StageProfile profile_;
+  StageProfile profile_, cpu_profile_;
   int st_snapshot_, st_porosity_, st_forces_, st_dem_, st_fluid_, st_checks_, st_stable_dt_;
   int st_kernel_ = -1;  // added with the first kernel
   int st_overflow_ = -1;  // added with the first overflow load
   int st_settle_ = -1;    // added with the first settle()
+  int add_stage(const std::string& name);  // to both profiles, at the same index
   // the overflow load's scratch: each stone's extents, the approach bands' cells (CSR) and weights l_c F_c,
   // the pore velocity at them; the reaction waits for the step's dt
   std::vector<StoneExtent> stone_extent_;
