@@ -33,7 +33,6 @@ import json
 import math
 import os
 import platform
-import sys
 import time
 from pathlib import Path
 
@@ -41,8 +40,7 @@ import numpy as np
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core per job: the CPU is one thread's
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "python"))
-from vofdem import _core, builder  # noqa: E402
+from vofdem import _core, builder  # noqa: E402  (after the thread count is set)
 from vofdem import calibration as cal  # noqa: E402
 from vofdem.analysis import removal_times  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
@@ -51,7 +49,7 @@ from vofdem.study import setting, shown_path  # noqa: E402
 CALIBRATION_SCENE = ROOT / "scenes" / "maeno2008_spheres.toml"
 MEMBER_SCENE = ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml"
 MU_R = 0.2  # the spheres' calibrated rolling friction (the member scene's)
-PARTS = ("member", "heap", "pull")
+PARTS = ("member", "heap", "pull", "release")
 WINDOW = 0.5          # s: the run's snapshot interval
 RELEASE_WINDOW = 2.0  # s: "at the release" (studies/release_stability.py's --window)
 HEAP = dict(n_stones=500, release_interval=0.04, settle_time_max=10.0)  # sphere_calibration.py's heap
@@ -116,10 +114,12 @@ def _snapshot(st):
     return pos, np.asarray(st.stone_active).astype(bool).copy()
 
 
-def member_job(steps: float, seed: int, after: float) -> dict:
-    """A release-study member: packing, spin-up held, `after` s after the release, as run.py steps it."""
-    _, sc = scenes(steps)
-    sc = sc.replace(seed=seed)
+def member_job(steps: float, seed: int, after: float, switch: bool = False) -> dict:
+    """A release-study member: packing, spin-up held, `after` s after the release, as run.py steps it.
+    switch: packed, settled and spun up at the scene's own step (32 per contact), the DEM step changed to
+    the setting's at the release (the same weir let go; only the step differs)."""
+    own, sc = scenes(steps)[1], load_scene(MEMBER_SCENE)
+    sc = (sc if switch else own).replace(seed=seed)
     c0 = time.process_time()
     sim = builder.build_simulation(sc)
     cpu_build = time.process_time() - c0
@@ -133,6 +133,10 @@ def member_job(steps: float, seed: int, after: float) -> dict:
         t = min(release, t + WINDOW)
         sim.advance(t)
     cpu_spin = time.process_time() - c0
+    if switch:  # the same stiffness (steps x dt kept), the setting's step
+        p, q = st.params, builder.dem_params(own)
+        p.dt, p.contact_steps = q.dt, q.contact_steps
+        st.params = p
     st.held = False
     mobile = int(np.sum(np.asarray(st.stone_active).astype(bool) & ~np.asarray(st.stone_fixed).astype(bool)))
     sub0, c0 = int(st.steps), time.process_time()
@@ -140,17 +144,19 @@ def member_job(steps: float, seed: int, after: float) -> dict:
         t = min(release + after, t + WINDOW)
         sim.advance(t)
         times.append(float(sim.time))
-        p, a = _snapshot(st)
-        pos.append(p)
+        p_, a = _snapshot(st)
+        pos.append(p_)
         active.append(a)
     cpu_after = time.process_time() - c0
     d = 2.0 * np.asarray(st.stone_radius, float)
     rem = removal_times(times, np.array(pos), d, np.array(active), np.asarray(st.stone_fixed).astype(bool))
     lost = np.isfinite(rem)
-    return {"stones": int(d.size), "mobile": mobile, "lost_release": int(np.sum(lost & (rem <= release + RELEASE_WINDOW))),
-            "lost_end": int(lost.sum()), "substeps": int(st.steps) - sub0, "flow_steps": int(sim.step_count),
+    at_release = lost & (rem <= release + RELEASE_WINDOW)
+    return {"stones": int(d.size), "mobile": mobile, "lost_release": int(at_release.sum()), "lost_end": int(lost.sum()),
+            "substeps": int(st.steps) - sub0, "flow_steps": int(sim.step_count),
             "after": after, "simulated": float(sim.time), "cpu_build": cpu_build, "cpu_spin_up": cpu_spin,
-            "cpu_after": cpu_after, "cpu": cpu_build + cpu_spin + cpu_after}
+            "cpu_after": cpu_after, "cpu": cpu_build + cpu_spin + cpu_after, "dt": float(st.params.dt),
+            "kn": float(st.stiffness_normal), "stable_dt": float(st.stable_dt())}
 
 
 def run_job(part: str, steps: float, seed: int, args) -> dict:
@@ -160,8 +166,8 @@ def run_job(part: str, steps: float, seed: int, args) -> dict:
             return heap_job(steps, seed)
         if part == "pull":
             return pull_job(steps, seed, args.per_seed)
-        return member_job(steps, seed, args.after)
-    except ValueError as e:
+        return member_job(steps, seed, args.after, switch=part == "release")
+    except (ValueError, RuntimeError) as e:
         if "stable step" not in str(e):
             raise
         return {"refused": str(e)}
@@ -197,10 +203,36 @@ def collect(out: Path, part: str, steps, seeds) -> dict:
     """{steps: [record per seed kept]}; a setting whose jobs the DEM refused holds the refusal."""
     got = {}
     for n in steps:
-        recs = [r for r in (load(out, part, n, s) for s in seeds) if r is not None]
+        recs = [dict(r, seed=s) for s, r in ((s, load(out, part, n, s)) for s in seeds) if r is not None]
         if recs:
             got[n] = recs
     return got
+
+
+def same_seeds(ref_recs, recs):
+    """The reference's records of the seeds in recs (deviations over the same packings)."""
+    seeds = {r["seed"] for r in recs}
+    return [r for r in ref_recs if r["seed"] in seeds]
+
+
+def _sd(v):
+    v = [x for x in v if x is not None]
+    return float(np.std(v, ddof=1)) if len(v) > 1 else math.nan
+
+
+def spread_line(what: str, values) -> list:
+    """The reference's spread between packings (or heaps), the yardstick of the deviations."""
+    return ["", f"The reference's spread: {what} {_fmt(_sd(values))} (sample standard deviation over "
+            f"{len(values)})."]
+
+
+def _seeds(recs) -> str:
+    return ", ".join(str(r["seed"]) for r in recs)
+
+
+def _each(recs, key: str, f: str = "{}") -> str:
+    """The records' values of key side by side (the spread between packings)."""
+    return " / ".join(_fmt(r[key], f) for r in recs)
 
 
 def _refused(recs):
@@ -208,7 +240,6 @@ def _refused(recs):
 
 
 def heap_table(got: dict, ref: float) -> list:
-    base = _mean([r["angle"] for r in got.get(ref, [])])
     cpu0 = _mean([r["cpu"] for r in got.get(ref, [])])
     lines = ["## (b) Dry angle of repose (500 spheres, mu_r = 0.2)", "",
              "| steps per contact | heaps (seeds) | angle per heap [deg] | mean [deg] | deviation of the mean from "
@@ -218,10 +249,11 @@ def heap_table(got: dict, ref: float) -> list:
             lines.append(f"| {n:g} | refused | | | | | | |")
             continue
         m, c = _mean([r["angle"] for r in recs]), _mean([r["cpu"] for r in recs])
-        lines.append(f"| {n:g} | {len(recs)} | {' / '.join(_fmt(r['angle'], '{:.1f}') for r in recs)} | {m:.1f} | "
-                     f"{m - base:+.1f} | {' / '.join('yes' if r['settled'] else 'no' for r in recs)} | {c:.0f} | "
-                     f"{_ratio(c, cpu0)} |")
-    return lines
+        base = _mean([r["angle"] for r in same_seeds(got[ref], recs)])
+        rest = " / ".join("yes" if r["settled"] else "no" for r in recs)
+        lines.append(f"| {n:g} | {len(recs)} ({_seeds(recs)}) | {_each(recs, 'angle', '{:.1f}')} | {m:.1f} | "
+                     f"{m - base:+.1f} | {rest} | {c:.0f} | {_ratio(c, cpu0)} |")
+    return lines + spread_line("angle [deg]", [r["angle"] for r in got.get(ref, [])])
 
 
 def _pull_means(recs) -> dict:
@@ -229,7 +261,6 @@ def _pull_means(recs) -> dict:
 
 
 def pull_table(got: dict, ref: float) -> list:
-    base = _pull_means(got.get(ref, []))
     cpu0 = _mean([r["cpu"] for r in got.get(ref, [])])
     us0 = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in got.get(ref, [])])
     lines = ["## (a) Pull-out forces (the paper: 2.81 / 3.04 / 4.75 N)", "",
@@ -240,7 +271,7 @@ def pull_table(got: dict, ref: float) -> list:
         if _refused(recs):
             lines.append(f"| {n:g} | refused | | | | | | | |")
             continue
-        m = _pull_means(recs)
+        m, base = _pull_means(recs), _pull_means(same_seeds(got[ref], recs))
         cells = []
         for d in DIRECTIONS:
             peaks = [p["peak"] for r in recs for p in r["pulls"] if p["direction"] == d]
@@ -249,38 +280,50 @@ def pull_table(got: dict, ref: float) -> list:
         c = _mean([r["cpu"] for r in recs])
         us = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in recs])
         npulls = sum(1 for r in recs for p in r["pulls"] if p["direction"] == DIRECTIONS[0])
-        lines.append(f"| {n:g} | {len(recs)} ({npulls}) | " + " | ".join(cells) + f" | {dev} | {c:.0f} | "
-                     f"{_ratio(c, cpu0)} | {us:.1f} ({_ratio(us, us0)}) |")
-    return lines
+        lines.append(f"| {n:g} | {len(recs)} ({npulls}) (seeds {_seeds(recs)}) | " + " | ".join(cells) +
+                     f" | {dev} | {c:.0f} | {_ratio(c, cpu0)} | {us:.1f} ({_ratio(us, us0)}) |")
+    pulls = [p for r in got.get(ref, []) for p in r["pulls"]]
+    sds = " / ".join(_fmt(_sd([p["peak"] for p in pulls if p["direction"] == d])) for d in DIRECTIONS)
+    return lines + ["", f"The reference's spread between the pulled stones (sample standard deviation, vertical / "
+                        f"normal / horizontal): {sds} N."]
 
 
-def member_table(got: dict, ref: float) -> list:
+MEMBER_TITLES = {
+    "member": "## (c) Stones lost at the release of a Maeno member (spheres, mu_r = 0.2, consistent coupling)",
+    "release": "## (c') The same weir let go at each step: packed, settled and spun up at 32 steps per contact, "
+               "the DEM step changed at the release",
+}
+
+
+def member_table(got: dict, ref: float, part: str = "member") -> list:
     refs = got.get(ref, [])
-    lost0 = _mean([r["lost_release"] for r in refs])
-    cpu0 = _mean([r["cpu"] for r in refs])
-    lines = ["## (c) Stones lost at the release of a Maeno member (spheres, mu_r = 0.2, consistent coupling)", "",
+    cpu0, after0 = _mean([r["cpu"] for r in refs]), _mean([r["cpu_after"] for r in refs])
+    ns0 = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in refs])
+    tail = spread_line("stones lost within 2 s", [r["lost_release"] for r in refs])
+    lines = [MEMBER_TITLES[part], "",
              "| steps per contact | members (seeds) | lost within 2 s of the release, per member | mean | deviation "
              "of the mean from the reference | lost by the end, per member | CPU per member [s] (ratio) | CPU per "
-             "simulated s after the release [s] | ns per sphere-substep after the release (ratio) | DEM substeps "
-             "per simulated s |", "|---:|---|---|---:|---:|---|---|---:|---|---:|"]
-    ns0 = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in refs])
+             "simulated s after the release [s] (ratio) | ns per sphere-substep after the release (ratio) | DEM "
+             "substeps per simulated s |", "|---:|---|---|---:|---:|---|---|---|---|---:|"]
     for n, recs in got.items():
         if _refused(recs):
             lines.append(f"| {n:g} | refused | | | | | | | | |")
             continue
         m, c = _mean([r["lost_release"] for r in recs]), _mean([r["cpu"] for r in recs])
+        lost0 = _mean([r["lost_release"] for r in same_seeds(refs, recs)])
+        ca = _mean([r["cpu_after"] for r in recs])
         ns = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in recs])
-        lines.append(f"| {n:g} | {len(recs)} | {' / '.join(str(r['lost_release']) for r in recs)} | {m:.1f} | "
-                     f"{m - lost0:+.1f} | {' / '.join(str(r['lost_end']) for r in recs)} | {c:.0f} ({_ratio(c, cpu0)}) | "
-                     f"{_mean([r['cpu_after'] / r['after'] for r in recs]):.2f} | {ns:.0f} ({_ratio(ns, ns0)}) | "
+        lines.append(f"| {n:g} | {len(recs)} ({_seeds(recs)}) | {_each(recs, 'lost_release')} | {m:.1f} | "
+                     f"{m - lost0:+.1f} | {_each(recs, 'lost_end')} | {c:.0f} ({_ratio(c, cpu0)}) | "
+                     f"{ca / recs[0]['after']:.2f} ({_ratio(ca, after0)}) | {ns:.0f} ({_ratio(ns, ns0)}) | "
                      f"{_mean([r['substeps'] / r['after'] for r in recs]):.0f} |")
-    return lines
+    return lines + tail
 
 
 def settings_table(steps) -> list:
     lines = ["## The settings", "",
-             "| steps per contact | DEM step [s] | stable step of two lightest spheres [s] | step / stable | k_n [N/m] | "
-             "the DEM |", "|---:|---:|---:|---:|---:|---|"]
+             "| steps per contact | DEM step [s] | stable step of two lightest spheres [s] | step / stable | "
+             "k_n [N/m] | the DEM |", "|---:|---:|---:|---:|---:|---|"]
     for n in steps:
         s = stable_step(scenes(n)[1])
         ok = "accepts" if s["dt"] <= s["stable_dt"] else "refuses (step above stable_dt())"
@@ -293,38 +336,48 @@ def settings_table(steps) -> list:
 # figure: each answer against the CPU of its job, relative to the reference
 
 
+PANELS = (  # (title of the y axis, [(part, CPU key, values of a setting's records)])
+    ("pull-out force, mean [N]", [("pull", "cpu", _pull_means)]),
+    ("dry angle of repose [deg]", [("heap", "cpu", lambda rs: {"heap": _mean([r["angle"] for r in rs])})]),
+    ("stones lost within 2 s of the release, mean",
+     [("member", "cpu", lambda rs: {"member (packed at the step)": _mean([r["lost_release"] for r in rs])}),
+      ("release", "cpu_after", lambda rs: {"same weir, step changed at the release": _mean([r["lost_release"]
+                                                                                            for r in rs])})]),
+)
+
+
+def _series(got: dict, ref: float, key: str, value) -> dict:
+    """{name: [(CPU / the reference's, value, steps)]} of one part's settings run."""
+    cpu0 = _mean([r[key] for r in got[ref]])
+    out = {}
+    for n, rs in got.items():
+        for name, v in value(rs).items():
+            out.setdefault(name, []).append((_mean([r[key] for r in rs]) / cpu0, v, n))
+    return out
+
+
 def figure(data: dict, ref: float, path: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(12.0, 3.8))
-    panels = [("pull", "pull-out force, mean [N]", lambda rs: _pull_means(rs), "cpu"),
-              ("heap", "dry angle of repose [deg]", lambda rs: {"angle": _mean([r["angle"] for r in rs])}, "cpu"),
-              ("member", "stones lost at the release, mean", lambda rs: {"lost": _mean([r["lost_release"] for r in rs])},
-               "cpu")]
-    for ax, (part, label, value, key) in zip(axes, panels):
-        got = {n: rs for n, rs in data.get(part, {}).items() if not _refused(rs)}
-        if ref not in got:
-            ax.set_visible(False)
-            continue
-        cpu0 = _mean([r[key] for r in got[ref]])
-        xs = {n: _mean([r[key] for r in rs]) / cpu0 for n, rs in got.items()}
-        series = {}
-        for n, rs in got.items():
-            for name, v in value(rs).items():
-                series.setdefault(name, []).append((xs[n], v, n))
-        for name, pts in series.items():
-            pts.sort()
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=name if len(series) > 1 else None)
-            for x, y, n in pts:
-                ax.annotate(f"{n:g}", (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
-        ax.set_xlabel("CPU per job / the reference's")
+    fig, axes = plt.subplots(1, 3, figsize=(12.5, 4.0))
+    for ax, (label, parts) in zip(axes, PANELS):
+        for part, key, value in parts:
+            got = {n: rs for n, rs in data.get(part, {}).items() if not _refused(rs)}
+            if ref not in got:
+                continue
+            for name, pts in _series(got, ref, key, value).items():
+                pts.sort()
+                ax.plot([q[0] for q in pts], [q[1] for q in pts], "o-", label=name)
+                for x, y, n in pts:
+                    ax.annotate(f"{n:g}", (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
+        ax.set_xlabel("CPU / the reference's (member: after the release for the same weir)")
         ax.set_ylabel(label)
-        if len(series) > 1:
+        if ax.lines:
             ax.legend(fontsize=7)
-    fig.suptitle(f"3D spheres: the answers against the DEM's cost, labels = DEM steps per contact "
+    fig.suptitle(f"3D spheres: the answers against the DEM's cost; labels: DEM steps per contact "
                  f"(reference {ref:g})", fontsize=9)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -409,9 +462,15 @@ def write(args, steps, seeds, ref, data) -> None:
     lines += pull_table(data["pull"], ref) + [""]
     lines += heap_table(data["heap"], ref) + [""]
     lines += member_table(data["member"], ref) + [""]
-    refusals = {r for part in data.values() for recs in part.values() for r in [_refused(recs)] if r}
-    for msg in sorted(refusals):
-        lines.append(f"Refused: {msg}")
+    if data["release"]:
+        lines += member_table(data["release"], ref, "release") + [""]
+    refusals = {}
+    for part in data.values():
+        for n, recs in part.items():
+            r = next((r for r in recs if "refused" in r), None)
+            if r is not None and n not in refusals:
+                refusals[n] = f"Refused at {n:g} steps per contact (seed {r['seed']}): {r['refused']}"
+    lines += [refusals[n] for n in sorted(refusals)]
     lines += ["", f"Figure: `{shown_path(args.figure, ROOT)}`.", ""]
     args.results.parent.mkdir(parents=True, exist_ok=True)
     args.results.write_text("\n".join(lines), encoding="utf-8")
