@@ -235,25 +235,34 @@ def _each(recs, key: str, f: str = "{}") -> str:
     return " / ".join(_fmt(r[key], f) for r in recs)
 
 
-def _refused(recs):
-    return next((r["refused"] for r in recs if "refused" in r), None)
+def _ran(recs) -> list:
+    """The records of the seeds the DEM ran (not refused)."""
+    return [r for r in recs if "refused" not in r]
+
+
+def _seeds_cell(recs) -> str:
+    """'n (seeds)', with the seeds whose job the DEM refused (a lighter stone drawn: a shorter stable step)."""
+    ok, no = _ran(recs), [r for r in recs if "refused" in r]
+    return f"{len(ok)} ({_seeds(ok)})" + (f"; seed {_seeds(no)} refused" if no else "")
 
 
 def heap_table(got: dict, ref: float) -> list:
-    cpu0 = _mean([r["cpu"] for r in got.get(ref, [])])
+    refs = _ran(got.get(ref, []))
+    cpu0 = _mean([r["cpu"] for r in refs])
     lines = ["## (b) Dry angle of repose (500 spheres, mu_r = 0.2)", "",
              "| steps per contact | heaps (seeds) | angle per heap [deg] | mean [deg] | deviation of the mean from "
              "the reference [deg] | at rest | CPU per heap [s] | CPU ratio |", "|---:|---|---|---:|---:|---|---:|---:|"]
-    for n, recs in got.items():
-        if _refused(recs):
+    for n, every in got.items():
+        recs = _ran(every)
+        if not recs:
             lines.append(f"| {n:g} | refused | | | | | | |")
             continue
         m, c = _mean([r["angle"] for r in recs]), _mean([r["cpu"] for r in recs])
-        base = _mean([r["angle"] for r in same_seeds(got[ref], recs)])
+        base = _mean([r["angle"] for r in same_seeds(refs, recs)])
         rest = " / ".join("yes" if r["settled"] else "no" for r in recs)
-        lines.append(f"| {n:g} | {len(recs)} ({_seeds(recs)}) | {_each(recs, 'angle', '{:.1f}')} | {m:.1f} | "
+        lines.append(f"| {n:g} | {_seeds_cell(every)} | {_each(recs, 'angle', '{:.1f}')} | {m:.1f} | "
                      f"{m - base:+.1f} | {rest} | {c:.0f} | {_ratio(c, cpu0)} |")
-    return lines + spread_line("angle [deg]", [r["angle"] for r in got.get(ref, [])])
+    return lines + spread_line("angle [deg]", [r["angle"] for r in refs])
 
 
 def _pull_means(recs) -> dict:
@@ -261,17 +270,19 @@ def _pull_means(recs) -> dict:
 
 
 def pull_table(got: dict, ref: float) -> list:
-    cpu0 = _mean([r["cpu"] for r in got.get(ref, [])])
-    us0 = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in got.get(ref, [])])
+    refs = _ran(got.get(ref, []))
+    cpu0 = _mean([r["cpu"] for r in refs])
+    us0 = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in refs])
     lines = ["## (a) Pull-out forces (the paper: 2.81 / 3.04 / 4.75 N)", "",
-             "| steps per contact | weirs (pulls per direction) | vertical [N] | normal [N] | horizontal [N] | "
+             "| steps per contact | weirs (seeds), pulls per direction | vertical [N] | normal [N] | horizontal [N] | "
              "deviation of the means from the reference [%] | CPU per weir (packing + pulls) [s] | CPU ratio | "
              "CPU per pull substep [us] (ratio) |", "|---:|---|---|---|---|---|---:|---:|---|"]
-    for n, recs in got.items():
-        if _refused(recs):
+    for n, every in got.items():
+        recs = _ran(every)
+        if not recs:
             lines.append(f"| {n:g} | refused | | | | | | | |")
             continue
-        m, base = _pull_means(recs), _pull_means(same_seeds(got[ref], recs))
+        m, base = _pull_means(recs), _pull_means(same_seeds(refs, recs))
         cells = []
         for d in DIRECTIONS:
             peaks = [p["peak"] for r in recs for p in r["pulls"] if p["direction"] == d]
@@ -280,9 +291,9 @@ def pull_table(got: dict, ref: float) -> list:
         c = _mean([r["cpu"] for r in recs])
         us = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in recs])
         npulls = sum(1 for r in recs for p in r["pulls"] if p["direction"] == DIRECTIONS[0])
-        lines.append(f"| {n:g} | {len(recs)} ({npulls}) (seeds {_seeds(recs)}) | " + " | ".join(cells) +
+        lines.append(f"| {n:g} | {_seeds_cell(every)}, {npulls} pulls | " + " | ".join(cells) +
                      f" | {dev} | {c:.0f} | {_ratio(c, cpu0)} | {us:.1f} ({_ratio(us, us0)}) |")
-    pulls = [p for r in got.get(ref, []) for p in r["pulls"]]
+    pulls = [p for r in refs for p in r["pulls"]]
     sds = " / ".join(_fmt(_sd([p["peak"] for p in pulls if p["direction"] == d])) for d in DIRECTIONS)
     return lines + ["", f"The reference's spread between the pulled stones (sample standard deviation, vertical / "
                         f"normal / horizontal): {sds} N."]
@@ -296,7 +307,7 @@ MEMBER_TITLES = {
 
 
 def member_table(got: dict, ref: float, part: str = "member") -> list:
-    refs = got.get(ref, [])
+    refs = _ran(got.get(ref, []))
     cpu0, after0 = _mean([r["cpu"] for r in refs]), _mean([r["cpu_after"] for r in refs])
     ns0 = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in refs])
     tail = spread_line("stones lost within 2 s", [r["lost_release"] for r in refs])
@@ -305,15 +316,16 @@ def member_table(got: dict, ref: float, part: str = "member") -> list:
              "of the mean from the reference | lost by the end, per member | CPU per member [s] (ratio) | CPU per "
              "simulated s after the release [s] (ratio) | ns per sphere-substep after the release (ratio) | DEM "
              "substeps per simulated s |", "|---:|---|---|---:|---:|---|---|---|---|---:|"]
-    for n, recs in got.items():
-        if _refused(recs):
+    for n, every in got.items():
+        recs = _ran(every)
+        if not recs:
             lines.append(f"| {n:g} | refused | | | | | | | | |")
             continue
         m, c = _mean([r["lost_release"] for r in recs]), _mean([r["cpu"] for r in recs])
         lost0 = _mean([r["lost_release"] for r in same_seeds(refs, recs)])
         ca = _mean([r["cpu_after"] for r in recs])
         ns = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in recs])
-        lines.append(f"| {n:g} | {len(recs)} ({_seeds(recs)}) | {_each(recs, 'lost_release')} | {m:.1f} | "
+        lines.append(f"| {n:g} | {_seeds_cell(every)} | {_each(recs, 'lost_release')} | {m:.1f} | "
                      f"{m - lost0:+.1f} | {_each(recs, 'lost_end')} | {c:.0f} ({_ratio(c, cpu0)}) | "
                      f"{ca / recs[0]['after']:.2f} ({_ratio(ca, after0)}) | {ns:.0f} ({_ratio(ns, ns0)}) | "
                      f"{_mean([r['substeps'] / r['after'] for r in recs]):.0f} |")
@@ -365,7 +377,7 @@ def figure(data: dict, ref: float, path: Path) -> None:
     fig, axes = plt.subplots(1, 3, figsize=(12.5, 4.0))
     for ax, (label, parts) in zip(axes, PANELS):
         for part, key, value in parts:
-            got = {n: rs for n, rs in data.get(part, {}).items() if not _refused(rs)}
+            got = {n: _ran(rs) for n, rs in data.get(part, {}).items() if _ran(rs)}
             if ref not in got:
                 continue
             for name, pts in _series(got, ref, key, value).items():
@@ -435,7 +447,7 @@ def main(argv=None) -> Path:
                 path = job_path(args.out, part, n, s)
                 if path.exists():
                     continue
-                rec = run_job(part, n, s, args)
+                rec = dict(run_job(part, n, s, args), load=os.getloadavg()[0])
                 path.write_text(json.dumps(rec) + "\n")
                 print(f"{part} steps {n:g} seed {s}: " + ", ".join(f"{k} {v}" for k, v in rec.items() if k != "pulls"),
                       flush=True)
@@ -446,14 +458,21 @@ def main(argv=None) -> Path:
     return args.results
 
 
+def _loads(data) -> str:
+    """The one-minute load averages the jobs recorded at their ends."""
+    v = [r["load"] for part in data.values() for recs in part.values() for r in recs if "load" in r]
+    return f"load average {min(v):.1f}-{max(v):.1f} at the ends of {len(v)} jobs" if v else "load not recorded"
+
+
 def write(args, steps, seeds, ref, data) -> None:
     command = (f"nice -n 5 env PYTHONPATH=python python3 benchmarks/dem_step_3d.py --steps {args.steps} "
                f"--parts {args.parts} --seeds {args.seeds} --per-seed {args.per_seed} --after {args.after:g}"
                + (" --no-run" if args.no_run else ""))
     lines = ["# The 3D spheres' DEM step: the answers against the cost", "",
              f"`{command}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {platform.machine()}, one core, "
-             "one job after the other on a machine shared with other jobs (2 cores, load about 3-6); CPU is each "
-             "job's process time. Jobs kept in `" + shown_path(args.out, ROOT) + "`.", "",
+             f"one job after the other on a machine shared with other jobs (2 cores; {_loads(data)}); CPU is each "
+             "job's process time. Jobs kept in `" + shown_path(args.out, ROOT) + "` (run by calls of this script "
+             "with subsets of --parts, --steps and --seeds; each job once).", "",
              f"The knob: N DEM steps per contact at the same contact stiffness (`vofdem.study.setting(ref, "
              f"'dem_steps', N)`: dem_dt = 2e-3 s / N), mu_r = {MU_R:g}; the reference is the finest setting, "
              f"N = {ref:g}. Deviations are from the reference's mean over the same seeds; the spread between the "

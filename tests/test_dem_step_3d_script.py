@@ -82,7 +82,7 @@ def test_the_pull_and_heap_tables_by_hand():
                     pulls=[dict(direction=d, peak=p) for d, p in zip(ds.DIRECTIONS, (v, 3.0, h))])
 
     rows = ds.pull_table({32.0: [weir(0, 2.0, 4.0, 50.0)], 64.0: [weir(0, 2.5, 5.0, 100.0)]}, 64.0)
-    assert rows[4] == ("| 32 | 1 (1) (seeds 0) | 2.00 (2.00) | 3.00 (3.00) | 4.00 (4.00) | -20 / +0 / -20 | 50 | "
+    assert rows[4] == ("| 32 | 1 (0), 1 pulls | 2.00 (2.00) | 3.00 (3.00) | 4.00 (4.00) | -20 / +0 / -20 | 50 | "
                        "x0.50 | 25000.0 (x0.50) |")
     heaps = {32.0: [dict(seed=0, angle=30.0, settled=True, cpu=30.0), dict(seed=1, angle=29.0, settled=False,
                                                                            cpu=34.0)],
@@ -90,6 +90,10 @@ def test_the_pull_and_heap_tables_by_hand():
                                                                            cpu=64.0)]}
     rows = ds.heap_table(heaps, 64.0)
     assert rows[4] == "| 32 | 2 (0, 1) | 30.0 / 29.0 | 29.5 | -0.5 | yes / no | 32 | x0.50 |"
+    # a seed the DEM refused (its lighter stones' shorter stable step) is named; the others are compared
+    heaps[32.0][0] = dict(seed=0, refused="x")
+    rows = ds.heap_table(heaps, 64.0)
+    assert rows[4] == "| 32 | 1 (1); seed 0 refused | 29.0 | 29.0 | -0.5 | no | 34 | x0.53 |"
 
 
 def test_the_report_from_kept_jobs(tmp_path):
