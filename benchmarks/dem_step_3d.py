@@ -359,12 +359,13 @@ PANELS = (  # (title of the y axis, [(part, CPU key, values of a setting's recor
 
 
 def _series(got: dict, ref: float, key: str, value) -> dict:
-    """{name: [(CPU / the reference's, value, steps)]} of one part's settings run."""
+    """{name: [(CPU / the reference's, value, steps, [the value of each seed's job])]} of one part's settings."""
     cpu0 = _mean([r[key] for r in got[ref]])
     out = {}
     for n, rs in got.items():
+        each = [value([r]) for r in rs]
         for name, v in value(rs).items():
-            out.setdefault(name, []).append((_mean([r[key] for r in rs]) / cpu0, v, n))
+            out.setdefault(name, []).append((_mean([r[key] for r in rs]) / cpu0, v, n, [e[name] for e in each]))
     return out
 
 
@@ -375,6 +376,7 @@ def figure(data: dict, ref: float, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(1, 3, figsize=(12.5, 4.0))
+    k = 0
     for ax, (label, parts) in zip(axes, PANELS):
         for part, key, value in parts:
             got = {n: _ran(rs) for n, rs in data.get(part, {}).items() if _ran(rs)}
@@ -382,15 +384,18 @@ def figure(data: dict, ref: float, path: Path) -> None:
                 continue
             for name, pts in _series(got, ref, key, value).items():
                 pts.sort()
-                ax.plot([q[0] for q in pts], [q[1] for q in pts], "o-", label=name)
-                for x, y, n in pts:
+                color = f"C{k}"
+                k += 1
+                ax.plot([q[0] for q in pts], [q[1] for q in pts], "o-", color=color, label=name)
+                for x, y, n, each in pts:  # each seed's job: the spread between packings
+                    ax.plot([x] * len(each), each, "_", color=color, ms=9)
                     ax.annotate(f"{n:g}", (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
-        ax.set_xlabel("CPU / the reference's (member: after the release for the same weir)")
+        ax.set_xlabel("CPU / the reference's")
         ax.set_ylabel(label)
         if ax.lines:
             ax.legend(fontsize=7)
-    fig.suptitle(f"3D spheres: the answers against the DEM's cost; labels: DEM steps per contact "
-                 f"(reference {ref:g})", fontsize=9)
+    fig.suptitle(f"3D spheres: mean (dots) and each packing or heap (dashes) against the CPU; labels: DEM steps "
+                 f"per contact (reference {ref:g}; the same weir: the CPU after the release)", fontsize=9)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
