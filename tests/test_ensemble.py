@@ -236,12 +236,19 @@ class _Interrupted(FakeSimulation):
 def test_an_interrupted_member_built_by_a_study_resumes_from_its_checkpoint(tmp_path):
     """A member built by a `build` (as the studies build theirs) continues from its checkpoint when the same
     ensemble is called again, and ends as a member never stopped."""
-    ref = run_ensemble(short_scene(), [0], tmp_path / "ref", build=_build, workers=0, n_boot=0, **QUIET)
+    settles = []  # whether each build was asked to settle the stones: not the resumed one (its checkpoint has)
+
+    def build(scene):
+        settles.append(scene.hydrograph.settle_in_still_water)
+        return _build(scene)
+
+    ref = run_ensemble(short_scene(), [0], tmp_path / "ref", build=build, workers=0, n_boot=0, **QUIET)
     with pytest.raises(KeyboardInterrupt):
         run_ensemble(short_scene(), [0], tmp_path / "cut", workers=0, n_boot=0, **QUIET,
                      build=lambda scene: _Interrupted(scene, thresholds_lps=THRESHOLDS[scene.seed]))
     assert RunData(tmp_path / "cut" / "seed0" / "run.h5").attrs["status"] == "interrupted"
-    again = run_ensemble(short_scene(), [0], tmp_path / "cut", build=_build, workers=0, n_boot=0, **QUIET)
+    again = run_ensemble(short_scene(), [0], tmp_path / "cut", build=build, workers=0, n_boot=0, **QUIET)
+    assert settles == [True, False]
     outcome = json.loads((tmp_path / "cut" / "seed0" / "outcome.json").read_text())
     assert outcome["resumed"] is True and "resumed" not in json.loads(
         (tmp_path / "ref" / "seed0" / "outcome.json").read_text())

@@ -217,8 +217,12 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
     if ck is None:  # a grading report of an earlier run in this directory is not this one's
         (out / "grading.md").unlink(missing_ok=True)
     if sim is None:
-        # a resumed run's stones settled before its checkpoint: they are not settled again
-        sim = build(scene) if build is not None else build_simulation(scene, packing, settle=False if ck else None)
+        # a resumed run's stones settled before its checkpoint: they are not settled again (a study's build
+        # too: it is given the scene without the settling, whose result the checkpoint's state replaces)
+        if build is not None:
+            sim = build(scene.with_value("hydrograph.settle_in_still_water", False) if ck else scene)
+        else:
+            sim = build_simulation(scene, packing, settle=False if ck else None)
     if ck is None and getattr(packing.get("report"), "zone", None) is not None:
         _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
