@@ -110,6 +110,8 @@ def build_recording(scene, out_dir: Path):
     (run_ensemble's `build`: the members' directories are seed<N> without varied parameters)."""
     packing: dict = {}
     sim = builder.build_simulation(scene, packing)
+    if "report" not in packing:  # a resumed member, built from its checkpoint: its first build wrote the file
+        return sim
     rep = packing.get("report")
     rec = {"porosity": None if rep is None else float(rep.porosity),
            "stones": None if rep is None else int(rep.n_stones), "fixed": None if rep is None else int(rep.n_fixed)}

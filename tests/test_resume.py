@@ -172,3 +172,52 @@ def test_checkpoint_round_trip_is_exact(tmp_path):
     ck.water_at_top_s = 14.5
     save_checkpoint(tmp_path / "c.h5", ck)
     assert load_checkpoint(tmp_path / "c.h5").water_at_top_s == 14.5
+
+
+def _run_h5_equal(ref: Path, out: Path) -> None:
+    a, b = _datasets(ref / "run.h5"), _datasets(out / "run.h5")
+    assert a.keys() == b.keys()
+    for name in a:
+        if not name.startswith("profile/"):
+            assert np.array_equal(a[name], b[name], equal_nan=True), name
+
+
+@pytest.mark.slow
+def test_a_resumed_run_takes_its_stones_from_the_checkpoint_without_packing_the_weir(tmp_path, monkeypatch):
+    """A run stopped mid-way and resumed builds its stones from the checkpoint (builder.checkpoint_stones):
+    the weir is not packed again (builder.build_stones is not called), and run.h5 ends as the uninterrupted
+    run's. A checkpoint written before it kept the disc porosity packs the weir again, to the same end."""
+    import shutil
+
+    from vofdem import builder, run
+    from vofdem.cli import resolve_scene
+
+    scene = resolve_scene("maeno2008", quick=True, end_time=8.0)
+    kw = dict(progress=False, figures=False, animation=False, checkpoint_seconds=0.0)
+    packed = []
+    pack = builder.build_stones
+    monkeypatch.setattr(builder, "build_stones", lambda s: packed.append(s.seed) or pack(s))
+    run.run_scene(scene, tmp_path / "ref", **kw)
+    after_advance = run._Loop.after_advance
+
+    def stop_after_the_ninth_snapshot(loop):  # as Ctrl-C does: the loop closes the run as 'interrupted'
+        after_advance(loop)
+        if loop.writer.count >= 9:
+            run.request_stop()
+
+    with monkeypatch.context() as m, pytest.raises(KeyboardInterrupt):
+        m.setattr(run._Loop, "after_advance", stop_after_the_ninth_snapshot)
+        run.run_scene(scene, tmp_path / "cut", **kw)
+    assert packed == [scene.seed, scene.seed]
+    old = tmp_path / "old"  # the same checkpoint as one written before the disc porosity was kept (below)
+    shutil.copytree(tmp_path / "cut", old)
+    run.run_scene(scene, tmp_path / "cut", resume=True, **kw)
+    assert packed == [scene.seed, scene.seed]
+    _run_h5_equal(tmp_path / "ref", tmp_path / "cut")
+    ck = load_checkpoint(old / "checkpoint.h5")
+    assert ck.snapshots == 10 < SNAPSHOTS and ck.disc_porosity == scene.stones.n_exp
+    with h5py.File(old / "checkpoint.h5", "a") as f:
+        del f.attrs["disc_porosity"]
+    run.run_scene(scene, old, resume=True, **kw)
+    assert packed == [scene.seed] * 3
+    _run_h5_equal(tmp_path / "ref", old)

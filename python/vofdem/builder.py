@@ -5,6 +5,8 @@ C++ core; no physics lives here.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
+from contextvars import ContextVar
 from typing import Optional
 
 import numpy as np
@@ -417,12 +419,17 @@ def build_simulation(scene: Scene, packing: Optional[dict] = None, settle: Optio
     Coupler owning both, with the inflow hydrograph set and the porosity mapped from the stones.
     packing: a dict that receives the packing's report under 'report' (None for explicit stones), and the
     settling's (settle_stones) under 'settle'. settle: the stones settle in the still water
-    (settle_stones); None: as the scene says (hydrograph.settle_in_still_water); a resumed run passes False."""
+    (settle_stones); None: as the scene says (hydrograph.settle_in_still_water); a resumed run passes False.
+    Within `resumed_from`, the stones are a checkpoint's (checkpoint_stones) and the weir is not packed."""
     fluid = build_fluid(scene)
-    stones, report = build_stones(scene)
-    if packing is not None:
-        packing["report"] = report
-    n_s, _ = disc_porosity(scene, stones)
+    resumed = _RESUMED.get()
+    if resumed is None:
+        stones, report = build_stones(scene)
+        if packing is not None:
+            packing["report"] = report
+        n_s, _ = disc_porosity(scene, stones)
+    else:  # no packing report: the run's first build wrote what it reports
+        stones, n_s = checkpoint_stones(scene, resumed[0]), resumed[1]
     sim = _core.Coupler(fluid, stones, coupler_params(scene, n_s))
     t, q = scene.hydrograph.table(scene.duration)
     sim.set_inflow_table([float(v) for v in t], [float(v) for v in q])
@@ -434,6 +441,32 @@ def build_simulation(scene: Scene, packing: Optional[dict] = None, settle: Optio
         if packing is not None:
             packing["settle"] = report
     return sim
+
+
+# a resumed run's (checkpoint state, disc porosity n_s [-]) while it builds (resumed_from)
+_RESUMED: ContextVar = ContextVar("vofdem_resumed", default=None)
+
+
+@contextmanager
+def resumed_from(state: dict, n_s: float):
+    """Within it, build_simulation takes the stones from a checkpoint's state (checkpoint_stones) and eq. (11)'s
+    porosity inside each stone n_s [-] (the coupler's n_exp the run was built with) instead of packing the weir
+    (10 CPU-min for a clump weir at B = 0.5 m): a resumed run imports that state over whatever the build made,
+    and the packing is only the run's initial state. A study's `build` that calls build_simulation gets the same."""
+    token = _RESUMED.set((state, float(n_s)))
+    try:
+        yield
+    finally:
+        _RESUMED.reset(token)
+
+
+def checkpoint_stones(scene: Scene, state: dict):
+    """DEMSystem with the scene's parameters (dem_params) holding the stones of a coupled simulation's state
+    (its 'dem/' arrays, sim.export_state()): their count, model, shapes, positions and contact springs, as
+    DEMSystem.import_state makes them."""
+    sys_ = _core.DEMSystem(dem_params(scene), 0)
+    sys_.import_state({k[len("dem/"):]: v for k, v in state.items() if k.startswith("dem/")})
+    return sys_
 
 
 def settle_stones(sim, scene: Scene):

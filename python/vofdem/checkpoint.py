@@ -1,15 +1,16 @@
 """Checkpoints of a run, so that ``vofdem run --resume DIR`` continues a killed run bit for bit.
 
-A checkpoint is ``DIR/checkpoint.h5``: the coupled simulation's whole state (``sim.export_state()``:
-flow, k-epsilon, stones, contact springs, coupler; its arrays of doubles end to end in
-/state/values, their names and sizes in /state/keys and /state/sizes), the run loop's position (the snapshots written,
-the snapshot times, whether the stones are still held) and the cost so far (the stage profile, wall
-time). It is written after the first and the last snapshot and after any snapshot that comes at least
-``CHECKPOINT_SECONDS`` of wall time after the last checkpoint (``run_scene(checkpoint_seconds=...)``, ``vofdem
-run --checkpoint-seconds``; 0: after every snapshot), into ``checkpoint.h5.tmp`` that then replaces the old
-one (``os.replace``, atomic), so a kill at any moment leaves one whole checkpoint. A
-resumed run rewrites the snapshots after the checkpoint's and ends with the same ``run.h5`` datasets
-as a run that was never stopped (the C++ state restarts bit for bit, tests/test_resume.py).
+A checkpoint is ``DIR/checkpoint.h5``: the coupled simulation's whole state (``sim.export_state()``: flow,
+k-epsilon, stones, contact springs, coupler; its arrays of doubles end to end in /state/values, their names
+and sizes in /state/keys and /state/sizes), the run loop's position (the snapshots written, the snapshot
+times, whether the stones are still held), the cost so far (the stage profile, wall time) and the porosity
+inside each stone the run was built with. It is written after the first and the last snapshot and after any
+snapshot that comes at least ``CHECKPOINT_SECONDS`` of wall time after the last checkpoint
+(``run_scene(checkpoint_seconds=...)``, ``vofdem run --checkpoint-seconds``; 0: after every snapshot), into
+``checkpoint.h5.tmp`` that then replaces the old one (``os.replace``, atomic), so a kill at any moment leaves
+one whole checkpoint. A resumed run rewrites the snapshots after the checkpoint's and ends with the same
+``run.h5`` datasets as a run that was never stopped (the C++ state restarts bit for bit,
+tests/test_resume.py).
 """
 from __future__ import annotations
 
@@ -34,8 +35,11 @@ class Checkpoint:
     """A run's state after `snapshots` snapshots: the solver's state, the snapshot times of the whole
     run (`targets`, after the first snapshot), whether the stones are held (`hold`), the scene (TOML),
     the profile so far {stage: (seconds, calls)}, the wall time so far [s], when water first reached
-    the domain's top row [s] (None: not yet; the resumed run then warns no second time) and the
-    process (CPU) time so far [s] (None in checkpoints written before it was kept)."""
+    the domain's top row [s] (None: not yet; the resumed run then warns no second time), the
+    process (CPU) time so far [s] (None in checkpoints written before it was kept) and the porosity
+    inside each stone of eq. (11) the run was built with [-] (the coupler's n_exp; with it a resumed run
+    builds its stones from `state` instead of packing them, builder.resumed_from; None in checkpoints
+    written before it was kept: the weir is packed again)."""
 
     state: Dict[str, np.ndarray]
     snapshots: int
@@ -46,6 +50,7 @@ class Checkpoint:
     wall_seconds: float
     water_at_top_s: Optional[float] = None
     cpu_seconds: Optional[float] = None
+    disc_porosity: Optional[float] = None
 
 
 def save_checkpoint(path, ck: Checkpoint) -> None:
@@ -68,7 +73,7 @@ def save_checkpoint(path, ck: Checkpoint) -> None:
             f["profile/calls"] = np.array([ck.profile[n][1] for n in names], np.int64)
             f.attrs.update(snapshots=int(ck.snapshots), hold=bool(ck.hold), scene_toml=ck.scene_toml,
                            wall_seconds=float(ck.wall_seconds))
-            for name in ("water_at_top_s", "cpu_seconds"):
+            for name in ("water_at_top_s", "cpu_seconds", "disc_porosity"):
                 if getattr(ck, name) is not None:
                     f.attrs[name] = float(getattr(ck, name))
         os.replace(tmp, path)
@@ -98,6 +103,7 @@ def load_checkpoint(path) -> Checkpoint:
             return Checkpoint(state, int(f.attrs["snapshots"]), f["targets"][()].tolist(), bool(f.attrs["hold"]),
                               str(f.attrs["scene_toml"]), profile, float(f.attrs["wall_seconds"]),
                               _optional_float(f.attrs.get("water_at_top_s")),
-                              _optional_float(f.attrs.get("cpu_seconds")))
+                              _optional_float(f.attrs.get("cpu_seconds")),
+                              _optional_float(f.attrs.get("disc_porosity")))
     except (OSError, KeyError) as e:
         raise ValueError(f"checkpoint '{path}' cannot be read: {e}") from e

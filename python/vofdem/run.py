@@ -218,11 +218,13 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
         (out / "grading.md").unlink(missing_ok=True)
     if sim is None:
         # a resumed run's stones settled before its checkpoint: they are not settled again (a study's build
-        # too: it is given the scene without the settling, whose result the checkpoint's state replaces)
-        if build is not None:
-            sim = build(scene.with_value("hydrograph.settle_in_still_water", False) if ck else scene)
-        else:
-            sim = build_simulation(scene, packing, settle=False if ck else None)
+        # too: it is given the scene without the settling, whose result the checkpoint's state replaces),
+        # and they are built from the checkpoint's stones, not packed (builder.resumed_from)
+        with _resumed(ck):
+            if build is not None:
+                sim = build(scene.with_value("hydrograph.settle_in_still_water", False) if ck else scene)
+            else:
+                sim = build_simulation(scene, packing, settle=False if ck else None)
     if ck is None and getattr(packing.get("report"), "zone", None) is not None:
         _write_grading(out, scene, sim.stones, packing["report"].zone, figures)
     t_tab, q_tab = scene.hydrograph.table(scene.duration)
@@ -282,6 +284,18 @@ def run_scene(scene: Scene, out_dir, sim=None, progress: bool = True, figures: O
                                   animation=scene.output.animation if animation is None else animation,
                                   files=result.files)
     return result
+
+
+def _resumed(ck: Optional[Checkpoint]):
+    """The context of a run's build: a resumed run's stones from its checkpoint (builder.resumed_from) when the
+    checkpoint keeps the disc porosity the run was built with; else a build as any (the weir packed)."""
+    from contextlib import nullcontext
+
+    from .builder import resumed_from
+
+    if ck is None or ck.disc_porosity is None:
+        return nullcontext()
+    return resumed_from(ck.state, ck.disc_porosity)
 
 
 class _Loop:
@@ -363,7 +377,7 @@ class _Loop:
             save_checkpoint(self.out / CHECKPOINT_NAME, Checkpoint(
                 dict(self.sim.export_state()), self.writer.count, self.targets, self.hold, self.scene.to_toml(),
                 {n: (s, c) for n, s, c in zip(names, seconds, calls)}, self.wall_seconds(), self.rec.top_water_t,
-                self.cpu_seconds()))
+                self.cpu_seconds(), float(self.sim.params.n_exp)))
 
     def wall_seconds(self) -> float:
         return self.base_wall + _time.perf_counter() - self.wall0
