@@ -27,6 +27,7 @@ import numpy as np  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 
 def run_variant(scene, settings, times, x):
@@ -71,10 +72,7 @@ def main(argv=None):
                  "|---|---|---|---|---|---|---|",
                  *[f"| {t:g} | {n} | {m:.3e} | {p:.3e} | {mx:.3e} | {d:.4f} | {lim} |" for t, n, m, p, mx, d, lim in rows],
                  ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

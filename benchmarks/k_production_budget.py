@@ -26,6 +26,7 @@ import numpy as np  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 
 def strain2(u, w, n, dx, dz, zc):
@@ -96,10 +97,7 @@ def main(argv=None):
             "The five largest sources at each time:", "",
             "| t [s] | x, z [m] | P [m^2/s^3] | P / eps | n | n west, east, below, above | S^2 pore [1/s^2] | "
             "S^2 superficial | dU/dz [1/s] |", "|---|---|---|---|---|---|---|---|---|", *tops, ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

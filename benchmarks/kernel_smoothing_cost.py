@@ -16,6 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 
 def fields_per_step(sim):
@@ -78,10 +79,7 @@ def main(argv=None):
             "|---|---|---|---|---|---|---|", *rows, "",
             f"CPU per step, kernel / cell: {per_step['kernel'] / per_step['cell']:.3f} (the two runs take their own "
             "steps: the flows differ).", ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

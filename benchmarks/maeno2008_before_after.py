@@ -47,6 +47,7 @@ from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.run import run_scene  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 BEFORE = dict(time_scheme="euler", turbulence_scheme="point_implicit", drag_exchange="held", cfl=0.3,
               pressure_tolerance=1e-8, viscous_substeps=1, viscous_scheme="implicit_vertical_from_start", viscous_bound="row_sum",
@@ -147,10 +148,7 @@ def main(argv=None):
             variants_text(args.variants, args.candidate), "",
             "| scene | numerics | steps | CPU s | CPU / simulated | wall s | wall / simulated | CPU ms per step | load |",
             "|---|---|---|---|---|---|---|---|---|", *rows, "", "## Each run", "", *details]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return args.out
+    return write_page(args.out, text)
 
 
 if __name__ == "__main__":

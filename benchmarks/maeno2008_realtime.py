@@ -19,6 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 from vofdem.run import run_scene  # noqa: E402
 from vofdem.scene import Scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 
 def main():
@@ -52,9 +53,7 @@ def main():
             f"**Real-time factor (wall / simulated): {res.real_time_factor:.3g}** "
             f"({res.wall_seconds:.1f} s wall for {res.simulated_seconds:.1f} s simulated).", "",
             "## Per-stage cost", "", res.profile_table, "## Stages found in this run", "", stages]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
+    write_page(args.out, text)
 
 
 def override_flow_params(scheme, corner):
@@ -95,9 +94,7 @@ def report_run(run_dir: Path, out: Path):
             f" wall time includes writing the snapshots).", "",
             "## Per-stage cost", "", table, "## Stages found in this run", "",
             (run_dir / "stage_table.md").read_text(encoding="utf-8")]
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
+    write_page(out, text)
 
 
 if __name__ == "__main__":

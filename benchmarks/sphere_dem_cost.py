@@ -235,9 +235,9 @@ def main(argv=None) -> None:
             f"plane contacts (bed, side walls, end walls). The contact stage: {contact_ns(last):.1f} ns per touching "
             "contact and substep. The timers are wall clock: their shares apportion the process time.", "",
             *stage_table(last), ""]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
+    from vofdem.study import write_page  # here: the builds measured are the children's, not this process's
+
+    write_page(args.out, text)
 
 
 if __name__ == "__main__":

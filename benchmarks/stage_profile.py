@@ -26,6 +26,7 @@ import numpy as np  # noqa: E402
 from vofdem.builder import build_simulation  # noqa: E402
 from vofdem.ensemble import with_settings  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
+from vofdem.study import write_page  # noqa: E402
 
 
 def profiles(sim):
@@ -77,10 +78,7 @@ def main(argv=None):
             *table(sim, steps), ""]
     suffix = "".join("_" + s.replace("=", "_") for s in args.set)
     out = args.out or ROOT / "benchmarks" / "results" / f"stage_profile_{args.scene}{suffix}.md"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(text), encoding="utf-8")
-    print("\n".join(text))
-    return out
+    return write_page(out, text)
 
 
 if __name__ == "__main__":
