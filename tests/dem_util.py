@@ -16,15 +16,18 @@ def state_hash(s) -> str:
     return h.hexdigest()
 
 
-def restarts_bit_for_bit(make, before: float, after: float):
+def restarts_bit_for_bit(make, before: float, after: float, empty: bool = False):
     """make() advanced `before` seconds and checkpointed, then `after` more; a second make() given the
-    checkpoint advanced `after` seconds must hold the same arrays to the bit. Returns (first, second,
-    checkpoint)."""
+    checkpoint advanced `after` seconds must hold the same arrays to the bit. empty: the second system is
+    one of no stones with the first's parameters, as a resumed run builds its stones (builder.checkpoint_stones),
+    and the checkpoint makes them. Returns (first, second, checkpoint)."""
+    from vofdem import _core
+
     s = make()
     s.advance(before)
     checkpoint = s.export_state()
     s.advance(after)
-    r = make()
+    r = _core.DEMSystem(s.params, 0) if empty else make()
     r.import_state(checkpoint)
     r.advance(after)
     for key, value in s.export_state().items():

@@ -56,6 +56,13 @@ def test_a_clump_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
     assert e.dissipated > 0.0 and e.total == r.energy().total
 
 
+def test_a_clump_heap_restarts_bit_for_bit_in_a_system_of_no_stones():
+    """As a resumed run's stones (builder.checkpoint_stones): the checkpoint makes the clumps, their shapes
+    and springs."""
+    s, r, _ = restarts_bit_for_bit(heap, 0.15, 0.1, empty=True)
+    assert r.shape == "clump" and r.n == s.n and s.contact_count > 0
+
+
 def test_library_clumps_coupled_to_the_flow_fall_and_keep_the_water():
     stones = heap(n=4)
     grid = vofdem.Grid2D.uniform(16, 30, 0.16, 0.3)

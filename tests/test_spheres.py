@@ -53,6 +53,12 @@ def test_a_heap_settles_between_the_side_walls_and_restarts_bit_for_bit():
     assert s.wall_contact_count > 0
 
 
+def test_a_heap_restarts_bit_for_bit_in_a_system_of_no_stones():
+    """As a resumed run's stones (builder.checkpoint_stones): the checkpoint makes the spheres and their springs."""
+    s, r, _ = restarts_bit_for_bit(heap, 0.2, 0.2, empty=True)
+    assert r.shape == "sphere" and r.n == s.n and s.wall_contact_count > 0
+
+
 def test_spheres_under_the_flow_keep_the_water():
     stones = heap(n=4, submerged=True)
     grid = vofdem.Grid2D.uniform(25, 30, 0.25, 0.3)
