@@ -183,16 +183,21 @@ def _run_h5_equal(ref: Path, out: Path) -> None:
 
 
 @pytest.mark.slow
-def test_a_resumed_run_takes_its_stones_from_the_checkpoint_without_packing_the_weir(tmp_path, monkeypatch):
+@pytest.mark.parametrize("name", ["maeno2008", str(ROOT / "scenes" / "maeno2008_consistent.toml")],
+                         ids=["paper", "bulk"])
+def test_a_resumed_run_takes_its_stones_from_the_checkpoint_without_packing_the_weir(tmp_path, monkeypatch, name):
     """A run stopped mid-way and resumed builds its stones from the checkpoint (builder.checkpoint_stones):
     the weir is not packed again (builder.build_stones is not called), and run.h5 ends as the uninterrupted
-    run's. A checkpoint written before it kept the disc porosity packs the weir again, to the same end."""
+    run's; with the paper's porosity mapping and with the bulk one, whose porosity inside the discs comes
+    from the packing (the checkpoint keeps it). A checkpoint written before it kept that porosity packs the
+    weir again, to the same end."""
     import shutil
 
     from vofdem import builder, run
     from vofdem.cli import resolve_scene
+    from vofdem.io import RunData
 
-    scene = resolve_scene("maeno2008", quick=True, end_time=8.0)
+    scene = resolve_scene(name, quick=True, end_time=8.0)
     kw = dict(progress=False, figures=False, animation=False, checkpoint_seconds=0.0)
     packed = []
     pack = builder.build_stones
@@ -215,7 +220,9 @@ def test_a_resumed_run_takes_its_stones_from_the_checkpoint_without_packing_the_
     assert packed == [scene.seed, scene.seed]
     _run_h5_equal(tmp_path / "ref", tmp_path / "cut")
     ck = load_checkpoint(old / "checkpoint.h5")
-    assert ck.snapshots == 10 < SNAPSHOTS and ck.disc_porosity == scene.stones.n_exp
+    n_s = RunData(tmp_path / "ref" / "run.h5").attrs["disc_porosity"]
+    assert ck.snapshots == 10 < SNAPSHOTS and ck.disc_porosity == n_s
+    assert (n_s == scene.stones.n_exp) == (scene.stones.porosity_mapping == "paper")
     with h5py.File(old / "checkpoint.h5", "a") as f:
         del f.attrs["disc_porosity"]
     run.run_scene(scene, old, resume=True, **kw)
