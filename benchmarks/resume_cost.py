@@ -59,7 +59,8 @@ def kill_at(cmd: list, member: Path, k: int) -> float:
     if p.poll() is not None:
         raise RuntimeError(f"the member ended before {k} snapshots: lower --kill-at")
     p.send_signal(signal.SIGKILL)
-    return waited(p.pid)[0]
+    cpu, p.returncode = waited(p.pid)  # reaped here: Popen must not wait for it again
+    return cpu
 
 
 def waited(pid: int) -> tuple:
@@ -73,10 +74,9 @@ def resume(cmd: list, log: Path) -> tuple:
     t0 = time.perf_counter()
     with open(log, "w") as err:
         p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
-        cpu, code = waited(p.pid)
-    p.returncode = code  # reaped here: Popen must not wait for it again
-    if code != 0:
-        raise RuntimeError(f"{' '.join(cmd)} exited with {code}: {log.read_text()}")
+        cpu, p.returncode = waited(p.pid)  # reaped here: Popen must not wait for it again
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} exited with {p.returncode}: {log.read_text()}")
     return cpu, time.perf_counter() - t0
 
 
