@@ -196,7 +196,7 @@ TEST(ClumpPacking, AFreeSiteIsTestedByTheSubSpheres) {
 
 // the compaction friction (WeirSpec::compaction_friction): -1 is the model's own, 0.1 for clumps, to the bit; another
 // value moves the stones (settlings of 0.1 s: long enough for the stones to slide on each other; of 0.02 s
-// all three weirs are the same). Under the sanitizers across 7 cm (seed 4: 106 stones against 173)
+// all three weirs are the same). Under the sanitizers across 7 cm (optimised: 106 stones against 173)
 TEST(ClumpPacking, CompactionFrictionUnsetIsTheModelsOwn) {
   const double width = kSanitized ? 0.07 : 0.1;
   const auto packed = [width](double compaction) {
