@@ -246,23 +246,39 @@ def _seeds_cell(recs) -> str:
     return f"{len(ok)} ({_seeds(ok)})" + (f"; seed {_seeds(no)} refused" if no else "")
 
 
-def heap_table(got: dict, ref: float) -> list:
-    refs = _ran(got.get(ref, []))
-    cpu0 = _mean([r["cpu"] for r in refs])
-    lines = ["## (b) Dry angle of repose (500 spheres, mu_r = 0.2)", "",
-             "| steps per contact | heaps (seeds) | angle per heap [deg] | mean [deg] | deviation of the mean from "
-             "the reference [deg] | at rest | CPU per heap [s] | CPU ratio |", "|---:|---|---|---:|---:|---|---:|---:|"]
+def setting_rows(head: list, got: dict, refs: list, cells) -> list:
+    """A table: head (its title, a blank line, the header and the alignment row), then a row per setting in
+    got's order (the steps, ascending): the steps, then cells(every, recs, refs) of its records (every), those
+    the DEM ran (recs) and the reference's records the DEM ran (refs); 'refused' and empty cells where it ran
+    none of its seeds."""
+    width = head[-1].count("|") - 1
+    rows = list(head)
     for n, every in got.items():
         recs = _ran(every)
-        if not recs:
-            lines.append(f"| {n:g} | refused | | | | | | |")
-            continue
-        m, c = _mean([r["angle"] for r in recs]), _mean([r["cpu"] for r in recs])
+        rest = " | ".join(cells(every, recs, refs)) + " |" if recs else "refused |" + " |" * (width - 2)
+        rows.append(f"| {n:g} | {rest}")
+    return rows
+
+
+def _cost(recs, refs, cost):
+    """The mean of cost(record) over recs, and its ratio to the reference's mean ('x0.00')."""
+    c = _mean([cost(r) for r in recs])
+    return c, _ratio(c, _mean([cost(r) for r in refs]))
+
+
+def heap_table(got: dict, ref: float) -> list:
+    def cells(every, recs, refs):
+        m, (c, x) = _mean([r["angle"] for r in recs]), _cost(recs, refs, lambda r: r["cpu"])
         base = _mean([r["angle"] for r in same_seeds(refs, recs)])
         rest = " / ".join("yes" if r["settled"] else "no" for r in recs)
-        lines.append(f"| {n:g} | {_seeds_cell(every)} | {_each(recs, 'angle', '{:.1f}')} | {m:.1f} | "
-                     f"{m - base:+.1f} | {rest} | {c:.0f} | {_ratio(c, cpu0)} |")
-    return lines + spread_line("angle [deg]", [r["angle"] for r in refs])
+        return [_seeds_cell(every), _each(recs, "angle", "{:.1f}"), f"{m:.1f}", f"{m - base:+.1f}", rest,
+                f"{c:.0f}", x]
+
+    head = ["## (b) Dry angle of repose (500 spheres, mu_r = 0.2)", "",
+            "| steps per contact | heaps (seeds) | angle per heap [deg] | mean [deg] | deviation of the mean from "
+            "the reference [deg] | at rest | CPU per heap [s] | CPU ratio |", "|---:|---|---|---:|---:|---|---:|---:|"]
+    refs = _ran(got.get(ref, []))
+    return setting_rows(head, got, refs, cells) + spread_line("angle [deg]", [r["angle"] for r in refs])
 
 
 def _pull_means(recs) -> dict:
@@ -270,33 +286,27 @@ def _pull_means(recs) -> dict:
 
 
 def pull_table(got: dict, ref: float) -> list:
-    refs = _ran(got.get(ref, []))
-    cpu0 = _mean([r["cpu"] for r in refs])
-    us0 = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in refs])
-    lines = ["## (a) Pull-out forces (the paper: 2.81 / 3.04 / 4.75 N)", "",
-             "| steps per contact | weirs (seeds), pulls per direction | vertical [N] | normal [N] | horizontal [N] | "
-             "deviation of the means from the reference [%] | CPU per weir (packing + pulls) [s] | CPU ratio | "
-             "CPU per pull substep [us] (ratio) |", "|---:|---|---|---|---|---|---:|---:|---|"]
-    for n, every in got.items():
-        recs = _ran(every)
-        if not recs:
-            lines.append(f"| {n:g} | refused | | | | | | | |")
-            continue
+    def cells(every, recs, refs):
         m, base = _pull_means(recs), _pull_means(same_seeds(refs, recs))
-        cells = []
-        for d in DIRECTIONS:
-            peaks = [p["peak"] for r in recs for p in r["pulls"] if p["direction"] == d]
-            cells.append(f"{m[d]:.2f} ({' / '.join(f'{v:.2f}' for v in peaks)})")
+        peaks = {d: [p["peak"] for r in recs for p in r["pulls"] if p["direction"] == d] for d in DIRECTIONS}
+        npulls = len(peaks[DIRECTIONS[0]])
         dev = " / ".join(f"{100 * (m[d] / base[d] - 1):+.0f}" for d in DIRECTIONS)
-        c = _mean([r["cpu"] for r in recs])
-        us = _mean([1e6 * r["cpu_pulls"] / r["substeps"] for r in recs])
-        npulls = sum(1 for r in recs for p in r["pulls"] if p["direction"] == DIRECTIONS[0])
-        lines.append(f"| {n:g} | {_seeds_cell(every)}, {npulls} pulls | " + " | ".join(cells) +
-                     f" | {dev} | {c:.0f} | {_ratio(c, cpu0)} | {us:.1f} ({_ratio(us, us0)}) |")
+        c, x = _cost(recs, refs, lambda r: r["cpu"])
+        us, xus = _cost(recs, refs, lambda r: 1e6 * r["cpu_pulls"] / r["substeps"])
+        return ([f"{_seeds_cell(every)}, {npulls} pulls"] +
+                [f"{m[d]:.2f} ({' / '.join(f'{v:.2f}' for v in peaks[d])})" for d in DIRECTIONS] +
+                [dev, f"{c:.0f}", x, f"{us:.1f} ({xus})"])
+
+    head = ["## (a) Pull-out forces (the paper: 2.81 / 3.04 / 4.75 N)", "",
+            "| steps per contact | weirs (seeds), pulls per direction | vertical [N] | normal [N] | horizontal [N] | "
+            "deviation of the means from the reference [%] | CPU per weir (packing + pulls) [s] | CPU ratio | "
+            "CPU per pull substep [us] (ratio) |", "|---:|---|---|---|---|---|---:|---:|---|"]
+    refs = _ran(got.get(ref, []))
     pulls = [p for r in refs for p in r["pulls"]]
     sds = " / ".join(_fmt(_sd([p["peak"] for p in pulls if p["direction"] == d])) for d in DIRECTIONS)
-    return lines + ["", f"The reference's spread between the pulled stones (sample standard deviation, vertical / "
-                        f"normal / horizontal): {sds} N."]
+    return setting_rows(head, got, refs, cells) + [
+        "", f"The reference's spread between the pulled stones (sample standard deviation, vertical / normal / "
+            f"horizontal): {sds} N."]
 
 
 MEMBER_TITLES = {
@@ -307,29 +317,23 @@ MEMBER_TITLES = {
 
 
 def member_table(got: dict, ref: float, part: str = "member") -> list:
-    refs = _ran(got.get(ref, []))
-    cpu0, after0 = _mean([r["cpu"] for r in refs]), _mean([r["cpu_after"] for r in refs])
-    ns0 = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in refs])
-    tail = spread_line("stones lost within 2 s", [r["lost_release"] for r in refs])
-    lines = [MEMBER_TITLES[part], "",
-             "| steps per contact | members (seeds) | lost within 2 s of the release, per member | mean | deviation "
-             "of the mean from the reference | lost by the end, per member | CPU per member [s] (ratio) | CPU per "
-             "simulated s after the release [s] (ratio) | ns per sphere-substep after the release (ratio) | DEM "
-             "substeps per simulated s |", "|---:|---|---|---:|---:|---|---|---|---|---:|"]
-    for n, every in got.items():
-        recs = _ran(every)
-        if not recs:
-            lines.append(f"| {n:g} | refused | | | | | | | | |")
-            continue
-        m, c = _mean([r["lost_release"] for r in recs]), _mean([r["cpu"] for r in recs])
+    def cells(every, recs, refs):
+        m, (c, x) = _mean([r["lost_release"] for r in recs]), _cost(recs, refs, lambda r: r["cpu"])
         lost0 = _mean([r["lost_release"] for r in same_seeds(refs, recs)])
-        ca = _mean([r["cpu_after"] for r in recs])
-        ns = _mean([1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]) for r in recs])
-        lines.append(f"| {n:g} | {_seeds_cell(every)} | {_each(recs, 'lost_release')} | {m:.1f} | "
-                     f"{m - lost0:+.1f} | {_each(recs, 'lost_end')} | {c:.0f} ({_ratio(c, cpu0)}) | "
-                     f"{ca / recs[0]['after']:.2f} ({_ratio(ca, after0)}) | {ns:.0f} ({_ratio(ns, ns0)}) | "
-                     f"{_mean([r['substeps'] / r['after'] for r in recs]):.0f} |")
-    return lines + tail
+        ca, xa = _cost(recs, refs, lambda r: r["cpu_after"])
+        ns, xns = _cost(recs, refs, lambda r: 1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]))
+        return [_seeds_cell(every), _each(recs, "lost_release"), f"{m:.1f}", f"{m - lost0:+.1f}",
+                _each(recs, "lost_end"), f"{c:.0f} ({x})", f"{ca / recs[0]['after']:.2f} ({xa})", f"{ns:.0f} ({xns})",
+                f"{_mean([r['substeps'] / r['after'] for r in recs]):.0f}"]
+
+    head = [MEMBER_TITLES[part], "",
+            "| steps per contact | members (seeds) | lost within 2 s of the release, per member | mean | deviation "
+            "of the mean from the reference | lost by the end, per member | CPU per member [s] (ratio) | CPU per "
+            "simulated s after the release [s] (ratio) | ns per sphere-substep after the release (ratio) | DEM "
+            "substeps per simulated s |", "|---:|---|---|---:|---:|---|---|---|---|---:|"]
+    refs = _ran(got.get(ref, []))
+    return setting_rows(head, got, refs, cells) + spread_line("stones lost within 2 s",
+                                                              [r["lost_release"] for r in refs])
 
 
 def settings_table(steps) -> list:
