@@ -103,31 +103,56 @@ void DEMSystem::out_of_plane_body_forces(double dt) {
   work_external_ += work * dt;
 }
 
-void DEMSystem::out_of_plane_first_half(double dt) {
+// one pass over the stones: each is kicked, drifted and turned with the torque of the last evaluation,
+// then its force and torque across the flume are set to the body forces (out_of_plane_body_forces'
+// values, in its order)
+bool DEMSystem::out_of_plane_first_half(double dt, bool stale_3d) {
   const double h = 0.5 * dt;
   const bool spherical = model_->spherical_inertia();
+  const bool ext = params_.flags & kDEMExternalForce;
+  bool stale = stale_3d && build_y_.size() != stone_y.size();
+  const double lim2 = 0.25 * skin_ * skin_;
+  double work = 0.0;
   for (int i = 0; i < n_; ++i) {
-    if (inv_mass_[i] == 0.0 || stone_asleep[i]) continue;
-    stone_vel_y[i] += h * stone_acc_y[i] * kick_scale_[i];
-    stone_y[i] += dt * stone_vel_y[i];
-    if (std::isinf(inertia_3d_[3 * i])) continue;
-    Quat q = quat_at(stone_quat, i);
-    if (spherical) {
-      // equal moments: omega = L / I, constant over the free rotation, so one exact turn about it
-      const Vec3 omega = vec_at(stone_omega_3d, i) + (h / inertia_3d_[3 * i]) * vec_at(stone_torque_3d, i);
-      spherical_rotation(q, omega, dt);
-      store_quat(stone_quat, i, q);
-      store_vec(stone_omega_3d, i, omega);
-      continue;
+    if (inv_mass_[i] != 0.0 && !stone_asleep[i]) out_of_plane_turn(i, h, dt, spherical);
+    stone_force_y[i] = 0.0;
+    stone_torque_3d[3 * i] = stone_torque_3d[3 * i + 1] = stone_torque_3d[3 * i + 2] = 0.0;
+    if (inv_mass_[i] == 0.0) continue;
+    if (stale_3d && !stale) {
+      const double dx = stone_pos[2 * i] - build_pos_[2 * i];
+      const double dz = stone_pos[2 * i + 1] - build_pos_[2 * i + 1];
+      const double dy = stone_y[i] - build_y_[i];
+      stale = dx * dx + dy * dy + dz * dz > lim2;
     }
-    const Vec3 inertia = vec_at(inertia_3d_, i);
-    Vec3 l = angular_momentum(q, inertia, vec_at(stone_omega_3d, i)) + h * vec_at(stone_torque_3d, i);
-    free_rotation(q, l, inertia, dt);
-    q.normalize();
-    store_quat(stone_quat, i, q);
-    store_vec(stone_omega_3d, i, angular_velocity(q, inertia, l));
+    if (!ext) continue;
+    const double fy = -stone_drag_coef[i] * stone_vel_y[i];
+    stone_force_y[i] = fy;
+    work += fy * stone_vel_y[i];
   }
-  out_of_plane_body_forces(dt);
+  work_external_ += work * dt;
+  return stale;
+}
+
+// stone i's kick and drift across the flume and its turn (h = dt / 2)
+void DEMSystem::out_of_plane_turn(int i, double h, double dt, bool spherical) {
+  stone_vel_y[i] += h * stone_acc_y[i] * kick_scale_[i];
+  stone_y[i] += dt * stone_vel_y[i];
+  if (std::isinf(inertia_3d_[3 * i])) return;
+  Quat q = quat_at(stone_quat, i);
+  if (spherical) {
+    // equal moments: omega = L / I, constant over the free rotation, so one exact turn about it
+    const Vec3 omega = vec_at(stone_omega_3d, i) + (h / inertia_3d_[3 * i]) * vec_at(stone_torque_3d, i);
+    spherical_rotation(q, omega, dt);
+    store_quat(stone_quat, i, q);
+    store_vec(stone_omega_3d, i, omega);
+    return;
+  }
+  const Vec3 inertia = vec_at(inertia_3d_, i);
+  Vec3 l = angular_momentum(q, inertia, vec_at(stone_omega_3d, i)) + h * vec_at(stone_torque_3d, i);
+  free_rotation(q, l, inertia, dt);
+  q.normalize();
+  store_quat(stone_quat, i, q);
+  store_vec(stone_omega_3d, i, angular_velocity(q, inertia, l));
 }
 
 void DEMSystem::out_of_plane_second_half(double dt) {
@@ -148,7 +173,8 @@ void DEMSystem::out_of_plane_second_half(double dt) {
       stone_acc_y[i] -= c * inv_mass_[i] * dvy;
     }
     if (spherical && !std::isinf(inertia_3d_[3 * i])) {
-      for (int k = 0; k < 3; ++k) stone_omega_3d[3 * i + k] += h / inertia_3d_[3 * i] * stone_torque_3d[3 * i + k];
+      const double h_inertia = h / inertia_3d_[3 * i];  // once, not per component
+      for (int k = 0; k < 3; ++k) stone_omega_3d[3 * i + k] += h_inertia * stone_torque_3d[3 * i + k];
     } else if (!std::isinf(inertia_3d_[3 * i])) {
       const Vec3 inertia = vec_at(inertia_3d_, i);
       const Quat q = quat_at(stone_quat, i);

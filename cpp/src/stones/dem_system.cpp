@@ -446,7 +446,7 @@ void DEMSystem::substep(double dt, StageLaps& laps) {
     remove_escaped();
     laps.lap(kStageRemoval);
   }
-  if (rebuild_ || pass.stale || (neighbours_3d() && neighbours_stale())) {  // 3D: the move across too
+  if (rebuild_ || pass.stale) {  // 3D: the move across too (integrate_first_half)
     build_neighbours();
     laps.lap(kStageNeighbours);
   }
@@ -515,7 +515,8 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
     }
   }
   work_external_ += work * dt;
-  if (three_d_) out_of_plane_first_half(dt);
+  // 3D: the move across the flume in the same test, which the 3D list needs
+  if (three_d_ && out_of_plane_first_half(dt, !out.stale && neighbours_3d())) out.stale = true;
   return out;
 }
 

@@ -40,15 +40,8 @@ VOFDEM_SPHERE_INLINE bool root_exceeds(double x, double c) {
   return std::sqrt(x) > c;
 }
 
-// what the law needs beyond the law's constants, the pair's constants and the histories
-struct Geometry {
-  Vec3 n;              // from i to j
-  double delta;        // overlap [m]
-  Vec3 point;          // contact point [m]
-  Vec3 v_rel;          // velocity of i relative to j at the point [m/s]
-  Vec3 w_rel;          // omega_i - omega_j [rad/s]
-  double mu, mu_r;     // Coulomb and rolling friction [-]
-};
+// what the law needs beyond the law's constants, the pair's constants and the histories (sphere_contact.h)
+using Geometry = SphereContactGeometry;
 
 // a model's loop keeps these per listed pair while the masses, radii and inertia stay the same (the same
 // expressions as computed at each contact: the same bits): nine divisions and two square roots a contact
@@ -156,26 +149,35 @@ VOFDEM_SPHERE_INLINE SphereContactLoads apply_law(const Geometry& g, const PairC
 
 // sphere_sphere_contact_unchecked's body (sphere_contact.h); the pair's constants from `constants()`,
 // called only for spheres that touch (a loop hands its kept ones)
-template <class Constants>
-VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair_with(const SphereOfBody& i, const SphereOfBody& j,
-                                                         SphereContactHistory& h, const SphereContactLaw& law,
-                                                         double dt, Constants&& constants) {
+// a sphere pair's geometry and the arms from the bodies' centres of mass to the contact point; false when
+// the spheres do not touch
+VOFDEM_SPHERE_INLINE bool pair_geometry(const SphereOfBody& i, const SphereOfBody& j, const SphereContactLaw& law,
+                                        Geometry& g, Vec3& arm_i, Vec3& arm_j) {
   const Vec3 d = j.centre - i.centre;
   const double dist = d.norm();
   const double delta = i.radius + j.radius - dist;
-  if (!(delta > 0.0)) {
-    h = SphereContactHistory();  // the contact opened: its histories start again from zero
-    return SphereContactLoads();
-  }
-  Geometry g;
+  if (!(delta > 0.0)) return false;
   g.n = dist > 0.0 ? Vec3(d / dist) : Vec3(Vec3::UnitZ());  // coincident centres: an arbitrary fixed normal
   g.delta = delta;
   g.point = i.centre + (i.radius - 0.5 * delta) * g.n;
-  const Vec3 arm_i = g.point - i.com, arm_j = g.point - j.com;
+  arm_i = g.point - i.com, arm_j = g.point - j.com;
   g.v_rel = (i.vel + i.omega.cross(arm_i)) - (j.vel + j.omega.cross(arm_j));
   g.w_rel = i.omega - j.omega;
   g.mu = law.friction;
   g.mu_r = law.rolling_friction;
+  return true;
+}
+
+template <class Constants>
+VOFDEM_SPHERE_INLINE SphereContactLoads sphere_pair_with(const SphereOfBody& i, const SphereOfBody& j,
+                                                         SphereContactHistory& h, const SphereContactLaw& law,
+                                                         double dt, Constants&& constants) {
+  Geometry g;
+  Vec3 arm_i, arm_j;
+  if (!pair_geometry(i, j, law, g, arm_i, arm_j)) {
+    h = SphereContactHistory();  // the contact opened: its histories start again from zero
+    return SphereContactLoads();
+  }
   return apply_law(g, constants(), arm_i, arm_j, h, law, dt);
 }
 

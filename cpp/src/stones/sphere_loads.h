@@ -29,7 +29,10 @@ inline SphereContactLaw law(const DEMSystem& s) {
 }
 
 // the loads of a contact into the system's arrays: i gets them, j (if >= 0) their opposite
-inline void apply(DEMSystem& s, int i, int j, const SphereContactLoads& f, ContactTally& t, double dt) {
+// (Loads: SphereContactLoads or a type with its force_i, torque_i, torque_j, energy_spring, power_damp and
+// energy_slip)
+template <class Loads>
+inline void apply(DEMSystem& s, int i, int j, const Loads& f, ContactTally& t, double dt) {
   s.stone_force[2 * i] += f.force_i[0];
   s.stone_force_y[i] += f.force_i[1];
   s.stone_force[2 * i + 1] += f.force_i[2];

@@ -9,6 +9,7 @@
 
 #include "common/state_fields.h"
 #include "stones/sphere_kernels.h"
+#include "stones/sphere_kernels_x2.h"
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/coupling/porosity_map.h"
@@ -26,6 +27,7 @@ using sphere_loads::push3;
 using sphere_loads::push_histories;
 using sphere_loads::zero;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+using Vec3 = Eigen::Vector3d;
 
 // stone i as a sphere of its body (inertia: the principal moments, 3 per stone), with the mass its
 // contacts' dashpots use (+inf: fixed); a local inline function, which the contact loops compile in
@@ -101,7 +103,9 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
   const double* y = s.stone_y.data();
   const double* radius = s.stone_radius.data();
   const double* inertia = inertia_3d(s).data();
-  ContactTally t;
+  // the pairs whose spheres overlap, and their geometry
+  overlap_.resize(list.size());
+  std::size_t m = 0;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const int i = list[k].i, j = list[k].j;
     const double dx = pos[2 * j] - pos[2 * i], dy = y[j] - y[i], dz = pos[2 * j + 1] - pos[2 * i + 1];
@@ -110,12 +114,67 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
       pair_history_[k] = SphereContactHistory();
       continue;
     }
-    // the kernel inline: the loop reads only the loads it adds; the masses are in the pair's constants
-    const SphereContactLoads f =
-        sphere_kernels::sphere_pair_with(sphere_of(s, inertia, i, 0.0), sphere_of(s, inertia, j, 0.0),
-                                         pair_history_[k], law, dt, [&] { return pair_constants_[k]; });
-    apply(s, i, j, f, t, dt);
+    overlap_[m++].k = k;
   }
+  auto geometry_at = [&](Overlap& o) {
+    o.touching = sphere_kernels::pair_geometry(sphere_of(s, inertia, list[o.k].i, 0.0),
+                                               sphere_of(s, inertia, list[o.k].j, 0.0), law, o.g, o.arm_i, o.arm_j);
+  };
+  std::size_t c0 = 0;
+#ifdef VOFDEM_SPHERE_X2
+  const sphere_kernels::x2::Stones stones{pos,           y, radius, s.stone_vel.data(), s.stone_vel_y.data(),
+                                          s.stone_omega_3d.data()};
+  for (; c0 + 1 < m; c0 += 2) {
+    Overlap &a = overlap_[c0], &b = overlap_[c0 + 1];
+    const int touching = sphere_kernels::x2::pair_geometry(stones, list[a.k].i, list[a.k].j, list[b.k].i, list[b.k].j,
+                                                           law, a.g, a.arm_i, a.arm_j, b.g, b.arm_i, b.arm_j);
+    a.touching = touching & 1, b.touching = touching & 2;
+  }
+#endif
+  for (; c0 < m; ++c0) geometry_at(overlap_[c0]);
+  // their loads (the law inline; the masses are in the pair's constants), two at a time where the
+  // processor has SSE2 (sphere_kernels_x2.h: the same bits)
+  loads_.resize(m);
+  auto keep = [&](std::size_t c, const SphereContactLoads& f) {
+    loads_[c] = PairLoads{f.force_i, f.torque_i, f.torque_j, f.energy_spring, f.power_damp, f.energy_slip};
+  };
+  auto law_at = [&](std::size_t c) {
+    const Overlap& o = overlap_[c];
+    keep(c, sphere_kernels::apply_law(o.g, pair_constants_[o.k], o.arm_i, o.arm_j, pair_history_[o.k], law, dt));
+  };
+#ifdef VOFDEM_SPHERE_X2
+  std::size_t waiting = m;  // an overlap whose law waits for a second one
+  auto contact = [&](std::size_t c, SphereContactLoads& f) -> sphere_kernels::x2::Contact {
+    const Overlap& o = overlap_[c];
+    return {&o.g, &pair_constants_[o.k], &o.arm_i, &o.arm_j, &pair_history_[o.k], &f};
+  };
+#endif
+  for (std::size_t c = 0; c < m; ++c) {
+    const Overlap& o = overlap_[c];
+    if (!o.touching) {
+      pair_history_[o.k] = SphereContactHistory();  // the contact opened: its histories start again from zero
+      loads_[c] = PairLoads{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0.0, 0.0, 0.0};
+      continue;
+    }
+#ifdef VOFDEM_SPHERE_X2
+    if (waiting == m) {
+      waiting = c;
+      continue;
+    }
+    SphereContactLoads fa, fb;
+    sphere_kernels::x2::apply_law(contact(waiting, fa), contact(c, fb), law, dt);
+    keep(waiting, fa), keep(c, fb);
+    waiting = m;
+#else
+    law_at(c);
+#endif
+  }
+#ifdef VOFDEM_SPHERE_X2
+  if (waiting < m) law_at(waiting);
+#endif
+  // added to the stones in the list's order
+  ContactTally t;
+  for (std::size_t c = 0; c < m; ++c) apply(s, list[overlap_[c].k].i, list[overlap_[c].k].j, loads_[c], t, dt);
   return t;
 }
 

@@ -389,7 +389,10 @@ class DEMSystem {
   void check_out_of_plane() const;
   void update_inertia_3d();
   void out_of_plane_body_forces(double dt);
-  void out_of_plane_first_half(double dt);
+  // the kick-drift across the flume, the body forces there and, with the 3D list (stale_3d), whether a
+  // stone has moved half the skin since the list's build (neighbours_stale's test, in the same pass)
+  bool out_of_plane_first_half(double dt, bool stale_3d);
+  void out_of_plane_turn(int i, double h, double dt, bool spherical);
   void out_of_plane_second_half(double dt);
   void out_of_plane_accelerations();
   void out_of_plane_removed(int i);

@@ -83,6 +83,17 @@ struct SpherePairConstants {
   double kr = 0.0, cr = 0.0;  // rolling spring k_r [N m] and dashpot C_r [N m s] (likewise)
 };
 
+// what the law needs beyond its constants, the pair's constants and the histories: the geometry and
+// kinematics of one touching contact, which a model's loop may keep between its passes
+struct SphereContactGeometry {
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();       // normal from i to j [-]
+  double delta = 0.0;                                 // overlap [m]
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    // contact point [m]
+  Eigen::Vector3d v_rel = Eigen::Vector3d::Zero();    // velocity of i relative to j at the point [m/s]
+  Eigen::Vector3d w_rel = Eigen::Vector3d::Zero();    // omega_i - omega_j [rad/s]
+  double mu = 0.0, mu_r = 0.0;                        // Coulomb and rolling friction [-]
+};
+
 // the loads of one contact (all zero when the spheres do not touch)
 struct SphereContactLoads {
   bool touching = false;

@@ -70,6 +70,22 @@ class SphereModel final : public DiscModel {
   bool pair_constants_current_ = false;
   std::vector<SphereContactHistory> wall_history_;  // per (stone, plane of planes())
   std::vector<ContactPlane> planes_;                // planes() of the parameters in use (prepare)
+  // contact_forces' passes over the listed pairs whose spheres overlap: their geometry, their loads (the
+  // law), then the loads added to the stones in the list's order. Short loops without a store into the
+  // stones' arrays, so that the processor overlaps the square roots and divisions of many contacts; the
+  // loads and their sums are those of one pass, bit for bit.
+  struct Overlap {
+    std::size_t k = 0;       // the pair's place in the list
+    bool touching = false;   // false: the centres' distance, rounded, leaves no overlap
+    SphereContactGeometry g;
+    Eigen::Vector3d arm_i, arm_j;
+  };
+  struct PairLoads {
+    Eigen::Vector3d force_i, torque_i, torque_j;
+    double energy_spring, power_damp, energy_slip;
+  };
+  std::vector<Overlap> overlap_;
+  std::vector<PairLoads> loads_;
 };
 
 }  // namespace vofdem
