@@ -259,7 +259,7 @@ def results_md(args, base, configs, rows, summary, command) -> str:
              f"Written by `{command}`: scene `{base.name}`, seeds {args.seeds}, each member the settling, the "
              f"{rel:g} s spin-up with the stones held and {args.after:g} s of the ramp after the release "
              f"({q(rel + 1e-6):.2f} to {q(rel + args.after):.2f} l/s), one member after the other in one process "
-             "on a machine shared with other jobs (2 cores, load about 3-6). Ensembles: `"
+             "on a machine shared with other jobs (2 cores; CPU: each member's process time). Ensembles: `"
              f"{shown_path(args.out, ROOT)}/<configuration>/`." + NO_RUN_NOTE * args.no_run + _earlier_note(args, rows),
              "",
              f"Lost at the release: stones removed (moved more than their diameter) within {args.window:g} s after "
