@@ -92,20 +92,23 @@ void DEMSystem::update_inertia_3d() {
 void DEMSystem::out_of_plane_body_forces(double dt) {
   const bool ext = params_.flags & kDEMExternalForce;
   double work = 0.0;
-  for (int i = 0; i < n_; ++i) {
-    stone_force_y[i] = 0.0;
-    stone_torque_3d[3 * i] = stone_torque_3d[3 * i + 1] = stone_torque_3d[3 * i + 2] = 0.0;
-    if (inv_mass_[i] == 0.0 || !ext) continue;
-    const double fy = -stone_drag_coef[i] * stone_vel_y[i];
-    stone_force_y[i] = fy;
-    work += fy * stone_vel_y[i];
-  }
+  for (int i = 0; i < n_; ++i) work += out_of_plane_body_force(i, ext);
   work_external_ += work * dt;
 }
 
+// stone i's force and torque across the flume set to its body force (ext: the drag is on); returns the
+// drag's power [W] (0 for a fixed stone, whose force stays 0)
+double DEMSystem::out_of_plane_body_force(int i, bool ext) {
+  stone_force_y[i] = 0.0;
+  stone_torque_3d[3 * i] = stone_torque_3d[3 * i + 1] = stone_torque_3d[3 * i + 2] = 0.0;
+  if (inv_mass_[i] == 0.0 || !ext) return 0.0;
+  const double fy = -stone_drag_coef[i] * stone_vel_y[i];
+  stone_force_y[i] = fy;
+  return fy * stone_vel_y[i];
+}
+
 // one pass over the stones: each is kicked, drifted and turned with the torque of the last evaluation,
-// then its force and torque across the flume are set to the body forces (out_of_plane_body_forces'
-// values, in its order)
+// then its force and torque across the flume are set to its body force (out_of_plane_body_force)
 bool DEMSystem::out_of_plane_first_half(double dt, bool stale_3d) {
   const double h = 0.5 * dt;
   const bool spherical = model_->spherical_inertia();
@@ -115,19 +118,12 @@ bool DEMSystem::out_of_plane_first_half(double dt, bool stale_3d) {
   double work = 0.0;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] != 0.0 && !stone_asleep[i]) out_of_plane_turn(i, h, dt, spherical);
-    stone_force_y[i] = 0.0;
-    stone_torque_3d[3 * i] = stone_torque_3d[3 * i + 1] = stone_torque_3d[3 * i + 2] = 0.0;
-    if (inv_mass_[i] == 0.0) continue;
-    if (stale_3d && !stale) {
-      const double dx = stone_pos[2 * i] - build_pos_[2 * i];
-      const double dz = stone_pos[2 * i + 1] - build_pos_[2 * i + 1];
-      const double dy = stone_y[i] - build_y_[i];
-      stale = dx * dx + dy * dy + dz * dz > lim2;
-    }
-    if (!ext) continue;
-    const double fy = -stone_drag_coef[i] * stone_vel_y[i];
-    stone_force_y[i] = fy;
-    work += fy * stone_vel_y[i];
+    work += out_of_plane_body_force(i, ext);
+    if (inv_mass_[i] == 0.0 || !stale_3d || stale) continue;
+    const double dx = stone_pos[2 * i] - build_pos_[2 * i];
+    const double dz = stone_pos[2 * i + 1] - build_pos_[2 * i + 1];
+    const double dy = stone_y[i] - build_y_[i];
+    stale = dx * dx + dy * dy + dz * dz > lim2;
   }
   work_external_ += work * dt;
   return stale;

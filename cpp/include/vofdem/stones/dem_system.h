@@ -389,6 +389,7 @@ class DEMSystem {
   void check_out_of_plane() const;
   void update_inertia_3d();
   void out_of_plane_body_forces(double dt);
+  double out_of_plane_body_force(int i, bool ext);
   // the kick-drift across the flume, the body forces there and, with the 3D list (stale_3d), whether a
   // stone has moved half the skin since the list's build (neighbours_stale's test, in the same pass)
   bool out_of_plane_first_half(double dt, bool stale_3d);
