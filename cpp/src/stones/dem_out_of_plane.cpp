@@ -114,16 +114,11 @@ bool DEMSystem::out_of_plane_first_half(double dt, bool stale_3d) {
   const bool spherical = model_->spherical_inertia();
   const bool ext = params_.flags & kDEMExternalForce;
   bool stale = stale_3d && build_y_.size() != stone_y.size();
-  const double lim2 = 0.25 * skin_ * skin_;
   double work = 0.0;
   for (int i = 0; i < n_; ++i) {
     if (inv_mass_[i] != 0.0 && !stone_asleep[i]) out_of_plane_turn(i, h, dt, spherical);
     work += out_of_plane_body_force(i, ext);
-    if (inv_mass_[i] == 0.0 || !stale_3d || stale) continue;
-    const double dx = stone_pos[2 * i] - build_pos_[2 * i];
-    const double dz = stone_pos[2 * i + 1] - build_pos_[2 * i + 1];
-    const double dy = stone_y[i] - build_y_[i];
-    stale = dx * dx + dy * dy + dz * dz > lim2;
+    if (stale_3d && !stale && inv_mass_[i] != 0.0) stale = moved_half_skin(i);
   }
   work_external_ += work * dt;
   return stale;

@@ -470,7 +470,6 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
   const bool ext = p.flags & kDEMExternalForce;
   const bool removal = p.flags & kDEMRemoval;
   const double gx = p.medium.gravity[0], gz = p.medium.gravity[1];
-  const double lim2 = 0.25 * skin_ * skin_;
   FirstHalf out;
   out.stale = build_pos_.size() != stone_pos.size();
   double work = 0.0;
@@ -496,10 +495,7 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
       out.escaped |= x[0] < p.domain_min[0] || x[0] > p.domain_max[0] || x[1] < p.domain_min[1] ||
                      x[1] > p.domain_max[1];
     }
-    if (!out.stale) {
-      const double dx = x[0] - build_pos_[2 * i], dz = x[1] - build_pos_[2 * i + 1];
-      out.stale = dx * dx + dz * dz > lim2;
-    }
+    if (!out.stale && !neighbours_3d()) out.stale = moved_half_skin(i);  // 3D list: after the move across
     if (grav) {
       f[0] += weight_[i] * gx;
       f[1] += weight_[i] * gz;
@@ -515,7 +511,7 @@ DEMSystem::FirstHalf DEMSystem::integrate_first_half(double dt) {
     }
   }
   work_external_ += work * dt;
-  // 3D: the move across the flume in the same test, which the 3D list needs
+  // 3D: the move across the flume, and with the 3D list the skin rule on the whole move
   if (three_d_ && out_of_plane_first_half(dt, !out.stale && neighbours_3d())) out.stale = true;
   return out;
 }

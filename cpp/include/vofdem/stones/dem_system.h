@@ -347,6 +347,7 @@ class DEMSystem {
   void follow_water_level(int i);
   void build_neighbours();
   bool neighbours_stale() const;
+  bool moved_half_skin(int i) const;
   bool neighbours_3d() const { return three_d_ && !params_.plane_neighbour_list; }
   void list_pairs_plane(int nact, double h, double xmin, double zmin, int ncx, int ncz);
   void list_pairs_3d(int nact, double h, double xmin, double zmin, int ncx, int ncz);
@@ -391,7 +392,7 @@ class DEMSystem {
   void out_of_plane_body_forces(double dt);
   double out_of_plane_body_force(int i, bool ext);
   // the kick-drift across the flume, the body forces there and, with the 3D list (stale_3d), whether a
-  // stone has moved half the skin since the list's build (neighbours_stale's test, in the same pass)
+  // stone has moved half the skin since the list's build (moved_half_skin, in the same pass)
   bool out_of_plane_first_half(double dt, bool stale_3d);
   void out_of_plane_turn(int i, double h, double dt, bool spherical);
   void out_of_plane_second_half(double dt);
