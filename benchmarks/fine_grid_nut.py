@@ -28,10 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import numpy as np  # noqa: E402
 
 import grid_cost  # noqa: E402
-from grid_cost import DRAFT_SCALE, ROOT, cpu_seconds, flow_answers, grid_settings  # noqa: E402
-from vofdem.builder import build_simulation  # noqa: E402
-from vofdem.ensemble import with_settings  # noqa: E402
-from vofdem.scene import load_scene  # noqa: E402
+from grid_cost import ROOT, cpu_seconds, flow_answers, held_spinup  # noqa: E402
 
 BASE = ["numerics.turbulence_scheme=alternating_lines", "numerics.viscous_scheme=implicit"]
 CANDIDATES = [("none", []),
@@ -54,13 +51,7 @@ def nut_max(sim):
 def run(factor: float, times, settings, small: bool = False, seed: int = 0) -> dict:
     """The spin-up to each of `times` [s] on the grid `factor` times as fine as the paper's (small: the
     quick scene, as the draft grid)."""
-    scene = load_scene(ROOT / "scenes" / "maeno2008_consistent.toml").replace(seed=seed)
-    if small:
-        scene = scene.quick()
-        factor = factor * DRAFT_SCALE
-    scene = with_settings(scene, [*grid_settings(factor), *settings])
-    sim = build_simulation(scene)
-    sim.stones.stone_fixed[:] = True  # held, as in a run's spin-up
+    sim, scene, factor = held_spinup(factor, settings, small, seed)
     steps0, cpu0, history = sim.step_count, cpu_seconds(), []
     for t in times:
         sim.advance(t)  # to the time t [s]

@@ -85,17 +85,25 @@ def flow_answers(sim) -> dict:
                 nut_mean=float(nut[water].mean()) if water.any() else 0.0)
 
 
-def run_grid(factor: float, seconds: float, settings=(), small: bool = False, keep=None) -> dict:
-    """The spin-up (stones held) from rest to `seconds` on the grid `factor` times as fine as the paper's
-    (--small: as the draft grid, on the quick scene): cost, steps, limits, pressure iterations, loads.
-    keep(sim, result): a hook that adds to the result what else it needs of the simulation."""
-    scene = load_scene(ROOT / "scenes" / "maeno2008_consistent.toml")
+def held_spinup(factor: float, settings=(), small: bool = False, seed: int = 0):
+    """The Maeno scene (consistent coupling) on the grid `factor` times as fine as the paper's, its stones
+    held as in a run's spin-up (small: the quick scene, `factor` times as fine as the draft grid); with the
+    factor taken on the paper's grid and the scene."""
+    scene = load_scene(ROOT / "scenes" / "maeno2008_consistent.toml").replace(seed=seed)
     if small:
         scene = scene.quick()
         factor = factor * DRAFT_SCALE
     scene = with_settings(scene, [*grid_settings(factor), *settings])
     sim = build_simulation(scene)
-    sim.stones.stone_fixed[:] = True  # held, as in a run's spin-up
+    sim.stones.stone_fixed[:] = True
+    return sim, scene, factor
+
+
+def run_grid(factor: float, seconds: float, settings=(), small: bool = False, keep=None) -> dict:
+    """The spin-up (stones held) from rest to `seconds` on the grid `factor` times as fine as the paper's
+    (--small: as the draft grid, on the quick scene): cost, steps, limits, pressure iterations, loads.
+    keep(sim, result): a hook that adds to the result what else it needs of the simulation."""
+    sim, scene, factor = held_spinup(factor, settings, small)
     for _, p in profiles(sim):
         p.reset()
     sim.clear_step_limits()

@@ -32,7 +32,7 @@ ROOT = Path(__file__).resolve().parents[1]
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 
-from vofdem.io import completed_snapshots  # noqa: E402
+from vofdem.io import snapshots_written  # noqa: E402
 from vofdem.study import shown_path, write_page  # noqa: E402
 
 
@@ -43,18 +43,10 @@ def command(args, out: Path) -> list:
     return cmd + (["--quick"] if args.quick else []) + (["--end-time", f"{args.end_time:g}"] if args.end_time else [])
 
 
-def snapshots(path: Path) -> int:
-    try:
-        with h5py.File(path, "r") as f:
-            return completed_snapshots(f["time"][()])
-    except (OSError, KeyError):  # not made yet
-        return 0
-
-
 def kill_at(cmd: list, member: Path, k: int) -> float:
     """Runs `cmd` and SIGKILLs it once k snapshots of the member's run.h5 are complete; its CPU [s]."""
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    while snapshots(member / "run.h5") < k and p.poll() is None:
+    while snapshots_written(member / "run.h5") < k and p.poll() is None:
         time.sleep(0.01)
     if p.poll() is not None:
         raise RuntimeError(f"the member ended before {k} snapshots: lower --kill-at")

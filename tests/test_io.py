@@ -14,7 +14,7 @@ import pytest
 
 import vofdem
 from vofdem.io import (HDF5_LIBVER, RunData, RunWriter, cell_velocities, check_xdmf, completed_snapshots, mesh_of,
-                       open_run)
+                       open_run, snapshots_written)
 from vofdem.scene import Scene
 
 NX, NZ, N = 6, 4, 3
@@ -79,6 +79,10 @@ def test_the_file_is_in_the_old_format_and_made_at_full_size(tmp_path):
         assert f["snapshots/000001/p"].is_virtual
         assert np.array_equal(f["snapshots/000001/p"][()], f["fields/p"][1])
         assert np.array_equal(f["snapshots/000001/vel"][()], f["stones/vel"][1])
+    assert snapshots_written(tmp_path / "run.h5") == 2  # while the writer holds it open
+    assert snapshots_written(tmp_path / "not_yet.h5") == 0
+    h5py.File(tmp_path / "empty.h5", "w").close()  # made, no /time yet
+    assert snapshots_written(tmp_path / "empty.h5") == 0
     w.close("failed: test")
     assert RunData(tmp_path / "run.h5").attrs["status"] == "failed: test"
     assert not (tmp_path / "run.h5.tmp").exists()

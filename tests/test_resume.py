@@ -16,7 +16,7 @@ import pytest
 
 import vofdem
 from vofdem.checkpoint import load_checkpoint
-from vofdem.io import completed_snapshots
+from vofdem.io import completed_snapshots, snapshots_written
 
 ENV = dict(os.environ, PYTHONPATH=str(Path(vofdem.__file__).resolve().parents[1]) + os.pathsep
            + os.environ.get("PYTHONPATH", ""))
@@ -34,20 +34,12 @@ def _vofdem(*args, **kw):
                             stderr=subprocess.PIPE, text=True, **kw)
 
 
-def _completed(path) -> int:
-    try:
-        with h5py.File(path, "r") as f:
-            return completed_snapshots(f["time"][()])
-    except (OSError, KeyError):  # not made yet
-        return 0
-
-
 def kill_at_snapshot(out: Path, k: int, args=RUN, run_dir: str = ".") -> None:
     """Starts `vofdem *args` into `out` and SIGKILLs it once `k` snapshots of out/run_dir/run.h5 are
     complete."""
     p = _vofdem(*args, "--out", str(out))
     deadline = time.monotonic() + 300
-    while _completed(out / run_dir / "run.h5") < k and p.poll() is None and time.monotonic() < deadline:
+    while snapshots_written(out / run_dir / "run.h5") < k and p.poll() is None and time.monotonic() < deadline:
         time.sleep(0.005)
     p.send_signal(signal.SIGKILL)
     p.wait(timeout=60)

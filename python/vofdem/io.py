@@ -517,6 +517,16 @@ def completed_snapshots(times: np.ndarray) -> int:
     return int(np.argmax(bad)) if bad.any() else int(bad.size)
 
 
+def snapshots_written(path) -> int:
+    """The completed snapshots of the run file at `path` (a run.h5); 0 while the file is not made yet or
+    cannot be read (a run still creating it). For watching a run, from this process or another."""
+    try:
+        with open_run(path) as f:
+            return completed_snapshots(f["time"][()])
+    except (OSError, KeyError):
+        return 0
+
+
 def check_xdmf(xmf_path) -> int:
     """Checks that an XDMF file is well-formed, that every HDF dataset it references exists with the
     declared shape and that each temporal collection lists the completed snapshots' times (a killed
