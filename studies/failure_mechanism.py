@@ -91,7 +91,7 @@ def stage_rows(data, analysis, scene) -> list:
 
 def results_md(ens: Path, tag: str, seed: int, df: pd.DataFrame, scene, analysis, rows, figures) -> str:
     done = df[df["status"] == "completed"]
-    lines = [f"# The failure's mechanism: `{scene.name}`, packing {seed}", "",
+    lines = [f"# The failure's mechanism: `{scene.name}`, {scene.stones.shape} stones, packing {seed}", "",
              f"Written by `studies/failure_mechanism.py {shown_path(ens, ROOT)} --tag {tag}` "
              f"({len(done)} completed members): the median member by its stages (the module's "
              "docstring), packing (seed) " + str(seed) + ". Loads: the drag and pressure-gradient force of the "
