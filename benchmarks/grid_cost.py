@@ -86,9 +86,9 @@ def flow_answers(sim) -> dict:
 
 
 def held_spinup(factor: float, settings=(), small: bool = False, seed: int = 0):
-    """The Maeno scene (consistent coupling) on the grid `factor` times as fine as the paper's, its stones
-    held as in a run's spin-up (small: the quick scene, `factor` times as fine as the draft grid); with the
-    factor taken on the paper's grid and the scene."""
+    """(simulation, scene, factor on the paper's grid): the Maeno scene (consistent coupling) on the grid
+    `factor` times as fine as the paper's, its stones held as in a run's spin-up (small: the quick scene,
+    `factor` times as fine as the draft grid)."""
     scene = load_scene(ROOT / "scenes" / "maeno2008_consistent.toml").replace(seed=seed)
     if small:
         scene = scene.quick()
