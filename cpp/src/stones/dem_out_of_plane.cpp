@@ -138,12 +138,14 @@ void DEMSystem::out_of_plane_turn(int i, double h, double dt, bool spherical) {
     store_vec(stone_omega_3d, i, omega);
     return;
   }
+  // in the body frame, L_b = I omega_b + h tau_b through the free turn (three rotations of a vector, not five)
   const Vec3 inertia = vec_at(inertia_3d_, i);
-  Vec3 l = angular_momentum(q, inertia, vec_at(stone_omega_3d, i)) + h * vec_at(stone_torque_3d, i);
-  free_rotation(q, l, inertia, dt);
+  Vec3 l = inertia.cwiseProduct(world_to_body(q, vec_at(stone_omega_3d, i))) +
+           h * world_to_body(q, vec_at(stone_torque_3d, i));
+  free_rotation_body(q, l, inertia, dt);
   q.normalize();
   store_quat(stone_quat, i, q);
-  store_vec(stone_omega_3d, i, angular_velocity(q, inertia, l));
+  store_vec(stone_omega_3d, i, body_to_world(q, l.cwiseQuotient(inertia)));
 }
 
 void DEMSystem::out_of_plane_second_half(double dt) {
@@ -167,10 +169,10 @@ void DEMSystem::out_of_plane_second_half(double dt) {
       const double h_inertia = h / inertia_3d_[3 * i];  // once, not per component
       for (int k = 0; k < 3; ++k) stone_omega_3d[3 * i + k] += h_inertia * stone_torque_3d[3 * i + k];
     } else if (!std::isinf(inertia_3d_[3 * i])) {
-      const Vec3 inertia = vec_at(inertia_3d_, i);
+      // omega_w += R (h tau_b / I): the kick in the body frame (two rotations of a vector, not four)
       const Quat q = quat_at(stone_quat, i);
-      const Vec3 l = angular_momentum(q, inertia, vec_at(stone_omega_3d, i)) + h * vec_at(stone_torque_3d, i);
-      store_vec(stone_omega_3d, i, angular_velocity(q, inertia, l));
+      const Vec3 dw = (h * world_to_body(q, vec_at(stone_torque_3d, i))).cwiseQuotient(vec_at(inertia_3d_, i));
+      store_vec(stone_omega_3d, i, vec_at(stone_omega_3d, i) + body_to_world(q, dw));
     }
     if (!std::isfinite(stone_y[i] + stone_vel_y[i] + stone_omega_3d[3 * i] + stone_omega_3d[3 * i + 1] +
                        stone_omega_3d[3 * i + 2]))

@@ -23,14 +23,15 @@ void check_inertia(const Vec3& inertia) {
 // the flow of T_k = L_bk^2 / (2 I_k) over h: the body turns by phi about its axis k, L_b by -phi
 void rotate_about_axis(int k, Quat& q, Vec3& l_body, const Vec3& inertia, double h) {
   const double phi = l_body[k] / inertia[k] * h;
-  const double c = std::cos(phi), s = std::sin(phi);
+  const double ch = std::cos(0.5 * phi), sh = std::sin(0.5 * phi);  // one angle's sine and cosine, the
+  const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;              // double angle's from them
   const int a = (k + 1) % 3, b = (k + 2) % 3;
   const double la = l_body[a], lb = l_body[b];
   l_body[a] = c * la + s * lb;
   l_body[b] = -s * la + c * lb;
   Vec3 axis = Vec3::Zero();
-  axis[k] = std::sin(0.5 * phi);
-  q = q * Quat(std::cos(0.5 * phi), axis.x(), axis.y(), axis.z());
+  axis[k] = sh;
+  q = q * Quat(ch, axis.x(), axis.y(), axis.z());
 }
 
 }  // namespace
@@ -53,14 +54,18 @@ void free_rotation(Quat& q, const Vec3& l_world, const Vec3& inertia, double dt)
   if (!(std::isfinite(dt) && dt >= 0.0)) {
     throw std::invalid_argument("dt: the time step must be finite and >= 0 [s], got " + std::to_string(dt));
   }
-  // symmetric sequence 1 2 3 2 1 (second order, time-reversible)
   Vec3 l_body = world_to_body(q, l_world);
+  free_rotation_body(q, l_body, inertia, dt);
+  q.normalize();
+}
+
+void free_rotation_body(Quat& q, Vec3& l_body, const Vec3& inertia, double dt) {
+  // symmetric sequence 1 2 3 2 1 (second order, time-reversible)
   rotate_about_axis(0, q, l_body, inertia, 0.5 * dt);
   rotate_about_axis(1, q, l_body, inertia, 0.5 * dt);
   rotate_about_axis(2, q, l_body, inertia, dt);
   rotate_about_axis(1, q, l_body, inertia, 0.5 * dt);
   rotate_about_axis(0, q, l_body, inertia, 0.5 * dt);
-  q.normalize();
 }
 
 void spherical_rotation(Quat& q, const Vec3& omega_world, double dt) {

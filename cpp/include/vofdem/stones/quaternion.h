@@ -57,6 +57,10 @@ double rotational_energy(const Quat& q, const Vec3& inertia, const Vec3& omega_w
 // inertia: principal moments [kg m^2], each > 0; dt >= 0.
 void free_rotation(Quat& q, const Vec3& l_world, const Vec3& inertia, double dt);
 
+// the same in the body frame, for a caller that holds the body angular momentum l_body [kg m^2/s] (turned
+// with the body) and has checked inertia and dt; q is not renormalised
+void free_rotation_body(Quat& q, Vec3& l_body, const Vec3& inertia, double dt);
+
 // torque-free rotation over dt [s] of a body with equal principal moments: turns q exactly by |omega| dt
 // about the world angular velocity omega [rad/s] (kept; q unchanged when omega is 0) and renormalises it.
 // Throws std::invalid_argument if dt is not finite and >= 0.
