@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""The 3D spheres' DEM step as a measured knob: the answers the verdict depends on against their CPU at
-several DEM steps per contact, the finest setting the reference.
+"""The 3D stones' DEM step as a measured knob: the answers the verdict depends on against their CPU at
+several DEM steps per contact, the finest setting the reference; spheres, or with --shape clump the
+clumps of the release study (calibration_3d.ClumpMix(), mu_r = 0; heaps of 300, weirs for the pulls
+across B = 0.3 m, as benchmarks/clump_calibration.py; the parts heap, pull and member).
 
 The knob is vofdem.study.setting(ref, "dem_steps", N): N steps per contact at the same contact stiffness
 (dem_dt = 2e-3 s / N for the spheres' contact of 32 steps of 6.25e-5 s, so k_n = m*/2 (pi / (N dem_dt))^2
@@ -26,7 +28,11 @@ the tables of the jobs kept). CPU: each job's process time on a shared machine.
     nice -n 5 env PYTHONPATH=python python3 benchmarks/dem_step_3d.py --steps 16,24,26,32,48,64 \\
         --parts member,heap,pull --seeds 0,1
 
-Writes benchmarks/results/dem_step_3d.md and docs/figures/dem_step_3d.png.
+    nice -n 5 env PYTHONPATH=python python3 benchmarks/dem_step_3d.py --shape clump --steps 32,35.33,48,85.1 \\
+        --parts heap,pull --seeds 0,1,2,3
+
+Writes benchmarks/results/dem_step_3d.md and docs/figures/dem_step_3d.png (with --shape clump,
+dem_step_3d_clumps.md and .png).
 """
 import argparse
 import json
@@ -42,44 +48,74 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core per job: the CPU is on
 ROOT = Path(__file__).resolve().parents[1]
 from vofdem import _core, builder  # noqa: E402  (after the thread count is set)
 from vofdem import calibration as cal  # noqa: E402
+from vofdem.calibration_3d import ClumpMix, mix_stable_dt  # noqa: E402
 from vofdem.analysis import removal_times  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
-from vofdem.study import setting, shown_path  # noqa: E402
+from vofdem.study import parse_numbers, setting, shown_path  # noqa: E402
 
 CALIBRATION_SCENE = ROOT / "scenes" / "maeno2008_spheres.toml"
 MEMBER_SCENE = ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml"
-MU_R = 0.2  # the spheres' calibrated rolling friction (the member scene's)
 PARTS = ("member", "heap", "pull", "release")
 WINDOW = 0.5          # s: the run's snapshot interval
 RELEASE_WINDOW = 2.0  # s: "at the release" (studies/release_stability.py's --window)
-HEAP = dict(n_stones=500, release_interval=0.04, settle_time_max=10.0)  # sphere_calibration.py's heap
-PULL = dict(hold_beyond=3.0)                                              # ... and pulls
+PULL = dict(hold_beyond=3.0)  # sphere_calibration.py's pulls
+# per stone shape: the rolling friction (the spheres' calibrated one, the clumps' release study's), the heap
+# (sphere_calibration.py's, clump_calibration.py's), the pulled weirs' flume width [m] (None: the scene's)
+# and the clumps' mix, its step margin 1 so that the knob's setting is the step run (a step above the
+# stable one is reported refused, not lowered)
+SHAPES = {
+    "sphere": dict(mu_r=0.2, heap=dict(n_stones=500, release_interval=0.04, settle_time_max=10.0), width=None,
+                   mix=None),
+    "clump": dict(mu_r=0.0, heap=dict(n_stones=300, release_interval=0.04, settle_time_max=10.0), width=0.3,
+                  mix=ClumpMix(step_margin=1.0)),
+}
+SHAPE = "sphere"  # the shape measured (main sets it from --shape)
+
+
+def shape_of() -> dict:
+    return SHAPES[SHAPE]
 DIRECTIONS = ("vertical", "normal", "horizontal")
+
+
+def references():
+    """(calibration scene, member scene) of the shape measured, at their own DEM steps."""
+    o = shape_of()
+    refs = []
+    for path in (CALIBRATION_SCENE, MEMBER_SCENE):
+        s = load_scene(path)
+        s = s.with_value("stones.shape", SHAPE) if s.stones.shape != SHAPE else s
+        refs.append(cal.with_rolling(s, o["mu_r"]))
+    if o["width"] is not None:
+        refs[0] = refs[0].with_value("flume.width", o["width"]).validate()
+    return refs
 
 
 def scenes(steps: float):
     """(calibration scene, member scene) at `steps` DEM steps per contact, the contact stiffness kept."""
-    cal_ref = cal.with_rolling(load_scene(CALIBRATION_SCENE), MU_R)
-    mem_ref = load_scene(MEMBER_SCENE)
-    return tuple(setting(r, "dem_steps", steps).scene(r) for r in (cal_ref, mem_ref))
+    return tuple(setting(r, "dem_steps", steps).scene(r) for r in references())
 
 
 def stable_step(scene, n: int = 21) -> dict:
     """The DEM step of the scene against the DEM's stable step for n spheres of diameters spread evenly over
     d (1 -+ spread), apart: the automatic stiffness from their mean stone as a packing's, the bound from
-    the two lightest (the packed weir's own, measured in the jobs, differs by its draw of sizes)."""
+    the two lightest (the packed weir's own, measured in the jobs, differs by its draw of sizes); clumps:
+    the mix's shapes at the smallest and largest size (mix_stable_dt)."""
     p = builder.dem_params(scene)
     st = scene.stones
     d = st.diameter * np.linspace(1.0 - st.diameter_spread, 1.0 + st.diameter_spread, n)
     pos = np.c_[0.1 + 2.0 * st.diameter * np.arange(n), np.full(n, 0.5 * scene.flume.height)]
     probe = _core.DEMSystem(p, pos, 0.5 * d, np.full(n, st.density), [0] * n)
-    return {"dt": float(p.dt), "stable_dt": float(probe.stable_dt()), "kn": float(probe.stiffness_normal)}
+    mix = shape_of()["mix"]
+    stable = float(probe.stable_dt())  # (and the automatic stiffness made)
+    if mix is not None:
+        stable = mix_stable_dt(p, mix, st.diameter, st.diameter_spread, st.density)
+    return {"dt": float(p.dt), "stable_dt": stable, "kn": float(probe.stiffness_normal)}
 
 
 def heap_job(steps: float, seed: int) -> dict:
     sc, _ = scenes(steps)
     t = time.process_time()
-    r = cal.pour_heap(sc, seed, setup=cal.ReposeSetup(**HEAP))
+    r = cal.pour_heap(sc, seed, setup=cal.ReposeSetup(**shape_of()["heap"]), clumps=shape_of()["mix"])
     return {"angle": r.angle, "left": r.left.angle, "right": r.right.angle, "settled": bool(r.settled),
             "simulated": float(r.time), "cpu": time.process_time() - t}
 
@@ -96,7 +132,7 @@ def pull_job(steps: float, seed: int, per_seed: int = 2) -> dict:
     setup = cal.PullSetup(**PULL).validate()
     dirs = cal.pull_directions(sc)
     t = time.process_time()
-    sys_, state = cal.pull_weir(sc, seed)
+    sys_, state = cal.pull_weir(sc, seed, clumps=shape_of()["mix"])
     cpu_pack = time.process_time() - t
     pulls, substeps = [], 0
     t = time.process_time()
@@ -160,7 +196,12 @@ def member_job(steps: float, seed: int, after: float, switch: bool = False) -> d
 
 
 def run_job(part: str, steps: float, seed: int, args) -> dict:
-    """The job's record; a step the DEM refuses as unstable is recorded as refused with its message."""
+    """The job's record; a step the DEM refuses as unstable is recorded as refused with its message (clumps:
+    a step above the mix's stable step, which the calibration's clump_params would lower, is not run)."""
+    if shape_of()["mix"] is not None:
+        s = stable_step(scenes(steps)[0 if part in ("heap", "pull") else 1])
+        if s["dt"] > s["stable_dt"]:
+            return {"refused": f"dt = {s['dt']:.4g} s exceeds the clumps' stable step {s['stable_dt']:.4g} s"}
     try:
         if part == "heap":
             return heap_job(steps, seed)
@@ -274,7 +315,7 @@ def heap_table(got: dict, ref: float) -> list:
         return [_seeds_cell(every), _each(recs, "angle", "{:.1f}"), f"{m:.1f}", f"{m - base:+.1f}", rest,
                 f"{c:.0f}", x]
 
-    head = ["## (b) Dry angle of repose (500 spheres, mu_r = 0.2)", "",
+    head = [f"## (b) Dry angle of repose ({shape_of()['heap']['n_stones']} {SHAPE}s, mu_r = {shape_of()['mu_r']:g})", "",
             "| steps per contact | heaps (seeds) | angle per heap [deg] | mean [deg] | deviation of the mean from "
             "the reference [deg] | at rest | CPU per heap [s] | CPU ratio |", "|---:|---|---|---:|---:|---|---:|---:|"]
     refs = _ran(got.get(ref, []))
@@ -310,7 +351,7 @@ def pull_table(got: dict, ref: float) -> list:
 
 
 MEMBER_TITLES = {
-    "member": "## (c) Stones lost at the release of a Maeno member (spheres, mu_r = 0.2, consistent coupling)",
+    "member": "## (c) Stones lost at the release of a Maeno member ({shape}s, mu_r = {mu_r:g}, consistent coupling)",
     "release": "## (c') The same weir let go at each step: packed, settled and spun up at 32 steps per contact, "
                "the DEM step changed at the release",
 }
@@ -322,14 +363,14 @@ def member_table(got: dict, ref: float, part: str = "member") -> list:
         lost0 = _mean([r["lost_release"] for r in same_seeds(refs, recs)])
         ca, xa = _cost(recs, refs, lambda r: r["cpu_after"])
         ns, xns = _cost(recs, refs, lambda r: 1e9 * r["cpu_after"] / (r["mobile"] * r["substeps"]))
-        return [_seeds_cell(every), _each(recs, "lost_release"), f"{m:.1f}", f"{m - lost0:+.1f}",
+        return [_seeds_cell(every), _each(recs, "lost_release"), f"{m:.1f}", _fmt(m - lost0, "{:+.1f}"),
                 _each(recs, "lost_end"), f"{c:.0f} ({x})", f"{ca / recs[0]['after']:.2f} ({xa})", f"{ns:.0f} ({xns})",
                 f"{_mean([r['substeps'] / r['after'] for r in recs]):.0f}"]
 
-    head = [MEMBER_TITLES[part], "",
+    head = [MEMBER_TITLES[part].format(shape=SHAPE, mu_r=shape_of()["mu_r"]), "",
             "| steps per contact | members (seeds) | lost within 2 s of the release, per member | mean | deviation "
             "of the mean from the reference | lost by the end, per member | CPU per member [s] (ratio) | CPU per "
-            "simulated s after the release [s] (ratio) | ns per sphere-substep after the release (ratio) | DEM "
+            f"simulated s after the release [s] (ratio) | ns per {SHAPE}-substep after the release (ratio) | DEM "
             "substeps per simulated s |", "|---:|---|---|---:|---:|---|---|---|---|---:|"]
     refs = _ran(got.get(ref, []))
     return setting_rows(head, got, refs, cells) + spread_line("stones lost within 2 s",
@@ -338,7 +379,7 @@ def member_table(got: dict, ref: float, part: str = "member") -> list:
 
 def settings_table(steps) -> list:
     lines = ["## The settings", "",
-             "| steps per contact | DEM step [s] | stable step of two lightest spheres [s] | step / stable | "
+             f"| steps per contact | DEM step [s] | stable step of {'the mix at its sizes' if shape_of()['mix'] else 'two lightest spheres'} [s] | step / stable | "
              "k_n [N/m] | the DEM |", "|---:|---:|---:|---:|---:|---|"]
     for n in steps:
         s = stable_step(scenes(n)[1])
@@ -398,32 +439,18 @@ def figure(data: dict, ref: float, path: Path) -> None:
         ax.set_ylabel(label)
         if ax.lines:
             ax.legend(fontsize=7)
-    fig.suptitle(f"3D spheres: mean (dots) and each packing or heap (dashes) against the CPU; labels: DEM steps "
-                 f"per contact (reference {ref:g}; the same weir: the CPU after the release)", fontsize=9)
+    fig.suptitle(f"3D {SHAPE}s: mean (dots) and each packing or heap (dashes) against the CPU; labels: DEM steps "
+                 f"per contact (reference {ref:g}" + ("; the same weir: the CPU after the release" if SHAPE == "sphere"
+                                                   else "") + ")", fontsize=9)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
-def parse_list(spec: str, name: str, cast, low: float, high: float) -> list:
-    """'16,24' -> [16.0, 24.0]; ValueError naming the option and its range."""
-    vals = []
-    for part in filter(None, (p.strip() for p in spec.split(","))):
-        try:
-            v = cast(part)
-        except ValueError:
-            v = math.nan
-        if not low <= v <= high:
-            raise ValueError(f"{name}: {part!r} is outside the allowed range [{low:g}, {high:g}]")
-        vals.append(v)
-    if not vals:
-        raise ValueError(f"{name}: empty (give at least one value in [{low:g}, {high:g}])")
-    return vals
-
-
 def main(argv=None) -> Path:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--shape", default="sphere", choices=tuple(SHAPES), help="the stones measured")
     p.add_argument("--steps", default="16,24,26,32,48,64",
                    help="DEM steps per contact [-], each in [5, 1000]; the largest is the reference")
     p.add_argument("--parts", default="member,heap,pull", help=f"of {', '.join(PARTS)}, run in this order")
@@ -431,16 +458,24 @@ def main(argv=None) -> Path:
     p.add_argument("--per-seed", type=int, default=2, help="stones pulled per weir, in [1, 10]")
     p.add_argument("--after", type=float, default=10.0, help="member: seconds run after the release [s], in (0, 120]")
     p.add_argument("--no-run", action="store_true", help="only the tables of the jobs kept in --out")
-    p.add_argument("--out", type=Path, default=ROOT / "out" / "dem_step_3d")
-    p.add_argument("--results", type=Path, default=ROOT / "benchmarks" / "results" / "dem_step_3d.md")
-    p.add_argument("--figure", type=Path, default=ROOT / "docs" / "figures" / "dem_step_3d.png")
+    p.add_argument("--out", type=Path, help="the jobs kept (default out/dem_step_3d, with clumps ..._clumps)")
+    p.add_argument("--results", type=Path, help="default benchmarks/results/dem_step_3d.md (clumps: _clumps.md)")
+    p.add_argument("--figure", type=Path, help="default docs/figures/dem_step_3d.png (clumps: _clumps.png)")
     args = p.parse_args(argv)
-    steps = sorted(parse_list(args.steps, "--steps", float, 5.0, 1000.0))
-    seeds = parse_list(args.seeds, "--seeds", int, 0, 10000)
+    global SHAPE
+    SHAPE = args.shape
+    tail = "" if SHAPE == "sphere" else f"_{SHAPE}s"
+    args.out = args.out or ROOT / "out" / f"dem_step_3d{tail}"
+    args.results = args.results or ROOT / "benchmarks" / "results" / f"dem_step_3d{tail}.md"
+    args.figure = args.figure or ROOT / "docs" / "figures" / f"dem_step_3d{tail}.png"
+    steps = sorted(parse_numbers(args.steps, "--steps", 5.0, 1000.0))
+    seeds = parse_numbers(args.seeds, "--seeds", 0, 10000, int)
     parts = [s.strip() for s in args.parts.split(",") if s.strip()]
     for part in parts:
         if part not in PARTS:
             raise ValueError(f"--parts: {part!r} is not one of {', '.join(PARTS)}")
+    if "release" in parts and SHAPE != "sphere":
+        raise ValueError("--parts: 'release' (the spheres' own weir let go at each step) is for --shape sphere only")
     if not 1 <= args.per_seed <= 10:
         raise ValueError(f"--per-seed = {args.per_seed} is outside the allowed range [1, 10]")
     if not 0.0 < args.after <= 120.0:
@@ -474,16 +509,17 @@ def _loads(data) -> str:
 
 
 def write(args, steps, seeds, ref, data) -> None:
-    command = (f"nice -n 5 env PYTHONPATH=python python3 benchmarks/dem_step_3d.py --steps {args.steps} "
+    shape = "" if SHAPE == "sphere" else f"--shape {SHAPE} "
+    command = (f"nice -n 5 env PYTHONPATH=python python3 benchmarks/dem_step_3d.py {shape}--steps {args.steps} "
                f"--parts {args.parts} --seeds {args.seeds} --per-seed {args.per_seed} --after {args.after:g}"
                + (" --no-run" if args.no_run else ""))
-    lines = ["# The 3D spheres' DEM step: the answers against the cost", "",
+    lines = [f"# The 3D {SHAPE}s' DEM step: the answers against the cost", "",
              f"`{command}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {platform.machine()}, one core, "
              f"one job after the other on a machine shared with other jobs (2 cores; {_loads(data)}); CPU is each "
              "job's process time. Jobs kept in `" + shown_path(args.out, ROOT) + "` (run by calls of this script "
              "with subsets of --parts, --steps and --seeds; each job once).", "",
              f"The knob: N DEM steps per contact at the same contact stiffness (`vofdem.study.setting(ref, "
-             f"'dem_steps', N)`: dem_dt = 2e-3 s / N), mu_r = {MU_R:g}; the reference is the finest setting, "
+             f"'dem_steps', N)`: dem_dt = 2e-3 s / N), mu_r = {shape_of()['mu_r']:g}; the reference is the finest setting, "
              f"N = {ref:g}. Deviations are from the reference's mean over the same seeds; the spread between the "
              "packings is the per-seed values side by side. A '-' or a missing row: not run.", ""]
     lines += settings_table(steps) + [""]

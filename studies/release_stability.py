@@ -60,6 +60,7 @@ from vofdem.io import RunData  # noqa: E402
 from vofdem.run import analyse_run  # noqa: E402
 from vofdem.scene import load_scene  # noqa: E402
 from vofdem.study import number_or_dash as _f, shown_path, sphere_volume, submerged_weight  # noqa: E402
+from vofdem.study import parse_numbers  # noqa: E402
 from maeno2008_verdict import config_md  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -373,16 +374,7 @@ def figure(rows, configs, heaps, path: Path) -> None:
 
 def parse_mu(spec: str, name: str) -> list:
     """'0,0.2' -> [0.0, 0.2]; '' -> []; ValueError naming the option and the range [0, 2]."""
-    vals = []
-    for part in filter(None, (p.strip() for p in spec.split(","))):
-        try:
-            v = float(part)
-        except ValueError:
-            v = math.nan
-        if not 0.0 <= v <= 2.0:
-            raise ValueError(f"{name}: {part!r} is not a rolling friction in the allowed range [0, 2]")
-        vals.append(v)
-    return vals
+    return parse_numbers(spec, name, 0.0, 2.0, what="a rolling friction", allow_empty=True)
 
 
 def _paths_shown(parser, args) -> str:

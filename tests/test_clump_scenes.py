@@ -14,7 +14,8 @@ WIDTH = 0.1  # [m]
 def small_clump_scene(**numerics):
     """A 8 cm weir of 3 cm clumps across a 10 cm flume (the spheres' test scene, test_sphere_scenes.py), with
     the DEM step of 2.5e-5 s in 80 steps per contact: the scene's stiffness (1e-4 s in 20), at a step the
-    clumps' turning allows (their stable step is ~0.3 of the spheres' at a stiffness)."""
+    clumps' turning allowed under the former bound of their stable step (~0.3 of the spheres' at a stiffness;
+    ~0.7 under clump_model.h's)."""
     d = vofdem.Scene.maeno2008().to_dict()
     d["stones"].update(shape="clump", diameter=0.03)
     d["flume"].update(width=WIDTH, length=1.6, height=0.2)

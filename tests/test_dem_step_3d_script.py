@@ -119,3 +119,32 @@ def test_refusals_name_the_option(tmp_path, argv, match):
     with pytest.raises(ValueError, match=match):
         ds.main(argv + ["--no-run", "--out", str(tmp_path), "--results", str(tmp_path / "r.md"),
                         "--figure", str(tmp_path / "f.png")])
+
+
+def test_the_clumps_knob_keeps_their_stiffness_and_refuses_steps_above_their_stable_one(monkeypatch):
+    monkeypatch.setattr(ds, "SHAPE", "clump")
+    for sc in ds.scenes(32.0):
+        assert sc.stones.shape == "clump" and sc.stones.rolling_friction == 0.0
+        assert sc.numerics.dem_contact_steps * sc.numerics.dem_dt == pytest.approx(2e-3, rel=1e-12)
+    assert ds.scenes(32.0)[0].flume.width == 0.3  # the pulled weirs' (clump_calibration.py's)
+    # the mix's stable step at this stiffness: ~6.29e-5 s (clump_model.h), between 28 and 32 steps per contact
+    rows = ds.settings_table([28.0, 32.0])
+    assert rows[-2].startswith("| 28 | 7.143e-05 |") and rows[-2].endswith("| refuses (step above stable_dt()) |")
+    assert rows[-1].startswith("| 32 | 6.25e-05 |") and rows[-1].endswith("| accepts |")
+
+    def ran(steps, seed):
+        raise AssertionError("a step above the clumps' stable step was run")
+
+    monkeypatch.setattr(ds, "heap_job", ran)
+    rec = ds.run_job("heap", 28.0, 0, types.SimpleNamespace(per_seed=2, after=1.0))
+    assert rec["refused"].startswith("dt = 7.143e-05 s exceeds the clumps' stable step")
+
+
+def test_the_clumps_have_no_release_part(tmp_path):
+    with pytest.raises(ValueError, match="'release'.*sphere only"):
+        ds.main(["--shape", "clump", "--parts", "release", "--no-run", "--out", str(tmp_path), "--results",
+                 str(tmp_path / "r.md"), "--figure", str(tmp_path / "f.png")])
+    assert ds.SHAPE == "clump"
+    ds.main(["--steps", "32,64", "--parts", "member", "--no-run", "--out", str(tmp_path), "--results",
+             str(tmp_path / "r.md"), "--figure", str(tmp_path / "f.png")])
+    assert ds.SHAPE == "sphere"  # each call sets it

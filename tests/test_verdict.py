@@ -15,6 +15,7 @@ from vofdem.cli import main as cli_main
 from vofdem.fragility import empirical_quantile
 from vofdem.scene import Scene, load_scene
 from vofdem.study import event_summary, knob_settings, km_quantiles, median_shift, shown_path, stage_fractions
+from vofdem.study import parse_numbers
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -343,3 +344,15 @@ def test_the_coupling_in_words_names_3d_stones_by_their_drag_alone():
     assert coupling(load_scene(ROOT / "scenes" / "maeno2008_spheres_rolling_consistent.toml")) == \
         "consistent, true void fraction"
     assert coupling(load_scene(ROOT / "scenes" / "maeno2008_spheres.toml")) == "paper's drag, true void fraction"
+
+
+def test_parse_numbers_names_the_option_the_value_and_the_range():
+    assert parse_numbers("16, 24", "--steps", 5.0, 1000.0) == [16.0, 24.0]
+    assert parse_numbers("0,3", "--seeds", 0, 10, int) == [0, 3]
+    assert parse_numbers("", "--mu-r", 0.0, 2.0, allow_empty=True) == []
+    with pytest.raises(ValueError, match=r"--steps: '4' is outside the allowed range \[5, 1000\]"):
+        parse_numbers("16,4", "--steps", 5.0, 1000.0)
+    with pytest.raises(ValueError, match=r"--mu-r: 'x' is not a rolling friction in the allowed range \[0, 2\]"):
+        parse_numbers("x", "--mu-r", 0.0, 2.0, what="a rolling friction")
+    with pytest.raises(ValueError, match="--seeds: empty"):
+        parse_numbers(" , ", "--seeds", 0, 10, int)

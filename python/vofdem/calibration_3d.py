@@ -83,10 +83,8 @@ def make_clumps(system, mix: ClumpMix, seed: int) -> None:
     system.stone_quat[:] = random_quaternions(rng, len(d))
 
 
-def clump_params(params, mix: ClumpMix, d_mean: float, spread: float, density: float):
-    """params with the DEM step lowered to step_margin of the clumps' stable step (DEMSystem.stable_dt of the
-    mix's shapes at d_mean (1 -+ spread)) and the steps per contact raised by the same factor, so that the
-    contact stiffness stays the scene's; unchanged where the step is stable already."""
+def mix_stable_dt(params, mix: ClumpMix, d_mean: float, spread: float, density: float) -> float:
+    """The stable DEM step [s] (DEMSystem.stable_dt) of the mix's shapes at d_mean (1 -+ spread) under params."""
     units = mix.unit_shapes()
     sizes = [d_mean * (1.0 - spread), d_mean * (1.0 + spread)]
     n = len(units) * len(sizes)
@@ -94,7 +92,14 @@ def clump_params(params, mix: ClumpMix, d_mean: float, spread: float, density: f
     probe = _core.DEMSystem(params, pos, np.full(n, 0.5 * d_mean), np.full(n, density), [0] * n)
     shapes = [u * d for u in units for d in sizes]
     probe.set_clumps(np.vstack(shapes), np.r_[0, np.cumsum([len(u) for u in shapes])].tolist())
-    stable = float(probe.stable_dt())
+    return float(probe.stable_dt())
+
+
+def clump_params(params, mix: ClumpMix, d_mean: float, spread: float, density: float):
+    """params with the DEM step lowered to step_margin of the clumps' stable step (mix_stable_dt) and the
+    steps per contact raised by the same factor, so that the contact stiffness stays the scene's; unchanged
+    where the step is stable already."""
+    stable = mix_stable_dt(params, mix, d_mean, spread, density)
     p = params
     if p.dt > mix.step_margin * stable:
         f = p.dt / (mix.step_margin * stable)

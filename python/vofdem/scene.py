@@ -207,7 +207,7 @@ class Stones(_Section):
                          "stone shape: 'disc' (the paper's) or 'polygon' (random convex polygons of quarried-stone "
                          "form, one per stone from the seed); 'sphere' (3D spheres across flume.width, packed in 3D); "
                          "'clump' (3D clumps of 2-4 spheres across flume.width, packed in 3D; their DEM step is "
-                         "about 0.3 of the spheres', numerics.dem_dt)")
+                         "about 0.7 of the spheres', numerics.dem_dt)")
     polygon_vertices_min: int = _p(5, None, 3, 16, "fewest vertices of a polygon stone [-]; usual 5")
     polygon_vertices_max: int = _p(8, None, 3, 16, "most vertices of a polygon stone [-]; usual 8")
     aspect_ratio: float = _p(1.5, None, 1.0, 3.0, "length / thickness of a polygon stone's section [-]; usual 1.5")

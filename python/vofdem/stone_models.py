@@ -169,7 +169,7 @@ class ClumpFront(StoneFront):
     pair_2 / triangle_3 / tetra_4 at 1 : 0.8 : 0.6, turned at random, poured on a lattice of their real
     extent and lightly compacted: clump_packing.cpp) across ``flume.width``, and coupled with n_exp = 0 as
     spheres are (their union's volume in each cell's slab). Trapezoids of uniform sizes only, packed only
-    (no explicit stones: they would need shapes drawn for them). Their stable DEM step is about 0.3 of the
+    (no explicit stones: they would need shapes drawn for them). Their stable DEM step is about 0.7 of the
     spheres' at the same stiffness: a scene gives a numerics.dem_dt they allow (the DEMSystem refuses one
     too long, naming it). The calibration takes other mixes as an argument (calibration_3d.ClumpMix)."""
 

@@ -66,6 +66,26 @@ def shown_path(path, root, tail: int = 3) -> str:
         return str(Path(*full.parts[1:][-tail:]))
 
 
+def parse_numbers(spec: str, name: str, low: float, high: float, cast=float, what: str = "",
+                  allow_empty: bool = False) -> list:
+    """A study script's comma list: '16,24' -> [16.0, 24.0] (cast each); ValueError naming the option `name`,
+    the bad part, what a value is (`what`, e.g. 'a rolling friction') and the range [low, high]; an empty
+    list refused unless allow_empty."""
+    vals = []
+    for part in filter(None, (p.strip() for p in spec.split(","))):
+        try:
+            v = cast(part)
+        except ValueError:
+            v = math.nan
+        if not low <= v <= high:
+            raise ValueError(f"{name}: {part!r} is {f'not {what} in' if what else 'outside'} the allowed range "
+                             f"[{low:g}, {high:g}]")
+        vals.append(v)
+    if not vals and not allow_empty:
+        raise ValueError(f"{name}: empty (give at least one value in [{low:g}, {high:g}])")
+    return vals
+
+
 def number_or_dash(v, fmt: str = "{:.2f}") -> str:
     """v formatted by `fmt` for a results table, '-' where it is None or nan (not measured)."""
     return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)

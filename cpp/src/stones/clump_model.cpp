@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Eigenvalues>
+
 #include "common/state_fields.h"
 #include "stones/clump_packing.h"
 #include "stones/sphere_loads.h"
@@ -112,6 +114,28 @@ void ClumpModel::adopt(const std::vector<const Clump*>& of) {
   }
   sphere_.swap(out), offset_.swap(offset), volume_.swap(volume), moment_.swap(moment), bound_.swap(bound);
   shaped_ = true;
+  derive_levers();
+}
+
+// each stone's largest a_n^2 and a_t^2 over its sub-spheres (clump_model.h, stable step), per unit density
+void ClumpModel::derive_levers() {
+  const std::size_t n = volume_.size();
+  lever_.assign(2 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d inv(1.0 / moment_[3 * i], 1.0 / moment_[3 * i + 1], 1.0 / moment_[3 * i + 2]);
+    const double inv_root_j1 = 1.0 / std::sqrt(std::min({moment_[3 * i], moment_[3 * i + 1], moment_[3 * i + 2]}));
+    for (int g = offset_[i]; g < offset_[i + 1]; ++g) {
+      const Eigen::Vector3d c(sphere_[4 * g], sphere_[4 * g + 1], sphere_[4 * g + 2]);
+      Eigen::Matrix3d cx;
+      cx << 0.0, -c[2], c[1], c[2], 0.0, -c[0], -c[1], c[0], 0.0;
+      const Eigen::Matrix3d a = cx.transpose() * inv.asDiagonal() * cx;
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(a, Eigen::EigenvaluesOnly);
+      const double an2 = std::max(0.0, eig.eigenvalues()[2]);
+      const double at = std::sqrt(an2) + sphere_[4 * g + 3] * inv_root_j1;
+      lever_[2 * i] = std::max(lever_[2 * i], an2);
+      lever_[2 * i + 1] = std::max(lever_[2 * i + 1], at * at);
+    }
+  }
 }
 
 // without shapes set: one sphere of stone_radius per stone (the sphere model's stone)
@@ -125,6 +149,7 @@ void ClumpModel::default_shapes(const DEMSystem& s) {
     for (int k = 0; k < 3; ++k) moment_[3 * i + k] = 0.4 * volume_[i] * r * r;
   }
   offset_[n] = static_cast<int>(n);
+  derive_levers();
 }
 
 double ClumpModel::volume(const DEMSystem&, int i) const { return volume_[i]; }
@@ -156,16 +181,19 @@ double ClumpModel::projected_area(const DEMSystem& s, int i, double, double) con
 double ClumpModel::stable_dt(const DEMSystem& s) const {
   const DEMParams& p = s.params();
   const bool rot = p.flags & kDEMRotation;
-  double lam = 0.0, m_min = std::numeric_limits<double>::infinity();
+  const double kn = s.stiffness_normal(), kt = s.stiffness_tangential();
+  double w2 = 0.0, m_min = std::numeric_limits<double>::infinity();
   for (int i = 0; i < s.n(); ++i) {
     if (!s.stone_active[i] || s.stone_fixed[i]) continue;
-    const double m = s.mass(i), r = bound_[i];
+    // without rotation the levers do not count (an infinite density divides them away)
+    const double m = s.mass(i), rho = rot ? m / volume_[i] : std::numeric_limits<double>::infinity();
     m_min = std::min(m_min, m);
-    lam = std::max(lam, 1.0 / m + (rot ? r * r / principal_inertia(s, i, m)[0] : 0.0));
+    const double a = kn * (1.0 / m + lever_[2 * i] / rho), c = kt * (1.0 / m + lever_[2 * i + 1] / rho);
+    const double b = std::sqrt(kn * kt * lever_[2 * i] * lever_[2 * i + 1]) / rho;
+    w2 = std::max(w2, 0.5 * (a + c) + std::hypot(0.5 * (a - c), b));  // the 2 x 2 form's largest eigenvalue
   }
-  const double kn = s.stiffness_normal(), kt = s.stiffness_tangential();
-  if (!(lam > 0.0) || kn <= 0.0) return std::numeric_limits<double>::infinity();
-  const double w = std::sqrt(4.0 * std::max(kn, kt) * lam + rolling_spin_stiffness(s, m_min));
+  if (!(w2 > 0.0) || kn <= 0.0) return std::numeric_limits<double>::infinity();
+  const double w = std::sqrt(2.0 * w2 + rolling_spin_stiffness(s, m_min));  // two such stones
   // explicit dashpots in a packing: the disc model's bound (disc_model.cpp)
   const double zeta = (p.flags & kDEMDamping) ? s.damping_ratio() : 0.0;
   const double a = std::sqrt(DEMSystem::kPackedContacts), az = a * zeta;
@@ -361,6 +389,7 @@ void ClumpModel::import_state(DEMSystem& s, const DEMState& t) {
     bound_[i] = bounding_radius(parts);
   }
   shaped_ = true;
+  derive_levers();
   std::vector<ContactPair>& list = pairs(s);
   list.clear();
   pair_history_.clear();

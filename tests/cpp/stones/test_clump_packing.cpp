@@ -46,8 +46,8 @@ WeirSpec small_weir(std::uint64_t seed) {
   return s;
 }
 
-// the clumps' stable step is ~0.32 of the spheres' at the same stiffness (elongated stones turn faster:
-// clump_model.h), so 80 steps of 5e-5 s per contact: 4 times softer than the spheres' 20 of 1e-4 s
+// 80 steps of 5e-5 s per contact, 4 times softer than the spheres' 20 of 1e-4 s: within the former bound of the
+// clumps' stable step (~0.32 of the spheres' at the same stiffness; ~0.7 under clump_model.h's)
 DEMParams flume(double width) {
   DEMParams p;
   p.width = width;

@@ -19,10 +19,22 @@
 // the damper's I_r; Yade's and LAMMPS's clumps have none, and with the rolling friction 0 (the default)
 // neither have these.
 //
-// Stable step: from the stone's mass and its smallest principal moment, as for polygons,
-//   omega^2 = 4 max(k_n, k_t) (1/M + R^2 / J_1)   (two contacts of a pair, two equal stones, R the
-//   bounding radius), and the disc model's dashpot bound. A sub-sphere has no mass of its own: every
-//   contact loads the whole rigid body, so its mass share would understate the mode's inertia.
+// Stable step: the highest mode of one contact, bounded over every contact point of every sub-sphere.
+// A contact at rho = c + r n from the centre of mass (sub-sphere centre c, radius r, normal n) has the
+// stiffness K = k_n n n^T + k_t (1 - n n^T) on the point's velocity, whose inverse mass is
+// W = 1/M + [rho]x^T J^-1 [rho]x, so omega^2 = lambda_max(K^1/2 W K^1/2). As rho x n = c x n, with
+//   a_n^2 = lambda_max([c]x^T J^-1 [c]x)   and   a_t = a_n + r / sqrt(J_1)
+// (the largest J^-1-norms of c x u and of c x u + r n x u over unit u), the triangle inequality gives for
+// a unit x = x_n n + x_t t:  x^T K^1/2 W K^1/2 x <= (k_n x_n^2 + k_t x_t^2) / M + (sqrt(k_n) |x_n| a_n +
+// sqrt(k_t) |x_t| a_t)^2, so omega^2 is at most the largest eigenvalue of
+//   [ k_n (1/M + a_n^2)             sqrt(k_n k_t) a_n a_t ]
+//   [ sqrt(k_n k_t) a_n a_t          k_t (1/M + a_t^2)    ]    per stone, twice that for a pair of them,
+// plus the rolling spring's mode; the disc model's dashpot bound on top. A sub-sphere has no mass of its
+// own: every contact loads the whole rigid body. One centred sphere (c = 0) has the sphere's modes
+// exactly. Measured on beds of 300 clumps of 4.3-5.3 cm in a 0.2 m flume at the Maeno scenes' stiffness
+// under critical damping, stepped beyond this bound: box_8 clumps settled at 1.1 times it and were kept
+// moving at 1.25; the default mix, still settling, gained energy at 1.9 times it, not at 1.4. The runs
+// take 0.9 of it (calibration_3d.ClumpMix.step_margin).
 //
 // Coupling to the 2D vertical flow (as the sphere model's, width-averaged): each cell's slab dx x dz x B
 // holds the stone's volume, each sub-sphere's exact slab volumes (slab_volume.h) scaled by
@@ -115,6 +127,7 @@ class ClumpModel final : public DiscModel {
   };
   void default_shapes(const DEMSystem& s);
   void adopt(const std::vector<const Clump*>& of);
+  void derive_levers();
   bool outlined(const DEMSystem& s) const;
   std::array<double, 2> world_xz(const DEMSystem& s, int i, int g) const;
   void world_spheres(const DEMSystem& s);
@@ -127,6 +140,7 @@ class ClumpModel final : public DiscModel {
   std::vector<double> volume_;   // union volume [m^3], n
   std::vector<double> moment_;   // principal moments per unit density (J / rho) [m^5], 3n
   std::vector<double> bound_;    // bounding radius [m], n
+  std::vector<double> lever_;    // a_n^2 and a_t^2 per unit density (rho a^2) [m^-3], 2n (stable_dt)
   std::vector<double> world_;    // sub-sphere centres in the world [m], 3 per sub-sphere (scratch)
   std::vector<std::vector<SubContact>> pair_history_;  // per listed pair, its touching sub-sphere pairs
   std::vector<SphereContactHistory> wall_history_;     // per (sub-sphere, plane of planes_)
