@@ -59,6 +59,7 @@ PARTS = ("member", "heap", "pull", "release")
 WINDOW = 0.5          # s: the run's snapshot interval
 RELEASE_WINDOW = 2.0  # s: "at the release" (studies/release_stability.py's --window)
 PULL = dict(hold_beyond=3.0)  # sphere_calibration.py's pulls
+DIRECTIONS = ("vertical", "normal", "horizontal")
 # per stone shape: the rolling friction (the spheres' calibrated one, the clumps' release study's), the heap
 # (sphere_calibration.py's, clump_calibration.py's), the pulled weirs' flume width [m] (None: the scene's)
 # and the clumps' mix, its step margin 1 so that the knob's setting is the step run (a step above the
@@ -74,7 +75,6 @@ SHAPE = "sphere"  # the shape measured (main sets it from --shape)
 
 def shape_of() -> dict:
     return SHAPES[SHAPE]
-DIRECTIONS = ("vertical", "normal", "horizontal")
 
 
 def references():
@@ -315,7 +315,8 @@ def heap_table(got: dict, ref: float) -> list:
         return [_seeds_cell(every), _each(recs, "angle", "{:.1f}"), f"{m:.1f}", f"{m - base:+.1f}", rest,
                 f"{c:.0f}", x]
 
-    head = [f"## (b) Dry angle of repose ({shape_of()['heap']['n_stones']} {SHAPE}s, mu_r = {shape_of()['mu_r']:g})", "",
+    o = shape_of()
+    head = [f"## (b) Dry angle of repose ({o['heap']['n_stones']} {SHAPE}s, mu_r = {o['mu_r']:g})", "",
             "| steps per contact | heaps (seeds) | angle per heap [deg] | mean [deg] | deviation of the mean from "
             "the reference [deg] | at rest | CPU per heap [s] | CPU ratio |", "|---:|---|---|---:|---:|---|---:|---:|"]
     refs = _ran(got.get(ref, []))
@@ -378,8 +379,9 @@ def member_table(got: dict, ref: float, part: str = "member") -> list:
 
 
 def settings_table(steps) -> list:
+    probe = "the mix at its sizes" if shape_of()["mix"] else "two lightest spheres"
     lines = ["## The settings", "",
-             f"| steps per contact | DEM step [s] | stable step of {'the mix at its sizes' if shape_of()['mix'] else 'two lightest spheres'} [s] | step / stable | "
+             f"| steps per contact | DEM step [s] | stable step of {probe} [s] | step / stable | "
              "k_n [N/m] | the DEM |", "|---:|---:|---:|---:|---:|---|"]
     for n in steps:
         s = stable_step(scenes(n)[1])
@@ -519,8 +521,8 @@ def write(args, steps, seeds, ref, data) -> None:
              "job's process time. Jobs kept in `" + shown_path(args.out, ROOT) + "` (run by calls of this script "
              "with subsets of --parts, --steps and --seeds; each job once).", "",
              f"The knob: N DEM steps per contact at the same contact stiffness (`vofdem.study.setting(ref, "
-             f"'dem_steps', N)`: dem_dt = 2e-3 s / N), mu_r = {shape_of()['mu_r']:g}; the reference is the finest setting, "
-             f"N = {ref:g}. Deviations are from the reference's mean over the same seeds; the spread between the "
+             f"'dem_steps', N)`: dem_dt = 2e-3 s / N), mu_r = {shape_of()['mu_r']:g}; the reference is the finest "
+             f"setting, N = {ref:g}. Deviations are from the reference's mean over the same seeds; the spread between the "
              "packings is the per-seed values side by side. A '-' or a missing row: not run.", ""]
     lines += settings_table(steps) + [""]
     lines += pull_table(data["pull"], ref) + [""]
