@@ -17,6 +17,7 @@
 
 #include "common/state_fields.h"
 #include "stones/clump_packing.h"
+#include "stones/sphere_kernels.h"
 #include "stones/sphere_loads.h"
 #include "vofdem/common/check.h"
 #include "vofdem/common/numbers.h"
@@ -264,11 +265,11 @@ ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
     std::vector<SubContact>& hist = pair_history_[k];
     const double dx = s.stone_pos[2 * j] - s.stone_pos[2 * i], dy = s.stone_y[j] - s.stone_y[i];
     const double dz = s.stone_pos[2 * j + 1] - s.stone_pos[2 * i + 1], rs = bound_[i] + bound_[j];
+    for (SubContact& c : hist) c.touched = false;
     if (dx * dx + dy * dy + dz * dz >= rs * rs) {
-      hist.clear();
+      t.dissipated += open_untouched(i, j, hist, law);
       continue;
     }
-    for (SubContact& c : hist) c.touched = false;
     for (int a = offset_[i]; a < offset_[i + 1]; ++a)
       for (int b = offset_[j]; b < offset_[j + 1]; ++b) {
         const double ex = w[3 * b] - w[3 * a], ey = w[3 * b + 1] - w[3 * a + 1], ez = w[3 * b + 2] - w[3 * a + 2];
@@ -282,10 +283,22 @@ ContactTally ClumpModel::contact_forces(DEMSystem& s, double dt) {
             body(s, i, a, 1.0 / inv_m[i]), body(s, j, b, 1.0 / inv_m[j]), it->h, law, zeta, dt);
         apply(s, i, j, f, t, dt);
       }
-    // a sub-sphere pair that opened starts again from zero
-    hist.erase(std::remove_if(hist.begin(), hist.end(), [](const SubContact& c) { return !c.touched; }), hist.end());
+    t.dissipated += open_untouched(i, j, hist, law);
   }
   return t;
+}
+
+// the sub-sphere pairs of stones i, j not touched in this pass opened: they leave the history, and their
+// springs' energy is dissipated (returned [J])
+double ClumpModel::open_untouched(int i, int j, std::vector<SubContact>& hist, const SphereContactLaw& law) const {
+  double e = 0.0;
+  for (SubContact& c : hist)
+    if (!c.touched) {
+      const double ra = sphere_[4 * (offset_[i] + c.a) + 3], rb = sphere_[4 * (offset_[j] + c.b) + 3];
+      e += sphere_kernels::release(c.h, law, ra * rb / (ra + rb));
+    }
+  hist.erase(std::remove_if(hist.begin(), hist.end(), [](const SubContact& c) { return !c.touched; }), hist.end());
+  return e;
 }
 
 ContactTally ClumpModel::wall_forces(DEMSystem& s, double dt) {
@@ -307,7 +320,10 @@ ContactTally ClumpModel::wall_forces(DEMSystem& s, double dt) {
         if (gap >= sphere_[4 * g + 3] && zero(h)) continue;
         const SphereContactLoads f =
             sphere_plane_contact_unchecked(body(s, i, g, m_eff[i]), planes_[w], h, law, zeta, dt);
-        if (f.touching) apply(s, i, -1, f, t, dt);
+        if (f.touching)
+          apply(s, i, -1, f, t, dt);
+        else
+          t.dissipated += f.energy_slip;  // it opened
       }
     }
   }

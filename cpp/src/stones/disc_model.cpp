@@ -11,6 +11,7 @@
 #include "vofdem/coupling/porosity_map.h"
 #include "vofdem/stones/dem_contact.h"
 #include "vofdem/stones/dem_system.h"
+#include "vofdem/stones/rolling_resistance.h"
 #include "vofdem/stones/stone_packing.h"
 #include "vofdem/stones/weir_packing.h"
 
@@ -77,6 +78,7 @@ ContactTally DiscModel::contact_forces(DEMSystem& s, double dt) {
     const double rs = ri + rj;
     const double d2 = dx * dx + dz * dz;
     if (d2 >= rs * rs) {
+      if (c.xi != 0.0 || c.mr != 0.0) t.dissipated += opened_energy(c.xi, kt, c.mr, rolling_stiffness(kt, c.roll_r));
       c.xi = 0.0;
       c.mr = 0.0;
       continue;
@@ -133,8 +135,10 @@ ContactTally DiscModel::wall_forces(DEMSystem& s, double dt) {
       const double r = s.stone_radius[i];
       const double d = (s.stone_pos[2 * i] - wall.point[0]) * wx + (s.stone_pos[2 * i + 1] - wall.point[1]) * wz;
       if (d >= r) {
+        double& mr = wall_mr[static_cast<std::size_t>(i) * nw + w];
+        if (xi != 0.0 || mr != 0.0) t.dissipated += opened_energy(xi, kt, mr, rolling_stiffness(kt, r));
         xi = 0.0;
-        wall_mr[static_cast<std::size_t>(i) * nw + w] = 0.0;
+        mr = 0.0;
         continue;
       }
       ++t.count;

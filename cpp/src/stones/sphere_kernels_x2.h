@@ -162,11 +162,13 @@ VOFDEM_SPHERE_INLINE void apply_law(const Contact& a, const Contact& b, const Sp
   const __m128d slide = root_exceeds(ft2, cap_t, sqrt(ft2));
   if (any(slide)) {
     const D2 f = sqrt(ft2);
-    const D2 old2 = dot(spring, spring);
+    const V2 step = vt * dt2;
+    const V2 before = spring - step;
     const V2 ft_cap = ft * (cap_t / f);
     const V2 spring_cap =
         kt_s > 0.0 ? V2(-(ft_cap + ct * vt) / kt) : V2{zero, zero, zero};
-    const D2 slip = energy_slip + splat(0.5) * kt * (old2 - dot(spring_cap, spring_cap));
+    const V2 back = spring_cap - step;
+    const D2 slip = energy_slip + splat(0.5) * kt * (dot(before, before) - dot(back, back));  // slip_energy
     ft = select(slide, ft_cap, ft);
     spring = select(slide, spring_cap, spring);
     energy_slip = select(slide, slip, energy_slip);

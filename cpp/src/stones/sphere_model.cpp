@@ -103,7 +103,8 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
   const double* y = s.stone_y.data();
   const double* radius = s.stone_radius.data();
   const double* inertia = inertia_3d(s).data();
-  // the pairs whose spheres overlap, and their geometry
+  ContactTally t;
+  // the pairs whose spheres overlap, and their geometry; the others' histories start again from zero
   overlap_.resize(list.size());
   std::size_t m = 0;
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -111,7 +112,8 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
     const double dx = pos[2 * j] - pos[2 * i], dy = y[j] - y[i], dz = pos[2 * j + 1] - pos[2 * i + 1];
     const double rs = radius[i] + radius[j];
     if (dx * dx + dy * dy + dz * dz >= rs * rs) {
-      pair_history_[k] = SphereContactHistory();
+      if (!zero(pair_history_[k]))
+        t.dissipated += sphere_kernels::release(pair_history_[k], law, pair_constants_[k].r_eff);
       continue;
     }
     overlap_[m++].k = k;
@@ -151,8 +153,8 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
 #endif
   for (std::size_t c = 0; c < m; ++c) {
     const Overlap& o = overlap_[c];
-    if (!o.touching) {
-      pair_history_[o.k] = SphereContactHistory();  // the contact opened: its histories start again from zero
+    if (!o.touching) {  // the contact opened
+      t.dissipated += sphere_kernels::release(pair_history_[o.k], law, pair_constants_[o.k].r_eff);
       loads_[c] = PairLoads{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0.0, 0.0, 0.0};
       continue;
     }
@@ -173,7 +175,6 @@ ContactTally SphereModel::contact_forces(DEMSystem& s, double dt) {
   if (waiting < m) law_at(waiting);
 #endif
   // added to the stones in the list's order
-  ContactTally t;
   for (std::size_t c = 0; c < m; ++c) apply(s, list[overlap_[c].k].i, list[overlap_[c].k].j, loads_[c], t, dt);
   return t;
 }
@@ -192,7 +193,10 @@ ContactTally SphereModel::wall_forces(DEMSystem& s, double dt) {
     SphereContactHistory& h = wall_history_[static_cast<std::size_t>(i) * np + w];
     const SphereContactLoads f =
         sphere_kernels::sphere_plane(sphere_of(s, inertia, i, m_eff[i]), plane[w], h, law, zeta, dt);
-    if (f.touching) apply(s, i, -1, f, t, dt);
+    if (f.touching)
+      apply(s, i, -1, f, t, dt);
+    else
+      t.dissipated += f.energy_slip;  // it opened
   };
   // the plane's walls: the stones near each (the neighbour build's candidates)
   for (std::size_t w = 0; w < nw; ++w)

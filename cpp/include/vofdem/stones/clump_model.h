@@ -132,6 +132,7 @@ class ClumpModel final : public DiscModel {
   std::array<double, 2> world_xz(const DEMSystem& s, int i, int g) const;
   void world_spheres(const DEMSystem& s);
   SphereOfBody body(const DEMSystem& s, int i, int g, double mass) const;
+  double open_untouched(int i, int j, std::vector<SubContact>& hist, const SphereContactLaw& law) const;
   std::size_t np() const { return planes_.size(); }
 
   bool shaped_ = false;          // shapes set (else one sphere of stone_radius per stone, made at prepare)

@@ -104,7 +104,8 @@ struct SphereContactLoads {
   Eigen::Vector3d force_i = Eigen::Vector3d::Zero();   // on i [N] (on j: -force_i)
   Eigen::Vector3d torque_i = Eigen::Vector3d::Zero();  // on i about its centre of mass [N m]
   Eigen::Vector3d torque_j = Eigen::Vector3d::Zero();  // on j about its centre of mass [N m]
-  double energy_slip = 0.0;     // spring energy lost at the Coulomb and rolling caps in this step [J]
+  double energy_slip = 0.0;     // spring energy lost at the Coulomb and rolling caps in this step, or held by
+                                // the springs of a contact that opened (dropped with them) [J]
   double power_damp = 0.0;      // power of the dashpots [W] (>= 0)
   double energy_spring = 0.0;   // energy in the normal, tangential and rolling springs [J]
   bool sliding = false;         // the tangential spring sits at the Coulomb cap
