@@ -316,8 +316,8 @@ inline void pair_manifold(const PolygonFrame& f, int i, int j, int flip, int edg
 }  // namespace
 
 // the narrow phase of every listed pair: the touching ones' manifolds into contacts_ (in the pairs'
-// order), their count returned; the springs of the others cleared
-std::size_t PolygonModel::touching(DEMSystem& s) {
+// order), their count returned; the springs of the others cleared, their energy (kt [N/m]) added to opened
+std::size_t PolygonModel::touching(DEMSystem& s, double kt, double& opened) {
   ++eval_;  // the world geometry of the last evaluation is stale
   std::vector<ContactPair>& list = pairs(s);
   if (sat_builds_ != s.neighbour_builds() || sat_cache_.size() != list.size()) {
@@ -359,20 +359,24 @@ std::size_t PolygonModel::touching(DEMSystem& s) {
     PairCache& cache = caches[pc];
     const int i = c.i, j = c.j;
     const double dx = pos[2 * j] - pos[2 * i], dz = pos[2 * j + 1] - pos[2 * i + 1], rs = radius[i] + radius[j];
-    if (dx * dx + dz * dz >= rs * rs) {  // bounding discs apart
+    auto clear = [&] {
+      opened += c.points.dropped_energy(PointSprings{}, kt);
       c.points = PointSprings{};
+    };
+    if (dx * dx + dz * dz >= rs * rs) {  // bounding discs apart
+      clear();
       cache.flip = -1;
       continue;
     }
     int flip = 0, edge = 0;
     if (!pair_reference(f, cache, i, j, dx, dz, rs, flip, edge)) {  // apart: cleared in place, no manifold
-      c.points = PointSprings{};
+      clear();
       continue;
     }
     detail::PolygonContact& r = contacts[ntouch];
     pair_manifold(f, i, j, flip, edge, pair_incident(f, cache, i, j, flip, edge), r.m);
     if (r.m.count == 0) {  // overlapping by no point of the clipped edge: no spring kept
-      c.points = PointSprings{};
+      clear();
       continue;
     }
     r.pair = static_cast<int>(pc);
@@ -383,12 +387,12 @@ std::size_t PolygonModel::touching(DEMSystem& s) {
 
 // the forces of the touching pairs, in the pairs' order (a function of its own: fewer values live at once)
 ContactTally PolygonModel::contact_forces(DEMSystem& s, double dt) {
-  const std::size_t ntouch = touching(s);
   const DEMParams& p = s.params();
   const auto [friction, damp, kt] = contact_law(s);
   const double ct_factor = p.tangential_damping_factor;
   const double kn = s.stiffness_normal(), mu = p.friction_stone;
   ContactTally tally;
+  const std::size_t ntouch = touching(s, kt, tally.dissipated);
   const double *pos = s.stone_pos.data(), *vel = s.stone_vel.data(), *omega = s.stone_omega.data();
   double *force = s.stone_force.data(), *torque = s.stone_torque.data();
   std::vector<ContactPair>& list = pairs(s);
@@ -427,6 +431,7 @@ ContactTally PolygonModel::contact_forces(DEMSystem& s, double dt) {
       tally.elastic += fc.energy_spring;
       tally.dissipated += fc.power_damp * dt + fc.energy_slip;
     }
+    tally.dissipated += prev.dropped_energy(c.points, kt);
   }
   return tally;
 }
@@ -483,6 +488,7 @@ ContactTally PolygonModel::wall_forces(DEMSystem& s, double dt) {
         tally.elastic += fc.energy_spring;
         tally.dissipated += fc.power_damp * dt + fc.energy_slip;
       }
+      tally.dissipated += prev.dropped_energy(hist, kt);
     }
   }
   return tally;

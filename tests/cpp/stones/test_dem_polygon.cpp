@@ -313,3 +313,25 @@ TEST(DEMPolygon, RefusesTheDiscsRollingResistance) {
   s.set_params(p);  // mu_r = 0: accepted, the flag on or off
   EXPECT_NO_THROW(s.advance(1e-3));
 }
+
+// a heap of polygons under critical damping: the energy account's error halves with dt (the springs of
+// manifold points that drop out and the slip from the work done are booked, dem_contact.h)
+TEST(DEMPolygon, TheEnergyAccountConvergesUnderCriticalDamping) {
+  double error[2];
+  for (int k = 0; k < 2; ++k) {
+    DEMSystem s = random_polygons(24, 3);
+    DEMParams p = s.params();
+    p.restitution = 0.0;
+    p.stiffness_normal = 1e5;  // not the automatic one, which follows dt
+    p.dt = k == 0 ? 2e-5 : 1e-5;
+    s.set_params(p);
+    const DEMEnergy a = s.energy();
+    s.advance(0.4);
+    const DEMEnergy b = s.energy();
+    EXPECT_GT(b.dissipated, 0.0);
+    error[k] = (b.total() - a.total()) / (a.potential - b.potential);
+  }
+  EXPECT_LT(std::fabs(error[0]), 0.02);
+  EXPECT_LT(std::fabs(error[1]), 0.6 * std::fabs(error[0]));
+  EXPECT_LT(std::fabs(2.0 * error[1] - error[0]), 2e-3);  // extrapolated to dt = 0
+}

@@ -95,7 +95,7 @@ class PolygonModel final : public StoneModel {
   void update_properties(DEMSystem& s);
 
  private:
-  std::size_t touching(DEMSystem& s);
+  std::size_t touching(DEMSystem& s, double kt, double& opened);
   // the world-frame vertices of stone i into out (at most kPolygonMaxVertices pairs)
   int world_vertices(const DEMSystem& s, int i, double* out) const;
 

@@ -55,6 +55,13 @@ struct PointSprings {
   int id[2] = {-1, -1};
   double xi[2] = {0.0, 0.0};
   double spring(int feature) const { return id[0] == feature ? xi[0] : (id[1] == feature ? xi[1] : 0.0); }
+  // the energy of the springs whose points `now` does not have [J] (kt [N/m]): dropped with them, dissipated
+  double dropped_energy(const PointSprings& now, double kt) const {
+    double e = 0.0;
+    for (int k = 0; k < 2; ++k)
+      if (id[k] >= 0 && now.id[0] != id[k] && now.id[1] != id[k]) e += 0.5 * kt * xi[k] * xi[k];
+    return e;
+  }
 };
 
 // a stone pair of the neighbour list (i < j) with its contact history, carried over the list's rebuilds
