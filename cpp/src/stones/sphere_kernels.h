@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "vofdem/stones/rolling_resistance.h"
 #include "vofdem/stones/sphere_contact.h"
 
 // forced: the compilers' size limits would otherwise keep the law out of line in the loops
@@ -83,7 +84,7 @@ VOFDEM_SPHERE_INLINE PairConstants pair_constants(const SphereOfBody& i, const S
 // together, LAMMPS's rule: under strong damping it can hold more than the slip took from it, which the
 // account would lose as the contact opens.)
 VOFDEM_SPHERE_INLINE double release(SphereContactHistory& h, const SphereContactLaw& law, double r_eff) {
-  const double kt = law.stiffness_ratio * law.stiffness_normal, kr = kt * r_eff * r_eff;
+  const double kt = law.stiffness_ratio * law.stiffness_normal, kr = rolling_stiffness(kt, r_eff);
   const double e = 0.5 * kt * h.spring.squaredNorm() + (kr > 0.0 ? 0.5 * h.rolling.squaredNorm() / kr : 0.0);
   h = SphereContactHistory();
   return e;
