@@ -173,7 +173,7 @@ Crossing dumbbells_crossing(double dt) {
 
 // what they lose is dissipated: the account's error is first order in dt. (Its former 0.2 % at 1e-5 s
 // came from two errors that cancelled - the slip booked from the spring's cut, the springs of opening
-// contacts dropped from the account - and tended to -0.34 % as dt -> 0; now 0.40 % at 1e-5 s, 0.11 % at
+// contacts dropped from the account - and tended to -0.34 % as dt -> 0; now 0.40 % at 1e-5 s, 0.10 % at
 // 2.5e-6 s, tending to zero)
 TEST(ClumpModel, ACollisionsEnergyIsAccountedFor) {
   const Crossing coarse = dumbbells_crossing(1e-5), fine = dumbbells_crossing(2.5e-6);
