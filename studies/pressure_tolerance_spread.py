@@ -32,8 +32,9 @@ import numpy as np
 from vofdem.builder import build_simulation
 from vofdem.cluster import default_workers
 from vofdem.ensemble import parse_seeds, run_ensemble, with_settings
-from vofdem.fragility import combination_of, fragility_by_combination, fragility_markdown
+from vofdem.fragility import EVENTS, combination_of, fragility_by_combination, fragility_markdown
 from vofdem.scene import load_scene
+from vofdem.study import median_shift
 
 ROOT = Path(__file__).resolve().parents[1]
 KEY = "numerics.pressure_tolerance"  # the default key
@@ -76,6 +77,26 @@ def permutation_p(a, b, n: int = 10000, seed: int = 0) -> float:
     return (hits + 1) / (n + 1)
 
 
+def _lps(v) -> str:
+    return "not reached" if v is None else f"{v:.2f}"
+
+
+def median_shifts(a, b, t0, t1, n_boot: int = 1000):
+    """Markdown lines: each event's Kaplan-Meier median at the two values over the seeds both completed,
+    and its shift with the paired bootstrap 16-84 % interval over those seeds (`vofdem.study.median_shift`)."""
+    lines = [f"| event | median at {_v(t0)} [l/s] | median at {_v(t1)} [l/s] | shift [l/s] [paired bootstrap "
+             "16-84 %] | resamples left out |", "|---|---|---|---|---|"]
+    for event, (_, label) in EVENTS.items():
+        s = median_shift(a, b, event, n_boot=n_boot)
+        shift = "-" if s.shift is None else f"{s.shift:+.2f}"
+        band = "" if np.isnan(s.lo) else f" [{s.lo:+.2f} to {s.hi:+.2f}]"
+        left = "-" if np.isnan(s.left_out) else f"{s.left_out:.0%}"
+        lines.append(f"| {label} | {_lps(s.reference)} | {_lps(s.setting)} | {shift}{band} | {left} |")
+    lines += ["", f"Over the {s.seeds} seeds both values completed; a resample in which either median is not reached "
+              "(beyond the runs' last discharge) is left out of the interval."]
+    return lines
+
+
 def compare_members(frame, tolerances, key=KEY):
     """Markdown: each value's fragility tables, then the stones and crest per value of `key` with the
     permutation p-value of their means' difference, and the paired differences."""
@@ -101,6 +122,7 @@ def compare_members(frame, tolerances, key=KEY):
     lines.append("| steps per member: mean, median [members' 16-84 %] | " +
                  " | ".join(f"{by[t]['steps'].astype(float).mean():,.0f}, {_band(by[t]['steps'], '{:,.0f}')}" for t in tolerances) +
                  f" | {permutation_p(by[t0]['steps'].astype(float), by[t1]['steps'].astype(float)):.2f} |")
+    lines += ["", *median_shifts(by[t0], by[t1], t0, t1)]
     a, b = (by[t].set_index("seed")["removed"].astype(float) for t in (t0, t1))
     seeds = a.index.intersection(b.index)
     paired = np.abs(a[seeds] - b[seeds])

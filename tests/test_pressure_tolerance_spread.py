@@ -91,3 +91,24 @@ def test_the_flow_alone_across_two_grids(spread):
     most, mean = map(float, re.search(r"differs by at most ([\d.]+) mm over the flume between the values \(mean "
                                       r"([\d.]+) mm\)", text).groups())
     assert 0.0 < mean < most
+
+
+def test_the_median_shifts_by_hand(spread):
+    import pandas as pd
+
+    def members(first, stage1):
+        n = len(first)
+        return pd.DataFrame({"status": ["completed"] * n, "seed": range(n), "first_removal_lps": first,
+                             "stage1_lps": stage1, "stage2_lps": [float("nan")] * n,
+                             "stage3_lps": [float("nan")] * n, "last_discharge_lps": [25.0] * n})
+
+    nan = float("nan")
+    # three seeds: first removals 10, 12, 14 against 11, 13, 15 (every resample shifts by +1); stage 1 at
+    # 14, 16, never against never: not reached at the second value
+    lines = spread.median_shifts(members([10.0, 12.0, 14.0], [14.0, 16.0, nan]),
+                                 members([11.0, 13.0, 15.0], [nan, nan, nan]), "standard", "fine", n_boot=200)
+    assert lines[0].startswith("| event | median at standard [l/s] | median at fine [l/s] |")
+    assert lines[2] == "| first removal of any stone | 12.00 | 13.00 | +1.00 [+1.00 to +1.00] | 0% |"
+    assert lines[3] == "| stage 1 | 16.00 | not reached | - | 100% |"
+    assert lines[5] == "| stage 3 | not reached | not reached | - | 100% |"
+    assert lines[-1].startswith("Over the 3 seeds both values completed")
