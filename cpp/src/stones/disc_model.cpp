@@ -61,6 +61,7 @@ ContactTally DiscModel::contact_forces(DEMSystem& s, double dt) {
   const DEMParams& p = s.params();
   const auto [friction, damp, kt] = contact_law(s);
   const double kn = s.stiffness_normal();
+  const double kt_roll = s.stiffness_tangential();  // the rolling springs' k_t, friction or not
   const double ct_factor = p.tangential_damping_factor;
   const bool rolling = rolling_stones(s);
   const double* pos = s.stone_pos.data();
@@ -78,7 +79,8 @@ ContactTally DiscModel::contact_forces(DEMSystem& s, double dt) {
     const double rs = ri + rj;
     const double d2 = dx * dx + dz * dz;
     if (d2 >= rs * rs) {
-      if (c.xi != 0.0 || c.mr != 0.0) t.dissipated += opened_energy(c.xi, kt, c.mr, rolling_stiffness(kt, c.roll_r));
+      if (c.xi != 0.0 || c.mr != 0.0)
+        t.dissipated += opened_energy(c.xi, kt, c.mr, rolling_stiffness(kt_roll, c.roll_r));
       c.xi = 0.0;
       c.mr = 0.0;
       continue;
@@ -115,6 +117,7 @@ ContactTally DiscModel::wall_forces(DEMSystem& s, double dt) {
   const DEMParams& p = s.params();
   const auto [friction, damp, kt] = contact_law(s);
   const double kn = s.stiffness_normal();
+  const double kt_roll = s.stiffness_tangential();  // the rolling springs' k_t, friction or not
   const bool rolling = rolling_walls(s);
   const std::size_t nw = p.walls.size();
   const WallCandidates cand = wall_candidates(s);
@@ -136,7 +139,7 @@ ContactTally DiscModel::wall_forces(DEMSystem& s, double dt) {
       const double d = (s.stone_pos[2 * i] - wall.point[0]) * wx + (s.stone_pos[2 * i + 1] - wall.point[1]) * wz;
       if (d >= r) {
         double& mr = wall_mr[static_cast<std::size_t>(i) * nw + w];
-        if (xi != 0.0 || mr != 0.0) t.dissipated += opened_energy(xi, kt, mr, rolling_stiffness(kt, r));
+        if (xi != 0.0 || mr != 0.0) t.dissipated += opened_energy(xi, kt, mr, rolling_stiffness(kt_roll, r));
         xi = 0.0;
         mr = 0.0;
         continue;
