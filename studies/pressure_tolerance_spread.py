@@ -34,7 +34,7 @@ from vofdem.cluster import default_workers
 from vofdem.ensemble import parse_seeds, run_ensemble, with_settings
 from vofdem.fragility import EVENTS, combination_of, fragility_by_combination, fragility_markdown
 from vofdem.scene import load_scene
-from vofdem.study import median_shift
+from vofdem.study import event_arrays, median_shift
 
 ROOT = Path(__file__).resolve().parents[1]
 KEY = "numerics.pressure_tolerance"  # the default key
@@ -89,7 +89,7 @@ def median_shifts(a, b, t0, t1, n_boot: int = 1000):
     for event, (_, label) in EVENTS.items():
         s = median_shift(a, b, event, n_boot=n_boot)
         shift = "-" if s.shift is None else f"{s.shift:+.2f}"
-        band = "" if np.isnan(s.lo) else f" [{s.lo:+.2f} to {s.hi:+.2f}]"
+        band = "" if s.shift is None or np.isnan(s.lo) else f" [{s.lo:+.2f} to {s.hi:+.2f}]"
         left = "-" if np.isnan(s.left_out) else f"{s.left_out:.0%}"
         lines.append(f"| {label} | {_lps(s.reference)} | {_lps(s.setting)} | {shift}{band} | {left} |")
     lines += ["", f"Over the {s.seeds} seeds both values completed; a resample in which either median is not reached "
@@ -97,13 +97,52 @@ def median_shifts(a, b, t0, t1, n_boot: int = 1000):
     return lines
 
 
+def by_value(frame, values, key=KEY):
+    """{value: its completed members, by seed}"""
+    done = frame[frame["status"] == "completed"]
+    combos = {t: f"{key}={t!r}" if isinstance(t, float) else f"{key}={_v(t)}" for t in values}  # the members' names
+    return {t: done[[combination_of(m) == c for m in done["member"]]].sort_values("seed") for t, c in combos.items()}
+
+
+def paired_figure(frame, values, path: Path, title: str, key=KEY) -> Path:
+    """Each seed's discharge of each event at the second value against the first (hollow: it never
+    happened, drawn at the run's last discharge), with the line of equal answers."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    by = by_value(frame, values, key)
+    a, b = (by[t].set_index("seed") for t in values[:2])
+    seeds = a.index.intersection(b.index)
+    fig, axes = plt.subplots(1, len(EVENTS), figsize=(3.2 * len(EVENTS), 3.6), sharex=True, sharey=True,
+                             layout="constrained")
+    for ax, (event, (_, label)) in zip(axes, EVENTS.items()):
+        qa, oa = event_arrays(a.loc[seeds], event)
+        qb, ob = event_arrays(b.loc[seeds], event)
+        for both, style in ((oa & ob, dict(color="C0")), (~(oa & ob), dict(facecolor="none", edgecolor="C1"))):
+            ax.scatter(qa[both], qb[both], s=28, **style)
+        points, counts = np.unique(np.round(np.c_[qa, qb], 2), axis=0, return_counts=True)
+        for (x, y), n in zip(points, counts):
+            if n > 1:  # packings on the same point
+                ax.annotate(f"x{n}", (x, y), xytext=(5, -9), textcoords="offset points", fontsize=7)
+        lo, hi = 9.0, 26.0
+        ax.plot([lo, hi], [lo, hi], color="0.6", lw=0.8)
+        ax.set(xlim=(lo, hi), ylim=(lo, hi), title=label, xlabel=f"Q at {_v(values[0])} [l/s]")
+    axes[0].set_ylabel(f"Q at {_v(values[1])} [l/s]")
+    fig.suptitle(f"{title}: each packing's events (hollow: not at both values, at the run's end)", fontsize=9)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def compare_members(frame, tolerances, key=KEY):
     """Markdown: each value's fragility tables, then the stones and crest per value of `key` with the
     permutation p-value of their means' difference, and the paired differences."""
     done = frame[frame["status"] == "completed"]
     name = key.rpartition(".")[2]
-    combos = {t: f"{key}={t!r}" if isinstance(t, float) else f"{key}={_v(t)}" for t in tolerances}  # the members' names
-    by = {t: done[[combination_of(m) == c for m in done["member"]]].sort_values("seed") for t, c in combos.items()}
+    by = by_value(frame, tolerances, key)
     t0, t1 = tolerances[:2]
     lines = [fragility_markdown(fragility_by_combination(done)),
              "| measure | " + " | ".join(f"{name} {_v(t)}" for t in tolerances) + " | means' difference: p |",
@@ -184,6 +223,8 @@ def main(argv=None):
                    help="ensembles in OUT/tol_spread_<scene> (another key: OUT/<its name>_spread_<scene>)")
     p.add_argument("--results", type=Path, default=None,
                    help="default studies/results/<the key's name>_spread.md")
+    p.add_argument("--figure", type=Path, default=None, help="each packing's events at the two values, paired "
+                   "(a PNG; with several scenes, one per scene: the scene's name appended)")
     args = p.parse_args(argv)
     name = args.key.rpartition(".")[2]
     if args.values is None:
@@ -211,6 +252,10 @@ def main(argv=None):
                              workers=workers, progress=False)
         parts += [f"## {scene.name}", "", compare_members(frame, args.tolerances, args.key), "",
                   flow_alone(scene, args.tolerances, args.spin_up, args.key), ""]
+        if args.figure is not None:
+            fig = args.figure if len(args.scenes) == 1 else args.figure.with_stem(f"{args.figure.stem}_{scene.name}")
+            paired_figure(frame, args.tolerances, fig, f"{scene.name}, {args.key}", args.key)
+            parts += [f"Figure: `{fig.relative_to(ROOT) if fig.is_relative_to(ROOT) else fig.name}`", ""]
     results.write_text("\n".join(parts), encoding="utf-8")
     print(results)
     return results

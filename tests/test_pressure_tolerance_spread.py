@@ -23,9 +23,11 @@ def test_the_permutation_p_value_by_hand(spread):
 def test_the_script_at_a_tiny_size(spread, tmp_path):
     md = spread.main(["--quick", "--seeds", "0", "--end-time", "2", "--spin-up", "0.5", "--workers", "0",
                       "--scenes", "maeno2008", "--out", str(tmp_path / "ens"),
-                      "--results", str(tmp_path / "spread.md")])
+                      "--results", str(tmp_path / "spread.md"), "--figure", str(tmp_path / "paired.png")])
     text = md.read_text()
     assert "## maeno2008_quick" in text
+    assert (tmp_path / "paired.png").stat().st_size > 0 and "Figure: `paired.png`" in text
+    assert "| first removal of any stone | not reached | not reached | - | 100% |" in text  # 2 s: no stone moved
     assert "**numerics.pressure_tolerance=1e-05**: 1 completed members" in text
     assert "**numerics.pressure_tolerance=0.0001**: 1 completed members" in text
     assert "| stones removed: mean, median [members' 16-84 %] | 0.0, 0.0 [0.0-0.0] | 0.0, 0.0 [0.0-0.0] | 1.00 |" in text
