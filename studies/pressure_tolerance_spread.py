@@ -255,7 +255,7 @@ def main(argv=None):
         if args.figure is not None:
             fig = args.figure if len(args.scenes) == 1 else args.figure.with_stem(f"{args.figure.stem}_{scene.name}")
             paired_figure(frame, args.tolerances, fig, f"{scene.name}, {args.key}", args.key)
-            parts += [f"Figure: `{fig.relative_to(ROOT) if fig.is_relative_to(ROOT) else fig.name}`", ""]
+            parts += [f"Figure: `{fig.relative_to(ROOT) if fig.is_relative_to(ROOT) else fig}`", ""]
     results.write_text("\n".join(parts), encoding="utf-8")
     print(results)
     return results

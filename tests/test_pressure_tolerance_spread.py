@@ -26,7 +26,7 @@ def test_the_script_at_a_tiny_size(spread, tmp_path):
                       "--results", str(tmp_path / "spread.md"), "--figure", str(tmp_path / "paired.png")])
     text = md.read_text()
     assert "## maeno2008_quick" in text
-    assert (tmp_path / "paired.png").stat().st_size > 0 and "Figure: `paired.png`" in text
+    assert (tmp_path / "paired.png").stat().st_size > 0 and f"Figure: `{tmp_path / 'paired.png'}`" in text
     assert "| first removal of any stone | not reached | not reached | - | 100% |" in text  # 2 s: no stone moved
     assert "**numerics.pressure_tolerance=1e-05**: 1 completed members" in text
     assert "**numerics.pressure_tolerance=0.0001**: 1 completed members" in text
