@@ -117,6 +117,8 @@ def paired_figure(frame, values, path: Path, title: str, key=KEY) -> Path:
     seeds = a.index.intersection(b.index)
     fig, axes = plt.subplots(1, len(EVENTS), figsize=(3.2 * len(EVENTS), 3.6), sharex=True, sharey=True,
                              layout="constrained")
+    q = np.concatenate([event_arrays(m.loc[seeds], e)[0] for m in (a, b) for e in EVENTS])
+    lo, hi = 0.95 * q.min(), 1.05 * q.max()
     for ax, (event, (_, label)) in zip(axes, EVENTS.items()):
         qa, oa = event_arrays(a.loc[seeds], event)
         qb, ob = event_arrays(b.loc[seeds], event)
@@ -126,7 +128,6 @@ def paired_figure(frame, values, path: Path, title: str, key=KEY) -> Path:
         for (x, y), n in zip(points, counts):
             if n > 1:  # packings on the same point
                 ax.annotate(f"x{n}", (x, y), xytext=(5, -9), textcoords="offset points", fontsize=7)
-        lo, hi = 9.0, 26.0
         ax.plot([lo, hi], [lo, hi], color="0.6", lw=0.8)
         ax.set(xlim=(lo, hi), ylim=(lo, hi), title=label, xlabel=f"Q at {_v(values[0])} [l/s]")
     axes[0].set_ylabel(f"Q at {_v(values[1])} [l/s]")
@@ -161,7 +162,6 @@ def compare_members(frame, tolerances, key=KEY):
     lines.append("| steps per member: mean, median [members' 16-84 %] | " +
                  " | ".join(f"{by[t]['steps'].astype(float).mean():,.0f}, {_band(by[t]['steps'], '{:,.0f}')}" for t in tolerances) +
                  f" | {permutation_p(by[t0]['steps'].astype(float), by[t1]['steps'].astype(float)):.2f} |")
-    lines += ["", *median_shifts(by[t0], by[t1], t0, t1)]
     a, b = (by[t].set_index("seed")["removed"].astype(float) for t in (t0, t1))
     seeds = a.index.intersection(b.index)
     paired = np.abs(a[seeds] - b[seeds])
@@ -170,7 +170,8 @@ def compare_members(frame, tolerances, key=KEY):
     lines += ["", f"p: the share of 10,000 random relabellings of the members between the values whose means "
               f"differ at least as much (a small p: a shift beyond the packings' spread). Stones removed, the same "
               f"seed at {_v(t0)} and {_v(t1)}: mean absolute difference {paired.mean():.1f} ({int((paired == 0).sum())} "
-              f"of {len(seeds)} seeds equal); two packings (seeds i and i + 1) at {_v(t0)}: {across_text}."]
+              f"of {len(seeds)} seeds equal); two packings (seeds i and i + 1) at {_v(t0)}: {across_text}.", "",
+              *median_shifts(by[t0], by[t1], t0, t1)]
     return "\n".join(lines)
 
 
