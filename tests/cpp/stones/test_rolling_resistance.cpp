@@ -71,6 +71,19 @@ DEMParams rolling_params(double mu_r, double mu_r_wall) {
   p.rolling_friction_wall = mu_r_wall;
   return p;
 }
+
+// a stone resting on the bed (k_n = 1e5 N/m, bed friction mu_w), the flags `off` cleared, set spinning at
+// 0.5 rad/s
+DEMSystem spinning_on_bed(unsigned off, double mu_w) {
+  DEMParams p = rolling_params(0.0, 5.0);  // a cap far above the moments reached on the bed
+  p.flags &= ~off;
+  p.stiffness_normal = 1e5;
+  p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, mu_w});
+  const double delta = sphere_mass(kR) * 9.81 / 1e5;
+  DEMSystem s(p, {0.0, kR - delta}, {kR}, {kRho});
+  s.stone_omega[0] = 0.5;
+  return s;
+}
 }  // namespace
 
 TEST(RollingResistance, LawFollowsTheElasticPlasticCurveByHand) {
@@ -264,13 +277,7 @@ TEST(RollingResistance, DiscOnInclineRollsAboveItAtTheHandComputedRate) {
 
 TEST(RollingResistance, RockingStoneKeepsItsEnergyWithoutDampingOrSlip) {
   // a stone on the bed set spinning: the rolling and tangential springs store and return the energy
-  DEMParams p = rolling_params(0.0, 5.0);  // a cap far above the moments reached: no rolling slip
-  p.flags &= ~kDEMDamping;
-  p.stiffness_normal = 1e5;
-  p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 5.0});
-  const double delta = sphere_mass(kR) * 9.81 / 1e5;
-  DEMSystem s(p, {0.0, kR - delta}, {kR}, {kRho});
-  s.stone_omega[0] = 0.5;
+  DEMSystem s = spinning_on_bed(kDEMDamping, 5.0);  // no rolling slip
   const double dt = 0.25 * s.stable_dt();
   s.step(dt);
   const double e0 = s.energy().total(), k0 = s.energy().kinetic;
@@ -445,13 +452,7 @@ TEST(RollingResistance, ALiftedStonesRollingSpringIsBookedWithoutFriction) {
   // friction off, rolling resistance on: the rolling spring (k_r = k_t r^2 with the system's k_t, not the
   // contact law's k_t, which is 0 without friction) is charged by a spin on the bed, then dropped as the
   // stone is thrown off the bed: booked as dissipated (it was not: 88 % of the spin's energy lost)
-  DEMParams p = rolling_params(0.0, 5.0);
-  p.flags &= ~(kDEMDamping | kDEMFriction);
-  p.stiffness_normal = 1e5;
-  p.walls.push_back({{0.0, 0.0}, {0.0, 1.0}, 0.176});
-  const double delta = sphere_mass(kR) * 9.81 / 1e5;
-  DEMSystem s(p, {0.0, kR - delta}, {kR}, {kRho});
-  s.stone_omega[0] = 0.5;
+  DEMSystem s = spinning_on_bed(kDEMDamping | kDEMFriction, 0.176);
   const double dt = 0.25 * s.stable_dt();
   s.step(dt);
   const double spin = s.energy().kinetic;
